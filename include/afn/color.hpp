@@ -1,0 +1,81 @@
+// SPDX-License-Identifier: Apache-2.0
+// afn_color: colour management with OpenColorIO 2.1, and display-referred pictures of AOVs
+// (previews and contact sheets). Config resolution: an explicit path (--colorconfig), else $OCIO,
+// else the project's own config (ocio/config.ocio, found in the build tree or the install prefix).
+// Errors are thrown as afn::color::ColorError; nothing in here terminates the process.
+#pragma once
+
+#include <memory>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace afn::color {
+
+class ColorError : public std::runtime_error {
+public:
+    using std::runtime_error::runtime_error;
+};
+
+/// Which config file would be used for an explicit path ("" = none given), and why.
+struct ConfigChoice {
+    std::string path;
+    std::string reason; ///< "--colorconfig" | "$OCIO" | "afn default"
+};
+ConfigChoice resolveConfig(const std::string& explicitPath = {});
+
+/// A loaded config with cached processors. Thread-safe after construction.
+class ColorManager {
+public:
+    /// Load the config chosen by resolveConfig(explicitPath); throws ColorError.
+    explicit ColorManager(const std::string& explicitPath = {});
+    ~ColorManager();
+    ColorManager(const ColorManager&) = delete;
+    ColorManager& operator=(const ColorManager&) = delete;
+
+    const ConfigChoice& config() const;
+    /// The scene-linear working space (role scene_linear).
+    std::string workingSpace() const;
+    std::vector<std::string> colorSpaces() const;
+    std::vector<std::string> displays() const;
+    std::vector<std::string> views(const std::string& display) const;
+    std::string defaultDisplay() const;
+    std::string defaultView(const std::string& display) const;
+    /// True if the name (or alias or role) is a colour space of the config.
+    bool hasColorSpace(const std::string& name) const;
+
+    /// Convert the first 3 channels of each pixel in place, from one colour space to another.
+    /// `stride` = floats per pixel (>= 3); other channels are left untouched.
+    void convert(float* pixels, int width, int height, int stride, const std::string& from,
+                 const std::string& to) const;
+    /// Convert to the working space (no-op when `from` is it or empty).
+    void toWorking(float* pixels, int width, int height, int stride, const std::string& from) const;
+    /// Apply a display/view transform ("" = config defaults) from `from` ("" = working space).
+    void toDisplay(float* pixels, int width, int height, int stride, const std::string& from,
+                   const std::string& display = {}, const std::string& view = {}) const;
+
+private:
+    struct Impl;
+    std::unique_ptr<Impl> m_impl;
+};
+
+/// One labelled tile of a contact sheet: display-referred RGB in [0, 1].
+struct Tile {
+    std::string label;
+    int width = 0, height = 0;
+    std::vector<float> rgb; ///< width*height*3
+};
+
+/// Turn a role's raw values into a viewable tile: colour-like roles through the display/view,
+/// normals as n*0.5+0.5, depth and position normalised by their finite range, motion as a
+/// direction/magnitude colour code. `kind` is a role name ("color", "albedo", "normal", ...).
+Tile makeTile(const ColorManager& cm, const std::string& kind, const std::string& label, int width,
+              int height, int components, const float* pixels, const std::string& display = {},
+              const std::string& view = {});
+
+/// Arrange tiles in a grid with their labels drawn above them (built-in bitmap font), on a dark
+/// background; returns an RGB image of outWidth x outHeight in [0, 1].
+std::vector<float> layoutContactSheet(const std::vector<Tile>& tiles, int columns, int& outWidth,
+                                      int& outHeight);
+
+} // namespace afn::color

@@ -1,0 +1,205 @@
+// SPDX-License-Identifier: Apache-2.0
+// afn_io: reading renderer EXRs (AOV roles, space tags, sequences, the BMFR dataset layout) and
+// writing images atomically. Built on OpenImageIO; separate from the compute library (libafn does
+// no file I/O). Errors are thrown as afn::io::IoError carrying the file they concern; nothing in
+// here terminates the process.
+#pragma once
+
+#include <map>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace afn::io {
+
+/// An I/O failure: message plus the file it concerns (may be empty).
+class IoError : public std::runtime_error {
+public:
+    IoError(const std::string& message, std::string file = {})
+        : std::runtime_error(message), m_file(std::move(file))
+    {
+    }
+    const std::string& file() const { return m_file; }
+
+private:
+    std::string m_file;
+};
+
+// ---- AOV roles ----------------------------------------------------------------------------------
+
+/// What a group of channels means to a denoiser. Names: color, albedo, normal, depth, position,
+/// motion, alpha, variance, specular.
+enum class Role { Color, Albedo, Normal, Depth, Position, Motion, Alpha, Variance, Specular };
+constexpr int kNumRoles = 9;
+
+/// Lower-case role name ("color", ...).
+const char* roleName(Role role);
+/// Role from its name; nullopt if unknown.
+std::optional<Role> roleFromName(const std::string& name);
+/// Number of components a role has (color 3, albedo 3, normal 3, depth 1, position 3, motion 2,
+/// alpha 1, variance 1 or 3 -> 3, specular 3).
+int roleComponents(Role role);
+
+/// Conventions of a role's values, named exactly as the filter parameters of libafn
+/// ("normal.space", "depth.kind", "motion.direction", "motion.yUp", "motion.units").
+struct SpaceTag {
+    std::string normalSpace = "world";           ///< world | camera | camera-toward-viewer
+    std::string depthKind = "planar";            ///< planar | radial
+    std::string motionDirection = "to-previous"; ///< to-previous | to-next
+    bool motionYUp = false;                      ///< y grows upward (Blender)
+    std::string motionUnits = "pixels";          ///< pixels | ndc | uv
+};
+
+/// Where one role lives in a file.
+struct RoleChannels {
+    Role role = Role::Color;
+    int subimage = 0;                  ///< part (subimage) index
+    std::vector<std::string> channels; ///< full channel names, in component order (R,G,B / X,Y,Z)
+    std::vector<int> indices;          ///< channel indices within the subimage
+    std::string source;                ///< e.g. "Blender Cycles 'Denoising Albedo'" or "--aov override"
+};
+
+/// The role mapping of one file.
+struct RoleMapping {
+    std::string renderer = "generic"; ///< blender | arnold | renderman | vray | redshift | karma | bmfr | generic
+    std::vector<RoleChannels> roles;  ///< roles found, in Role order
+    SpaceTag tag;                     ///< conventions of normal, depth and motion as found
+    /// For every role not found: the channel names that were looked for (for error messages).
+    std::map<Role, std::vector<std::string>> lookedFor;
+
+    const RoleChannels* find(Role role) const;
+};
+
+/// A user override: role -> comma-separated channel names, e.g. "albedo=diffuse.R,diffuse.G,diffuse.B"
+/// or a layer prefix "albedo=diffuse". Space-tag overrides use the filter parameter names
+/// ("normal.space=camera").
+struct MappingOverrides {
+    std::map<Role, std::vector<std::string>> channels;
+    std::map<std::string, std::string> tags; ///< "normal.space" -> "camera", ...
+};
+
+/// Parse one "--aov" argument ("role=channels" or "normal.space=value"); throws IoError.
+void parseOverride(const std::string& text, MappingOverrides& overrides);
+
+// ---- File inspection ----------------------------------------------------------------------------
+
+struct Box {
+    int x = 0, y = 0, width = 0, height = 0;
+};
+
+struct SubimageInfo {
+    std::string name;                  ///< part name ("" for single-part files)
+    Box dataWindow;
+    Box displayWindow;
+    std::vector<std::string> channels; ///< names as stored
+    std::vector<std::string> types;    ///< per channel: "half", "float", "uint"
+    std::string compression;
+};
+
+struct FileInfo {
+    std::string path;
+    std::string format;                           ///< "openexr", "png", ...
+    std::vector<SubimageInfo> subimages;
+    std::map<std::string, std::string> attributes; ///< header attributes of subimage 0, as text
+};
+
+/// Read a file's header; throws IoError (missing, unreadable, truncated header).
+FileInfo inspect(const std::string& path);
+
+/// Map channels to roles (automatic for Blender Cycles, Arnold, RenderMan, V-Ray, Redshift, Karma,
+/// generic R,G,B), then apply overrides. Never throws for a missing role: see lookedFor.
+RoleMapping mapRoles(const FileInfo& info, const MappingOverrides& overrides = {});
+
+// ---- Reading frames -----------------------------------------------------------------------------
+
+/// A role's pixels: interleaved floats, `components` per pixel, top row first, data window size.
+struct RoleImage {
+    int width = 0, height = 0, components = 0;
+    std::vector<float> pixels;
+};
+
+/// Per-role statistics over all components (for --info).
+struct RoleStats {
+    double min = 0, max = 0, mean = 0;
+    long long nan = 0, inf = 0, negative = 0, count = 0;
+};
+RoleStats computeStats(const RoleImage& image);
+
+/// Every channel of a file (all subimages of the data window size), for --keep-aovs.
+struct LayeredImage {
+    int width = 0, height = 0;
+    Box dataWindow, displayWindow;
+    std::vector<std::string> channels;  ///< names; parts of multi-part files as "<part>.<name>"
+    std::vector<std::string> types;     ///< per channel: "half" | "float" | "uint"
+    std::vector<float> pixels;          ///< interleaved, channels.size() per pixel
+    std::map<std::string, std::string> attributes; ///< header attributes worth keeping (Frame, ...)
+    std::string compression;
+};
+
+/// Camera of a frame, when the input provides one (BMFR camera_matrices.h).
+struct FrameCamera {
+    float viewProjection[16]; ///< row-major, clip = [p, 1]·M
+    float pixelOffset[2];
+    float positionLimitSquared; ///< dataset's TA thresholds (< 0 when unknown)
+    float normalLimitSquared;
+};
+
+struct FrameImages {
+    std::string path;
+    RoleMapping mapping;
+    std::map<Role, RoleImage> roles; ///< every mapped role
+    std::optional<LayeredImage> all; ///< filled when ReadOptions::keepAll
+    std::optional<FrameCamera> camera;
+};
+
+struct ReadOptions {
+    MappingOverrides overrides;
+    bool keepAll = false;              ///< also read every channel (for --keep-aovs)
+    std::vector<Role> required = { Role::Color }; ///< missing -> IoError naming what was looked for
+};
+
+/// Read one frame (single EXR, multi-part EXR, or a BMFR dataset frame: see bmfrFramePath).
+FrameImages readFrame(const std::string& path, const ReadOptions& options = {});
+
+// ---- Sequences ----------------------------------------------------------------------------------
+
+/// Parse oiiotool-style frame ranges: "1-10", "1-10x2", "3,5,7", "1-4,10". Throws IoError.
+std::vector<int> parseFrameRange(const std::string& text);
+/// True when the name holds a frame pattern: '#' (4 digits each), '@' (1 digit each), %0Nd.
+bool hasFramePattern(const std::string& pattern);
+/// Substitute a frame number ("shot.####.exr", 7 -> "shot.0007.exr"; negative frames keep '-').
+std::string expandFramePattern(const std::string& pattern, int frame);
+/// Expand for every frame and check each file exists; throws IoError naming the first missing.
+std::vector<std::string> expandSequence(const std::string& pattern, const std::vector<int>& frames,
+                                        bool mustExist = true);
+
+// ---- BMFR dataset layout ------------------------------------------------------------------------
+
+/// True if `dir` (or dir/inputs) holds color{N}.exr + camera_matrices.h.
+bool isBmfrDataset(const std::string& dir);
+/// The per-frame pseudo path for frame N of a BMFR scene folder ("<dir>#bmfr:N"), readable by readFrame.
+std::string bmfrFramePath(const std::string& dir, int frame);
+/// Parse camera_matrices.h (named arrays, not a number regex): all frames.
+std::vector<FrameCamera> parseCameraMatrices(const std::string& headerPath);
+
+// ---- Writing ------------------------------------------------------------------------------------
+
+struct WriteOptions {
+    std::string dataType = "half";  ///< "half" | "float" (EXR); PNG is always 8-bit
+    std::string compression;        ///< "" = zip (or the input's, when the caller passes it)
+    std::map<std::string, std::string> attributes; ///< extra header attributes
+    std::vector<std::string> inputs; ///< paths that must never be overwritten (refuse if equal)
+};
+
+/// Write an image atomically: temporary file in the same directory, then rename. The format comes
+/// from the extension (.exr, .png, .tif, ...). `types` may give a per-channel "half"/"float" (empty
+/// = options.dataType). Throws IoError; on failure nothing is left at `path` or beside it.
+void writeImageAtomic(const std::string& path, int width, int height,
+                      const std::vector<std::string>& channels, const float* pixels,
+                      const WriteOptions& options = {}, const std::vector<std::string>& types = {});
+
+/// True if two paths name the same existing file (or the same path when they do not exist yet).
+bool samePath(const std::string& a, const std::string& b);
+
+} // namespace afn::io

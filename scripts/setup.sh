@@ -1,0 +1,22 @@
+#!/usr/bin/env bash
+# Install the Debian packages afn needs (only what is missing). Usage: scripts/setup.sh [--blender] [--torch]
+set -euo pipefail
+pkgs=(cmake g++ make pkg-config libopenimageio-dev openimageio-tools libopencolorio-dev
+      opencolorio-tools libopenexr-dev libimath-dev libtbb-dev libdnnl-dev libgtest-dev libgmock-dev
+      libbenchmark-dev python3-numpy python3-openimageio python3-pytest)
+for arg in "$@"; do
+  case "$arg" in
+    --blender) pkgs+=(blender) ;;
+    --torch) pkgs+=(python3-torch) ;;
+  esac
+done
+missing=()
+for p in "${pkgs[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if [ ${#missing[@]} -gt 0 ]; then
+  echo "afn setup: installing ${missing[*]}"
+  SUDO=""; [ "$(id -u)" -ne 0 ] && SUDO=sudo
+  $SUDO apt-get update -qq
+  DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}"
+fi
