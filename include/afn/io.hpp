@@ -49,6 +49,7 @@ struct SpaceTag {
     std::string motionDirection = "to-previous"; ///< to-previous | to-next
     bool motionYUp = false;                      ///< y grows upward (Blender)
     std::string motionUnits = "pixels";          ///< pixels | ndc | uv
+    bool colorDemodulated = false;               ///< colour already divided by albedo (BMFR data)
 };
 
 /// Where one role lives in a file.
