@@ -68,6 +68,8 @@ struct RoleMapping {
     SpaceTag tag;                     ///< conventions of normal, depth and motion as found
     /// For every role not found: the channel names that were looked for (for error messages).
     std::map<Role, std::vector<std::string>> lookedFor;
+    /// Things the user should know (e.g. "Vector pass is all zero: motion blur was on").
+    std::vector<std::string> warnings;
 
     const RoleChannels* find(Role role) const;
 };
