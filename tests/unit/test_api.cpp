@@ -1,2 +1,281 @@
+// SPDX-License-Identifier: Apache-2.0
+// API contract tests: every call's error state, including the negative paths (null handles,
+// unknown names, out-of-range values, size mismatches, uncommitted execute, cancel).
+#include "afn/afn.hpp"
+
 #include <gtest/gtest.h>
-TEST(Api, Placeholder) { SUCCEED(); }
+
+#include <cmath>
+#include <cstring>
+#include <limits>
+#include <string>
+#include <thread>
+#include <vector>
+
+namespace {
+
+struct ApiTest : ::testing::Test {
+    afn::DeviceRef device;
+    void SetUp() override
+    {
+        device = afn::newDevice();
+        ASSERT_TRUE(device);
+        device.commit();
+        ASSERT_EQ(device.getError(), afn::Error::None);
+    }
+    afn::Error error(std::string* msg = nullptr) { return device.getError(msg); }
+};
+
+std::vector<float> ramp(int w, int h, int ch)
+{
+    std::vector<float> v(static_cast<size_t>(w) * h * ch);
+    for (size_t i = 0; i < v.size(); ++i) v[i] = 0.01f * static_cast<float>(i % 97);
+    return v;
+}
+
+TEST_F(ApiTest, VersionAndThreads)
+{
+    EXPECT_EQ(device.get("version"), AFN_VERSION);
+    device.set("numThreads", 1);
+    EXPECT_EQ(device.get("numThreads"), 1);
+    EXPECT_EQ(error(), afn::Error::None);
+    device.set("numThreads", -1);
+    EXPECT_EQ(error(), afn::Error::InvalidArgument);
+    device.set("noSuchParam", 1);
+    std::string msg;
+    EXPECT_EQ(error(&msg), afn::Error::InvalidArgument);
+    EXPECT_NE(msg.find("noSuchParam"), std::string::npos);
+    EXPECT_EQ(error(), afn::Error::None) << "an error is cleared once read";
+}
+
+TEST(ApiNull, NullHandlesRecordThreadError)
+{
+    afnCommitDevice(nullptr);
+    const char* msg = nullptr;
+    EXPECT_EQ(afnGetDeviceError(nullptr, &msg), AFN_ERROR_INVALID_ARGUMENT);
+    ASSERT_NE(msg, nullptr);
+    EXPECT_NE(std::string(msg).find("invalid device"), std::string::npos);
+    afnExecuteFilter(nullptr);
+    EXPECT_EQ(afnGetDeviceError(nullptr, nullptr), AFN_ERROR_INVALID_ARGUMENT);
+    EXPECT_EQ(afnGetDeviceError(nullptr, nullptr), AFN_ERROR_NONE);
+    // The thread slot is per thread.
+    afnReleaseFilter(nullptr);
+    AFNError other = AFN_ERROR_UNKNOWN;
+    std::thread([&] { other = afnGetDeviceError(nullptr, nullptr); }).join();
+    EXPECT_EQ(other, AFN_ERROR_NONE);
+    EXPECT_EQ(afnGetDeviceError(nullptr, nullptr), AFN_ERROR_INVALID_ARGUMENT);
+}
+
+TEST(ApiNull, FilterNeedsCommittedDevice)
+{
+    afn::DeviceRef d = afn::newDevice();
+    afn::FilterRef f = d.newFilter("identity");
+    EXPECT_FALSE(f);
+    EXPECT_EQ(d.getError(), afn::Error::InvalidOperation);
+}
+
+TEST_F(ApiTest, UnknownFilterTypeListsKnownOnes)
+{
+    afn::FilterRef f = device.newFilter("nope");
+    EXPECT_FALSE(f);
+    std::string msg;
+    EXPECT_EQ(error(&msg), afn::Error::InvalidArgument);
+    EXPECT_NE(msg.find("identity"), std::string::npos) << msg;
+}
+
+TEST_F(ApiTest, IntrospectionMatchesTypes)
+{
+    const auto types = afn::filterTypes();
+    ASSERT_FALSE(types.empty());
+    for (const std::string& t : types) {
+        const int n = afnGetFilterTypeNumParams(t.c_str());
+        ASSERT_GE(n, 1) << t;
+        for (int i = 0; i < n; ++i) {
+            AFNParamInfo info {};
+            ASSERT_TRUE(afnGetFilterTypeParam(t.c_str(), i, &info));
+            EXPECT_NE(info.help, nullptr);
+            EXPECT_GT(std::strlen(info.help), 5u) << info.name;
+            if (info.type != AFN_PARAM_STRING) {
+                EXPECT_LE(info.minValue, info.defaultValue) << info.name;
+                EXPECT_LE(info.defaultValue, info.maxValue) << info.name;
+            }
+        }
+        AFNParamInfo info {};
+        EXPECT_FALSE(afnGetFilterTypeParam(t.c_str(), n, &info));
+    }
+    EXPECT_EQ(afnGetFilterTypeNumParams("nope"), -1);
+    EXPECT_EQ(afnGetFilterTypeName(-1), nullptr);
+}
+
+TEST_F(ApiTest, ParameterValidation)
+{
+    afn::FilterRef f = device.newFilter("identity");
+    ASSERT_TRUE(f);
+    f.set("normal.space", "camera");
+    EXPECT_EQ(error(), afn::Error::None);
+    EXPECT_EQ(f.get<std::string>("normal.space"), "camera");
+    f.set("normal.space", "sideways");
+    std::string msg;
+    EXPECT_EQ(error(&msg), afn::Error::InvalidArgument);
+    EXPECT_NE(msg.find("world|camera"), std::string::npos) << msg;
+    f.set("motion.scale", -2.0f);
+    EXPECT_EQ(error(), afn::Error::InvalidArgument);
+    f.set("motion.scale", std::numeric_limits<float>::quiet_NaN());
+    EXPECT_EQ(error(), afn::Error::InvalidArgument);
+    f.set("motion.scale", "0.5");
+    EXPECT_EQ(error(), afn::Error::None);
+    EXPECT_FLOAT_EQ(f.get<float>("motion.scale"), 0.5f);
+    f.set("motion.scale", "half");
+    EXPECT_EQ(error(), afn::Error::InvalidArgument);
+    f.set("unknown.param", 1);
+    EXPECT_EQ(error(), afn::Error::InvalidArgument);
+    const float four[4] = { 0, 0, 0, 0 };
+    f.setFloats("viewProjection", four, 4);
+    EXPECT_EQ(error(), afn::Error::InvalidArgument);
+}
+
+TEST_F(ApiTest, CommitValidatesImages)
+{
+    afn::FilterRef f = device.newFilter("identity");
+    std::vector<float> color = ramp(8, 4, 3), out(8 * 4 * 3), small = ramp(4, 4, 3);
+    f.commit();
+    std::string msg;
+    EXPECT_EQ(error(&msg), afn::Error::InvalidOperation) << "no colour";
+    f.setImage("color", color.data(), afn::Format::Float3, 8, 4);
+    f.commit();
+    EXPECT_EQ(error(&msg), afn::Error::InvalidOperation) << "no output";
+    EXPECT_NE(msg.find("output"), std::string::npos);
+    f.setImage("output", out.data(), afn::Format::Float3, 8, 4);
+    f.setImage("albedo", small.data(), afn::Format::Float3, 4, 4);
+    f.commit();
+    EXPECT_EQ(error(&msg), afn::Error::InvalidArgument);
+    EXPECT_NE(msg.find("albedo size 4x4 does not match color 8x4"), std::string::npos) << msg;
+    f.unsetImage("albedo");
+    f.setImage("bogus", color.data(), afn::Format::Float3, 8, 4);
+    EXPECT_EQ(error(), afn::Error::InvalidArgument);
+    f.setImage("color", nullptr, afn::Format::Float3, 8, 4);
+    EXPECT_EQ(error(), afn::Error::InvalidArgument);
+    f.setImage("color", color.data(), afn::Format::Float3, 0, 4);
+    EXPECT_EQ(error(), afn::Error::InvalidArgument);
+    f.setImage("color", color.data(), afn::Format::Undefined, 8, 4);
+    EXPECT_EQ(error(), afn::Error::InvalidArgument);
+    f.commit();
+    EXPECT_EQ(error(), afn::Error::None);
+}
+
+TEST_F(ApiTest, ExecuteRequiresCommit)
+{
+    afn::FilterRef f = device.newFilter("identity");
+    std::vector<float> color = ramp(8, 4, 3), out(8 * 4 * 3);
+    f.setImage("color", color.data(), afn::Format::Float3, 8, 4);
+    f.setImage("output", out.data(), afn::Format::Float3, 8, 4);
+    f.execute();
+    EXPECT_EQ(error(), afn::Error::InvalidOperation);
+    f.commit();
+    f.execute();
+    EXPECT_EQ(error(), afn::Error::None);
+    EXPECT_EQ(out, color);
+    f.set("motion.scale", 2.0f);
+    f.execute();
+    EXPECT_EQ(error(), afn::Error::InvalidOperation) << "parameter change needs a new commit";
+}
+
+TEST_F(ApiTest, StridedNegativeRowStrideAndRgbaOutput)
+{
+    // A bottom-up RGBA buffer (as OFX hosts hand them) read through a negative row stride.
+    const int w = 5, h = 3;
+    std::vector<float> rgbaBottomUp(w * h * 4);
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x)
+            for (int c = 0; c < 4; ++c)
+                rgbaBottomUp[((h - 1 - y) * w + x) * 4 + c] = float(100 * y + 10 * x + c);
+    std::vector<float> out(w * h * 4, -1.0f);
+    afn::FilterRef f = device.newFilter("identity");
+    const ptrdiff_t row = w * 4 * sizeof(float);
+    f.setImage("color", rgbaBottomUp.data(), afn::Format::Float4, w, h, (h - 1) * row, 0, -row);
+    f.setImage("alpha", rgbaBottomUp.data(), afn::Format::Float, w, h, (h - 1) * row + 3 * sizeof(float),
+               4 * sizeof(float), -row);
+    f.setImage("output", out.data(), afn::Format::Float4, w, h);
+    f.commit();
+    f.execute();
+    ASSERT_EQ(error(), afn::Error::None);
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x)
+            for (int c = 0; c < 4; ++c)
+                EXPECT_EQ(out[(y * w + x) * 4 + c], float(100 * y + 10 * x + c)) << x << "," << y << "," << c;
+}
+
+TEST_F(ApiTest, NonFiniteAndNegativeInputsAreSanitisedAndCounted)
+{
+    std::vector<float> color = { 1.0f, std::nanf(""), -2.0f, std::numeric_limits<float>::infinity(), 0.5f, 0.25f };
+    std::vector<float> out(6);
+    afn::FilterRef f = device.newFilter("identity");
+    f.setImage("color", color.data(), afn::Format::Float3, 2, 1);
+    f.setImage("output", out.data(), afn::Format::Float3, 2, 1);
+    f.commit();
+    f.execute();
+    ASSERT_EQ(error(), afn::Error::None);
+    EXPECT_EQ(out, (std::vector<float> { 1.0f, 0.0f, 0.0f, 0.0f, 0.5f, 0.25f }));
+    EXPECT_EQ(f.get<int>("stats.nonFinite"), 2);
+    EXPECT_EQ(f.get<int>("stats.negative"), 1);
+}
+
+TEST_F(ApiTest, FrameSizeChangeIsAnErrorUntilReset)
+{
+    afn::FilterRef f = device.newFilter("identity");
+    std::vector<float> a = ramp(8, 4, 3), b = ramp(4, 8, 3), out(32 * 3);
+    f.setImage("color", a.data(), afn::Format::Float3, 8, 4);
+    f.setImage("output", out.data(), afn::Format::Float3, 8, 4);
+    f.commit();
+    f.execute();
+    EXPECT_EQ(f.get<int>("frameIndex"), 1);
+    f.setImage("color", b.data(), afn::Format::Float3, 4, 8);
+    f.setImage("output", out.data(), afn::Format::Float3, 4, 8);
+    f.commit();
+    f.execute();
+    std::string msg;
+    EXPECT_EQ(error(&msg), afn::Error::InvalidArgument);
+    EXPECT_NE(msg.find("4x8 differs from the previous frame's 8x4"), std::string::npos) << msg;
+    f.reset();
+    f.execute();
+    EXPECT_EQ(error(), afn::Error::None);
+    EXPECT_EQ(f.get<int>("frameIndex"), 1);
+}
+
+TEST_F(ApiTest, ProgressCallbackCanCancel)
+{
+    afn::FilterRef f = device.newFilter("identity");
+    std::vector<float> a = ramp(8, 4, 3), out(32 * 3);
+    f.setImage("color", a.data(), afn::Format::Float3, 8, 4);
+    f.setImage("output", out.data(), afn::Format::Float3, 8, 4);
+    f.setProgressMonitorFunction([](void*, double) { return false; });
+    f.commit();
+    f.execute();
+    EXPECT_EQ(error(), afn::Error::Cancelled);
+    EXPECT_EQ(f.get<int>("frameIndex"), 0) << "a cancelled frame does not advance the history";
+}
+
+TEST_F(ApiTest, ErrorCallbackSeesEveryError)
+{
+    int calls = 0;
+    device.setErrorFunction([](void* user, AFNError, const char*) { ++*static_cast<int*>(user); }, &calls);
+    device.newFilter("nope");
+    device.newFilter("nope");
+    EXPECT_EQ(calls, 2);
+    EXPECT_EQ(error(), afn::Error::InvalidArgument);
+}
+
+TEST_F(ApiTest, WrapperRefCounting)
+{
+    afn::FilterRef a = device.newFilter("identity");
+    {
+        afn::FilterRef b = a; // retain
+        afn::FilterRef c = std::move(b);
+        EXPECT_FALSE(b);
+        EXPECT_TRUE(c);
+    }
+    EXPECT_EQ(a.get<std::string>("depth.kind"), "planar") << "still alive after the copies went";
+    EXPECT_EQ(error(), afn::Error::None);
+}
+
+} // namespace
