@@ -169,6 +169,50 @@ AFN_API void afnExecuteFilter(AFNFilter filter);
 /// Drop the temporal history; the next execute behaves as the first frame of a sequence.
 AFN_API void afnResetFilter(AFNFilter filter);
 
+// ---- Image-quality metrics ----------------------------------------------------------------------
+// Conventions (docs/metrics.md): compare remodulated outputs with references (albedo included).
+// T(x) = clip(max(x, 0)^(1/2.2), 0, 1). Only the first 3 channels of a pixel are compared.
+// SSIM: skimage defaults (7x7 uniform window, K1 0.01, K2 0.03, sample covariance, 3-pixel border
+// left out, per channel then averaged) with data_range 1. Any NaN/Inf in either image is counted
+// and makes every metric of that frame NaN. A sequence's value is the mean of its per-frame values.
+// Images are packed rows of `width * pixelFloatStride` floats (pixelFloatStride >= 3).
+
+/// Metrics of one test image against its reference.
+typedef struct AFNMetrics {
+    double psnr;              ///< dB, 10 log10(1 / MSE) on T(x); +inf for identical images
+    double ssim;              ///< [-1, 1] on T(x); 1 for identical images
+    double rmse;              ///< [0, 1], sqrt(MSE) on T(x)
+    double smape;             ///< [0, 1], AFN Eq. 5 on linear values, eps = 1e-3
+    double rmseLinear;        ///< >= 0, sqrt(MSE) on linear values
+    double smapeTonemapped;   ///< [0, 1], AFN Eq. 5 on T(x), eps = 1e-3
+    double psnr8;             ///< PSNR on T(x) quantised to 8 bits (round(255 T) / 255), as on PNGs
+    double ssim8;             ///< SSIM on T(x) quantised to 8 bits
+    double rmse8;             ///< RMSE on T(x) quantised to 8 bits
+    int64_t nonFiniteTest;      ///< NaN/Inf values found in the test image (first 3 channels)
+    int64_t nonFiniteReference; ///< NaN/Inf values found in the reference image
+} AFNMetrics;
+
+/// Temporal stability of frame t given frame t-1: with e = (T(o_t) - T(o_t-1)) - (T(r_t) - T(r_t-1))
+/// per value (o: test, r: reference), the mean |e| and the PSNR of e (R = 1).
+typedef struct AFNTemporalMetrics {
+    double gradientError; ///< >= 0, mean |e| (0 = the test flickers exactly as the reference)
+    double gradientPsnr;  ///< dB, 10 log10(1 / mean e^2); +inf when e == 0 everywhere
+    int64_t nonFinite;    ///< NaN/Inf values in the four images; makes both fields NaN
+} AFNTemporalMetrics;
+
+/// Compute the metrics of `test` against `reference` on the device's threads. Returns false (and
+/// records an error on the device) for a bad device, NULL pointers, zero size or a stride < 3.
+/// Results do not depend on the device's thread count.
+AFN_API bool afnComputeMetrics(AFNDevice device, const float* test, const float* reference,
+                               size_t width, size_t height, size_t pixelFloatStride,
+                               AFNMetrics* out);
+/// Compute the temporal-gradient error of (testPrev, test) against (referencePrev, reference).
+/// Same image layout and error rules as afnComputeMetrics.
+AFN_API bool afnComputeTemporalMetrics(AFNDevice device, const float* testPrev, const float* test,
+                                       const float* referencePrev, const float* reference,
+                                       size_t width, size_t height, size_t pixelFloatStride,
+                                       AFNTemporalMetrics* out);
+
 #ifdef __cplusplus
 }
 #endif

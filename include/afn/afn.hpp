@@ -167,4 +167,25 @@ inline std::vector<AFNParamInfo> filterTypeParams(const char* type)
     return out;
 }
 
+// ---- Image-quality metrics (conventions: afn.h and docs/metrics.md) ------------------------------
+
+/// Metrics of `test` against `reference` (packed rows of width * pixelFloatStride floats).
+/// Returns false on error (read it with device.getError()); `out` is then unchanged.
+inline bool computeMetrics(const DeviceRef& device, const float* test, const float* reference,
+                           size_t width, size_t height, size_t pixelFloatStride, AFNMetrics& out)
+{
+    return afnComputeMetrics(device.getHandle(), test, reference, width, height, pixelFloatStride,
+                             &out);
+}
+
+/// Temporal-gradient error of (testPrev, test) against (referencePrev, reference).
+inline bool computeTemporalMetrics(const DeviceRef& device, const float* testPrev,
+                                   const float* test, const float* referencePrev,
+                                   const float* reference, size_t width, size_t height,
+                                   size_t pixelFloatStride, AFNTemporalMetrics& out)
+{
+    return afnComputeTemporalMetrics(device.getHandle(), testPrev, test, referencePrev, reference,
+                                     width, height, pixelFloatStride, &out);
+}
+
 } // namespace afn

@@ -6,24 +6,20 @@
 #include "../core/device.h"
 #include "../core/exception.h"
 #include "../core/filter_registry.h"
+#include "api_common.h"
 
 #include <atomic>
 #include <cstring>
 #include <new>
 #include <string>
 
+using namespace afn::api; // AFNDeviceImpl, kDeviceMagic, t_error, recordError, checkDevice
+
 namespace {
 
-constexpr std::uint32_t kDeviceMagic = 0xAF4D0E01u;
 constexpr std::uint32_t kFilterMagic = 0xAF4F1701u;
 
 } // namespace
-
-struct AFNDeviceImpl {
-    std::uint32_t magic = kDeviceMagic;
-    std::atomic<int> refs { 1 };
-    afn::Device device;
-};
 
 struct AFNFilterImpl {
     std::uint32_t magic = kFilterMagic;
@@ -37,29 +33,6 @@ struct AFNFilterImpl {
 };
 
 namespace {
-
-struct ThreadError {
-    AFNError code = AFN_ERROR_NONE;
-    std::string message;
-    std::string returned;
-};
-thread_local ThreadError t_error;
-
-void recordError(AFNDeviceImpl* d, AFNError code, const std::string& msg)
-{
-    if (d && d->magic == kDeviceMagic) {
-        d->device.setError(code, msg);
-    } else if (t_error.code == AFN_ERROR_NONE) {
-        t_error.code = code;
-        t_error.message = msg;
-    }
-}
-
-AFNDeviceImpl* checkDevice(AFNDevice d)
-{
-    if (!d || d->magic != kDeviceMagic) throw afn::Exception(AFN_ERROR_INVALID_ARGUMENT, "invalid device handle");
-    return d;
-}
 
 AFNFilterImpl* checkFilter(AFNFilter f)
 {
@@ -79,14 +52,6 @@ AFNDeviceImpl* deviceOf(AFNFilter f)
 }
 
 } // namespace
-
-#define AFN_TRY try {
-#define AFN_CATCH(dev)                                                                             \
-    }                                                                                              \
-    catch (const afn::Exception& e) { recordError(dev, e.code(), e.what()); }                      \
-    catch (const std::bad_alloc&) { recordError(dev, AFN_ERROR_OUT_OF_MEMORY, "out of memory"); } \
-    catch (const std::exception& e) { recordError(dev, AFN_ERROR_UNKNOWN, e.what()); }             \
-    catch (...) { recordError(dev, AFN_ERROR_UNKNOWN, "unknown error"); }
 
 extern "C" {
 
