@@ -17,7 +17,7 @@ while [ $# -gt 0 ]; do
 done
 command -v blender >/dev/null || bash scripts/setup.sh --blender
 SCRIPT=examples/blender/render_example.py
-CHECK="/usr/bin/python3 examples/blender/check_exr.py"
+CHECK="/usr/bin/python3 examples/blender/check_exr.py --expect-motion"
 run_blender() {
   blender -b --factory-startup --python-exit-code 1 --python "$SCRIPT" -- "$@" \
     | grep --line-buffered '^afn:\|Error\|ERROR'

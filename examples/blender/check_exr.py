@@ -2,7 +2,9 @@
 # SPDX-License-Identifier: Apache-2.0
 """Check rendered afn EXRs: required passes present, Vector not all zero, Depth background 1e10.
 
-Usage: /usr/bin/python3 examples/blender/check_exr.py [--reference] FILE...
+Usage: /usr/bin/python3 examples/blender/check_exr.py [--reference] [--expect-motion] FILE...
+``--expect-motion`` makes an all-zero Vector pass an error (a warning otherwise: a static camera
+over static geometry legitimately has no motion).
 Prints one summary line per file; exits 1 on the first failed check (message names the file).
 """
 
@@ -27,7 +29,7 @@ def fail(path, msg):
     sys.exit("check_exr ERROR: %s (%s)" % (msg, path))
 
 
-def check(path, reference):
+def check(path, reference, expect_motion):
     inp = oiio.ImageInput.open(path)
     if inp is None:
         fail(path, "cannot open: " + oiio.geterror())
@@ -48,7 +50,9 @@ def check(path, reference):
     if not reference:
         vec = np.stack([ch[LAYER + "Vector." + c] for c in "XYZW"], -1)
         if not np.any(vec != 0.0):
-            fail(path, "Vector pass is all zero (motion blur on?)")
+            if expect_motion:
+                fail(path, "Vector pass is all zero (motion blur on?)")
+            print("check_exr warning: Vector pass is all zero (%s)" % path)
         depth = ch[LAYER + "Depth.Z"]
         bg = depth >= 1e9
         if bg.any() and not np.allclose(depth[bg], BACKGROUND_DEPTH, rtol=1e-6):
@@ -60,11 +64,12 @@ def check(path, reference):
 
 def main(argv):
     reference = "--reference" in argv
-    files = [a for a in argv if a != "--reference"]
+    expect_motion = "--expect-motion" in argv
+    files = [a for a in argv if not a.startswith("--")]
     if not files:
         sys.exit(__doc__)
     for path in files:
-        check(path, reference)
+        check(path, reference, expect_motion)
 
 
 if __name__ == "__main__":
