@@ -89,7 +89,8 @@ def render_scene(blender, name, scene_dir, settings, progress):
            "--scene", name, "--out", scene_dir, "--frames", str(settings["frames"]),
            "--width", str(settings["width"]), "--height", str(settings["height"]),
            "--spp", str(settings["spp"]), "--ref-spp", str(settings["ref_spp"]),
-           "--seed", str(settings["seed"])]
+           "--seed", str(settings["seed"]),
+           "--ref-seed-offset", str(settings["reference_seed_offset"])]
     os.makedirs(scene_dir, exist_ok=True)
     log_path = os.path.join(scene_dir, "blender.log")
     with open(log_path, "w") as log:
@@ -123,6 +124,9 @@ def parse_args(argv):
     ap.add_argument("--spp", type=int, default=DEFAULT_SPP, help="samples of the noisy frames")
     ap.add_argument("--ref-spp", type=int, default=DEFAULT_REF_SPP)
     ap.add_argument("--seed", type=int, default=0)
+    ap.add_argument("--ref-seed-offset", type=int, default=7919,
+                    help="reference noise seed = scene seed + this (change it to get an "
+                         "independent reference, e.g. for measuring reference noise)")
     ap.add_argument("--blender", default="blender", help="Blender executable")
     ap.add_argument("--list", action="store_true", help="list the scenes and exit")
     args = ap.parse_args(argv)
@@ -162,7 +166,8 @@ def main(argv=None):
     t_start = time.time()
     for i, name in enumerate(chosen):
         settings = {"frames": args.frames, "width": width_for(args.height), "height": args.height,
-                    "spp": args.spp, "ref_spp": args.ref_spp, "seed": scene_seed(name, args.seed)}
+                    "spp": args.spp, "ref_spp": args.ref_spp, "seed": scene_seed(name, args.seed),
+                    "reference_seed_offset": args.ref_seed_offset}
         scene_dir = os.path.join(out, name)
         check_resume(scene_dir, settings)
 

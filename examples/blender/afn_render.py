@@ -67,12 +67,15 @@ def configure_output(scene, half):
     scene.render.use_file_extension = True
 
 
-def setup(scene, kind, width, height, samples, seed):
-    """Configure ``scene`` for one output kind, ``"noisy"`` or ``"reference"``."""
+def setup(scene, kind, width, height, samples, seed, ref_seed_offset=REFERENCE_SEED_OFFSET):
+    """Configure ``scene`` for one output kind, ``"noisy"`` or ``"reference"``.
+
+    References use noise seed ``seed + ref_seed_offset``.
+    """
     if kind not in ("noisy", "reference"):
         raise ValueError("unknown render kind: %r" % kind)
     noisy = kind == "noisy"
-    configure_cycles(scene, width, height, samples, seed if noisy else seed + REFERENCE_SEED_OFFSET)
+    configure_cycles(scene, width, height, samples, seed if noisy else seed + ref_seed_offset)
     configure_passes(scene, all_passes=noisy)
     configure_output(scene, half=noisy)
 

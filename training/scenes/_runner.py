@@ -3,7 +3,7 @@
 
 Usage: blender -b --factory-startup --python training/scenes/_runner.py -- --scene NAME --out DIR
            [--frames 16] [--width 320] [--height 180] [--spp 1] [--ref-spp 256] [--seed 0]
-           [--params JSON]
+           [--ref-seed-offset 7919] [--params JSON]
 
 Writes DIR/frame.NNNN.exr (``--spp`` samples, all passes), DIR/reference.NNNN.exr (Combined,
 float, ``--ref-spp`` samples, another noise seed) for frames 0..N-1 and DIR/scene.json (parameters,
@@ -38,6 +38,8 @@ def parse_args():
     ap.add_argument("--spp", type=int, default=1)
     ap.add_argument("--ref-spp", type=int, default=256)
     ap.add_argument("--seed", type=int, default=0)
+    ap.add_argument("--ref-seed-offset", type=int, default=afn_render.REFERENCE_SEED_OFFSET,
+                    help="reference noise seed = seed + this")
     ap.add_argument("--params", default="{}", help="JSON object overriding the scene's DEFAULTS")
     return ap.parse_args(argv)
 
@@ -85,7 +87,7 @@ def main():
         "scene": args.scene, "description": module.DESCRIPTION, "covers": module.COVERS,
         "params": scene_params, "seed": args.seed, "frames": args.frames,
         "width": args.width, "height": args.height, "spp": args.spp, "ref_spp": args.ref_spp,
-        "reference_seed_offset": afn_render.REFERENCE_SEED_OFFSET,
+        "reference_seed_offset": args.ref_seed_offset,
         "blender": bpy.app.version_string, "view_layer": afn_render.VIEW_LAYER_NAME,
     })
     times = state.setdefault("seconds", {})
@@ -96,7 +98,7 @@ def main():
     save_state(state_path, state)
 
     for kind, name, spp in (("noisy", "frame", args.spp), ("reference", "reference", args.ref_spp)):
-        afn_render.setup(scene, kind, args.width, args.height, spp, args.seed)
+        afn_render.setup(scene, kind, args.width, args.height, spp, args.seed, args.ref_seed_offset)
         for f in range(args.frames):
             final = os.path.join(out, "%s.%04d.exr" % (name, f))
             if os.path.exists(final):
