@@ -51,91 +51,135 @@ void checkSameSize(const ImageView& a, const ImageView& b, const char* what)
 
 double quantize8(double t) { return std::floor(255.0 * t + 0.5) / 255.0; }
 
-/// Per-pixel sums of one block of rows.
-struct PixelSums {
-    double sqT = 0.0;      // sum (T(o) - T(t))^2
-    double sqLin = 0.0;    // sum (o - t)^2
-    double smapeLin = 0.0; // sum |o - t| / (|o| + |t| + eps)
-    double smapeT = 0.0;   // same on T(x)
-    double sq8 = 0.0;      // sum (Q(T(o)) - Q(T(t)))^2
+/// Sums over linear values of one block of rows.
+struct LinearSums {
+    double sq = 0.0;    // sum (o - t)^2
+    double smape = 0.0; // sum |o - t| / (|o| + |t| + eps)
     std::int64_t nonFiniteTest = 0;
     std::int64_t nonFiniteRef = 0;
 };
 
-/// Mean SSIM of two [0, 1] planes (row-major, width x height), skimage conventions (metrics.h).
-double ssimPlane(const std::vector<double>& a, const std::vector<double>& b, int width, int height,
-                 bool q8)
+/// Sums over one tone-mapped channel: errors of T(x) and of its 8-bit version, and the sums of the
+/// SSIM maps (float and 8-bit) over the pixels whose window fits.
+struct ChannelSums {
+    double sq = 0.0;    // sum (T(o) - T(t))^2
+    double smape = 0.0; // sum |T(o) - T(t)| / (T(o) + T(t) + eps)
+    double sq8 = 0.0;   // sum (Q(T(o)) - Q(T(t)))^2
+    double ssim = 0.0;  // sum of the SSIM map
+    double ssim8 = 0.0; // sum of the SSIM map of the 8-bit values
+};
+
+/// SSIM window side for an image (the largest odd size <= 7 that fits; see metrics.h).
+int ssimWindow(int width, int height)
 {
     int win = std::min(kSsimWindow, std::min(width, height));
-    if (win % 2 == 0) --win;
-    const int pad = (win - 1) / 2;
+    return win % 2 ? win : win - 1;
+}
+
+/// Sum of the SSIM map over `outRows` output rows, skimage conventions (metrics.h). `a` and `b` hold
+/// outRows + win - 1 rows of `width` values; output row r, column x uses the window whose top-left
+/// value is (r, x). `hs` is scratch.
+double ssimRowsSum(const double* a, const double* b, int outRows, int width, int win,
+                   std::vector<double>& hs)
+{
+    const int rows = outRows + win - 1, cols = width - win + 1;
     const double np = static_cast<double>(win) * win;
     const double covNorm = win > 1 ? np / (np - 1.0) : 1.0; // sample covariance (skimage default)
     const double c1 = 0.01 * 0.01; // (K1 * data_range)^2, data_range = 1
     const double c2 = 0.03 * 0.03; // (K2 * data_range)^2
-    const int xBegin = pad, xEnd = width - pad;
-    const int yBegin = pad, yEnd = height - pad;
-    const int cols = xEnd - xBegin;
-    auto value = [&](const std::vector<double>& p, std::size_t i) {
-        const double v = p[i];
-        return q8 ? quantize8(v) : v;
-    };
-
-    std::vector<double> partial(numBlocks(yEnd - yBegin), 0.0);
-    forRowBlocks(yBegin, yEnd, [&](int block, int y0, int y1) {
-        // Horizontal window sums of x, y, xx, yy, xy for the rows this block's windows cover.
-        const int r0 = y0 - pad, rows = (y1 - y0) + 2 * pad;
-        std::vector<double> h(static_cast<std::size_t>(rows) * cols * 5);
-        for (int r = 0; r < rows; ++r) {
-            const std::size_t rowBase = static_cast<std::size_t>(r0 + r) * width;
-            for (int x = xBegin; x < xEnd; ++x) {
-                double sx = 0, sy = 0, sxx = 0, syy = 0, sxy = 0;
-                for (int k = -pad; k <= pad; ++k) {
-                    const double va = value(a, rowBase + x + k), vb = value(b, rowBase + x + k);
-                    sx += va;
-                    sy += vb;
-                    sxx += va * va;
-                    syy += vb * vb;
-                    sxy += va * vb;
-                }
-                double* o = &h[(static_cast<std::size_t>(r) * cols + (x - xBegin)) * 5];
-                o[0] = sx, o[1] = sy, o[2] = sxx, o[3] = syy, o[4] = sxy;
+    const std::size_t need = static_cast<std::size_t>(rows) * cols * 5;
+    if (hs.size() < need) hs.resize(need);
+    // Horizontal window sums of x, y, xx, yy, xy (direct sums: the same order for every pixel).
+    for (int r = 0; r < rows; ++r) {
+        const double* ra = a + static_cast<std::size_t>(r) * width;
+        const double* rb = b + static_cast<std::size_t>(r) * width;
+        for (int x = 0; x < cols; ++x) {
+            double sx = 0, sy = 0, sxx = 0, syy = 0, sxy = 0;
+            for (int k = 0; k < win; ++k) {
+                const double va = ra[x + k], vb = rb[x + k];
+                sx += va, sy += vb, sxx += va * va, syy += vb * vb, sxy += va * vb;
             }
+            double* o = &hs[(static_cast<std::size_t>(r) * cols + x) * 5];
+            o[0] = sx, o[1] = sy, o[2] = sxx, o[3] = syy, o[4] = sxy;
         }
-        double sum = 0.0;
-        for (int y = y0; y < y1; ++y) {
-            for (int i = 0; i < cols; ++i) {
-                double s[5] = { 0, 0, 0, 0, 0 };
-                for (int k = 0; k < win; ++k) {
-                    const double* o = &h[(static_cast<std::size_t>(y - y0 + k) * cols + i) * 5];
-                    for (int q = 0; q < 5; ++q) s[q] += o[q];
-                }
-                const double ux = s[0] / np, uy = s[1] / np;
-                const double vx = covNorm * (s[2] / np - ux * ux);
-                const double vy = covNorm * (s[3] / np - uy * uy);
-                const double vxy = covNorm * (s[4] / np - ux * uy);
-                const double num = (2.0 * ux * uy + c1) * (2.0 * vxy + c2);
-                const double den = (ux * ux + uy * uy + c1) * (vx + vy + c2);
-                sum += num / den;
+    }
+    double sum = 0.0;
+    for (int r = 0; r < outRows; ++r) {
+        for (int x = 0; x < cols; ++x) {
+            double s[5] = { 0, 0, 0, 0, 0 };
+            for (int k = 0; k < win; ++k) {
+                const double* o = &hs[(static_cast<std::size_t>(r + k) * cols + x) * 5];
+                for (int q = 0; q < 5; ++q) s[q] += o[q];
             }
+            const double ux = s[0] / np, uy = s[1] / np;
+            const double vx = covNorm * (s[2] / np - ux * ux);
+            const double vy = covNorm * (s[3] / np - uy * uy);
+            const double vxy = covNorm * (s[4] / np - ux * uy);
+            const double num = (2.0 * ux * uy + c1) * (2.0 * vxy + c2);
+            const double den = (ux * ux + uy * uy + c1) * (vx + vy + c2);
+            sum += num / den;
         }
-        partial[block] = sum;
-    });
-    double total = 0.0;
-    for (double p : partial) total += p;
-    return total / (static_cast<double>(cols) * (yEnd - yBegin));
+    }
+    return sum;
 }
 
-/// Channel c of a view tone-mapped by T(x) into a packed plane (double, as skimage on float64).
-std::vector<double> toneMappedPlane(const ImageView& v, int c)
+/// Per-thread scratch of channelSums, kept between blocks and calls: allocating (and page-faulting)
+/// full-image planes cost more than the arithmetic.
+struct Scratch {
+    std::vector<double> ta, tb, qa, qb, hs;
+};
+
+/// All tone-mapped sums of channel c, one fused pass per fixed block of rows: T(x) is evaluated
+/// for the block's rows plus the SSIM window's halo, in thread-local rows.
+ChannelSums channelSums(const ImageView& test, const ImageView& reference, int c)
 {
-    std::vector<double> plane(static_cast<std::size_t>(v.width) * v.height);
-    forRowBlocks(0, v.height, [&](int, int y0, int y1) {
-        for (int y = y0; y < y1; ++y)
-            for (int x = 0; x < v.width; ++x)
-                plane[static_cast<std::size_t>(y) * v.width + x] = evalToneMap(v.at(x, y)[c]);
+    const int w = test.width, h = test.height;
+    const int win = ssimWindow(w, h), pad = (win - 1) / 2;
+    std::vector<ChannelSums> partial(numBlocks(h));
+    forRowBlocks(0, h, [&](int block, int y0, int y1) {
+        thread_local Scratch sc;
+        // SSIM output rows of this block, and the rows whose T(x) they and the sums need.
+        const int o0 = std::max(y0, pad), o1 = std::min(y1, h - pad);
+        const int r0 = o0 < o1 ? std::min(y0, o0 - pad) : y0;
+        const int r1 = o0 < o1 ? std::max(y1, o1 + pad) : y1;
+        const std::size_t n = static_cast<std::size_t>(r1 - r0) * w;
+        for (std::vector<double>* v : { &sc.ta, &sc.tb, &sc.qa, &sc.qb })
+            if (v->size() < n) v->resize(n);
+        for (int y = r0; y < r1; ++y)
+            for (int x = 0; x < w; ++x) {
+                const std::size_t i = static_cast<std::size_t>(y - r0) * w + x;
+                sc.ta[i] = evalToneMap(test.at(x, y)[c]);
+                sc.tb[i] = evalToneMap(reference.at(x, y)[c]);
+                sc.qa[i] = quantize8(sc.ta[i]);
+                sc.qb[i] = quantize8(sc.tb[i]);
+            }
+        ChannelSums s;
+        for (std::size_t i = static_cast<std::size_t>(y0 - r0) * w; i < static_cast<std::size_t>(y1 - r0) * w; ++i) {
+            const double d = sc.ta[i] - sc.tb[i], d8 = sc.qa[i] - sc.qb[i];
+            s.sq += d * d;
+            s.smape += std::abs(d) / (sc.ta[i] + sc.tb[i] + kSmapeEpsilon);
+            s.sq8 += d8 * d8;
+        }
+        if (o0 < o1) {
+            const std::size_t first = static_cast<std::size_t>(o0 - pad - r0) * w;
+            s.ssim = ssimRowsSum(&sc.ta[first], &sc.tb[first], o1 - o0, w, win, sc.hs);
+            s.ssim8 = ssimRowsSum(&sc.qa[first], &sc.qb[first], o1 - o0, w, win, sc.hs);
+        }
+        partial[block] = s;
     });
-    return plane;
+    ChannelSums sum;
+    for (const ChannelSums& p : partial) {
+        sum.sq += p.sq, sum.smape += p.smape, sum.sq8 += p.sq8;
+        sum.ssim += p.ssim, sum.ssim8 += p.ssim8;
+    }
+    return sum;
+}
+
+/// Number of pixels the SSIM map is averaged over.
+double ssimCount(int width, int height)
+{
+    const int win = ssimWindow(width, height);
+    return static_cast<double>(width - win + 1) * (height - win + 1);
 }
 
 } // namespace
@@ -159,8 +203,9 @@ double ssimChannel(const ImageView& a, const ImageView& b, int c, bool q8)
     checkView(a, "test");
     checkView(b, "reference");
     checkSameSize(a, b, "reference");
-    if (c < 0 || c >= std::min(a.channels, b.channels)) throwInvalidArgument("metrics: bad channel");
-    return ssimPlane(toneMappedPlane(a, c), toneMappedPlane(b, c), a.width, a.height, q8);
+    if (c < 0 || c >= 3) throwInvalidArgument("metrics: channel must be 0, 1 or 2");
+    const ChannelSums s = channelSums(a, b, c);
+    return (q8 ? s.ssim8 : s.ssim) / ssimCount(a.width, a.height);
 }
 
 FrameMetrics computeFrameMetrics(const ImageView& test, const ImageView& reference)
@@ -170,9 +215,10 @@ FrameMetrics computeFrameMetrics(const ImageView& test, const ImageView& referen
     checkSameSize(test, reference, "reference");
     const int w = test.width, h = test.height;
 
-    std::vector<PixelSums> partial(numBlocks(h));
+    // Linear values: squared error, SMAPE, and the non-finite count.
+    std::vector<LinearSums> partial(numBlocks(h));
     forRowBlocks(0, h, [&](int block, int y0, int y1) {
-        PixelSums s;
+        LinearSums s;
         for (int y = y0; y < y1; ++y) {
             for (int x = 0; x < w; ++x) {
                 const float* o = test.at(x, y);
@@ -182,59 +228,51 @@ FrameMetrics computeFrameMetrics(const ImageView& test, const ImageView& referen
                     if (!std::isfinite(ov)) ++s.nonFiniteTest;
                     if (!std::isfinite(tv)) ++s.nonFiniteRef;
                     const double d = ov - tv;
-                    s.sqLin += d * d;
-                    s.smapeLin += std::abs(d) / (std::abs(ov) + std::abs(tv) + kSmapeEpsilon);
-                    const double to = evalToneMap(ov), tt = evalToneMap(tv);
-                    const double dt = to - tt;
-                    s.sqT += dt * dt;
-                    s.smapeT += std::abs(dt) / (to + tt + kSmapeEpsilon);
-                    const double d8 = quantize8(to) - quantize8(tt);
-                    s.sq8 += d8 * d8;
+                    s.sq += d * d;
+                    s.smape += std::abs(d) / (std::abs(ov) + std::abs(tv) + kSmapeEpsilon);
                 }
             }
         }
         partial[block] = s;
     });
-    PixelSums sum;
-    for (const PixelSums& p : partial) {
-        sum.sqT += p.sqT;
-        sum.sqLin += p.sqLin;
-        sum.smapeLin += p.smapeLin;
-        sum.smapeT += p.smapeT;
-        sum.sq8 += p.sq8;
-        sum.nonFiniteTest += p.nonFiniteTest;
-        sum.nonFiniteRef += p.nonFiniteRef;
+    LinearSums lin;
+    for (const LinearSums& p : partial) {
+        lin.sq += p.sq;
+        lin.smape += p.smape;
+        lin.nonFiniteTest += p.nonFiniteTest;
+        lin.nonFiniteRef += p.nonFiniteRef;
     }
 
     FrameMetrics m;
-    m.nonFiniteTest = sum.nonFiniteTest;
-    m.nonFiniteReference = sum.nonFiniteRef;
+    m.nonFiniteTest = lin.nonFiniteTest;
+    m.nonFiniteReference = lin.nonFiniteRef;
     if (m.nonFiniteTest > 0 || m.nonFiniteReference > 0) {
         // Never skip a broken pixel: the whole frame scores NaN (see metrics.h).
         m.psnr = m.ssim = m.rmse = m.smape = m.rmseLinear = m.smapeTonemapped = kNaN;
         m.psnr8 = m.ssim8 = m.rmse8 = kNaN;
         return m;
     }
+
+    // Tone-mapped values, one channel at a time (one fused pass per channel): squared error,
+    // SMAPE, 8-bit squared error, and SSIM per channel averaged over the three channels
+    // (skimage's channel_axis behaviour).
+    ChannelSums tm;
+    for (int c = 0; c < 3; ++c) {
+        const ChannelSums cs = channelSums(test, reference, c);
+        tm.sq += cs.sq, tm.smape += cs.smape, tm.sq8 += cs.sq8;
+        tm.ssim += cs.ssim / ssimCount(w, h), tm.ssim8 += cs.ssim8 / ssimCount(w, h);
+    }
     const double n = 3.0 * static_cast<double>(w) * h;
-    const double mse = sum.sqT / n, mse8 = sum.sq8 / n;
+    const double mse = tm.sq / n, mse8 = tm.sq8 / n;
     m.psnr = psnrFromMse(mse);
     m.rmse = std::sqrt(mse);
     m.psnr8 = psnrFromMse(mse8);
     m.rmse8 = std::sqrt(mse8);
-    m.rmseLinear = std::sqrt(sum.sqLin / n);
-    m.smape = sum.smapeLin / n;
-    m.smapeTonemapped = sum.smapeT / n;
-
-    // SSIM per channel, then the mean of the three channels (skimage channel_axis behaviour).
-    double ssim = 0.0, ssim8 = 0.0;
-    for (int c = 0; c < 3; ++c) {
-        const std::vector<double> a = toneMappedPlane(test, c);
-        const std::vector<double> b = toneMappedPlane(reference, c);
-        ssim += ssimPlane(a, b, w, h, false);
-        ssim8 += ssimPlane(a, b, w, h, true);
-    }
-    m.ssim = ssim / 3.0;
-    m.ssim8 = ssim8 / 3.0;
+    m.rmseLinear = std::sqrt(lin.sq / n);
+    m.smape = lin.smape / n;
+    m.smapeTonemapped = tm.smape / n;
+    m.ssim = tm.ssim / 3.0; // mean over channels of the per-channel mean SSIM
+    m.ssim8 = tm.ssim8 / 3.0;
     return m;
 }
 
