@@ -154,6 +154,8 @@ struct FrameImages {
     std::map<Role, RoleImage> roles; ///< every mapped role
     std::optional<LayeredImage> all; ///< filled when ReadOptions::keepAll
     std::optional<FrameCamera> camera;
+    /// Ground truth when the input provides one (BMFR reference{N}.exr, full radiance), else empty.
+    std::optional<RoleImage> reference;
 };
 
 struct ReadOptions {

@@ -1,0 +1,79 @@
+// SPDX-License-Identifier: Apache-2.0
+// Header inspection: subimages, channels with their types, windows, compression, attributes.
+#include "oiio_util.h"
+
+namespace afn::io {
+namespace detail {
+
+std::string inputError(OIIO::ImageInput* in)
+{
+    std::string msg = in ? in->geterror() : std::string();
+    if (msg.empty()) msg = OIIO::geterror();
+    if (msg.empty()) msg = "unknown OpenImageIO error";
+    return msg;
+}
+
+std::unique_ptr<OIIO::ImageInput> openInput(const std::string& path)
+{
+    requireFile(path);
+    auto in = OIIO::ImageInput::open(path);
+    if (!in) throw IoError("cannot read image: " + inputError(nullptr), path);
+    return in;
+}
+
+std::vector<OIIO::ImageSpec> readSpecs(OIIO::ImageInput& in, const std::string& path)
+{
+    std::vector<OIIO::ImageSpec> specs;
+    for (int s = 0; s < 10000; ++s) {
+        if (s > 0 && !in.seek_subimage(s, 0)) break;
+        specs.push_back(in.spec(s, 0));
+    }
+    in.geterror(); // seeking past the last subimage records an error: drop it
+    if (specs.empty() || specs.front().nchannels <= 0)
+        throw IoError("image has no channels", path);
+    return specs;
+}
+
+std::string partName(const OIIO::ImageSpec& spec)
+{
+    std::string name = spec.get_string_attribute("oiio:subimagename");
+    if (name.empty()) name = spec.get_string_attribute("name");
+    return name;
+}
+
+std::string typeName(int basetype)
+{
+    return OIIO::TypeDesc(static_cast<OIIO::TypeDesc::BASETYPE>(basetype)).c_str();
+}
+
+FileInfo infoFromSpecs(const std::string& path, const std::string& format,
+                       const std::vector<OIIO::ImageSpec>& specs)
+{
+    FileInfo info;
+    info.path = path;
+    info.format = format;
+    for (const OIIO::ImageSpec& spec : specs) {
+        SubimageInfo si;
+        if (specs.size() > 1) si.name = detail::partName(spec);
+        si.dataWindow = { spec.x, spec.y, spec.width, spec.height };
+        si.displayWindow = { spec.full_x, spec.full_y, spec.full_width, spec.full_height };
+        si.channels = spec.channelnames;
+        for (int c = 0; c < spec.nchannels; ++c)
+            si.types.push_back(detail::typeName(spec.channelformat(c).basetype));
+        si.compression = spec.get_string_attribute("compression");
+        info.subimages.push_back(std::move(si));
+    }
+    for (const OIIO::ParamValue& p : specs.front().extra_attribs)
+        info.attributes[p.name().string()] = p.get_string();
+    return info;
+}
+
+} // namespace detail
+
+FileInfo inspect(const std::string& path)
+{
+    auto in = detail::openInput(path);
+    return detail::infoFromSpecs(path, in->format_name(), detail::readSpecs(*in, path));
+}
+
+} // namespace afn::io

@@ -1,0 +1,187 @@
+// SPDX-License-Identifier: Apache-2.0
+// readFrame: decode each needed subimage once (as float) and gather the mapped roles by index.
+#include "oiio_util.h"
+
+#include <set>
+
+namespace afn::io {
+namespace {
+
+constexpr const char* kBmfrTag = "#bmfr:";
+
+/// A decoded subimage: all channels, interleaved, data window size.
+struct Decoded {
+    int width = 0, height = 0, nch = 0;
+    std::vector<float> pixels;
+};
+
+Decoded decode(OIIO::ImageInput& in, int sub, const OIIO::ImageSpec& spec, const std::string& path)
+{
+    Decoded d { spec.width, spec.height, spec.nchannels, {} };
+    d.pixels.resize(static_cast<std::size_t>(d.width) * d.height * d.nch);
+    if (!in.read_image(sub, 0, 0, d.nch, OIIO::TypeDesc::FLOAT, d.pixels.data()))
+        throw IoError("cannot read pixels (truncated or corrupt file?): " + detail::inputError(&in),
+                      path);
+    return d;
+}
+
+RoleImage gather(const Decoded& d, const std::vector<int>& indices)
+{
+    RoleImage img;
+    img.width = d.width;
+    img.height = d.height;
+    img.components = static_cast<int>(indices.size());
+    const std::size_t n = static_cast<std::size_t>(d.width) * d.height;
+    img.pixels.resize(n * indices.size());
+    for (std::size_t i = 0; i < n; ++i)
+        for (std::size_t c = 0; c < indices.size(); ++c)
+            img.pixels[i * indices.size() + c] = d.pixels[i * d.nch + indices[c]];
+    return img;
+}
+
+bool sameWindow(const OIIO::ImageSpec& a, const OIIO::ImageSpec& b)
+{
+    return a.x == b.x && a.y == b.y && a.width == b.width && a.height == b.height;
+}
+
+/// String attributes a writer should carry over (Frame, Camera, cycles.*, ...), not file
+/// structure (compression, part names, OIIO bookkeeping).
+std::map<std::string, std::string> keptAttributes(const OIIO::ImageSpec& spec)
+{
+    static const std::set<std::string> skip = { "compression", "name", "type", "view",
+                                                "chunkCount", "version", "tiles" };
+    std::map<std::string, std::string> out;
+    for (const OIIO::ParamValue& p : spec.extra_attribs) {
+        const std::string n = p.name().string();
+        if (p.type() != OIIO::TypeDesc::STRING || skip.count(n) || n.rfind("oiio:", 0) == 0 ||
+            n.rfind("openexr:", 0) == 0)
+            continue;
+        out[n] = p.get_string();
+    }
+    return out;
+}
+
+/// Every channel of the subimages sharing the reference data window. Channels of the first part
+/// keep their names; later parts are prefixed "<part>." (unless already so named).
+LayeredImage layered(const std::vector<OIIO::ImageSpec>& specs, const std::vector<Decoded>& dec,
+                     int ref, std::vector<std::string>& warnings)
+{
+    const OIIO::ImageSpec& rs = specs[ref];
+    LayeredImage all;
+    all.width = rs.width;
+    all.height = rs.height;
+    all.dataWindow = { rs.x, rs.y, rs.width, rs.height };
+    all.displayWindow = { rs.full_x, rs.full_y, rs.full_width, rs.full_height };
+    all.attributes = keptAttributes(specs.front());
+    all.compression = specs.front().get_string_attribute("compression");
+    std::vector<std::pair<int, int>> src; // (subimage, channel)
+    std::set<std::string> used;
+    for (int s = 0; s < static_cast<int>(specs.size()); ++s) {
+        if (!sameWindow(specs[s], rs)) {
+            warnings.push_back("part " + std::to_string(s) + " has a different data window: not kept");
+            continue;
+        }
+        std::string part = detail::partName(specs[s]);
+        if (part.empty()) part = "part" + std::to_string(s);
+        for (int c = 0; c < specs[s].nchannels; ++c) {
+            std::string name = specs[s].channelnames[c];
+            if (s > 0 && (name.rfind(part + ".", 0) != 0 || used.count(name))) name = part + "." + name;
+            if (!used.insert(name).second) continue;
+            all.channels.push_back(name);
+            all.types.push_back(detail::typeName(specs[s].channelformat(c).basetype));
+            src.emplace_back(s, c);
+        }
+    }
+    const std::size_t n = static_cast<std::size_t>(all.width) * all.height, nch = src.size();
+    all.pixels.resize(n * nch);
+    for (std::size_t k = 0; k < nch; ++k) {
+        const Decoded& d = dec[src[k].first];
+        for (std::size_t i = 0; i < n; ++i) all.pixels[i * nch + k] = d.pixels[i * d.nch + src[k].second];
+    }
+    return all;
+}
+
+bool allZero(const RoleImage& img)
+{
+    for (float v : img.pixels)
+        if (v != 0.0f) return false;
+    return true;
+}
+
+} // namespace
+
+namespace detail {
+
+std::string missingRoleMessage(Role role, const RoleMapping& mapping)
+{
+    std::string msg = std::string("no ") + roleName(role) + " channels found";
+    auto it = mapping.lookedFor.find(role);
+    if (it != mapping.lookedFor.end() && !it->second.empty()) {
+        msg += "; looked for: ";
+        for (std::size_t i = 0; i < it->second.size(); ++i) msg += (i ? "; " : "") + it->second[i];
+    }
+    msg += " (use --aov " + std::string(roleName(role)) + "=<channels> to name them)";
+    return msg;
+}
+
+} // namespace detail
+
+FrameImages readFrame(const std::string& path, const ReadOptions& options)
+{
+    if (const auto at = path.rfind(kBmfrTag); at != std::string::npos) {
+        const std::string num = path.substr(at + std::string(kBmfrTag).size());
+        int frame = -1;
+        try {
+            std::size_t used = 0;
+            frame = std::stoi(num, &used);
+            if (used != num.size()) frame = -1;
+        } catch (const std::exception&) {
+        }
+        if (frame < 0) throw IoError("bad BMFR frame path (expected <dir>#bmfr:N)", path);
+        return detail::readBmfrFrame(path.substr(0, at), frame, options);
+    }
+
+    auto in = detail::openInput(path);
+    const std::vector<OIIO::ImageSpec> specs = detail::readSpecs(*in, path);
+    FrameImages out;
+    out.path = path;
+    out.mapping = mapRoles(detail::infoFromSpecs(path, in->format_name(), specs), options.overrides);
+    for (Role r : options.required)
+        if (!out.mapping.find(r)) throw IoError(detail::missingRoleMessage(r, out.mapping), path);
+
+    // All roles share the colour's data window (the first part's when there is no colour).
+    const RoleChannels* color = out.mapping.find(Role::Color);
+    const int ref = color ? color->subimage : 0;
+    std::vector<Decoded> dec(specs.size());
+    std::vector<RoleChannels> kept;
+    for (const RoleChannels& rc : out.mapping.roles) {
+        if (!sameWindow(specs[rc.subimage], specs[ref])) {
+            const std::string msg = std::string(roleName(rc.role)) + " (part " +
+                std::to_string(rc.subimage) + ") has a different data window from the colour";
+            for (Role r : options.required)
+                if (r == rc.role) throw IoError(msg, path);
+            out.mapping.warnings.push_back(msg + ": ignored");
+            continue;
+        }
+        if (dec[rc.subimage].pixels.empty())
+            dec[rc.subimage] = decode(*in, rc.subimage, specs[rc.subimage], path);
+        out.roles[rc.role] = gather(dec[rc.subimage], rc.indices);
+        kept.push_back(rc);
+    }
+    out.mapping.roles = kept;
+
+    auto motion = out.roles.find(Role::Motion);
+    if (motion != out.roles.end() && out.mapping.renderer == "blender" && allZero(motion->second))
+        out.mapping.warnings.push_back(
+            "Vector pass is all zero: motion blur was on when rendering, so it holds no motion");
+
+    if (options.keepAll) {
+        for (int s = 0; s < static_cast<int>(specs.size()); ++s)
+            if (dec[s].pixels.empty() && sameWindow(specs[s], specs[ref]))
+                dec[s] = decode(*in, s, specs[s], path);
+        out.all = layered(specs, dec, ref, out.mapping.warnings);
+    }
+    return out;
+}
+
+} // namespace afn::io
