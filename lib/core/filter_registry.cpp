@@ -41,6 +41,9 @@ const std::vector<FilterType>& filterTypes()
 {
     static const std::vector<FilterType> types = {
         withCommon(identityFilterType()),
+        withCommon(taFilterType()),
+        withCommon(svgfFilterType()),
+        withCommon(bmfrFilterType()),
     };
     return types;
 }

@@ -33,5 +33,8 @@ std::unique_ptr<Filter> createFilter(const std::string& name);
 
 // Per-method descriptions (defined next to each method): method parameters and factory only.
 FilterType identityFilterType();
+FilterType taFilterType();
+FilterType svgfFilterType();
+FilterType bmfrFilterType();
 
 } // namespace afn
