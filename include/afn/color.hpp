@@ -75,7 +75,21 @@ Tile makeTile(const ColorManager& cm, const std::string& kind, const std::string
 
 /// Arrange tiles in a grid with their labels drawn above them (built-in bitmap font), on a dark
 /// background; returns an RGB image of outWidth x outHeight in [0, 1].
+/// Layout: cells of the largest tile's size; `columns` <= 0 = ceil(sqrt(tiles)); a gap of
+/// kSheetGap pixels around every cell; a label band of kSheetLabelBand pixels above each tile.
+/// So outWidth = kSheetGap + columns * (cellW + kSheetGap) and
+/// outHeight = kSheetGap + rows * (kSheetLabelBand + cellH + kSheetGap). Throws ColorError on no
+/// tiles or a tile whose rgb size does not match width*height*3.
 std::vector<float> layoutContactSheet(const std::vector<Tile>& tiles, int columns, int& outWidth,
                                       int& outHeight);
+
+constexpr int kSheetGap = 6;            ///< pixels between and around contact-sheet cells
+constexpr int kSheetLabelScale = 2;     ///< label glyphs (5x7 font pixels) drawn at this scale
+constexpr int kSheetLabelBand = 22;     ///< pixels of label band above each tile (7*2 + 8)
+constexpr float kSheetBackground = 0.1f; ///< contact-sheet background grey (display-referred)
+
+/// Box-filter a tile down so that it fits in maxWidth x maxHeight, keeping its aspect ratio;
+/// returned unchanged when it already fits (useful before layoutContactSheet on large frames).
+Tile fitTile(const Tile& tile, int maxWidth, int maxHeight);
 
 } // namespace afn::color
