@@ -1,0 +1,66 @@
+# SPDX-License-Identifier: Apache-2.0
+"""Colour and feature transforms shared by the network, the dataset and the C++ core.
+
+The C++ core (lib/core/afn_features.cpp, lib/core/demodulate.h) uses the same constants; they are
+kept in agreement by the parity test (tests/data/afn_parity) and tests/unit/test_afn_*.cpp.
+
+Conventions:
+  * tone map for network inputs (NBGD/WSKPN, Lee et al. Sec. III-A):
+    ``T(x) = clip(max(x, 0) ** (1 / 2.2), 0, 1)``
+  * demodulation (lib/core/demodulate.h): ``irr = colour / max(albedo, ALBEDO_EPS)``, remodulation
+    ``colour = irr * max(albedo, ALBEDO_EPS)``; ALBEDO_EPS = 2^-10.
+  * shading normal to [0, 1]: ``clip(n * 0.5 + 0.5, 0, 1)``.
+  * depth to [0, 1]: per-frame min-max over finite values below DEPTH_SKY (WSKPN); values that are
+    non-finite or >= DEPTH_SKY (Blender writes 1e10 for the sky) map to 1 (far).
+"""
+
+import numpy as np
+import torch
+
+GAMMA = 2.2                     # tone-map exponent 1 / GAMMA
+ALBEDO_EPS = 1.0 / 1024.0       # floor of the albedo divisor, lib/core/demodulate.h kAlbedoEpsilon
+MAX_IRRADIANCE = 1e15           # lib/core/demodulate.h kMaxIrradiance
+DEPTH_SKY = 1e9                 # depth at or beyond this is "no surface" (Blender sky: 1e10)
+
+
+def tonemap(x: torch.Tensor) -> torch.Tensor:
+    """Tone map linear HDR to the network's LDR input.
+
+    Args:
+        x: (..., H, W) linear HDR, any sign.
+
+    Returns:
+        Same shape, in [0, 1]: ``clip(max(x, 0) ** (1/2.2), 0, 1)``.
+    """
+    return torch.clamp(torch.clamp(x, min=0.0) ** (1.0 / GAMMA), 0.0, 1.0)
+
+
+def demodulate(color: np.ndarray, albedo: np.ndarray) -> np.ndarray:
+    """Divide colour by the floored albedo (numpy, float32, (..., 3)); clamp to [0, MAX]."""
+    irr = color / np.maximum(albedo, ALBEDO_EPS)
+    irr = np.where(np.isfinite(irr), irr, 0.0)
+    return np.clip(irr, 0.0, MAX_IRRADIANCE).astype(np.float32)
+
+
+def remodulate(irr, albedo):
+    """Multiply by the floored albedo (numpy array or torch tensor)."""
+    if isinstance(irr, torch.Tensor):
+        return irr * torch.clamp(albedo, min=ALBEDO_EPS)
+    return irr * np.maximum(albedo, ALBEDO_EPS)
+
+
+def normal_to_unit_range(n: np.ndarray) -> np.ndarray:
+    """Shading normal in [-1, 1] to [0, 1] (non-finite -> 0.5)."""
+    n = np.where(np.isfinite(n), n, 0.0)
+    return np.clip(n * 0.5 + 0.5, 0.0, 1.0).astype(np.float32)
+
+
+def depth_to_unit_range(z: np.ndarray) -> np.ndarray:
+    """Per-frame min-max of the valid depth values to [0, 1]; invalid -> 1; constant -> 0."""
+    finite = np.isfinite(z) & (np.abs(z) < DEPTH_SKY)
+    if not finite.any():
+        return np.ones_like(z, dtype=np.float32)
+    lo, hi = float(z[finite].min()), float(z[finite].max())
+    scale = 1.0 / (hi - lo) if hi > lo else 0.0
+    out = np.where(finite, (z - lo) * scale, 1.0)
+    return np.clip(out, 0.0, 1.0).astype(np.float32)

@@ -1,0 +1,85 @@
+# SPDX-License-Identifier: Apache-2.0
+"""Write the PyTorch <-> C++ parity vectors to tests/data/afn_parity/ (one command).
+
+    /usr/bin/python3 -m afn.make_parity_vectors            (from training/)
+
+Files (all in the weights-archive format of weights.py, so the C++ reader is exercised too):
+  weights_<variant>.afnw   deterministic random-initialised small model (narrow widths, so the
+                           C++ engine must derive every width from the tensor dims)
+  case_<variant>.afnw      inputs c1, cta, albedo, normal01, depth01 and the PyTorch outputs
+                           o (cropped), i, d_ta, d_1spp, alpha (padded size); images are stored
+                           (H, W, C) interleaved, float32.
+The frame is 37x21 (odd, not a multiple of 8) so the pad-to-8 rule is covered.
+"""
+
+import argparse
+import os
+
+import numpy as np
+import torch
+
+from .model import AFN, AFNConfig
+from .weights import dumps, save_model
+
+WIDTH, HEIGHT = 37, 21
+PARITY_CONFIG = dict(enc=(8, 12, 16), dec=(12, 8), refine=8)
+
+
+def make_inputs(seed: int = 1):
+    """Deterministic HDR-ish inputs (numpy, (H, W, C) float32)."""
+    rng = np.random.RandomState(seed)
+    h, w = HEIGHT, WIDTH
+    yy, xx = np.mgrid[0:h, 0:w].astype(np.float32)
+    base = 0.5 + 0.4 * np.sin(xx[..., None] * 0.3 + np.arange(3) * 1.3) * np.cos(yy[..., None] * 0.2)
+    c1 = (base * rng.exponential(1.0, (h, w, 3)) * 1.5).astype(np.float32)   # values up to ~10
+    cta = (base + 0.1 * rng.standard_normal((h, w, 3))).clip(0).astype(np.float32)
+    albedo = rng.uniform(0.05, 1.0, (h, w, 3)).astype(np.float32)
+    n = rng.standard_normal((h, w, 3))
+    n /= np.linalg.norm(n, axis=-1, keepdims=True)
+    normal01 = (n * 0.5 + 0.5).astype(np.float32)
+    depth01 = ((xx + yy) / (w + h - 2))[..., None].astype(np.float32)
+    return {"c1": c1, "cta": cta, "albedo": albedo, "normal01": normal01, "depth01": depth01}
+
+
+def make_model(variant: str, seed: int = 0) -> AFN:
+    """Random-initialised model; heads scaled x4 so the kernels are far from uniform."""
+    torch.manual_seed(seed)
+    model = AFN(AFNConfig(variant=variant, **PARITY_CONFIG)).eval()
+    with torch.no_grad():
+        for name in ("head1", "headTA"):
+            getattr(model, name).weight.mul_(4.0)
+    return model
+
+
+def run(model: AFN, inputs: dict) -> dict:
+    """PyTorch forward on (H, W, C) numpy inputs; returns (H, W, C) numpy outputs."""
+    def t(a):
+        return torch.from_numpy(a).permute(2, 0, 1)[None]
+    with torch.no_grad():
+        out = model(*(t(inputs[k]) for k in ("c1", "cta", "albedo", "normal01", "depth01")))
+    return {k: out[k][0].permute(1, 2, 0).contiguous().numpy()
+            for k in ("o", "i", "d_ta", "d_1spp", "alpha")}
+
+
+def main(argv=None):
+    here = os.path.dirname(os.path.abspath(__file__))
+    default_out = os.path.join(here, "..", "..", "tests", "data", "afn_parity")
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--out", default=default_out, help="output folder (default: %(default)s)")
+    args = ap.parse_args(argv)
+    os.makedirs(args.out, exist_ok=True)
+    inputs = make_inputs()
+    for variant in ("full", "fusion"):
+        model = make_model(variant)
+        save_model(os.path.join(args.out, f"weights_{variant}.afnw"), model)
+        outputs = run(model, inputs)
+        with open(os.path.join(args.out, f"case_{variant}.afnw"), "wb") as f:
+            f.write(dumps({**inputs, **outputs},
+                          {"width": WIDTH, "height": HEIGHT, "variant": variant,
+                           "torch": torch.__version__}))
+        print(f"{variant}: o range [{outputs['o'].min():.4f}, {outputs['o'].max():.4f}]")
+    print(f"wrote {os.path.normpath(args.out)}")
+
+
+if __name__ == "__main__":
+    main()

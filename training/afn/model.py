@@ -1,0 +1,226 @@
+# SPDX-License-Identifier: Apache-2.0
+"""The Adaptive Fusion Network (Lee, Lee, Yoon, Song, "Real-Time Monte Carlo Denoising With
+Adaptive Fusion Network", IEEE Access), Section III, as implemented by afn.
+
+The C++ inference engine (lib/core/afn_network.cpp) implements exactly this graph; the parameter
+names (``enc1.weight`` ...) are the tensor names of the weights archive (weights.py).
+
+Fixed by the paper: 7x7 per-pixel kernels (49 channels); K_TA applied at full resolution to the
+TA-1spp frame, K_1spp at half resolution to the 2x average-pooled 1-spp frame; the filtering runs
+on the HDR (non-tone-mapped) demodulated colour (Eq. 2); fusion Eq. 3
+``i = d_TA - alpha * U(D(d_TA)) + alpha * U(d_1spp)`` with D = 2x2 average pooling and U = nearest
+2x upsampling; refinement Eq. 4 ``o = i + R(i, f)``; output remodulated by albedo; SMAPE loss.
+
+Chosen here (the paper leaves it open; see training/README.md and shared/reference/baselines.md):
+
+* Network input x (13 ch, full res): T(r_1spp), T(r_TA), albedo, normal*0.5+0.5, depth01 with
+  T(x) = clip(max(x,0)^(1/2.2), 0, 1) (color.py).
+* Encoder-decoder M, starting at half resolution ("half-res-start U-Net"), 3x3 convs, ReLU:
+  ``h = D(x)``; ``e1 = conv(h) 13->16`` (1/2); ``e2 = conv(D e1) 16->32`` (1/4);
+  ``e3 = conv(D e2) 32->64`` (1/8); ``d2 = conv([U e3, e2]) 96->32`` (1/4);
+  ``d1 = conv([U d2, e1]) 48->24`` (1/2).
+* Heads (1x1 convs): ``K_1spp logits = head1(d1)`` 24->49 at 1/2;
+  ``[K_TA logits, alpha logit] = headTA([U d1, x])`` 37->50 at full res (the full-res input
+  features give the full-res kernels per-pixel detail without any full-res 3x3 conv).
+* Kernels: softmax over the 49 taps (max subtracted); tap j = (dy+3)*7 + (dx+3) (F.unfold order),
+  taps outside the (padded) image read 0 and are not renormalised. alpha = sigmoid(logit).
+* Refinement R: ``[T(i), albedo, normal01, depth01]`` 10->16->16->3, 3x3 convs, ReLU between.
+* Odd sizes: inputs are padded at the right/bottom to a multiple of 8 by edge replication
+  (so every 2x pooling level is exact), the whole graph runs on the padded frame, and the output is
+  cropped. The C++ engine does the same.
+* Ablation variants (Table 11 of the paper): ``full`` (fusion + refinement), ``fusion`` (no
+  refinement), ``1spp`` (the TA input is replaced by the 1-spp frame everywhere, no refinement),
+  ``ta`` (the 1-spp input is replaced by the TA frame everywhere, no refinement).
+
+Cost (default widths, from :func:`cost_per_pixel`; FLOP = 2 per multiply-add, per full-res pixel):
+kernel prediction 15016 FLOP (13.8 GFLOP at 1280x720), filtering + fusion ~563 FLOP,
+refinement 8352 FLOP (7.7 GFLOP); 70,432 parameters in total (tests/test_afn_model.py).
+"""
+
+from dataclasses import dataclass, field
+
+import torch
+import torch.nn.functional as F
+from torch import nn
+
+from .color import tonemap
+
+KERNEL_SIZE = 7
+KERNEL_TAPS = KERNEL_SIZE * KERNEL_SIZE
+INPUT_CHANNELS = 13            # T(1spp) 3, T(TA) 3, albedo 3, normal01 3, depth01 1
+REFINE_INPUT_CHANNELS = 10     # T(i) 3, albedo 3, normal01 3, depth01 1
+PAD_MULTIPLE = 8               # three 2x pooling levels
+VARIANTS = ("full", "fusion", "1spp", "ta")
+
+
+@dataclass
+class AFNConfig:
+    """Architecture of one AFN model (stored in the weights archive's metadata)."""
+
+    variant: str = "full"                               # one of VARIANTS
+    enc: tuple = field(default_factory=lambda: (16, 32, 64))  # e1, e2, e3 widths
+    dec: tuple = field(default_factory=lambda: (32, 24))      # d2, d1 widths
+    refine: int = 16                                    # refinement hidden width
+
+    def to_dict(self):
+        return {"variant": self.variant, "enc": list(self.enc), "dec": list(self.dec),
+                "refine": self.refine}
+
+    @staticmethod
+    def from_dict(d):
+        return AFNConfig(variant=d.get("variant", "full"), enc=tuple(d.get("enc", (16, 32, 64))),
+                         dec=tuple(d.get("dec", (32, 24))), refine=int(d.get("refine", 16)))
+
+
+def down2(x: torch.Tensor) -> torch.Tensor:
+    """D: 2x2 average pooling (B, C, H, W) -> (B, C, H/2, W/2); H, W even."""
+    return F.avg_pool2d(x, 2)
+
+
+def up2(x: torch.Tensor) -> torch.Tensor:
+    """U: nearest-neighbour 2x upsampling (B, C, H, W) -> (B, C, 2H, 2W)."""
+    return F.interpolate(x, scale_factor=2, mode="nearest")
+
+
+def apply_kernels(img: torch.Tensor, kernels: torch.Tensor) -> torch.Tensor:
+    """Per-pixel 7x7 filtering (Eq. 2) by shifted slices (never unfolds the image).
+
+    Args:
+        img: (B, C, H, W) linear HDR.
+        kernels: (B, 49, H, W) normalised weights; tap j = (dy+3)*7 + (dx+3) reads img[y+dy, x+dx].
+
+    Returns:
+        (B, C, H, W): ``sum_j K_j * img(p + offset_j)``, zero outside the image.
+    """
+    r = KERNEL_SIZE // 2
+    h, w = img.shape[-2:]
+    padded = F.pad(img, (r, r, r, r))
+    out = torch.zeros_like(img)
+    for j in range(KERNEL_TAPS):
+        dy, dx = j // KERNEL_SIZE, j % KERNEL_SIZE
+        out = out + kernels[:, j:j + 1] * padded[:, :, dy:dy + h, dx:dx + w]
+    return out
+
+
+def fuse(d_ta: torch.Tensor, d_1spp_half: torch.Tensor, alpha: torch.Tensor) -> torch.Tensor:
+    """Eq. 3: ``i = d_TA - alpha * U(D(d_TA)) + alpha * U(d_1spp)``.
+
+    Args:
+        d_ta: (B, 3, H, W) filtered TA frame, H and W even.
+        d_1spp_half: (B, 3, H/2, W/2) filtered down-sampled 1-spp frame.
+        alpha: (B, 1, H, W) fusion weights in [0, 1].
+    """
+    return d_ta - alpha * up2(down2(d_ta)) + alpha * up2(d_1spp_half)
+
+
+def pad_to_multiple(x: torch.Tensor, m: int = PAD_MULTIPLE) -> torch.Tensor:
+    """Replicate-pad (B, C, H, W) at the right and bottom to multiples of m."""
+    h, w = x.shape[-2:]
+    ph, pw = (-h) % m, (-w) % m
+    if ph == 0 and pw == 0:
+        return x
+    return F.pad(x, (0, pw, 0, ph), mode="replicate")
+
+
+def _conv3(cin, cout):
+    return nn.Conv2d(cin, cout, 3, padding=1)
+
+
+class AFN(nn.Module):
+    """AFN: multi-scale kernel prediction, filtering + fusion, refinement (module docstring).
+
+    Example:
+        >>> net = AFN(AFNConfig())
+        >>> out = net(c1, cta, albedo, normal01, depth01)   # each (B, C, H, W)
+        >>> out["o"].shape   # (B, 3, H, W), demodulated; remodulate with color.remodulate
+    """
+
+    def __init__(self, cfg: AFNConfig = None):
+        super().__init__()
+        cfg = cfg or AFNConfig()
+        if cfg.variant not in VARIANTS:
+            raise ValueError(f"unknown AFN variant '{cfg.variant}' (known: {', '.join(VARIANTS)})")
+        self.cfg = cfg
+        c1, c2, c3 = cfg.enc
+        d2, d1 = cfg.dec
+        self.enc1 = _conv3(INPUT_CHANNELS, c1)
+        self.enc2 = _conv3(c1, c2)
+        self.enc3 = _conv3(c2, c3)
+        self.dec2 = _conv3(c3 + c2, d2)
+        self.dec1 = _conv3(d2 + c1, d1)
+        self.head1 = nn.Conv2d(d1, KERNEL_TAPS, 1)
+        self.headTA = nn.Conv2d(d1 + INPUT_CHANNELS, KERNEL_TAPS + 1, 1)
+        self.use_refine = cfg.variant == "full"
+        if self.use_refine:
+            self.ref1 = _conv3(REFINE_INPUT_CHANNELS, cfg.refine)
+            self.ref2 = _conv3(cfg.refine, cfg.refine)
+            self.ref3 = _conv3(cfg.refine, 3)
+
+    def forward(self, c1, cta, albedo, normal01, depth01):
+        """Denoise one batch.
+
+        Args:
+            c1: (B, 3, H, W) 1-spp colour, albedo-demodulated, linear HDR, non-negative.
+            cta: (B, 3, H, W) TA-1spp colour, demodulated, linear HDR.
+            albedo: (B, 3, H, W) in [0, 1].
+            normal01: (B, 3, H, W) shading normal scaled to [0, 1].
+            depth01: (B, 1, H, W) depth scaled to [0, 1] per frame.
+
+        Returns:
+            dict with ``o`` (B, 3, H, W) demodulated output and the intermediates (padded size):
+            ``i`` fused image, ``d_ta``, ``d_1spp`` (half res), ``alpha``, ``k_ta``, ``k_1spp``.
+        """
+        h, w = c1.shape[-2:]
+        if self.cfg.variant == "1spp":
+            cta = c1
+        elif self.cfg.variant == "ta":
+            c1 = cta
+        c1, cta, albedo, normal01, depth01 = (
+            pad_to_multiple(t) for t in (c1, cta, albedo, normal01, depth01))
+        feats = torch.cat([albedo, normal01, depth01], 1)
+        x = torch.cat([tonemap(c1), tonemap(cta), feats], 1)          # (B, 13, H, W)
+        e1 = F.relu(self.enc1(down2(x)))                              # 1/2
+        e2 = F.relu(self.enc2(down2(e1)))                             # 1/4
+        e3 = F.relu(self.enc3(down2(e2)))                             # 1/8
+        d2 = F.relu(self.dec2(torch.cat([up2(e3), e2], 1)))           # 1/4
+        d1 = F.relu(self.dec1(torch.cat([up2(d2), e1], 1)))           # 1/2
+        k_1spp = torch.softmax(self.head1(d1), 1)                     # (B, 49, H/2, W/2)
+        full = self.headTA(torch.cat([up2(d1), x], 1))                # (B, 50, H, W)
+        k_ta = torch.softmax(full[:, :KERNEL_TAPS], 1)                # (B, 49, H, W)
+        alpha = torch.sigmoid(full[:, KERNEL_TAPS:])                  # (B, 1, H, W)
+        d_ta = apply_kernels(cta, k_ta)
+        d_1spp = apply_kernels(down2(c1), k_1spp)
+        i = fuse(d_ta, d_1spp, alpha)
+        o = i
+        if self.use_refine:
+            r = torch.cat([tonemap(i), feats], 1)
+            r = F.relu(self.ref1(r))
+            r = F.relu(self.ref2(r))
+            o = i + self.ref3(r)
+        return {"o": o[..., :h, :w], "i": i, "d_ta": d_ta, "d_1spp": d_1spp, "alpha": alpha,
+                "k_ta": k_ta, "k_1spp": k_1spp}
+
+
+def cost_per_pixel(cfg: AFNConfig = None) -> dict:
+    """FLOP per full-resolution pixel of each stage (2 FLOP per multiply-add) and parameter count.
+
+    Filtering counts 2 FLOP per tap and channel plus ~3 per softmax tap (exp, sum, divide).
+    """
+    cfg = cfg or AFNConfig()
+    c1, c2, c3 = cfg.enc
+    d2, d1 = cfg.dec
+
+    def conv(cin, cout, k, scale):
+        return 2 * k * k * cin * cout / scale
+
+    kp = (conv(INPUT_CHANNELS, c1, 3, 4) + conv(c1, c2, 3, 16) + conv(c2, c3, 3, 64)
+          + conv(c3 + c2, d2, 3, 16) + conv(d2 + c1, d1, 3, 4) + conv(d1, KERNEL_TAPS, 1, 4)
+          + conv(d1 + INPUT_CHANNELS, KERNEL_TAPS + 1, 1, 1))
+    filt = (KERNEL_TAPS * (2 * 3 + 3)) * (1 + 0.25) + 12
+    ref = 0.0
+    if cfg.variant == "full":
+        ref = (conv(REFINE_INPUT_CHANNELS, cfg.refine, 3, 1) + conv(cfg.refine, cfg.refine, 3, 1)
+               + conv(cfg.refine, 3, 3, 1))
+    params = sum(p.numel() for p in AFN(cfg).parameters())
+    return {"kernel_prediction": kp, "filtering_fusion": filt, "refinement": ref,
+            "total": kp + filt + ref, "parameters": params}
