@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: Apache-2.0
 // Choosing the OpenColorIO config: explicit path, else $OCIO, else the project's own config.
 #include "afn/color.hpp"
+#include "config_paths.h"
 
 #include <dlfcn.h>
 #include <sys/stat.h>
@@ -17,19 +18,24 @@ bool isRegularFile(const std::string& path)
     return !path.empty() && ::stat(path.c_str(), &st) == 0 && S_ISREG(st.st_mode);
 }
 
-// <prefix>/share/afn/ocio/config.ocio next to the directory holding this shared library
-// (<prefix>/lib or <prefix>/lib/<multiarch>); "" when the library's location is unknown.
-std::string configNextToLibrary()
+} // namespace
+
+namespace detail {
+
+std::string libraryPath()
 {
     Dl_info info {};
     if (::dladdr(reinterpret_cast<void*>(&resolveConfig), &info) == 0 || !info.dli_fname)
         return {};
-    std::string dir = info.dli_fname;
-    const auto slash = dir.rfind('/');
+    return info.dli_fname;
+}
+
+std::string installedConfigBeside(const std::string& libraryFile)
+{
+    const auto slash = libraryFile.rfind('/');
     if (slash == std::string::npos)
         return {};
-    dir.resize(slash);
-    // Try <libdir>/../share and, for multiarch libdirs, <libdir>/../../share.
+    const std::string dir = libraryFile.substr(0, slash);
     for (const char* up :
         { "/../share/afn/ocio/config.ocio", "/../../share/afn/ocio/config.ocio" }) {
         const std::string candidate = dir + up;
@@ -39,7 +45,7 @@ std::string configNextToLibrary()
     return {};
 }
 
-} // namespace
+} // namespace detail
 
 ConfigChoice resolveConfig(const std::string& explicitPath)
 {
@@ -53,7 +59,7 @@ ConfigChoice resolveConfig(const std::string& explicitPath)
     // in which case loading it reports that).
     if (isRegularFile(AFN_OCIO_SOURCE_CONFIG))
         return { AFN_OCIO_SOURCE_CONFIG, "afn default" };
-    const std::string besideLib = configNextToLibrary();
+    const std::string besideLib = detail::installedConfigBeside(detail::libraryPath());
     if (!besideLib.empty())
         return { besideLib, "afn default" };
     return { AFN_OCIO_INSTALL_CONFIG, "afn default" };

@@ -4,8 +4,9 @@ find_package(Threads REQUIRED)
 afn_add_gtest(test_color_convert SOURCES unit/test_color_convert.cpp LIBS afn_color)
 afn_add_gtest(test_color_config SOURCES unit/test_color_config.cpp LIBS afn_color)
 afn_add_gtest(test_color_tiles SOURCES unit/test_color_tiles.cpp LIBS afn_color)
-# The tile test also checks the internal bitmap font directly.
+# These also check internal helpers (bitmap font, install-relative config lookup) directly.
 target_include_directories(test_color_tiles PRIVATE ${PROJECT_SOURCE_DIR}/lib/color)
+target_include_directories(test_color_config PRIVATE ${PROJECT_SOURCE_DIR}/lib/color)
 target_link_libraries(test_color_convert PRIVATE Threads::Threads)
 
 # The shipped config must pass OpenColorIO's own checker; skipped (code 77) without ociocheck.

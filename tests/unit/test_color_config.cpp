@@ -1,10 +1,12 @@
 // SPDX-License-Identifier: Apache-2.0
 // Config resolution order (explicit > $OCIO > afn default) and config loading errors.
 #include "afn/color.hpp"
+#include "config_paths.h"
 
 #include <gtest/gtest.h>
 
 #include <cstdlib>
+#include <filesystem>
 #include <fstream>
 
 using afn::color::ColorError;
@@ -119,4 +121,30 @@ TEST_F(ColorConfig, InvalidConfigNamesPathAndReason)
     msg = errorOf(dangling);
     EXPECT_NE(msg.find(dangling), std::string::npos) << msg;
     EXPECT_FALSE(msg.empty());
+}
+
+TEST(ColorConfigInstall, FindsConfigBesideTheLibrary)
+{
+    namespace fs = std::filesystem;
+    using afn::color::detail::installedConfigBeside;
+    EXPECT_NE(afn::color::detail::libraryPath().find("libafn_color.so"), std::string::npos);
+
+    const fs::path prefix = fs::path(::testing::TempDir()) / "afn_color_prefix";
+    fs::remove_all(prefix);
+    fs::create_directories(prefix / "lib" / "x86_64-linux-gnu");
+    const std::string lib = (prefix / "lib" / "libafn_color.so.0").string();
+    const std::string multiarch
+        = (prefix / "lib" / "x86_64-linux-gnu" / "libafn_color.so").string();
+    EXPECT_EQ(installedConfigBeside(lib), ""); // nothing installed yet
+
+    fs::create_directories(prefix / "share" / "afn" / "ocio");
+    std::ofstream(prefix / "share" / "afn" / "ocio" / "config.ocio") << "x";
+    const std::string found = installedConfigBeside(lib);
+    ASSERT_FALSE(found.empty());
+    EXPECT_TRUE(fs::equivalent(found, prefix / "share" / "afn" / "ocio" / "config.ocio"));
+    const std::string foundMulti = installedConfigBeside(multiarch);
+    ASSERT_FALSE(foundMulti.empty());
+    EXPECT_TRUE(fs::equivalent(foundMulti, prefix / "share" / "afn" / "ocio" / "config.ocio"));
+    EXPECT_EQ(installedConfigBeside("no-slash.so"), "");
+    fs::remove_all(prefix);
 }

@@ -155,7 +155,7 @@ TEST(ColorConvert, AcesSdrViewToneMapsMidGrey)
     // video ODT then applies the dim-surround gamma 0.9811 to Y, and the sRGB display encodes:
     // srgb(((4.8 - 0.02) / (48 - 0.02))^0.9811) = 0.35595.
     const double y = std::pow((4.8 - 0.02) / (48.0 - 0.02), 0.9811);
-    EXPECT_NEAR(displayed(cm, 0.18f, "Filmic (ACES SDR)"), srgbEncode(y), 2e-3);
+    EXPECT_NEAR(displayed(cm, 0.18f, "Filmic (ACES SDR)"), srgbEncode(y), 3e-4);
     // Tone mapping rolls off highlights: 16 stays below display white, and the curve is monotonic.
     const float hi = displayed(cm, 16.f, "Filmic (ACES SDR)");
     EXPECT_GT(hi, 0.99f);
