@@ -1,0 +1,172 @@
+// SPDX-License-Identifier: Apache-2.0
+#include "sequence_runner.h"
+
+#include "clip_image.h"
+#include "ofx_support.h"
+
+#include <cmath>
+#include <cstring>
+#include <memory>
+#include <sstream>
+
+namespace afnofx {
+
+namespace {
+
+constexpr size_t kCachedFrames = 4;
+
+bool methodHasParam(const std::string& method, const char* name)
+{
+    AFNParamInfo info {};
+    for (int i = 0; afnGetFilterTypeParam(method.c_str(), i, &info); ++i)
+        if (std::strcmp(info.name, name) == 0) return true;
+    return false;
+}
+
+bool abortRequested(void* instance, double)
+{
+    return suites().effect->abort(static_cast<OfxImageEffectHandle>(instance)) == 0;
+}
+
+std::string stateKey(const Settings& s, const FrameRequest& r)
+{
+    std::ostringstream os;
+    os.precision(17);
+    os << s.key() << '|' << r.window.x1 << ',' << r.window.y1 << ',' << r.window.x2 << ','
+       << r.window.y2 << '|' << r.renderScale << '|' << r.firstFrame << '|';
+    for (const InputClip& c : r.inputs) os << c.role << ',';
+    return os.str();
+}
+
+} // namespace
+
+void SequenceRunner::clear()
+{
+    m_results.clear();
+    m_hasState = false;
+}
+
+void SequenceRunner::checkError(const char* what)
+{
+    std::string msg;
+    const afn::Error e = m_device.getError(&msg);
+    if (e == afn::Error::Cancelled) throw Aborted {};
+    if (e != afn::Error::None) throw OfxError(kOfxStatFailed, std::string(what) + ": " + msg);
+}
+
+std::vector<float>& SequenceRunner::storeSlot(const std::string& key, double time)
+{
+    for (auto it = m_results.begin(); it != m_results.end(); ++it)
+        if (it->key == key && it->time == time) {
+            m_results.erase(it);
+            break;
+        }
+    Result r;
+    if (m_results.size() >= kCachedFrames) {
+        r.rgba = std::move(m_results.front().rgba); // reuse the oldest frame's memory
+        m_results.pop_front();
+    }
+    r.key = key;
+    r.time = time;
+    m_results.push_back(std::move(r));
+    return m_results.back().rgba;
+}
+
+const std::vector<float>& SequenceRunner::frame(double time, const Settings& settings,
+                                                const FrameRequest& req)
+{
+    const std::string key = stateKey(settings, req);
+    for (const Result& r : m_results)
+        if (r.key == key && r.time == time) return r.rgba;
+
+    if (!m_device) {
+        m_device = afn::newDevice();
+        m_device.commit();
+        checkError("creating the afn device");
+    }
+    if (!m_filter || m_filterMethod != settings.method) {
+        m_filter = m_device.newFilter(settings.method.c_str());
+        checkError(("creating filter " + settings.method).c_str());
+        m_filterMethod = settings.method;
+        m_hasState = false;
+    }
+    m_filter.setProgressMonitorFunction(abortRequested, req.instance);
+
+    // Frames to run: only t without history; t alone when the filter stands at t-1 with the same
+    // key; otherwise every frame from the first one (the host may have scrubbed or changed a
+    // parameter). Times step by whole frames back from t.
+    int backSteps = 0;
+    if (settings.temporal) {
+        const bool continues = m_hasState && m_stateKey == key && m_stateTime == time - 1.0;
+        backSteps = continues ? 0 : std::max(0, int(std::floor(time - req.firstFrame + 1e-9)));
+        if (!continues) m_filter.reset();
+    } else {
+        m_filter.reset();
+    }
+    m_hasState = false;
+    for (int n = backSteps; n >= 0; --n) {
+        const double t = time - n;
+        if (n > 0 && suites().effect->abort(req.instance)) throw Aborted {};
+        std::vector<float>& out = storeSlot(key, t);
+        try {
+            runFrame(t, settings, req, out);
+        } catch (...) {
+            m_results.pop_back(); // never keep a half-written frame
+            throw;
+        }
+        m_stateKey = key;
+        m_stateTime = t;
+        m_hasState = settings.temporal;
+    }
+    return m_results.back().rgba;
+}
+
+void SequenceRunner::runFrame(double time, const Settings& settings, const FrameRequest& req,
+                              std::vector<float>& out)
+{
+    const int w = req.window.x2 - req.window.x1, h = req.window.y2 - req.window.y1;
+    AFNFilter f = m_filter.getHandle();
+    // Images stay fetched until the filter has executed.
+    std::vector<std::unique_ptr<ClipImage>> images;
+    m_scratch.resize(req.inputs.size());
+    for (size_t i = 0; i < req.inputs.size(); ++i) {
+        const InputClip& in = req.inputs[i];
+        images.emplace_back(new ClipImage(in.clip, time, &req.windowCanonical));
+        const ClipImage& img = *images.back();
+        std::ostringstream where;
+        where << "clip for '" << in.role << "' at time " << time;
+        if (!img.valid()) throw OfxError(kOfxStatFailed, "no image from the " + where.str());
+        const StridedView v = viewWindow(img, req.window, m_scratch[i]);
+        const std::string role = in.role;
+        int need = role == "depth" ? 1 : role == "motion" ? 2 : 3;
+        if (v.components < need)
+            throw OfxError(kOfxStatErrImageFormat, "the " + where.str() + " has " +
+                               std::to_string(v.components) + " components, needs " +
+                               std::to_string(need));
+        afnSetFilterImage(f, in.role, v.ptr, static_cast<AFNFormat>(need), w, h, 0, v.pixelStride,
+                          v.rowStride);
+        if (role == "color") {
+            if (v.components == 4)
+                afnSetFilterImage(f, "alpha", static_cast<char*>(v.ptr) + 3 * sizeof(float),
+                                  AFN_FORMAT_FLOAT, w, h, 0, v.pixelStride, v.rowStride);
+            else
+                afnUnsetFilterImage(f, "alpha");
+        }
+    }
+    out.resize(size_t(w) * h * 4);
+    afnSetFilterImage(f, "output", out.data(), AFN_FORMAT_FLOAT4, w, h, 0, 0, 0);
+    applySettings(settings, f);
+    if (methodHasParam(settings.method, "motion.yUp")) afnSetFilterBool(f, "motion.yUp", true);
+    if (methodHasParam(settings.method, "motion.scale"))
+        afnSetFilterFloat(f, "motion.scale", static_cast<float>(req.renderScale));
+    checkError("setting the afn inputs");
+    afnCommitFilter(f);
+    checkError("afn commit");
+    afnExecuteFilter(f);
+    for (const InputClip& in : req.inputs) afnUnsetFilterImage(f, in.role);
+    afnUnsetFilterImage(f, "alpha");
+    afnUnsetFilterImage(f, "output");
+    checkError("afn execute");
+}
+
+} // namespace afnofx

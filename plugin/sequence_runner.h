@@ -1,0 +1,66 @@
+// SPDX-License-Identifier: Apache-2.0
+// Per-instance frame cache that makes temporal results independent of the host's request order:
+// the result at t is the filter run over every frame from the clip's first frame to t.
+#pragma once
+
+#include "param_table.h"
+
+#include <afn/afn.hpp>
+
+#include <deque>
+#include <string>
+#include <vector>
+
+namespace afnofx {
+
+/// Input clip roles, in the library's image names.
+struct InputClip {
+    const char* role;         ///< "color", "albedo", "normal", "depth" or "motion"
+    OfxImageClipHandle clip;  ///< a connected clip
+};
+
+/// What one render asks for, apart from the time.
+struct FrameRequest {
+    OfxImageEffectHandle instance = nullptr; ///< for abort checks
+    std::vector<InputClip> inputs;           ///< connected clips; "color" first
+    OfxRectI window {};                      ///< processed pixels (the Source RoD at render scale)
+    OfxRectD windowCanonical {};             ///< the same in canonical coordinates (clipGetImage)
+    double renderScale = 1.0;                ///< x render scale (pixel vectors scale with it)
+    double firstFrame = 0.0;                 ///< first frame of the Source clip
+};
+
+/// Thrown when the host asked to abort.
+struct Aborted {};
+
+/// One afn filter advanced frame by frame plus the outputs of recent frames. Not thread-safe:
+/// the instance serialises calls with its mutex.
+class SequenceRunner {
+public:
+    /// Output of frame `time` as packed top-down RGBA floats over request.window.
+    /// Throws OfxError on failures (message names the input) and Aborted.
+    const std::vector<float>& frame(double time, const Settings& settings, const FrameRequest& req);
+    /// Drop the history and every cached output (PurgeCaches, parameter changes).
+    void clear();
+
+private:
+    void runFrame(double time, const Settings& settings, const FrameRequest& req,
+                  std::vector<float>& out);
+    std::vector<float>& storeSlot(const std::string& key, double time);
+    void checkError(const char* what);
+
+    afn::DeviceRef m_device;
+    afn::FilterRef m_filter;
+    std::string m_filterMethod;
+    std::string m_stateKey;   ///< key of the frames the filter's history was built from
+    double m_stateTime = 0.0; ///< last frame the filter executed
+    bool m_hasState = false;
+    struct Result {
+        std::string key;
+        double time;
+        std::vector<float> rgba;
+    };
+    std::deque<Result> m_results; ///< recent outputs, oldest first
+    std::vector<std::vector<float>> m_scratch;
+};
+
+} // namespace afnofx
