@@ -1,1 +1,5 @@
 # SPDX-License-Identifier: Apache-2.0
+# Demodulation, reprojection, temporal accumulation, SVGF and BMFR (lib/core, issue 3): internals
+# and the filters through createFilter.
+afn_add_gtest(test_methods SOURCES unit/test_methods_reproject.cpp unit/test_methods_ta.cpp
+  unit/test_methods_filters.cpp LIBS afn_core)

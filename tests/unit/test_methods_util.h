@@ -1,0 +1,110 @@
+// SPDX-License-Identifier: Apache-2.0
+// Helpers for the methods tests: synthetic buffers, binding them to a Filter, frame runs, RMSE.
+#pragma once
+
+#include "core/filter_registry.h"
+#include "core/image.h"
+
+#include <cmath>
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace methods_test {
+
+using afn::Image;
+
+/// One frame's caller buffers; empty images are not bound.
+struct Buffers {
+    Image color, albedo, normal, depth, position, motion, out;
+    std::vector<float> viewProjection; ///< 16 floats, or empty
+};
+
+inline afn::ImageBinding binding(Image& img)
+{
+    afn::ImageBinding b;
+    b.ptr = img.data();
+    b.format = static_cast<AFNFormat>(img.channels());
+    b.width = img.width();
+    b.height = img.height();
+    b.pixelStride = static_cast<std::ptrdiff_t>(img.channels() * sizeof(float));
+    b.rowStride = b.pixelStride * img.width();
+    return b;
+}
+
+/// Bind every non-empty buffer (and the output, allocated here), set the camera, commit, execute.
+inline void runFrame(afn::Filter& f, Buffers& b)
+{
+    if (b.out.empty()) b.out = Image(b.color.width(), b.color.height(), 3);
+    const char* names[] = { "color", "albedo", "normal", "depth", "position", "motion" };
+    Image* imgs[] = { &b.color, &b.albedo, &b.normal, &b.depth, &b.position, &b.motion };
+    for (int i = 0; i < 6; ++i)
+        if (!imgs[i]->empty()) f.setImage(names[i], binding(*imgs[i]));
+    f.setImage("output", binding(b.out));
+    if (!b.viewProjection.empty()) f.setFloats("viewProjection", b.viewProjection);
+    f.commit();
+    f.execute();
+}
+
+/// Deterministic uniform values in [-1, 1) (LCG; independent of the library).
+struct Lcg {
+    std::uint32_t s;
+    float next()
+    {
+        s = s * 1664525u + 1013904223u;
+        return static_cast<float>(s >> 8) / 8388608.0f - 1.0f;
+    }
+};
+
+inline double rmse(const Image& a, const Image& b)
+{
+    double sum = 0.0;
+    for (std::size_t i = 0; i < a.size(); ++i) {
+        const double d = static_cast<double>(a.data()[i]) - b.data()[i];
+        sum += d * d;
+    }
+    return std::sqrt(sum / static_cast<double>(a.size()));
+}
+
+inline bool allFiniteNonNegative(const Image& a)
+{
+    for (std::size_t i = 0; i < a.size(); ++i)
+        if (!std::isfinite(a.data()[i]) || a.data()[i] < 0.0f) return false;
+    return true;
+}
+
+inline bool bitEqual(const Image& a, const Image& b)
+{
+    if (a.size() != b.size()) return false;
+    for (std::size_t i = 0; i < a.size(); ++i)
+        if (a.data()[i] != b.data()[i]) return false;
+    return true;
+}
+
+/// Image filled per pixel by fn(x, y, c).
+template <typename Fn> Image makeImage(int w, int h, int ch, Fn fn)
+{
+    Image img(w, h, ch);
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x)
+            for (int c = 0; c < ch; ++c) img(x, y, c) = fn(x, y, c);
+    return img;
+}
+
+/// Row-vector view-projection (BMFR convention) of an orthographic camera shifted by (tx, ty):
+/// the world point (px, py, *) lands on pixel index (px + tx - 0.5, py + ty - 0.5) with the default
+/// pixel offset (0.5, 0.5). Dyadic for power-of-two sizes, so whole shifts are exact.
+inline std::vector<float> shiftedCamera(int w, int h, float tx, float ty)
+{
+    std::vector<float> m(16, 0.0f);
+    m[0 * 4 + 0] = 2.0f / static_cast<float>(w);
+    m[1 * 4 + 1] = 2.0f / static_cast<float>(h);
+    m[2 * 4 + 2] = 1.0f;
+    m[3 * 4 + 0] = 2.0f * tx / static_cast<float>(w) - 1.0f;
+    m[3 * 4 + 1] = 2.0f * ty / static_cast<float>(h) - 1.0f;
+    m[3 * 4 + 3] = 1.0f;
+    return m;
+}
+
+} // namespace methods_test
