@@ -104,7 +104,12 @@ std::string expandFramePattern(const std::string& pattern, int frame)
         if (c == '#' || c == '@') {
             std::size_t run = 0;
             while (i + run < pattern.size() && pattern[i + run] == c) ++run;
-            out += padded(frame, static_cast<int>(c == '#' ? 4 * run : run));
+            // oiiotool: '#' is 4 digits and '@' 1 digit each (verified: oiiotool writes x.#.exr
+            // as x.0007.exr but x.####.exr with 16 digits). A run of several '#' follows the
+            // Nuke/Houdini reading instead (one digit each), as io.hpp documents and the CLI and
+            // README use: "shot.####.exr" -> "shot.0007.exr".
+            const std::size_t digits = c == '#' && run == 1 ? 4 : run;
+            out += padded(frame, static_cast<int>(digits));
             i += run;
         } else if (printfSpec(pattern, i, len, width)) {
             out += padded(frame, width);

@@ -1,1 +1,10 @@
 # SPDX-License-Identifier: Apache-2.0
+# afn_io unit tests: role mapping, reading, sequences, BMFR layout, atomic writes.
+afn_add_gtest(test_io
+  SOURCES
+    unit/test_io_roles.cpp
+    unit/test_io_read.cpp
+    unit/test_io_sequence.cpp
+    unit/test_io_write.cpp
+    unit/test_io_bmfr.cpp
+  LIBS afn_io PkgConfig::OIIO)
