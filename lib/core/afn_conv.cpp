@@ -1,0 +1,129 @@
+// SPDX-License-Identifier: Apache-2.0
+// Direct convolutions of the AFN engine (see afn_conv.h).
+#include "afn_conv.h"
+
+#include "exception.h"
+#include "parallel.h"
+
+#include <algorithm>
+
+namespace afn {
+
+namespace {
+
+std::string shapeText(const std::vector<std::int64_t>& d)
+{
+    std::string s = "(";
+    for (std::size_t i = 0; i < d.size(); ++i) s += (i ? ", " : "") + std::to_string(d[i]);
+    return s + ")";
+}
+
+} // namespace
+
+void AfnConv::load(const WeightsArchive& a, const std::string& name, int expectedIn, int expectedOut)
+{
+    const WeightTensor& w = a.tensor(name + ".weight");
+    const WeightTensor& b = a.tensor(name + ".bias");
+    auto bad = [&](const std::string& why) {
+        throwInvalidArgument("invalid or corrupted weights (" + a.source() + "): '" + name +
+                             ".weight' " + shapeText(w.dims) + ": " + why);
+    };
+    if (w.dims.size() != 4 || w.dims[2] != w.dims[3]) bad("expected (out, in, k, k)");
+    const int out = static_cast<int>(w.dims[0]), in = static_cast<int>(w.dims[1]);
+    const int k = static_cast<int>(w.dims[2]);
+    if (k != 1 && k != 3) bad("kernel size must be 1 or 3");
+    if (out < 1 || out > kAfnMaxChannels) bad("output channels out of range");
+    if (in != expectedIn) bad("expected " + std::to_string(expectedIn) + " input channels");
+    if (expectedOut >= 0 && out != expectedOut)
+        bad("expected " + std::to_string(expectedOut) + " output channels");
+    if (b.dims.size() != 1 || b.dims[0] != out) bad("bias shape " + shapeText(b.dims) + " does not match");
+    m_in = in;
+    m_out = out;
+    m_k = k;
+    m_b = b.data;
+    m_w.assign(static_cast<std::size_t>(k) * k * in * out, 0.0f);
+    for (int co = 0; co < out; ++co)
+        for (int ci = 0; ci < in; ++ci)
+            for (int t = 0; t < k * k; ++t)
+                m_w[(static_cast<std::size_t>(t) * in + ci) * out + co] =
+                    w.data[(static_cast<std::size_t>(co) * in + ci) * k * k + t];
+}
+
+void AfnConv::run(const Image* up, const Image& same, Image& out, bool relu) const
+{
+    const int w = same.width(), h = same.height();
+    const int nu = up ? up->channels() : 0, ns = same.channels();
+    if (nu + ns != m_in)
+        throwInvalidOperation("AFN conv: input has " + std::to_string(nu + ns) + " channels, layer " +
+                              "expects " + std::to_string(m_in));
+    out.resize(w, h, m_out);
+    const int r = m_k / 2, co = m_out;
+    parallelRows(h, [&](int y0, int y1) {
+        float acc[kAfnMaxChannels];
+        for (int y = y0; y < y1; ++y)
+            for (int x = 0; x < w; ++x) {
+                std::copy(m_b.begin(), m_b.end(), acc);
+                for (int ky = 0; ky < m_k; ++ky) {
+                    const int yy = y + ky - r;
+                    if (yy < 0 || yy >= h) continue;
+                    for (int kx = 0; kx < m_k; ++kx) {
+                        const int xx = x + kx - r;
+                        if (xx < 0 || xx >= w) continue;
+                        const float* wt = m_w.data() + static_cast<std::size_t>(ky * m_k + kx) * m_in * co;
+                        if (nu) {
+                            const float* p = up->at(xx >> 1, yy >> 1);
+                            for (int ci = 0; ci < nu; ++ci, wt += co) {
+                                const float v = p[ci];
+                                for (int o = 0; o < co; ++o) acc[o] += v * wt[o];
+                            }
+                        }
+                        const float* p = same.at(xx, yy);
+                        for (int ci = 0; ci < ns; ++ci, wt += co) {
+                            const float v = p[ci];
+                            for (int o = 0; o < co; ++o) acc[o] += v * wt[o];
+                        }
+                    }
+                }
+                float* dst = out.at(x, y);
+                if (relu)
+                    for (int o = 0; o < co; ++o) dst[o] = std::max(acc[o], 0.0f);
+                else
+                    std::copy(acc, acc + co, dst);
+            }
+    });
+}
+
+void AfnConv::evalPixel(const float* a, int na, const float* b, int nb, float* acc) const
+{
+    const int co = m_out;
+    std::copy(m_b.begin(), m_b.end(), acc);
+    const float* wt = m_w.data();
+    for (int ci = 0; ci < na; ++ci, wt += co) {
+        const float v = a[ci];
+        for (int o = 0; o < co; ++o) acc[o] += v * wt[o];
+    }
+    for (int ci = 0; ci < nb; ++ci, wt += co) {
+        const float v = b[ci];
+        for (int o = 0; o < co; ++o) acc[o] += v * wt[o];
+    }
+}
+
+void afnDown2(const Image& in, Image& out)
+{
+    const int w = in.width() / 2, h = in.height() / 2, c = in.channels();
+    out.resize(w, h, c);
+    parallelRows(h, [&](int y0, int y1) {
+        for (int y = y0; y < y1; ++y)
+            for (int x = 0; x < w; ++x) {
+                const float* a = in.at(2 * x, 2 * y);
+                const float* b = in.at(2 * x + 1, 2 * y);
+                const float* cc = in.at(2 * x, 2 * y + 1);
+                const float* d = in.at(2 * x + 1, 2 * y + 1);
+                float* o = out.at(x, y);
+                // PyTorch avg_pool2d sums the window in row order, then divides by 4.
+                for (int k = 0; k < c; ++k) o[k] = (a[k] + b[k] + cc[k] + d[k]) / 4.0f;
+            }
+    });
+}
+
+} // namespace afn
