@@ -183,17 +183,20 @@ def main(argv=None):
                                             "width", "height", "spp", "ref_spp",
                                             "reference_seed_offset", "blender", "view_layer")}
         seconds = state.get("seconds", {})
+        cpu = state.get("cpu_seconds", {})
         record.update({
             "dir": name,
             "render_seconds": round(sum(seconds.values()), 2),
             "noisy_seconds": round(sum(v for k, v in seconds.items() if k.startswith("frame")), 2),
             "reference_seconds": round(sum(v for k, v in seconds.items()
                                            if k.startswith("reference")), 2),
+            "cpu_seconds": round(sum(cpu.values()), 2),
             "wall_seconds_last_run": round(time.time() - t0, 2),
         })
         records[name] = record
         manifest["blender"] = state.get("blender")
         manifest["render_seconds"] = round(sum(r["render_seconds"] for r in records.values()), 2)
+        manifest["cpu_seconds"] = round(sum(r.get("cpu_seconds", 0) for r in records.values()), 2)
         write_manifest(out, manifest)
     print("render-dataset: %d scene(s) in %s, %.0f s this run" % (len(chosen), out,
                                                                    time.time() - t_start))

@@ -7,7 +7,7 @@ Usage: blender -b --factory-startup --python training/scenes/_runner.py -- --sce
 
 Writes DIR/frame.NNNN.exr (``--spp`` samples, all passes), DIR/reference.NNNN.exr (Combined,
 float, ``--ref-spp`` samples, another noise seed) for frames 0..N-1 and DIR/scene.json (parameters,
-seeds, sample counts, Blender version, per-file render seconds, per-frame camera). Files that
+seeds, sample counts, Blender version, per-file render wall and CPU seconds, per-frame camera). Files that
 exist are skipped (resumable); each file is written under a temporary name and then renamed, so an
 interrupted render never leaves a file that looks finished.
 """
@@ -18,6 +18,7 @@ import json
 import os
 import random
 import sys
+import time
 
 import bpy
 
@@ -91,6 +92,7 @@ def main():
         "blender": bpy.app.version_string, "view_layer": afn_render.VIEW_LAYER_NAME,
     })
     times = state.setdefault("seconds", {})
+    cpu_times = state.setdefault("cpu_seconds", {})
     cameras = state.setdefault("cameras", {})
     for f in range(args.frames):
         scene.frame_set(f)
@@ -105,9 +107,12 @@ def main():
                 print("afn: skip %s" % final, flush=True)
                 continue
             partial = os.path.join(out, "%s.%04d.partial.exr" % (name, f))
+            cpu0 = time.process_time()
             secs = afn_render.render_frame(scene, f, partial)
             os.replace(partial, final)
             times[os.path.basename(final)] = round(secs, 2)
+            # CPU seconds of all Blender threads: a load-independent measure for estimates.
+            cpu_times[os.path.basename(final)] = round(time.process_time() - cpu0, 2)
             save_state(state_path, state)
             print("afn: wrote %s (%d spp, %.1f s)" % (final, spp, secs), flush=True)
 
