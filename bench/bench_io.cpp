@@ -62,8 +62,8 @@ struct Fixture {
         fs::create_directories(dir);
         afn::io::WriteOptions wo;
         wo.attributes["BlenderMultiChannel"] = "Blender V2.55.1 and newer";
-        afn::io::writeImageAtomic(input, kWidth, kHeight, layout.channels, pixels.data(), wo,
-                                  layout.types);
+        afn::io::writeImageAtomic(
+            input, kWidth, kHeight, layout.channels, pixels.data(), wo, layout.types);
     }
     ~Fixture()
     {
@@ -105,8 +105,8 @@ void BM_WriteMultilayerZip(benchmark::State& state)
     Fixture& f = fixture();
     const std::string out = (f.dir / "out.exr").string();
     for (auto _ : state)
-        afn::io::writeImageAtomic(out, kWidth, kHeight, f.layout.channels, f.pixels.data(), {},
-                                  f.layout.types);
+        afn::io::writeImageAtomic(
+            out, kWidth, kHeight, f.layout.channels, f.pixels.data(), {}, f.layout.types);
 }
 BENCHMARK(BM_WriteMultilayerZip)->Unit(benchmark::kMillisecond)->UseRealTime();
 

@@ -16,7 +16,10 @@ namespace fs = std::filesystem;
 /// Removes the temporary file unless released.
 class TempFile {
 public:
-    explicit TempFile(fs::path p) : m_path(std::move(p)) { }
+    explicit TempFile(fs::path p)
+        : m_path(std::move(p))
+    {
+    }
     ~TempFile()
     {
         if (!m_path.empty()) {
@@ -36,28 +39,33 @@ private:
 fs::path tempPathFor(const fs::path& target)
 {
     static std::atomic<unsigned> counter { 0 };
-    const std::string name = "." + target.stem().string() + ".afn-tmp-" +
-        std::to_string(::getpid()) + "-" + std::to_string(counter++) + target.extension().string();
+    const std::string name = "." + target.stem().string() + ".afn-tmp-" + std::to_string(::getpid())
+        + "-" + std::to_string(counter++) + target.extension().string();
     return target.parent_path() / name;
 }
 
 OIIO::TypeDesc typeFromName(const std::string& t, const std::string& path)
 {
-    if (t == "half") return OIIO::TypeDesc::HALF;
-    if (t == "float") return OIIO::TypeDesc::FLOAT;
+    if (t == "half")
+        return OIIO::TypeDesc::HALF;
+    if (t == "float")
+        return OIIO::TypeDesc::FLOAT;
     throw IoError("unknown data type '" + t + "' (half or float)", path);
 }
 
 void checkArguments(const std::string& path, int width, int height,
-                    const std::vector<std::string>& channels, const float* pixels,
-                    const WriteOptions& options, const std::vector<std::string>& types)
+    const std::vector<std::string>& channels, const float* pixels, const WriteOptions& options,
+    const std::vector<std::string>& types)
 {
-    if (width <= 0 || height <= 0) throw IoError("image size must be positive", path);
-    if (channels.empty() || !pixels) throw IoError("no channels to write", path);
+    if (width <= 0 || height <= 0)
+        throw IoError("image size must be positive", path);
+    if (channels.empty() || !pixels)
+        throw IoError("no channels to write", path);
     if (!types.empty() && types.size() != channels.size())
         throw IoError("one type per channel expected", path);
     for (const std::string& in : options.inputs)
-        if (samePath(path, in)) throw IoError("refusing to overwrite an input file", path);
+        if (samePath(path, in))
+            throw IoError("refusing to overwrite an input file", path);
     const fs::path target(path);
     const fs::path dir = target.parent_path().empty() ? fs::path(".") : target.parent_path();
     std::error_code ec;
@@ -65,7 +73,8 @@ void checkArguments(const std::string& path, int width, int height,
         throw IoError("output directory does not exist: " + dir.string(), path);
     if (::access(dir.c_str(), W_OK) != 0)
         throw IoError("output directory is not writable: " + dir.string(), path);
-    if (fs::is_directory(target, ec)) throw IoError("output path is a directory", path);
+    if (fs::is_directory(target, ec))
+        throw IoError("output path is a directory", path);
 }
 
 } // namespace
@@ -75,23 +84,27 @@ bool samePath(const std::string& a, const std::string& b)
     std::error_code ec;
     if (fs::exists(a, ec) && fs::exists(b, ec)) {
         const bool eq = fs::equivalent(a, b, ec);
-        if (!ec) return eq;
+        if (!ec)
+            return eq;
     }
     const fs::path ca = fs::weakly_canonical(a, ec);
-    if (ec) return fs::path(a).lexically_normal() == fs::path(b).lexically_normal();
+    if (ec)
+        return fs::path(a).lexically_normal() == fs::path(b).lexically_normal();
     const fs::path cb = fs::weakly_canonical(b, ec);
-    if (ec) return fs::path(a).lexically_normal() == fs::path(b).lexically_normal();
+    if (ec)
+        return fs::path(a).lexically_normal() == fs::path(b).lexically_normal();
     return ca == cb;
 }
 
 void writeImageAtomic(const std::string& path, int width, int height,
-                      const std::vector<std::string>& channels, const float* pixels,
-                      const WriteOptions& options, const std::vector<std::string>& types)
+    const std::vector<std::string>& channels, const float* pixels, const WriteOptions& options,
+    const std::vector<std::string>& types)
 {
     checkArguments(path, width, height, channels, pixels, options, types);
     TempFile tmp(tempPathFor(path));
     auto out = OIIO::ImageOutput::create(tmp.path().string());
-    if (!out) throw IoError("no writer for this file type: " + detail::inputError(nullptr), path);
+    if (!out)
+        throw IoError("no writer for this file type: " + detail::inputError(nullptr), path);
     const std::string format = out->format_name();
     const bool exr = format == "openexr";
     const bool floatOnly = format == "hdr" || format == "pfm";
@@ -104,8 +117,10 @@ void writeImageAtomic(const std::string& path, int width, int height,
     if (exr) {
         spec.set_format(typeFromName(options.dataType, path));
         if (!types.empty()) {
-            for (const std::string& t : types) spec.channelformats.push_back(typeFromName(t, path));
-            if (std::all_of(types.begin(), types.end(), [&](const auto& t) { return t == types[0]; })) {
+            for (const std::string& t : types)
+                spec.channelformats.push_back(typeFromName(t, path));
+            if (std::all_of(
+                    types.begin(), types.end(), [&](const auto& t) { return t == types[0]; })) {
                 spec.set_format(spec.channelformats[0]);
                 spec.channelformats.clear();
             }
@@ -116,15 +131,18 @@ void writeImageAtomic(const std::string& path, int width, int height,
     } else {
         // 8-bit outputs (PNG, TIFF, JPEG, ...): clamp to [0, 1] (NaN -> 0) before quantising.
         clamped.assign(pixels, pixels + nvalues);
-        for (float& v : clamped) v = v > 0.0f ? std::min(v, 1.0f) : 0.0f;
+        for (float& v : clamped)
+            v = v > 0.0f ? std::min(v, 1.0f) : 0.0f;
         data = clamped.data();
     }
     spec.channelnames = channels;
     spec.alpha_channel = -1;
     for (int c = 0; c < nch; ++c)
-        if (channels[c] == "A") spec.alpha_channel = c;
+        if (channels[c] == "A")
+            spec.alpha_channel = c;
     for (const auto& [k, v] : options.attributes)
-        if (k != "compression") spec.attribute(k, v);
+        if (k != "compression")
+            spec.attribute(k, v);
 
     if (!out->open(tmp.path().string(), spec))
         throw IoError("cannot write: " + out->geterror(), path);
@@ -133,11 +151,13 @@ void writeImageAtomic(const std::string& path, int width, int height,
         out->close();
         throw IoError("cannot write pixels: " + err, path);
     }
-    if (!out->close()) throw IoError("cannot finish writing: " + out->geterror(), path);
+    if (!out->close())
+        throw IoError("cannot finish writing: " + out->geterror(), path);
     out.reset();
     std::error_code ec;
     fs::rename(tmp.path(), path, ec);
-    if (ec) throw IoError("cannot move the finished file into place: " + ec.message(), path);
+    if (ec)
+        throw IoError("cannot move the finished file into place: " + ec.message(), path);
     tmp.release();
 }
 

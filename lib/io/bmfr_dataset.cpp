@@ -17,11 +17,12 @@ namespace fs = std::filesystem;
 bool hasColorFrame(const fs::path& dir)
 {
     std::error_code ec;
-    if (!fs::is_regular_file(dir / "camera_matrices.h", ec)) return false;
+    if (!fs::is_regular_file(dir / "camera_matrices.h", ec))
+        return false;
     for (const auto& e : fs::directory_iterator(dir, ec)) {
         const std::string n = e.path().filename().string();
-        if (n.size() > 9 && n.rfind("color", 0) == 0 && n.compare(n.size() - 4, 4, ".exr") == 0 &&
-            std::isdigit(static_cast<unsigned char>(n[5])))
+        if (n.size() > 9 && n.rfind("color", 0) == 0 && n.compare(n.size() - 4, 4, ".exr") == 0
+            && std::isdigit(static_cast<unsigned char>(n[5])))
             return true;
     }
     return false;
@@ -30,11 +31,13 @@ bool hasColorFrame(const fs::path& dir)
 /// The folder holding the files: dir itself or dir/inputs.
 fs::path bmfrBase(const std::string& dir)
 {
-    if (hasColorFrame(dir)) return dir;
-    if (hasColorFrame(fs::path(dir) / "inputs")) return fs::path(dir) / "inputs";
+    if (hasColorFrame(dir))
+        return dir;
+    if (hasColorFrame(fs::path(dir) / "inputs"))
+        return fs::path(dir) / "inputs";
     throw IoError("not a BMFR scene folder (no color{N}.exr and camera_matrices.h in it or in "
                   "inputs/)",
-                  dir);
+        dir);
 }
 
 /// The file's R,G,B by name.
@@ -45,18 +48,21 @@ RoleImage readRgb(const std::string& path)
     std::vector<int> idx;
     for (const char* c : { "R", "G", "B" }) {
         const int i = spec.channelindex(c);
-        if (i < 0) throw IoError(std::string("no channel ") + c + " (BMFR files hold R,G,B)", path);
+        if (i < 0)
+            throw IoError(std::string("no channel ") + c + " (BMFR files hold R,G,B)", path);
         idx.push_back(i);
     }
     std::vector<float> all(static_cast<std::size_t>(spec.width) * spec.height * spec.nchannels);
     if (!in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, all.data()))
-        throw IoError("cannot read pixels (truncated or corrupt file?): " + detail::inputError(in.get()),
-                      path);
+        throw IoError(
+            "cannot read pixels (truncated or corrupt file?): " + detail::inputError(in.get()),
+            path);
     RoleImage img { spec.width, spec.height, 3, {} };
     const std::size_t n = static_cast<std::size_t>(spec.width) * spec.height;
     img.pixels.resize(n * 3);
     for (std::size_t p = 0; p < n; ++p)
-        for (int c = 0; c < 3; ++c) img.pixels[p * 3 + c] = all[p * spec.nchannels + idx[c]];
+        for (int c = 0; c < 3; ++c)
+            img.pixels[p * 3 + c] = all[p * spec.nchannels + idx[c]];
     return img;
 }
 
@@ -67,11 +73,13 @@ std::string stripComments(const std::string& s)
     for (std::size_t i = 0; i < s.size(); ++i) {
         if (s.compare(i, 2, "//") == 0) {
             i = s.find('\n', i);
-            if (i == std::string::npos) break;
+            if (i == std::string::npos)
+                break;
             out += '\n';
         } else if (s.compare(i, 2, "/*") == 0) {
             i = s.find("*/", i + 2);
-            if (i == std::string::npos) break;
+            if (i == std::string::npos)
+                break;
             ++i;
             out += ' ';
         } else {
@@ -81,21 +89,26 @@ std::string stripComments(const std::string& s)
     return out;
 }
 
-bool isIdent(char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; }
+bool isIdent(char c)
+{
+    return std::isalnum(static_cast<unsigned char>(c)) || c == '_';
+}
 
 /// Numbers of the initialiser of the declaration named `name` (an array or a scalar); nullopt
 /// when the header does not declare it.
-std::optional<std::vector<float>> initializer(const std::string& text, const std::string& name,
-                                              const std::string& file)
+std::optional<std::vector<float>> initializer(
+    const std::string& text, const std::string& name, const std::string& file)
 {
     std::size_t at = 0;
     while ((at = text.find(name, at)) != std::string::npos) {
-        const bool whole = (at == 0 || !isIdent(text[at - 1])) &&
-            (at + name.size() >= text.size() || !isIdent(text[at + name.size()]));
-        if (whole) break;
+        const bool whole = (at == 0 || !isIdent(text[at - 1]))
+            && (at + name.size() >= text.size() || !isIdent(text[at + name.size()]));
+        if (whole)
+            break;
         at += name.size();
     }
-    if (at == std::string::npos) return std::nullopt;
+    if (at == std::string::npos)
+        return std::nullopt;
     const std::size_t eq = text.find('=', at), semi = text.find(';', at);
     if (eq == std::string::npos || semi == std::string::npos || semi < eq)
         throw IoError("cannot parse the initialiser of '" + name + "'", file);
@@ -106,11 +119,14 @@ std::optional<std::vector<float>> initializer(const std::string& text, const std
         if (std::isdigit(static_cast<unsigned char>(*p)) || *p == '-' || *p == '+' || *p == '.') {
             char* next = nullptr;
             const float v = std::strtof(p, &next);
-            if (next == p) throw IoError("bad number in '" + name + "'", file);
+            if (next == p)
+                throw IoError("bad number in '" + name + "'", file);
             values.push_back(v);
             p = next;
-            if (p < end && (*p == 'f' || *p == 'F')) ++p;
-        } else if (*p == '{' || *p == '}' || *p == ',' || std::isspace(static_cast<unsigned char>(*p))) {
+            if (p < end && (*p == 'f' || *p == 'F'))
+                ++p;
+        } else if (*p == '{' || *p == '}' || *p == ','
+            || std::isspace(static_cast<unsigned char>(*p))) {
             ++p;
         } else {
             throw IoError("unexpected '" + std::string(1, *p) + "' in '" + name + "'", file);
@@ -137,7 +153,8 @@ std::vector<FrameCamera> parseCameraMatrices(const std::string& headerPath)
     std::ifstream f(headerPath);
     std::stringstream ss;
     ss << f.rdbuf();
-    if (!f) throw IoError("cannot read camera header", headerPath);
+    if (!f)
+        throw IoError("cannot read camera header", headerPath);
     const std::string text = stripComments(ss.str());
     const auto mats = initializer(text, "camera_matrices", headerPath);
     if (!mats || mats->empty() || mats->size() % 16 != 0)
@@ -148,7 +165,8 @@ std::vector<FrameCamera> parseCameraMatrices(const std::string& headerPath)
     std::vector<FrameCamera> cams(mats->size() / 16);
     for (std::size_t k = 0; k < cams.size(); ++k) {
         FrameCamera& c = cams[k];
-        for (int i = 0; i < 16; ++i) c.viewProjection[i] = (*mats)[k * 16 + i];
+        for (int i = 0; i < 16; ++i)
+            c.viewProjection[i] = (*mats)[k * 16 + i];
         // Missing offsets fall back to the pixel centre (0.5, 0.5), as WSKPN assumes.
         const bool haveOff = offsets && offsets->size() >= 2 * (k + 1);
         c.pixelOffset[0] = haveOff ? (*offsets)[2 * k] : 0.5f;
@@ -174,10 +192,8 @@ FrameImages readBmfrFrame(const std::string& dir, int frame, const ReadOptions& 
         Role role;
         const char* stem;
     };
-    const Buffer buffers[] = { { Role::Color, "color" },
-                               { Role::Albedo, "albedo" },
-                               { Role::Normal, "shading_normal" },
-                               { Role::Position, "world_position" } };
+    const Buffer buffers[] = { { Role::Color, "color" }, { Role::Albedo, "albedo" },
+        { Role::Normal, "shading_normal" }, { Role::Position, "world_position" } };
     for (const Buffer& b : buffers) {
         const fs::path file = base / (std::string(b.stem) + n + ".exr");
         std::error_code ec;
@@ -186,11 +202,12 @@ FrameImages readBmfrFrame(const std::string& dir, int frame, const ReadOptions& 
             continue;
         }
         out.roles[b.role] = readRgb(file.string());
-        out.mapping.roles.push_back({ b.role, 0, { "R", "G", "B" }, { 0, 1, 2 },
-                                      "BMFR " + file.filename().string() });
+        out.mapping.roles.push_back(
+            { b.role, 0, { "R", "G", "B" }, { 0, 1, 2 }, "BMFR " + file.filename().string() });
     }
     for (Role r : options.required)
-        if (!out.mapping.find(r)) throw IoError(missingRoleMessage(r, out.mapping), out.path);
+        if (!out.mapping.find(r))
+            throw IoError(missingRoleMessage(r, out.mapping), out.path);
     for (const auto& [key, value] : options.overrides.tags)
         if (!applyTag(out.mapping.tag, key, value))
             throw IoError("--aov: invalid tag " + key + "=" + value, out.path);
@@ -198,14 +215,18 @@ FrameImages readBmfrFrame(const std::string& dir, int frame, const ReadOptions& 
     for (const auto& [role, img] : out.roles)
         if (ref && (img.width != ref->width || img.height != ref->height))
             throw IoError(std::string("BMFR ") + roleName(role) + " buffer size differs from color",
-                          out.path);
+                out.path);
     const fs::path refFile = base / ("reference" + n + ".exr");
     std::error_code ec;
-    if (fs::exists(refFile, ec)) out.reference = readRgb(refFile.string());
+    if (fs::exists(refFile, ec))
+        out.reference = readRgb(refFile.string());
 
-    const std::vector<FrameCamera> cams = parseCameraMatrices((base / "camera_matrices.h").string());
-    if (frame < static_cast<int>(cams.size())) out.camera = cams[frame];
-    else out.mapping.warnings.push_back("camera_matrices.h has no frame " + n);
+    const std::vector<FrameCamera> cams
+        = parseCameraMatrices((base / "camera_matrices.h").string());
+    if (frame < static_cast<int>(cams.size()))
+        out.camera = cams[frame];
+    else
+        out.mapping.warnings.push_back("camera_matrices.h has no frame " + n);
 
     if (options.keepAll && ref) {
         LayeredImage all;
@@ -221,11 +242,13 @@ FrameImages readBmfrFrame(const std::string& dir, int frame, const ReadOptions& 
             }
             srcs.push_back(&out.roles.at(rc.role));
         }
-        const std::size_t np = static_cast<std::size_t>(all.width) * all.height, nch = srcs.size() * 3;
+        const std::size_t np = static_cast<std::size_t>(all.width) * all.height,
+                          nch = srcs.size() * 3;
         all.pixels.resize(np * nch);
         for (std::size_t p = 0; p < np; ++p)
             for (std::size_t s = 0; s < srcs.size(); ++s)
-                for (int c = 0; c < 3; ++c) all.pixels[p * nch + s * 3 + c] = srcs[s]->pixels[p * 3 + c];
+                for (int c = 0; c < 3; ++c)
+                    all.pixels[p * nch + s * 3 + c] = srcs[s]->pixels[p * 3 + c];
         out.all = std::move(all);
     }
     return out;

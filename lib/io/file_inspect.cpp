@@ -8,8 +8,10 @@ namespace detail {
 std::string inputError(OIIO::ImageInput* in)
 {
     std::string msg = in ? in->geterror() : std::string();
-    if (msg.empty()) msg = OIIO::geterror();
-    if (msg.empty()) msg = "unknown OpenImageIO error";
+    if (msg.empty())
+        msg = OIIO::geterror();
+    if (msg.empty())
+        msg = "unknown OpenImageIO error";
     return msg;
 }
 
@@ -17,7 +19,8 @@ std::unique_ptr<OIIO::ImageInput> openInput(const std::string& path)
 {
     requireFile(path);
     auto in = OIIO::ImageInput::open(path);
-    if (!in) throw IoError("cannot read image: " + inputError(nullptr), path);
+    if (!in)
+        throw IoError("cannot read image: " + inputError(nullptr), path);
     return in;
 }
 
@@ -25,7 +28,8 @@ std::vector<OIIO::ImageSpec> readSpecs(OIIO::ImageInput& in, const std::string& 
 {
     std::vector<OIIO::ImageSpec> specs;
     for (int s = 0; s < 10000; ++s) {
-        if (s > 0 && !in.seek_subimage(s, 0)) break;
+        if (s > 0 && !in.seek_subimage(s, 0))
+            break;
         specs.push_back(in.spec(s, 0));
     }
     in.geterror(); // seeking past the last subimage records an error: drop it
@@ -37,7 +41,8 @@ std::vector<OIIO::ImageSpec> readSpecs(OIIO::ImageInput& in, const std::string& 
 std::string partName(const OIIO::ImageSpec& spec)
 {
     std::string name = spec.get_string_attribute("oiio:subimagename");
-    if (name.empty()) name = spec.get_string_attribute("name");
+    if (name.empty())
+        name = spec.get_string_attribute("name");
     return name;
 }
 
@@ -46,15 +51,16 @@ std::string typeName(int basetype)
     return OIIO::TypeDesc(static_cast<OIIO::TypeDesc::BASETYPE>(basetype)).c_str();
 }
 
-FileInfo infoFromSpecs(const std::string& path, const std::string& format,
-                       const std::vector<OIIO::ImageSpec>& specs)
+FileInfo infoFromSpecs(
+    const std::string& path, const std::string& format, const std::vector<OIIO::ImageSpec>& specs)
 {
     FileInfo info;
     info.path = path;
     info.format = format;
     for (const OIIO::ImageSpec& spec : specs) {
         SubimageInfo si;
-        if (specs.size() > 1) si.name = detail::partName(spec);
+        if (specs.size() > 1)
+            si.name = detail::partName(spec);
         si.dataWindow = { spec.x, spec.y, spec.width, spec.height };
         si.displayWindow = { spec.full_x, spec.full_y, spec.full_width, spec.full_height };
         si.channels = spec.channelnames;

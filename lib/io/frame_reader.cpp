@@ -20,8 +20,8 @@ Decoded decode(OIIO::ImageInput& in, int sub, const OIIO::ImageSpec& spec, const
     Decoded d { spec.width, spec.height, spec.nchannels, {} };
     d.pixels.resize(static_cast<std::size_t>(d.width) * d.height * d.nch);
     if (!in.read_image(sub, 0, 0, d.nch, OIIO::TypeDesc::FLOAT, d.pixels.data()))
-        throw IoError("cannot read pixels (truncated or corrupt file?): " + detail::inputError(&in),
-                      path);
+        throw IoError(
+            "cannot read pixels (truncated or corrupt file?): " + detail::inputError(&in), path);
     return d;
 }
 
@@ -48,13 +48,13 @@ bool sameWindow(const OIIO::ImageSpec& a, const OIIO::ImageSpec& b)
 /// structure (compression, part names, OIIO bookkeeping).
 std::map<std::string, std::string> keptAttributes(const OIIO::ImageSpec& spec)
 {
-    static const std::set<std::string> skip = { "compression", "name", "type", "view",
-                                                "chunkCount", "version", "tiles" };
+    static const std::set<std::string> skip
+        = { "compression", "name", "type", "view", "chunkCount", "version", "tiles" };
     std::map<std::string, std::string> out;
     for (const OIIO::ParamValue& p : spec.extra_attribs) {
         const std::string n = p.name().string();
-        if (p.type() != OIIO::TypeDesc::STRING || skip.count(n) || n.rfind("oiio:", 0) == 0 ||
-            n.rfind("openexr:", 0) == 0)
+        if (p.type() != OIIO::TypeDesc::STRING || skip.count(n) || n.rfind("oiio:", 0) == 0
+            || n.rfind("openexr:", 0) == 0)
             continue;
         out[n] = p.get_string();
     }
@@ -64,7 +64,7 @@ std::map<std::string, std::string> keptAttributes(const OIIO::ImageSpec& spec)
 /// Every channel of the subimages sharing the reference data window. Channels of the first part
 /// keep their names; later parts are prefixed "<part>." (unless already so named).
 LayeredImage layered(const std::vector<OIIO::ImageSpec>& specs, const std::vector<Decoded>& dec,
-                     int ref, std::vector<std::string>& warnings)
+    int ref, std::vector<std::string>& warnings)
 {
     const OIIO::ImageSpec& rs = specs[ref];
     LayeredImage all;
@@ -78,15 +78,19 @@ LayeredImage layered(const std::vector<OIIO::ImageSpec>& specs, const std::vecto
     std::set<std::string> used;
     for (int s = 0; s < static_cast<int>(specs.size()); ++s) {
         if (!sameWindow(specs[s], rs)) {
-            warnings.push_back("part " + std::to_string(s) + " has a different data window: not kept");
+            warnings.push_back(
+                "part " + std::to_string(s) + " has a different data window: not kept");
             continue;
         }
         std::string part = detail::partName(specs[s]);
-        if (part.empty()) part = "part" + std::to_string(s);
+        if (part.empty())
+            part = "part" + std::to_string(s);
         for (int c = 0; c < specs[s].nchannels; ++c) {
             std::string name = specs[s].channelnames[c];
-            if (s > 0 && (name.rfind(part + ".", 0) != 0 || used.count(name))) name = part + "." + name;
-            if (!used.insert(name).second) continue;
+            if (s > 0 && (name.rfind(part + ".", 0) != 0 || used.count(name)))
+                name = part + "." + name;
+            if (!used.insert(name).second)
+                continue;
             all.channels.push_back(name);
             all.types.push_back(detail::typeName(specs[s].channelformat(c).basetype));
             src.emplace_back(s, c);
@@ -96,7 +100,8 @@ LayeredImage layered(const std::vector<OIIO::ImageSpec>& specs, const std::vecto
     all.pixels.resize(n * nch);
     for (std::size_t k = 0; k < nch; ++k) {
         const Decoded& d = dec[src[k].first];
-        for (std::size_t i = 0; i < n; ++i) all.pixels[i * nch + k] = d.pixels[i * d.nch + src[k].second];
+        for (std::size_t i = 0; i < n; ++i)
+            all.pixels[i * nch + k] = d.pixels[i * d.nch + src[k].second];
     }
     return all;
 }
@@ -104,7 +109,8 @@ LayeredImage layered(const std::vector<OIIO::ImageSpec>& specs, const std::vecto
 bool allZero(const RoleImage& img)
 {
     for (float v : img.pixels)
-        if (v != 0.0f) return false;
+        if (v != 0.0f)
+            return false;
     return true;
 }
 
@@ -118,7 +124,8 @@ std::string missingRoleMessage(Role role, const RoleMapping& mapping)
     auto it = mapping.lookedFor.find(role);
     if (it != mapping.lookedFor.end() && !it->second.empty()) {
         msg += "; looked for: ";
-        for (std::size_t i = 0; i < it->second.size(); ++i) msg += (i ? "; " : "") + it->second[i];
+        for (std::size_t i = 0; i < it->second.size(); ++i)
+            msg += (i ? "; " : "") + it->second[i];
     }
     msg += " (use --aov " + std::string(roleName(role)) + "=<channels> to name them)";
     return msg;
@@ -134,10 +141,12 @@ FrameImages readFrame(const std::string& path, const ReadOptions& options)
         try {
             std::size_t used = 0;
             frame = std::stoi(num, &used);
-            if (used != num.size()) frame = -1;
+            if (used != num.size())
+                frame = -1;
         } catch (const std::exception&) {
         }
-        if (frame < 0) throw IoError("bad BMFR frame path (expected <dir>#bmfr:N)", path);
+        if (frame < 0)
+            throw IoError("bad BMFR frame path (expected <dir>#bmfr:N)", path);
         return detail::readBmfrFrame(path.substr(0, at), frame, options);
     }
 
@@ -145,9 +154,11 @@ FrameImages readFrame(const std::string& path, const ReadOptions& options)
     const std::vector<OIIO::ImageSpec> specs = detail::readSpecs(*in, path);
     FrameImages out;
     out.path = path;
-    out.mapping = mapRoles(detail::infoFromSpecs(path, in->format_name(), specs), options.overrides);
+    out.mapping
+        = mapRoles(detail::infoFromSpecs(path, in->format_name(), specs), options.overrides);
     for (Role r : options.required)
-        if (!out.mapping.find(r)) throw IoError(detail::missingRoleMessage(r, out.mapping), path);
+        if (!out.mapping.find(r))
+            throw IoError(detail::missingRoleMessage(r, out.mapping), path);
 
     // All roles share the colour's data window (the first part's when there is no colour).
     const RoleChannels* color = out.mapping.find(Role::Color);
@@ -156,10 +167,11 @@ FrameImages readFrame(const std::string& path, const ReadOptions& options)
     std::vector<RoleChannels> kept;
     for (const RoleChannels& rc : out.mapping.roles) {
         if (!sameWindow(specs[rc.subimage], specs[ref])) {
-            const std::string msg = std::string(roleName(rc.role)) + " (part " +
-                std::to_string(rc.subimage) + ") has a different data window from the colour";
+            const std::string msg = std::string(roleName(rc.role)) + " (part "
+                + std::to_string(rc.subimage) + ") has a different data window from the colour";
             for (Role r : options.required)
-                if (r == rc.role) throw IoError(msg, path);
+                if (r == rc.role)
+                    throw IoError(msg, path);
             out.mapping.warnings.push_back(msg + ": ignored");
             continue;
         }

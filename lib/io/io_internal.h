@@ -13,8 +13,8 @@ namespace afn::io::detail {
 /// One way a role may be stored: a layer (matched exactly, or as the last part of a nested layer
 /// such as "<view layer>.Denoising Albedo") and sets of component names tried in order.
 struct Candidate {
-    std::string layer;                            ///< "" = top-level channels (R, G, B, Z, ...)
-    std::vector<std::vector<std::string>> comps;  ///< e.g. {{"R","G","B"},{"X","Y","Z"}}
+    std::string layer; ///< "" = top-level channels (R, G, B, Z, ...)
+    std::vector<std::vector<std::string>> comps; ///< e.g. {{"R","G","B"},{"X","Y","Z"}}
     std::vector<std::pair<std::string, std::string>> tags; ///< tags set when this one is used
     bool generic = false; ///< common to every renderer (does not count for detection)
 };
@@ -26,10 +26,10 @@ struct RoleCandidates {
 
 /// A renderer's naming convention.
 struct Preset {
-    std::string renderer;                  ///< RoleMapping::renderer value
-    std::string label;                     ///< for RoleChannels::source ("Blender Cycles")
+    std::string renderer; ///< RoleMapping::renderer value
+    std::string label; ///< for RoleChannels::source ("Blender Cycles")
     std::vector<std::string> attributeHints; ///< header attribute name prefixes that identify it
-    SpaceTag tag;                          ///< default conventions
+    SpaceTag tag; ///< default conventions
     std::vector<RoleCandidates> roles;
 };
 

@@ -20,8 +20,8 @@ std::vector<OIIO::ImageSpec> readSpecs(OIIO::ImageInput& in, const std::string& 
 std::string partName(const OIIO::ImageSpec& spec);
 
 /// FileInfo from already-read specs (what inspect() returns).
-FileInfo infoFromSpecs(const std::string& path, const std::string& format,
-                       const std::vector<OIIO::ImageSpec>& specs);
+FileInfo infoFromSpecs(
+    const std::string& path, const std::string& format, const std::vector<OIIO::ImageSpec>& specs);
 
 /// The OIIO error text of an input (or the global one), never empty.
 std::string inputError(OIIO::ImageInput* in);

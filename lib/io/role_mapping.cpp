@@ -18,7 +18,7 @@ using detail::Preset;
 struct Entry {
     int sub = 0;
     int index = 0;
-    std::string name;      ///< as stored
+    std::string name; ///< as stored
     std::string qualified; ///< "<part>.<name>" in multi-part files, else the name
     std::string layer;
     std::string comp;
@@ -33,13 +33,15 @@ struct Match {
 
 std::string lower(std::string s)
 {
-    for (char& c : s) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    for (char& c : s)
+        c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
     return s;
 }
 
 bool endsWith(const std::string& s, const std::string& suffix)
 {
-    return s.size() >= suffix.size() && s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
+    return s.size() >= suffix.size()
+        && s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
 }
 
 std::vector<Entry> buildEntries(const FileInfo& info)
@@ -56,7 +58,8 @@ std::vector<Entry> buildEntries(const FileInfo& info)
             e.qualified = multi && !si.name.empty() ? si.name + "." + e.name : e.name;
             std::tie(e.layer, e.comp) = detail::splitLast(e.name);
             // Bare channels of a later named part belong to that part's layer only.
-            if (!(multi && s > 0 && e.layer.empty() && !si.name.empty())) entries.push_back(e);
+            if (!(multi && s > 0 && e.layer.empty() && !si.name.empty()))
+                entries.push_back(e);
             if (multi && !si.name.empty()) {
                 e.layer = e.layer.empty() ? si.name : si.name + "." + e.layer;
                 entries.push_back(e);
@@ -68,12 +71,13 @@ std::vector<Entry> buildEntries(const FileInfo& info)
 
 bool layerMatches(const std::string& layer, const std::string& want)
 {
-    if (layer == want) return true;
+    if (layer == want)
+        return true;
     return !want.empty() && layer.size() > want.size() && endsWith(layer, "." + want);
 }
 
-std::optional<Match> matchCandidate(const std::vector<Entry>& entries, const Candidate& cand,
-                                    int ncomp, const std::string& prefix)
+std::optional<Match> matchCandidate(
+    const std::vector<Entry>& entries, const Candidate& cand, int ncomp, const std::string& prefix)
 {
     // A single-component role may be a bare top-level channel named like the layer ("zDepth").
     if (ncomp == 1 && !cand.layer.empty())
@@ -83,18 +87,21 @@ std::optional<Match> matchCandidate(const std::vector<Entry>& entries, const Can
 
     std::vector<std::pair<int, std::string>> layers;
     for (const Entry& e : entries)
-        if (layerMatches(e.layer, cand.layer) &&
-            std::find(layers.begin(), layers.end(), std::make_pair(e.sub, e.layer)) == layers.end())
+        if (layerMatches(e.layer, cand.layer)
+            && std::find(layers.begin(), layers.end(), std::make_pair(e.sub, e.layer))
+                == layers.end())
             layers.emplace_back(e.sub, e.layer);
     // Exact name first, then the view layer the colour came from, then anything but Blender's
     // compositor output ("Composite.Combined").
     auto rank = [&](const std::string& l) {
-        if (l == cand.layer) return 0;
-        if (!prefix.empty() && l == prefix + "." + cand.layer) return 1;
+        if (l == cand.layer)
+            return 0;
+        if (!prefix.empty() && l == prefix + "." + cand.layer)
+            return 1;
         return l.rfind("Composite.", 0) == 0 ? 3 : 2;
     };
     std::stable_sort(layers.begin(), layers.end(),
-                     [&](const auto& a, const auto& b) { return rank(a.second) < rank(b.second); });
+        [&](const auto& a, const auto& b) { return rank(a.second) < rank(b.second); });
 
     for (const auto& [sub, layer] : layers) {
         for (const std::vector<std::string>& comps : cand.comps) {
@@ -103,11 +110,13 @@ std::optional<Match> matchCandidate(const std::vector<Entry>& entries, const Can
                 auto it = std::find_if(entries.begin(), entries.end(), [&](const Entry& e) {
                     return e.sub == sub && e.layer == layer && e.comp == c;
                 });
-                if (it == entries.end()) break;
+                if (it == entries.end())
+                    break;
                 m.indices.push_back(it->index);
                 m.names.push_back(it->name);
             }
-            if (m.indices.size() == comps.size()) return m;
+            if (m.indices.size() == comps.size())
+                return m;
         }
     }
     return std::nullopt;
@@ -128,11 +137,14 @@ Evaluated evaluate(const std::vector<Entry>& entries, const Preset& preset)
     for (const detail::RoleCandidates& rc : preset.roles) {
         for (const Candidate& cand : rc.candidates) {
             const auto m = matchCandidate(entries, cand, roleComponents(rc.role), prefix);
-            if (!m) continue;
+            if (!m)
+                continue;
             ev.mapping.roles.push_back(
                 { rc.role, m->sub, m->names, m->indices, preset.label + " '" + m->layer + "'" });
-            for (const auto& [k, v] : cand.tags) detail::applyTag(ev.mapping.tag, k, v);
-            if (!cand.generic) ++ev.specific;
+            for (const auto& [k, v] : cand.tags)
+                detail::applyTag(ev.mapping.tag, k, v);
+            if (!cand.generic)
+                ++ev.specific;
             if (rc.role == Role::Color) {
                 ev.hasColor = true;
                 if (!cand.layer.empty() && m->layer != cand.layer && endsWith(m->layer, cand.layer))
@@ -149,8 +161,10 @@ bool hinted(const Preset& preset, const std::map<std::string, std::string>& attr
     for (const auto& [name, value] : attributes) {
         const std::string n = lower(name), v = lower(value);
         for (const std::string& h : preset.attributeHints) {
-            if (n.rfind(h, 0) == 0) return true;
-            if ((n == "software" || n == "renderer" || n == "creator") && v.find(h) != std::string::npos)
+            if (n.rfind(h, 0) == 0)
+                return true;
+            if ((n == "software" || n == "renderer" || n == "creator")
+                && v.find(h) != std::string::npos)
                 return true;
         }
     }
@@ -160,21 +174,25 @@ bool hinted(const Preset& preset, const std::map<std::string, std::string>& attr
 std::string join(const std::vector<std::string>& v, const std::string& sep)
 {
     std::string out;
-    for (std::size_t i = 0; i < v.size(); ++i) out += (i ? sep : "") + v[i];
+    for (std::size_t i = 0; i < v.size(); ++i)
+        out += (i ? sep : "") + v[i];
     return out;
 }
 
 /// The channel lists a candidate stands for, as an override would spell them.
-void describe(const Candidate& cand, Role role, const std::string& base,
-              std::vector<std::string>& out)
+void describe(
+    const Candidate& cand, Role role, const std::string& base, std::vector<std::string>& out)
 {
     auto add = [&](const std::string& s) {
-        if (std::find(out.begin(), out.end(), s) == out.end()) out.push_back(s);
+        if (std::find(out.begin(), out.end(), s) == out.end())
+            out.push_back(s);
     };
-    if (!cand.layer.empty() && roleComponents(role) == 1) add(base);
+    if (!cand.layer.empty() && roleComponents(role) == 1)
+        add(base);
     for (const auto& comps : cand.comps) {
         std::vector<std::string> names;
-        for (const std::string& c : comps) names.push_back(base.empty() ? c : base + "." + c);
+        for (const std::string& c : comps)
+            names.push_back(base.empty() ? c : base + "." + c);
         add(join(names, ","));
     }
 }
@@ -185,67 +203,75 @@ std::vector<std::string> lookedForRole(Role role, const Preset& chosen, const Ro
     if (const RoleChannels* c = mapping.find(Role::Color); c && mapping.renderer == "blender") {
         const std::string layer = detail::splitLast(c->channels.front()).first;
         viewLayer = detail::splitLast(layer).first;
+        if (viewLayer.empty()) viewLayer = "<view layer>";
     }
     std::vector<std::string> out;
     std::vector<const Preset*> order { &chosen };
     for (const Preset& p : detail::presets())
-        if (&p != &chosen) order.push_back(&p);
+        if (&p != &chosen)
+            order.push_back(&p);
     for (const Preset* p : order)
         for (const detail::RoleCandidates& rc : p->roles)
             if (rc.role == role)
                 for (const Candidate& cand : rc.candidates) {
                     std::string base = cand.layer;
-                    if (p->renderer == "blender" && !viewLayer.empty()) base = viewLayer + "." + base;
+                    if (p->renderer == "blender" && !viewLayer.empty())
+                        base = viewLayer + "." + base;
                     describe(cand, role, base, out);
                 }
     return out;
 }
 
-const detail::Preset& choosePreset(const std::vector<Entry>& entries, const FileInfo& info,
-                                   Evaluated& best)
+const detail::Preset& choosePreset(
+    const std::vector<Entry>& entries, const FileInfo& info, Evaluated& best)
 {
     const std::vector<Preset>& all = detail::presets();
     std::vector<Evaluated> evs;
-    for (const Preset& p : all) evs.push_back(evaluate(entries, p));
+    for (const Preset& p : all)
+        evs.push_back(evaluate(entries, p));
     for (std::size_t i = 0; i < all.size(); ++i)
         if (evs[i].hasColor && hinted(all[i], info.attributes)) {
             best = evs[i];
             return all[i];
         }
-    // Most renderer-specific roles wins (a file with a colour first); ties go to the earlier
-    // preset; nothing specific -> generic (the last preset).
+    // Among presets that find a colour, the most renderer-specific roles wins (ties: the earlier
+    // preset; nothing specific: generic, the last). With no colour anywhere, the most specific.
     std::size_t pick = all.size() - 1;
     int bestScore = 0;
-    for (int pass = 0; pass < 2 && bestScore == 0; ++pass)
-        for (std::size_t i = 0; i < all.size(); ++i)
-            if ((pass == 1 || evs[i].hasColor) && evs[i].specific > bestScore) {
-                bestScore = evs[i].specific;
-                pick = i;
-            }
+    bool anyColor = false;
+    for (const Evaluated& e : evs)
+        anyColor = anyColor || e.hasColor;
+    for (std::size_t i = 0; i < all.size(); ++i)
+        if ((evs[i].hasColor || !anyColor) && evs[i].specific > bestScore) {
+            bestScore = evs[i].specific;
+            pick = i;
+        }
     best = evs[pick];
     return all[pick];
 }
 
 void applyChannelOverride(const std::vector<Entry>& entries, Role role,
-                          const std::vector<std::string>& names, RoleMapping& mapping)
+    const std::vector<std::string>& names, RoleMapping& mapping)
 {
     auto& roles = mapping.roles;
     roles.erase(std::remove_if(roles.begin(), roles.end(),
-                               [&](const RoleChannels& r) { return r.role == role; }),
-                roles.end());
+                    [&](const RoleChannels& r) { return r.role == role; }),
+        roles.end());
     const std::string spelled = std::string(roleName(role)) + "=" + join(names, ",");
     std::optional<Match> m;
     const bool oneChannel = roleComponents(role) == 1 || role == Role::Variance;
     if (names.size() > 1 || oneChannel) {
         std::set<int> subs;
-        for (const Entry& e : entries) subs.insert(e.sub);
+        for (const Entry& e : entries)
+            subs.insert(e.sub);
         for (int s : subs) {
             Match cur { s, "", {}, {} };
             for (const std::string& n : names) {
                 auto it = std::find_if(entries.begin(), entries.end(), [&](const Entry& e) {
                     return e.sub == s && (e.name == n || e.qualified == n);
                 });
-                if (it == entries.end()) break;
+                if (it == entries.end())
+                    break;
                 cur.indices.push_back(it->index);
                 cur.names.push_back(it->name);
             }
@@ -265,10 +291,11 @@ void applyChannelOverride(const std::vector<Entry>& entries, Role role,
                 if (rc.role == probe)
                     for (const Candidate& c : rc.candidates)
                         for (const auto& comps : c.comps)
-                            if (std::find(cand.comps.begin(), cand.comps.end(), comps) ==
-                                cand.comps.end())
+                            if (std::find(cand.comps.begin(), cand.comps.end(), comps)
+                                == cand.comps.end())
                                 cand.comps.push_back(comps);
-        if (role == Role::Variance) cand.comps.push_back({ "Y" }), cand.comps.push_back({ "R" });
+        if (role == Role::Variance)
+            cand.comps.push_back({ "Y" }), cand.comps.push_back({ "R" });
         m = matchCandidate(entries, cand, roleComponents(role), "");
     }
     if (!m) {
@@ -290,8 +317,8 @@ RoleMapping mapRoles(const FileInfo& info, const MappingOverrides& overrides)
     RoleMapping mapping = ev.mapping;
     for (int r = 0; r < kNumRoles; ++r)
         if (!mapping.find(static_cast<Role>(r)))
-            mapping.lookedFor[static_cast<Role>(r)] =
-                lookedForRole(static_cast<Role>(r), chosen, mapping);
+            mapping.lookedFor[static_cast<Role>(r)]
+                = lookedForRole(static_cast<Role>(r), chosen, mapping);
 
     for (const auto& [role, names] : overrides.channels)
         applyChannelOverride(entries, role, names, mapping);
@@ -299,7 +326,7 @@ RoleMapping mapRoles(const FileInfo& info, const MappingOverrides& overrides)
         if (!detail::applyTag(mapping.tag, key, value))
             throw IoError("--aov: invalid tag " + key + "=" + value, info.path);
     std::stable_sort(mapping.roles.begin(), mapping.roles.end(),
-                     [](const RoleChannels& a, const RoleChannels& b) { return a.role < b.role; });
+        [](const RoleChannels& a, const RoleChannels& b) { return a.role < b.role; });
 
     const RoleChannels* color = mapping.find(Role::Color);
     if (color && color->source.find("'Noisy Image'") != std::string::npos)
@@ -307,14 +334,13 @@ RoleMapping mapRoles(const FileInfo& info, const MappingOverrides& overrides)
     const RoleChannels* depth = mapping.find(Role::Depth);
     if (mapping.renderer == "vray" && depth && depth->source.rfind("--aov", 0) != 0)
         mapping.warnings.push_back("V-Ray zDepth is normalised unless written raw");
-    const bool motionTagged = overrides.tags.count("motion.direction") ||
-        overrides.tags.count("motion.yUp") || overrides.tags.count("motion.units");
-    if (mapping.find(Role::Motion) && !motionTagged && mapping.renderer != "blender" &&
-        mapping.renderer != "generic")
-        mapping.warnings.push_back("motion conventions of " + mapping.renderer +
-                                   " are assumed (" + mapping.tag.motionDirection + ", y " +
-                                   (mapping.tag.motionYUp ? "up" : "down") +
-                                   "); set --aov motion.direction=..., motion.yUp=... if wrong");
+    const bool motionTagged = overrides.tags.count("motion.direction")
+        || overrides.tags.count("motion.yUp") || overrides.tags.count("motion.units");
+    if (mapping.find(Role::Motion) && !motionTagged && mapping.renderer != "blender"
+        && mapping.renderer != "generic")
+        mapping.warnings.push_back("motion conventions of " + mapping.renderer + " are assumed ("
+            + mapping.tag.motionDirection + ", y " + (mapping.tag.motionYUp ? "up" : "down")
+            + "); set --aov motion.direction=..., motion.yUp=... if wrong");
     return mapping;
 }
 

@@ -8,23 +8,25 @@
 namespace afn::io {
 namespace {
 
-constexpr std::array<const char*, kNumRoles> kRoleNames = { "color",    "albedo", "normal",
-                                                            "depth",    "position", "motion",
-                                                            "alpha",    "variance", "specular" };
+constexpr std::array<const char*, kNumRoles> kRoleNames = { "color", "albedo", "normal", "depth",
+    "position", "motion", "alpha", "variance", "specular" };
 static_assert(kRoleNames.size() == kNumRoles, "one name per role");
 
 std::string trim(const std::string& s)
 {
     const auto b = s.find_first_not_of(" \t");
-    if (b == std::string::npos) return {};
+    if (b == std::string::npos)
+        return {};
     const auto e = s.find_last_not_of(" \t");
     return s.substr(b, e - b + 1);
 }
 
 bool parseBool(const std::string& v, bool& out)
 {
-    if (v == "1" || v == "true" || v == "yes" || v == "on") return out = true, true;
-    if (v == "0" || v == "false" || v == "no" || v == "off") return out = false, true;
+    if (v == "1" || v == "true" || v == "yes" || v == "on")
+        return out = true, true;
+    if (v == "0" || v == "false" || v == "no" || v == "off")
+        return out = false, true;
     return false;
 }
 
@@ -39,8 +41,10 @@ const char* roleName(Role role)
 std::optional<Role> roleFromName(const std::string& name)
 {
     for (int i = 0; i < kNumRoles; ++i)
-        if (name == kRoleNames[i]) return static_cast<Role>(i);
-    if (name == "colour" || name == "beauty") return Role::Color;
+        if (name == kRoleNames[i])
+            return static_cast<Role>(i);
+    if (name == "colour" || name == "beauty")
+        return Role::Color;
     return std::nullopt;
 }
 
@@ -48,16 +52,20 @@ int roleComponents(Role role)
 {
     switch (role) {
     case Role::Depth:
-    case Role::Alpha: return 1;
-    case Role::Motion: return 2;
-    default: return 3;
+    case Role::Alpha:
+        return 1;
+    case Role::Motion:
+        return 2;
+    default:
+        return 3;
     }
 }
 
 const RoleChannels* RoleMapping::find(Role role) const
 {
     for (const RoleChannels& r : roles)
-        if (r.role == role) return &r;
+        if (r.role == role)
+            return &r;
     return nullptr;
 }
 
@@ -71,25 +79,28 @@ void parseOverride(const std::string& text, MappingOverrides& overrides)
     if (key.find('.') != std::string::npos) {
         SpaceTag probe;
         if (!detail::applyTag(probe, key, value))
-            throw IoError("--aov: unknown tag or value '" + text +
-                          "' (normal.space=world|camera|camera-toward-viewer, "
-                          "depth.kind=planar|radial, motion.direction=to-previous|to-next, "
-                          "motion.yUp=true|false, motion.units=pixels|ndc|uv, "
-                          "color.demodulated=true|false)");
+            throw IoError("--aov: unknown tag or value '" + text
+                + "' (normal.space=world|camera|camera-toward-viewer, "
+                  "depth.kind=planar|radial, motion.direction=to-previous|to-next, "
+                  "motion.yUp=true|false, motion.units=pixels|ndc|uv, "
+                  "color.demodulated=true|false)");
         overrides.tags[key] = value;
         return;
     }
     const std::optional<Role> role = roleFromName(key);
-    if (!role) throw IoError("--aov: unknown role '" + key + "' in '" + text + "'");
+    if (!role)
+        throw IoError("--aov: unknown role '" + key + "' in '" + text + "'");
     std::vector<std::string> names;
     std::size_t start = 0;
     while (start <= value.size()) {
         const auto comma = value.find(',', start);
-        const std::string part =
-            trim(value.substr(start, comma == std::string::npos ? std::string::npos : comma - start));
-        if (part.empty()) throw IoError("--aov: empty channel name in '" + text + "'");
+        const std::string part = trim(
+            value.substr(start, comma == std::string::npos ? std::string::npos : comma - start));
+        if (part.empty())
+            throw IoError("--aov: empty channel name in '" + text + "'");
         names.push_back(part);
-        if (comma == std::string::npos) break;
+        if (comma == std::string::npos)
+            break;
         start = comma + 1;
     }
     // One name is a layer prefix (or a single channel); otherwise one name per component. A
@@ -97,9 +108,9 @@ void parseOverride(const std::string& text, MappingOverrides& overrides)
     const int n = static_cast<int>(names.size());
     const bool ok = n == 1 || n == roleComponents(*role) || (*role == Role::Variance && n == 3);
     if (!ok)
-        throw IoError("--aov: role '" + key + "' takes 1 layer name or " +
-                      std::to_string(roleComponents(*role)) + " channel names, got " +
-                      std::to_string(n) + " in '" + text + "'");
+        throw IoError("--aov: role '" + key + "' takes 1 layer name or "
+            + std::to_string(roleComponents(*role)) + " channel names, got " + std::to_string(n)
+            + " in '" + text + "'");
     overrides.channels[*role] = names;
 }
 
@@ -108,18 +119,22 @@ namespace detail {
 bool applyTag(SpaceTag& tag, const std::string& key, const std::string& value)
 {
     if (key == "normal.space") {
-        if (value != "world" && value != "camera" && value != "camera-toward-viewer") return false;
+        if (value != "world" && value != "camera" && value != "camera-toward-viewer")
+            return false;
         tag.normalSpace = value;
     } else if (key == "depth.kind") {
-        if (value != "planar" && value != "radial") return false;
+        if (value != "planar" && value != "radial")
+            return false;
         tag.depthKind = value;
     } else if (key == "motion.direction") {
-        if (value != "to-previous" && value != "to-next") return false;
+        if (value != "to-previous" && value != "to-next")
+            return false;
         tag.motionDirection = value;
     } else if (key == "motion.yUp") {
         return parseBool(value, tag.motionYUp);
     } else if (key == "motion.units") {
-        if (value != "pixels" && value != "ndc" && value != "uv") return false;
+        if (value != "pixels" && value != "ndc" && value != "uv")
+            return false;
         tag.motionUnits = value;
     } else if (key == "color.demodulated") {
         return parseBool(value, tag.colorDemodulated);
@@ -132,7 +147,8 @@ bool applyTag(SpaceTag& tag, const std::string& key, const std::string& value)
 std::pair<std::string, std::string> splitLast(const std::string& name)
 {
     const auto dot = name.rfind('.');
-    if (dot == std::string::npos) return { std::string(), name };
+    if (dot == std::string::npos)
+        return { std::string(), name };
     return { name.substr(0, dot), name.substr(dot + 1) };
 }
 
@@ -140,8 +156,10 @@ void requireFile(const std::string& path)
 {
     std::error_code ec;
     const auto st = std::filesystem::status(path, ec);
-    if (ec || !std::filesystem::exists(st)) throw IoError("file not found", path);
-    if (std::filesystem::is_directory(st)) throw IoError("is a directory, not an image", path);
+    if (ec || !std::filesystem::exists(st))
+        throw IoError("file not found", path);
+    if (std::filesystem::is_directory(st))
+        throw IoError("is a directory, not an image", path);
 }
 
 } // namespace detail

@@ -14,14 +14,17 @@ bool parseInt(const std::string& text, std::size_t& pos, long long& out)
 {
     std::size_t p = pos;
     bool neg = false;
-    if (p < text.size() && (text[p] == '-' || text[p] == '+')) neg = text[p++] == '-';
+    if (p < text.size() && (text[p] == '-' || text[p] == '+'))
+        neg = text[p++] == '-';
     const std::size_t digits = p;
     long long v = 0;
     while (p < text.size() && std::isdigit(static_cast<unsigned char>(text[p]))) {
         v = v * 10 + (text[p++] - '0');
-        if (v > 1000000000LL) return false;
+        if (v > 1000000000LL)
+            return false;
     }
-    if (p == digits) return false;
+    if (p == digits)
+        return false;
     out = neg ? -v : v;
     pos = p;
     return true;
@@ -30,12 +33,14 @@ bool parseInt(const std::string& text, std::size_t& pos, long long& out)
 /// A "%d" / "%0Nd" at s[pos]: its length and width (0 = none); false if not such a spec.
 bool printfSpec(const std::string& s, std::size_t pos, std::size_t& len, int& width)
 {
-    if (s[pos] != '%') return false;
+    if (s[pos] != '%')
+        return false;
     std::size_t p = pos + 1;
     width = 0;
     while (p < s.size() && std::isdigit(static_cast<unsigned char>(s[p])))
         width = width * 10 + (s[p++] - '0');
-    if (p >= s.size() || s[p] != 'd' || width > 32) return false;
+    if (p >= s.size() || s[p] != 'd' || width > 32)
+        return false;
     len = p + 1 - pos;
     return true;
 }
@@ -53,11 +58,13 @@ std::string padded(int frame, int width)
 std::vector<int> parseFrameRange(const std::string& text)
 {
     std::vector<int> frames;
-    if (text.empty()) throw IoError("empty frame range");
+    if (text.empty())
+        throw IoError("empty frame range");
     std::size_t start = 0;
     while (start <= text.size()) {
         std::size_t end = text.find(',', start);
-        if (end == std::string::npos) end = text.size();
+        if (end == std::string::npos)
+            end = text.size();
         const std::string item = text.substr(start, end - start);
         std::size_t pos = 0;
         long long a = 0, b = 0, step = 1;
@@ -79,7 +86,8 @@ std::vector<int> parseFrameRange(const std::string& text)
         for (long long f = a, i = 0; i < count; ++i, f += (a <= b ? step : -step))
             frames.push_back(static_cast<int>(f));
         start = end + 1;
-        if (end == text.size()) break;
+        if (end == text.size())
+            break;
     }
     return frames;
 }
@@ -89,7 +97,8 @@ bool hasFramePattern(const std::string& pattern)
     for (std::size_t i = 0; i < pattern.size(); ++i) {
         std::size_t len = 0;
         int width = 0;
-        if (pattern[i] == '#' || pattern[i] == '@' || printfSpec(pattern, i, len, width)) return true;
+        if (pattern[i] == '#' || pattern[i] == '@' || printfSpec(pattern, i, len, width))
+            return true;
     }
     return false;
 }
@@ -103,7 +112,8 @@ std::string expandFramePattern(const std::string& pattern, int frame)
         int width = 0;
         if (c == '#' || c == '@') {
             std::size_t run = 0;
-            while (i + run < pattern.size() && pattern[i + run] == c) ++run;
+            while (i + run < pattern.size() && pattern[i + run] == c)
+                ++run;
             // oiiotool: '#' is 4 digits and '@' 1 digit each (verified: oiiotool writes x.#.exr
             // as x.0007.exr but x.####.exr with 16 digits). A run of several '#' follows the
             // Nuke/Houdini reading instead (one digit each), as io.hpp documents and the CLI and
@@ -122,8 +132,8 @@ std::string expandFramePattern(const std::string& pattern, int frame)
     return out;
 }
 
-std::vector<std::string> expandSequence(const std::string& pattern, const std::vector<int>& frames,
-                                        bool mustExist)
+std::vector<std::string> expandSequence(
+    const std::string& pattern, const std::vector<int>& frames, bool mustExist)
 {
     if (!hasFramePattern(pattern))
         throw IoError("no frame pattern (#, @ or %0Nd) in the file name", pattern);

@@ -26,7 +26,8 @@ RoleStats computeStats(const RoleImage& image)
             sum += v;
             lo = std::min(lo, static_cast<double>(v));
             hi = std::max(hi, static_cast<double>(v));
-            if (v < 0.0f) ++s.negative;
+            if (v < 0.0f)
+                ++s.negative;
         }
     }
     if (finite > 0) {

@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: Apache-2.0
-// The BMFR dataset layout: a tiny synthetic scene folder written by the test, and camera_matrices.h.
+// The BMFR dataset layout: a tiny synthetic scene folder written by the test, and
+// camera_matrices.h.
 #include "afn/io.hpp"
 
 #include <gtest/gtest.h>
@@ -59,7 +60,8 @@ void makeScene(const afn_test::fs::path& inputs, int frames, bool reference)
         writeBuffer((inputs / ("albedo" + s + ".exr")).string(), 1000.0f * n + 200);
         writeBuffer((inputs / ("shading_normal" + s + ".exr")).string(), 1000.0f * n + 300);
         writeBuffer((inputs / ("world_position" + s + ".exr")).string(), 1000.0f * n + 400);
-        if (reference) writeBuffer((inputs / ("reference" + s + ".exr")).string(), 1000.0f * n + 500);
+        if (reference)
+            writeBuffer((inputs / ("reference" + s + ".exr")).string(), 1000.0f * n + 500);
     }
 }
 
@@ -87,7 +89,8 @@ TEST(IoBmfr, CameraHeaderByNamedArrays)
 TEST(IoBmfr, MatricesOnlyHeaderFallsBack)
 {
     ScratchDir dir;
-    std::ofstream(dir.file("cam.h")) << "float camera_matrices[1][4][4] = {{{1,0,0,0},{0,1,0,0},{0,0,1,0},{0,0,0,1}}};\n";
+    std::ofstream(dir.file("cam.h"))
+        << "float camera_matrices[1][4][4] = {{{1,0,0,0},{0,1,0,0},{0,0,1,0},{0,0,0,1}}};\n";
     const auto cams = parseCameraMatrices(dir.file("cam.h"));
     ASSERT_EQ(cams.size(), 1u);
     EXPECT_EQ(cams[0].viewProjection[5], 1.0f);
@@ -117,7 +120,7 @@ TEST(IoBmfr, SceneFolderFrames)
     EXPECT_EQ(f.mapping.tag.normalSpace, "world");
     // Values identify the file they came from: base 1000*frame + 100 (color), 200 (albedo), ...
     const std::pair<Role, float> bases[] = { { Role::Color, 1100 }, { Role::Albedo, 1200 },
-                                             { Role::Normal, 1300 }, { Role::Position, 1400 } };
+        { Role::Normal, 1300 }, { Role::Position, 1400 } };
     for (const auto& [role, base] : bases) {
         const RoleImage& img = f.roles.at(role);
         ASSERT_EQ(img.width, 4);

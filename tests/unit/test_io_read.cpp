@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: Apache-2.0
-// Reading frames from synthetic EXRs written by the tests, error paths, and the committed Blender file.
+// Reading frames from synthetic EXRs written by the tests, error paths, and the committed Blender
+// file.
 #include "afn/io.hpp"
 
 #include <gtest/gtest.h>
@@ -16,12 +17,16 @@ using afn_test::ScratchDir;
 namespace {
 
 /// The value the default Part generator puts in channel c (index in the list given) at (x, y).
-float expected(int x, int y, int c) { return static_cast<float>(100 * c + 10 * y + x); }
+float expected(int x, int y, int c)
+{
+    return static_cast<float>(100 * c + 10 * y + x);
+}
 
 int indexOf(const std::vector<std::string>& v, const std::string& s)
 {
     for (std::size_t i = 0; i < v.size(); ++i)
-        if (v[i] == s) return static_cast<int>(i);
+        if (v[i] == s)
+            return static_cast<int>(i);
     return -1;
 }
 
@@ -30,7 +35,8 @@ std::string messageOf(const std::function<void()>& f, std::string* file = nullpt
     try {
         f();
     } catch (const IoError& e) {
-        if (file) *file = e.file();
+        if (file)
+            *file = e.file();
         return e.what();
     }
     return "(no IoError)";
@@ -44,7 +50,8 @@ TEST(IoRead, BlenderLikeChannelsByName)
     Part p;
     p.channels = afn_test::blenderChannels("ViewLayer");
     p.types.assign(p.channels.size(), "float");
-    for (int c = 0; c < 4; ++c) p.types[c] = "half"; // Combined is half, as Blender writes it
+    for (int c = 0; c < 4; ++c)
+        p.types[c] = "half"; // Combined is half, as Blender writes it
     p.attributes = { { "BlenderMultiChannel", "Blender V2.55.1 and newer" }, { "Frame", "7" } };
     const std::string path = dir.file("bl.exr");
     afn_test::writeExr(path, { p });
@@ -53,7 +60,8 @@ TEST(IoRead, BlenderLikeChannelsByName)
     ro.keepAll = true;
     const FrameImages f = readFrame(path, ro);
     EXPECT_EQ(f.mapping.renderer, "blender");
-    for (Role r : { Role::Color, Role::Albedo, Role::Normal, Role::Depth, Role::Position, Role::Motion })
+    for (Role r :
+        { Role::Color, Role::Albedo, Role::Normal, Role::Depth, Role::Position, Role::Motion })
         ASSERT_TRUE(f.roles.count(r)) << roleName(r);
     // Each role component equals the value written for that name, wherever the file stored it.
     auto check = [&](Role r, const std::vector<std::string>& names) {
@@ -65,7 +73,7 @@ TEST(IoRead, BlenderLikeChannelsByName)
             for (int x = 0; x < 4; ++x)
                 for (std::size_t k = 0; k < names.size(); ++k)
                     EXPECT_EQ(img.pixels[(y * 4 + x) * names.size() + k],
-                              expected(x, y, indexOf(p.channels, "ViewLayer." + names[k])))
+                        expected(x, y, indexOf(p.channels, "ViewLayer." + names[k])))
                         << names[k];
     };
     check(Role::Color, { "Combined.R", "Combined.G", "Combined.B" });
@@ -74,7 +82,8 @@ TEST(IoRead, BlenderLikeChannelsByName)
     check(Role::Depth, { "Depth.Z" });
     check(Role::Motion, { "Vector.X", "Vector.Y" });
     // Motion is non-zero: no motion-blur warning.
-    for (const std::string& w : f.mapping.warnings) EXPECT_EQ(w.find("all zero"), std::string::npos);
+    for (const std::string& w : f.mapping.warnings)
+        EXPECT_EQ(w.find("all zero"), std::string::npos);
 
     ASSERT_TRUE(f.all);
     EXPECT_EQ(f.all->channels.size(), p.channels.size());
@@ -85,7 +94,7 @@ TEST(IoRead, BlenderLikeChannelsByName)
     EXPECT_EQ(f.all->types[combR], "half");
     EXPECT_EQ(f.all->types[vecW], "float");
     EXPECT_EQ(f.all->pixels[(1 * 4 + 2) * f.all->channels.size() + vecW],
-              expected(2, 1, indexOf(p.channels, "ViewLayer.Vector.W")));
+        expected(2, 1, indexOf(p.channels, "ViewLayer.Vector.W")));
     EXPECT_EQ(f.all->attributes.at("Frame"), "7");
     EXPECT_EQ(f.all->compression, "zip");
 }
@@ -103,7 +112,8 @@ TEST(IoRead, BlenderZeroVectorWarns)
     afn_test::writeExr(path, { p });
     const FrameImages f = readFrame(path);
     bool warned = false;
-    for (const std::string& w : f.mapping.warnings) warned |= w.find("all zero") != std::string::npos;
+    for (const std::string& w : f.mapping.warnings)
+        warned |= w.find("all zero") != std::string::npos;
     EXPECT_TRUE(warned);
 }
 
@@ -141,9 +151,9 @@ TEST(IoRead, MultiPartFile)
     const RoleImage& c = f.roles.at(Role::Color);
     EXPECT_EQ(c.pixels[(2 * 4 + 3) * 3 + 1], expected(3, 2, 1)); // G at (3, 2)
     ASSERT_TRUE(f.all);
-    EXPECT_EQ(f.all->channels, (std::vector<std::string> { "R", "G", "B", "A", "albedo.R", "albedo.G",
-                                                           "albedo.B", "normals.N.X", "normals.N.Y",
-                                                           "normals.N.Z" }));
+    EXPECT_EQ(f.all->channels,
+        (std::vector<std::string> { "R", "G", "B", "A", "albedo.R", "albedo.G", "albedo.B",
+            "normals.N.X", "normals.N.Y", "normals.N.Z" }));
 }
 
 TEST(IoRead, DataWindowDiffersFromDisplayWindow)
@@ -204,7 +214,8 @@ TEST(IoRead, TruncatedExr)
     p.channels = { "R", "G", "B" };
     p.width = 64;
     p.height = 64;
-    p.value = [](int x, int y, int c) { return std::sin(0.37f * x + 1.3f * y + c); }; // incompressible
+    p.value
+        = [](int x, int y, int c) { return std::sin(0.37f * x + 1.3f * y + c); }; // incompressible
     const std::string path = dir.file("cut.exr");
     afn_test::writeExr(path, { p });
     const auto size = afn_test::fs::file_size(path);
@@ -269,13 +280,17 @@ TEST(IoStats, SmallExactCase)
 TEST(IoRead, CommittedBlenderFile)
 {
     const std::string path = std::string(AFN_TEST_DATA) + "/blender_64x36.exr";
-    if (!afn_test::fs::exists(path)) GTEST_SKIP() << "no " << path;
+    if (!afn_test::fs::exists(path))
+        GTEST_SKIP() << "no " << path;
     const FrameImages f = readFrame(path);
     EXPECT_EQ(f.mapping.renderer, "blender");
     const std::pair<Role, const char*> expect[] = {
-        { Role::Color, "ViewLayer.Combined.R" },   { Role::Albedo, "ViewLayer.Denoising Albedo.R" },
-        { Role::Normal, "ViewLayer.Normal.X" },    { Role::Depth, "ViewLayer.Depth.Z" },
-        { Role::Position, "ViewLayer.Position.X" }, { Role::Motion, "ViewLayer.Vector.X" },
+        { Role::Color, "ViewLayer.Combined.R" },
+        { Role::Albedo, "ViewLayer.Denoising Albedo.R" },
+        { Role::Normal, "ViewLayer.Normal.X" },
+        { Role::Depth, "ViewLayer.Depth.Z" },
+        { Role::Position, "ViewLayer.Position.X" },
+        { Role::Motion, "ViewLayer.Vector.X" },
         { Role::Alpha, "ViewLayer.Combined.A" },
     };
     for (const auto& [role, first] : expect) {
@@ -312,5 +327,6 @@ TEST(IoRead, CommittedBlenderFile)
     // Motion blur was off: the Vector pass is not all zero, and no warning was raised.
     const RoleStats ms = computeStats(f.roles.at(Role::Motion));
     EXPECT_GT(std::max(std::abs(ms.min), std::abs(ms.max)), 0.0);
-    for (const std::string& w : f.mapping.warnings) EXPECT_EQ(w.find("all zero"), std::string::npos);
+    for (const std::string& w : f.mapping.warnings)
+        EXPECT_EQ(w.find("all zero"), std::string::npos);
 }

@@ -58,16 +58,20 @@ TEST(IoRoles, BlenderAllPasses)
 {
     const RoleMapping m = mapRoles(fileWith(afn_test::blenderChannels("ViewLayer")));
     EXPECT_EQ(m.renderer, "blender");
-    EXPECT_EQ(chans(m, Role::Color), (V { "ViewLayer.Combined.R", "ViewLayer.Combined.G", "ViewLayer.Combined.B" }));
+    EXPECT_EQ(chans(m, Role::Color),
+        (V { "ViewLayer.Combined.R", "ViewLayer.Combined.G", "ViewLayer.Combined.B" }));
     EXPECT_EQ(chans(m, Role::Alpha), (V { "ViewLayer.Combined.A" }));
     EXPECT_EQ(chans(m, Role::Albedo),
-              (V { "ViewLayer.Denoising Albedo.R", "ViewLayer.Denoising Albedo.G", "ViewLayer.Denoising Albedo.B" }));
+        (V { "ViewLayer.Denoising Albedo.R", "ViewLayer.Denoising Albedo.G",
+            "ViewLayer.Denoising Albedo.B" }));
     // World normal and planar depth are preferred over the Denoising (camera, radial) ones.
-    EXPECT_EQ(chans(m, Role::Normal), (V { "ViewLayer.Normal.X", "ViewLayer.Normal.Y", "ViewLayer.Normal.Z" }));
+    EXPECT_EQ(chans(m, Role::Normal),
+        (V { "ViewLayer.Normal.X", "ViewLayer.Normal.Y", "ViewLayer.Normal.Z" }));
     EXPECT_EQ(m.tag.normalSpace, "world");
     EXPECT_EQ(chans(m, Role::Depth), (V { "ViewLayer.Depth.Z" }));
     EXPECT_EQ(m.tag.depthKind, "planar");
-    EXPECT_EQ(chans(m, Role::Position), (V { "ViewLayer.Position.X", "ViewLayer.Position.Y", "ViewLayer.Position.Z" }));
+    EXPECT_EQ(chans(m, Role::Position),
+        (V { "ViewLayer.Position.X", "ViewLayer.Position.Y", "ViewLayer.Position.Z" }));
     EXPECT_EQ(chans(m, Role::Motion), (V { "ViewLayer.Vector.X", "ViewLayer.Vector.Y" }));
     EXPECT_EQ(m.tag.motionDirection, "to-previous");
     EXPECT_TRUE(m.tag.motionYUp);
@@ -82,9 +86,8 @@ TEST(IoRoles, BlenderAllPasses)
 TEST(IoRoles, BlenderDenoisingFallbacksAndDiffCol)
 {
     const RoleMapping m = mapRoles(fileWith({ "VL.Combined.R", "VL.Combined.G", "VL.Combined.B",
-                                              "VL.DiffCol.R", "VL.DiffCol.G", "VL.DiffCol.B",
-                                              "VL.Denoising Normal.X", "VL.Denoising Normal.Y",
-                                              "VL.Denoising Normal.Z", "VL.Denoising Depth.Z" }));
+        "VL.DiffCol.R", "VL.DiffCol.G", "VL.DiffCol.B", "VL.Denoising Normal.X",
+        "VL.Denoising Normal.Y", "VL.Denoising Normal.Z", "VL.Denoising Depth.Z" }));
     EXPECT_EQ(m.renderer, "blender");
     EXPECT_EQ(chans(m, Role::Albedo), (V { "VL.DiffCol.R", "VL.DiffCol.G", "VL.DiffCol.B" }));
     EXPECT_EQ(chans(m, Role::Normal)[0], "VL.Denoising Normal.X");
@@ -100,9 +103,10 @@ TEST(IoRoles, BlenderDottedViewLayerAndCompositor)
 {
     std::vector<std::string> ch = afn_test::blenderChannels("shot.v2 main");
     for (const char* c : { "Composite.Combined.R", "Composite.Combined.G", "Composite.Combined.B",
-                           "Composite.Combined.A" })
+             "Composite.Combined.A" })
         ch.push_back(c);
-    const RoleMapping m = mapRoles(fileWith(ch, { { "BlenderMultiChannel", "Blender V2.55.1 and newer" } }));
+    const RoleMapping m
+        = mapRoles(fileWith(ch, { { "BlenderMultiChannel", "Blender V2.55.1 and newer" } }));
     EXPECT_EQ(m.renderer, "blender");
     EXPECT_EQ(chans(m, Role::Color)[0], "shot.v2 main.Combined.R");
     EXPECT_EQ(chans(m, Role::Alpha)[0], "shot.v2 main.Combined.A");
@@ -112,19 +116,34 @@ TEST(IoRoles, BlenderDottedViewLayerAndCompositor)
 TEST(IoRoles, BlenderTwoViewLayersStayTogether)
 {
     std::vector<std::string> ch = afn_test::blenderChannels("A");
-    for (const std::string& c : afn_test::blenderChannels("B")) ch.push_back(c);
+    for (const std::string& c : afn_test::blenderChannels("B"))
+        ch.push_back(c);
     const RoleMapping m = mapRoles(fileWith(ch));
     EXPECT_EQ(chans(m, Role::Color)[0], "A.Combined.R");
     EXPECT_EQ(chans(m, Role::Normal)[0], "A.Normal.X");
     EXPECT_EQ(chans(m, Role::Motion)[0], "A.Vector.X");
 }
 
+TEST(IoRoles, TopLevelBeautyWithBlenderLayers)
+{
+    // What afntool -o --keep-aovs writes: beauty as R,G,B,A, the other Blender passes kept.
+    std::vector<std::string> ch = { "R", "G", "B", "A" };
+    for (const std::string& c : afn_test::blenderChannels("ViewLayer"))
+        if (c.find(".Combined.") == std::string::npos)
+            ch.push_back(c);
+    const RoleMapping m = mapRoles(fileWith(ch, { { "BlenderMultiChannel", "Blender" } }));
+    EXPECT_EQ(m.renderer, "blender");
+    EXPECT_EQ(chans(m, Role::Color), (V { "R", "G", "B" }));
+    EXPECT_EQ(chans(m, Role::Alpha), (V { "A" }));
+    EXPECT_EQ(chans(m, Role::Albedo)[0], "ViewLayer.Denoising Albedo.R");
+    EXPECT_EQ(chans(m, Role::Motion)[0], "ViewLayer.Vector.X");
+}
+
 TEST(IoRoles, Arnold)
 {
     const RoleMapping m = mapRoles(fileWith({ "R", "G", "B", "A", "N.X", "N.Y", "N.Z", "P.X", "P.Y",
-                                              "P.Z", "Z", "motionvector.X", "motionvector.Y",
-                                              "diffuse_albedo.R", "diffuse_albedo.G", "diffuse_albedo.B",
-                                              "denoise_albedo.R", "denoise_albedo.G", "denoise_albedo.B" }));
+        "P.Z", "Z", "motionvector.X", "motionvector.Y", "diffuse_albedo.R", "diffuse_albedo.G",
+        "diffuse_albedo.B", "denoise_albedo.R", "denoise_albedo.G", "denoise_albedo.B" }));
     EXPECT_EQ(m.renderer, "arnold");
     EXPECT_EQ(chans(m, Role::Color), (V { "R", "G", "B" }));
     EXPECT_EQ(chans(m, Role::Alpha), (V { "A" }));
@@ -139,9 +158,9 @@ TEST(IoRoles, Arnold)
 
 TEST(IoRoles, ArnoldUsdRgbaLayerAndAttributeHint)
 {
-    const RoleMapping m = mapRoles(fileWith({ "RGBA.R", "RGBA.G", "RGBA.B", "RGBA.A", "albedo.R",
-                                              "albedo.G", "albedo.B" },
-                                            { { "arnold/version", "7.1" } }));
+    const RoleMapping m = mapRoles(
+        fileWith({ "RGBA.R", "RGBA.G", "RGBA.B", "RGBA.A", "albedo.R", "albedo.G", "albedo.B" },
+            { { "arnold/version", "7.1" } }));
     EXPECT_EQ(m.renderer, "arnold");
     EXPECT_EQ(chans(m, Role::Color), (V { "RGBA.R", "RGBA.G", "RGBA.B" }));
     EXPECT_EQ(chans(m, Role::Alpha), (V { "RGBA.A" }));
@@ -151,9 +170,8 @@ TEST(IoRoles, ArnoldUsdRgbaLayerAndAttributeHint)
 TEST(IoRoles, RenderMan)
 {
     const RoleMapping m = mapRoles(fileWith({ "Ci.R", "Ci.G", "Ci.B", "a", "albedo.R", "albedo.G",
-                                              "albedo.B", "normal.R", "normal.G", "normal.B",
-                                              "zfiltered.R", "forward.R", "forward.G", "backward.R",
-                                              "backward.G", "mse.R", "mse.G", "mse.B" }));
+        "albedo.B", "normal.R", "normal.G", "normal.B", "zfiltered.R", "forward.R", "forward.G",
+        "backward.R", "backward.G", "mse.R", "mse.G", "mse.B" }));
     EXPECT_EQ(m.renderer, "renderman");
     EXPECT_EQ(chans(m, Role::Color), (V { "Ci.R", "Ci.G", "Ci.B" }));
     EXPECT_EQ(chans(m, Role::Alpha), (V { "a" }));
@@ -167,7 +185,8 @@ TEST(IoRoles, RenderMan)
 
 TEST(IoRoles, RenderManForwardOnlyIsToNext)
 {
-    const RoleMapping m = mapRoles(fileWith({ "beauty.R", "beauty.G", "beauty.B", "forward.R", "forward.G" }));
+    const RoleMapping m
+        = mapRoles(fileWith({ "beauty.R", "beauty.G", "beauty.B", "forward.R", "forward.G" }));
     EXPECT_EQ(m.renderer, "renderman");
     EXPECT_EQ(chans(m, Role::Color)[0], "beauty.R");
     EXPECT_EQ(chans(m, Role::Motion)[0], "forward.R");
@@ -176,9 +195,9 @@ TEST(IoRoles, RenderManForwardOnlyIsToNext)
 
 TEST(IoRoles, VRay)
 {
-    const RoleMapping m = mapRoles(fileWith({ "R", "G", "B", "A", "diffuse.R", "diffuse.G", "diffuse.B",
-                                              "normals.X", "normals.Y", "normals.Z", "zDepth",
-                                              "velocity.R", "velocity.G", "velocity.B" }));
+    const RoleMapping m = mapRoles(
+        fileWith({ "R", "G", "B", "A", "diffuse.R", "diffuse.G", "diffuse.B", "normals.X",
+            "normals.Y", "normals.Z", "zDepth", "velocity.R", "velocity.G", "velocity.B" }));
     EXPECT_EQ(m.renderer, "vray");
     EXPECT_EQ(chans(m, Role::Albedo)[0], "diffuse.R");
     EXPECT_EQ(chans(m, Role::Normal)[2], "normals.Z");
@@ -190,9 +209,9 @@ TEST(IoRoles, VRay)
 
 TEST(IoRoles, Redshift)
 {
-    const RoleMapping m = mapRoles(fileWith({ "R", "G", "B", "A", "DiffuseFilter.R", "DiffuseFilter.G",
-                                              "DiffuseFilter.B", "N.X", "N.Y", "N.Z", "Z", "P.X",
-                                              "P.Y", "P.Z", "MotionVectors.R", "MotionVectors.G" }));
+    const RoleMapping m = mapRoles(
+        fileWith({ "R", "G", "B", "A", "DiffuseFilter.R", "DiffuseFilter.G", "DiffuseFilter.B",
+            "N.X", "N.Y", "N.Z", "Z", "P.X", "P.Y", "P.Z", "MotionVectors.R", "MotionVectors.G" }));
     EXPECT_EQ(m.renderer, "redshift");
     EXPECT_EQ(chans(m, Role::Albedo)[0], "DiffuseFilter.R");
     EXPECT_EQ(chans(m, Role::Motion), (V { "MotionVectors.R", "MotionVectors.G" }));
@@ -201,9 +220,9 @@ TEST(IoRoles, Redshift)
 
 TEST(IoRoles, Karma)
 {
-    const RoleMapping m = mapRoles(fileWith({ "C.R", "C.G", "C.B", "C.A", "albedo.R", "albedo.G",
-                                              "albedo.B", "N.X", "N.Y", "N.Z", "P.X", "P.Y", "P.Z",
-                                              "depth.Z", "motionvector.X", "motionvector.Y" }));
+    const RoleMapping m
+        = mapRoles(fileWith({ "C.R", "C.G", "C.B", "C.A", "albedo.R", "albedo.G", "albedo.B", "N.X",
+            "N.Y", "N.Z", "P.X", "P.Y", "P.Z", "depth.Z", "motionvector.X", "motionvector.Y" }));
     EXPECT_EQ(m.renderer, "karma");
     EXPECT_EQ(chans(m, Role::Color), (V { "C.R", "C.G", "C.B" }));
     EXPECT_EQ(chans(m, Role::Alpha), (V { "C.A" }));
@@ -228,7 +247,8 @@ TEST(IoRoles, NoColourListsWhatWasLookedFor)
     const auto& looked = m.lookedFor.at(Role::Color);
     EXPECT_TRUE(contains(looked, "R,G,B"));
     EXPECT_TRUE(contains(looked, "Ci.R,Ci.G,Ci.B"));
-    EXPECT_TRUE(contains(looked, "<view layer>.Combined.R,<view layer>.Combined.G,<view layer>.Combined.B"));
+    EXPECT_TRUE(contains(
+        looked, "<view layer>.Combined.R,<view layer>.Combined.G,<view layer>.Combined.B"));
 }
 
 TEST(IoRoles, MultiPartLayersFromPartNames)
@@ -261,14 +281,14 @@ TEST(IoRoles, MultiPartLayersFromPartNames)
 TEST(IoRoles, OverridesChannelsLayersAndTags)
 {
     MappingOverrides o;
-    parseOverride("albedo=mydiff", o);                  // layer prefix
-    parseOverride("normal=nx, ny ,nz", o);              // explicit channels, spaces trimmed
-    parseOverride("depth=dist", o);                     // one channel
+    parseOverride("albedo=mydiff", o); // layer prefix
+    parseOverride("normal=nx, ny ,nz", o); // explicit channels, spaces trimmed
+    parseOverride("depth=dist", o); // one channel
     parseOverride("normal.space=camera-toward-viewer", o);
     parseOverride("motion.yUp=false", o);
     const RoleMapping m = mapRoles(fileWith({ "R", "G", "B", "mydiff.R", "mydiff.G", "mydiff.B",
-                                              "nx", "ny", "nz", "dist", "N.X", "N.Y", "N.Z" }),
-                                   o);
+                                       "nx", "ny", "nz", "dist", "N.X", "N.Y", "N.Z" }),
+        o);
     EXPECT_EQ(chans(m, Role::Albedo), (V { "mydiff.R", "mydiff.G", "mydiff.B" }));
     EXPECT_EQ(chans(m, Role::Normal), (V { "nx", "ny", "nz" }));
     EXPECT_EQ(chans(m, Role::Depth), (V { "dist" }));
@@ -281,7 +301,8 @@ TEST(IoRoles, OverrideOfMissingChannelsIsReported)
 {
     MappingOverrides o;
     parseOverride("albedo=nope.R,nope.G,nope.B", o);
-    const RoleMapping m = mapRoles(fileWith({ "R", "G", "B", "albedo.R", "albedo.G", "albedo.B" }), o);
+    const RoleMapping m
+        = mapRoles(fileWith({ "R", "G", "B", "albedo.R", "albedo.G", "albedo.B" }), o);
     EXPECT_FALSE(m.find(Role::Albedo)); // no silent fallback to the automatic choice
     EXPECT_EQ(m.lookedFor.at(Role::Albedo), (V { "nope.R,nope.G,nope.B" }));
     ASSERT_FALSE(m.warnings.empty());

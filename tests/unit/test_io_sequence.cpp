@@ -35,7 +35,7 @@ TEST(IoSequence, Patterns)
     EXPECT_FALSE(hasFramePattern("100%.exr"));
     EXPECT_EQ(expandFramePattern("shot.####.exr", 7), "shot.0007.exr");
     EXPECT_EQ(expandFramePattern("shot.#.exr", 7), "shot.0007.exr"); // a lone '#' is 4 digits
-    EXPECT_EQ(expandFramePattern("shot.##.exr", 7), "shot.07.exr");        // runs: one digit each
+    EXPECT_EQ(expandFramePattern("shot.##.exr", 7), "shot.07.exr"); // runs: one digit each
     EXPECT_EQ(expandFramePattern("shot.@@@.exr", 7), "shot.007.exr");
     EXPECT_EQ(expandFramePattern("shot.@.exr", 12), "shot.12.exr");
     EXPECT_EQ(expandFramePattern("shot.%03d.exr", 12), "shot.012.exr");
@@ -48,10 +48,11 @@ TEST(IoSequence, Patterns)
 TEST(IoSequence, ExpandChecksEveryFrame)
 {
     afn_test::ScratchDir dir;
-    for (int f : { 1, 2, 4 }) std::ofstream(dir.file("f." + std::to_string(f) + ".exr")) << "x";
+    for (int f : { 1, 2, 4 })
+        std::ofstream(dir.file("f." + std::to_string(f) + ".exr")) << "x";
     const std::string pattern = dir.file("f.@.exr");
     EXPECT_EQ(expandSequence(pattern, { 1, 2 }),
-              (std::vector<std::string> { dir.file("f.1.exr"), dir.file("f.2.exr") }));
+        (std::vector<std::string> { dir.file("f.1.exr"), dir.file("f.2.exr") }));
     try {
         expandSequence(pattern, { 1, 2, 3, 4 });
         FAIL() << "missing frame accepted";

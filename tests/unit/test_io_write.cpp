@@ -17,7 +17,8 @@ std::vector<float> ramp(int n)
 {
     std::vector<float> v(n);
     // 1/3 steps: not exactly representable in half, exactly representable... nowhere, good.
-    for (int i = 0; i < n; ++i) v[i] = static_cast<float>(i) / 3.0f;
+    for (int i = 0; i < n; ++i)
+        v[i] = static_cast<float>(i) / 3.0f;
     return v;
 }
 
@@ -29,9 +30,11 @@ TEST(IoWrite, HalfAndFloatPerChannelRoundTrip)
     const std::string path = dir.file("out.exr");
     const int w = 5, h = 4, nch = 4;
     const std::vector<float> px = ramp(w * h * nch);
-    writeImageAtomic(path, w, h, { "R", "G", "B", "Z" }, px.data(), {}, { "half", "half", "half", "float" });
+    writeImageAtomic(
+        path, w, h, { "R", "G", "B", "Z" }, px.data(), {}, { "half", "half", "half", "float" });
     const FileInfo info = inspect(path);
-    EXPECT_EQ(info.subimages[0].types, (std::vector<std::string> { "half", "half", "half", "float" }));
+    EXPECT_EQ(
+        info.subimages[0].types, (std::vector<std::string> { "half", "half", "half", "float" }));
     EXPECT_EQ(info.subimages[0].compression, "zip");
     ReadOptions ro;
     ro.keepAll = true;
@@ -40,7 +43,8 @@ TEST(IoWrite, HalfAndFloatPerChannelRoundTrip)
     ASSERT_EQ(all.channels, (std::vector<std::string> { "R", "G", "B", "Z" }));
     for (int i = 0; i < w * h; ++i) {
         for (int c = 0; c < 3; ++c) // half: 11 significant bits
-            EXPECT_NEAR(all.pixels[i * 4 + c], px[i * 4 + c], std::abs(px[i * 4 + c]) * 1e-3f + 1e-6f);
+            EXPECT_NEAR(
+                all.pixels[i * 4 + c], px[i * 4 + c], std::abs(px[i * 4 + c]) * 1e-3f + 1e-6f);
         EXPECT_EQ(all.pixels[i * 4 + 3], px[i * 4 + 3]); // float: exact
     }
     EXPECT_EQ(dir.list(), (std::vector<std::string> { "out.exr" })); // no temporary left
@@ -75,7 +79,8 @@ TEST(IoWrite, PngIsClampedTo8Bit)
     const FrameImages f = readFrame(path);
     const std::vector<float>& got = f.roles.at(Role::Color).pixels;
     const float expect[] = { 1.0f, 0.0f, 128.0f / 255.0f, 0.0f, 1.0f, 64.0f / 255.0f };
-    for (int i = 0; i < 6; ++i) EXPECT_NEAR(got[i], expect[i], 1e-6f) << i;
+    for (int i = 0; i < 6; ++i)
+        EXPECT_NEAR(got[i], expect[i], 1e-6f) << i;
 }
 
 TEST(IoWrite, RefusesToOverwriteAnInput)
@@ -115,9 +120,11 @@ TEST(IoWrite, ReadOnlyDirectory)
 {
     ScratchDir dir;
     const float px[3] = { 1, 2, 3 };
-    if (::geteuid() == 0) GTEST_SKIP() << "running as root: permissions are not enforced";
+    if (::geteuid() == 0)
+        GTEST_SKIP() << "running as root: permissions are not enforced";
     afn_test::fs::create_directories(dir.path() / "ro");
-    afn_test::fs::permissions(dir.path() / "ro", afn_test::fs::perms::owner_read | afn_test::fs::perms::owner_exec);
+    afn_test::fs::permissions(
+        dir.path() / "ro", afn_test::fs::perms::owner_read | afn_test::fs::perms::owner_exec);
     try {
         writeImageAtomic(dir.file("ro/out.exr"), 1, 1, { "R", "G", "B" }, px);
         FAIL();
@@ -141,10 +148,13 @@ TEST(IoWrite, FailureLeavesNothingBehind)
     }
     // Bad arguments.
     EXPECT_THROW(writeImageAtomic(dir.file("out.exr"), 0, 2, six, px.data()), IoError);
-    EXPECT_THROW(writeImageAtomic(dir.file("out.exr"), 2, 2, six, px.data(), {}, { "half" }), IoError);
-    EXPECT_THROW(writeImageAtomic(dir.file("out.exr"), 2, 2, six, px.data(), {}, std::vector<std::string>(6, "int")),
-                 IoError);
-    for (const std::string& name : dir.list()) EXPECT_EQ(name.find("afn-tmp"), std::string::npos) << name;
+    EXPECT_THROW(
+        writeImageAtomic(dir.file("out.exr"), 2, 2, six, px.data(), {}, { "half" }), IoError);
+    EXPECT_THROW(writeImageAtomic(dir.file("out.exr"), 2, 2, six, px.data(), {},
+                     std::vector<std::string>(6, "int")),
+        IoError);
+    for (const std::string& name : dir.list())
+        EXPECT_EQ(name.find("afn-tmp"), std::string::npos) << name;
     EXPECT_FALSE(afn_test::fs::exists(dir.file("out.exr")));
 }
 
