@@ -5,6 +5,7 @@
 #include "exception.h"
 
 #include <cstring>
+#include <utility>
 
 namespace afn {
 
@@ -107,6 +108,17 @@ WeightsArchive WeightsArchive::parse(const void* data, std::size_t size, const s
         }
         a.m_tensors.emplace(name, std::move(w));
     }
+    return a;
+}
+
+WeightsArchive WeightsArchive::fromTensors(std::map<std::string, WeightTensor> tensors,
+                                           std::map<std::string, std::string> meta,
+                                           const std::string& source)
+{
+    WeightsArchive a;
+    a.m_tensors = std::move(tensors);
+    a.m_meta = std::move(meta);
+    a.m_source = source;
     return a;
 }
 
