@@ -9,17 +9,20 @@ namespace {
 
 constexpr const char* kBmfrTag = "#bmfr:";
 
-/// A decoded subimage: all channels, interleaved, data window size.
+/// Channels [first, first + nch) of a subimage, interleaved, data window size.
 struct Decoded {
-    int width = 0, height = 0, nch = 0;
+    int width = 0, height = 0, first = 0, nch = 0;
     std::vector<float> pixels;
 };
 
-Decoded decode(OIIO::ImageInput& in, int sub, const OIIO::ImageSpec& spec, const std::string& path)
+/// One read_image call per subimage over the range of channels needed: OpenEXR decompresses whole
+/// scanline blocks, so one call per role would decode the same blocks again for each role.
+Decoded decode(OIIO::ImageInput& in, int sub, const OIIO::ImageSpec& spec, int first, int end,
+    const std::string& path)
 {
-    Decoded d { spec.width, spec.height, spec.nchannels, {} };
+    Decoded d { spec.width, spec.height, first, end - first, {} };
     d.pixels.resize(static_cast<std::size_t>(d.width) * d.height * d.nch);
-    if (!in.read_image(sub, 0, 0, d.nch, OIIO::TypeDesc::FLOAT, d.pixels.data()))
+    if (!in.read_image(sub, 0, first, end, OIIO::TypeDesc::FLOAT, d.pixels.data()))
         throw IoError(
             "cannot read pixels (truncated or corrupt file?): " + detail::inputError(&in), path);
     return d;
@@ -35,7 +38,7 @@ RoleImage gather(const Decoded& d, const std::vector<int>& indices)
     img.pixels.resize(n * indices.size());
     for (std::size_t i = 0; i < n; ++i)
         for (std::size_t c = 0; c < indices.size(); ++c)
-            img.pixels[i * indices.size() + c] = d.pixels[i * d.nch + indices[c]];
+            img.pixels[i * indices.size() + c] = d.pixels[i * d.nch + indices[c] - d.first];
     return img;
 }
 
@@ -101,7 +104,7 @@ LayeredImage layered(const std::vector<OIIO::ImageSpec>& specs, const std::vecto
     for (std::size_t k = 0; k < nch; ++k) {
         const Decoded& d = dec[src[k].first];
         for (std::size_t i = 0; i < n; ++i)
-            all.pixels[i * nch + k] = d.pixels[i * d.nch + src[k].second];
+            all.pixels[i * nch + k] = d.pixels[i * d.nch + src[k].second - d.first];
     }
     return all;
 }
@@ -163,36 +166,48 @@ FrameImages readFrame(const std::string& path, const ReadOptions& options)
     // All roles share the colour's data window (the first part's when there is no colour).
     const RoleChannels* color = out.mapping.find(Role::Color);
     const int ref = color ? color->subimage : 0;
-    std::vector<Decoded> dec(specs.size());
     std::vector<RoleChannels> kept;
     for (const RoleChannels& rc : out.mapping.roles) {
-        if (!sameWindow(specs[rc.subimage], specs[ref])) {
-            const std::string msg = std::string(roleName(rc.role)) + " (part "
-                + std::to_string(rc.subimage) + ") has a different data window from the colour";
-            for (Role r : options.required)
-                if (r == rc.role)
-                    throw IoError(msg, path);
-            out.mapping.warnings.push_back(msg + ": ignored");
+        if (sameWindow(specs[rc.subimage], specs[ref])) {
+            kept.push_back(rc);
             continue;
         }
-        if (dec[rc.subimage].pixels.empty())
-            dec[rc.subimage] = decode(*in, rc.subimage, specs[rc.subimage], path);
-        out.roles[rc.role] = gather(dec[rc.subimage], rc.indices);
-        kept.push_back(rc);
+        const std::string msg = std::string(roleName(rc.role)) + " (part "
+            + std::to_string(rc.subimage) + ") has a different data window from the colour";
+        for (Role r : options.required)
+            if (r == rc.role)
+                throw IoError(msg, path);
+        out.mapping.warnings.push_back(msg + ": ignored");
     }
     out.mapping.roles = kept;
+
+    // Channel range to decode per subimage: the roles' channels, or all with keepAll.
+    const int nsub = static_cast<int>(specs.size());
+    std::vector<std::pair<int, int>> range(nsub, { 0, 0 });
+    for (const RoleChannels& rc : kept)
+        for (int i : rc.indices) {
+            auto& [lo, hi] = range[rc.subimage];
+            lo = hi == 0 ? i : std::min(lo, i);
+            hi = std::max(hi, i + 1);
+        }
+    if (options.keepAll)
+        for (int s = 0; s < nsub; ++s)
+            if (sameWindow(specs[s], specs[ref]))
+                range[s] = { 0, specs[s].nchannels };
+    std::vector<Decoded> dec(nsub);
+    for (int s = 0; s < nsub; ++s)
+        if (range[s].second > range[s].first)
+            dec[s] = decode(*in, s, specs[s], range[s].first, range[s].second, path);
+    for (const RoleChannels& rc : kept)
+        out.roles[rc.role] = gather(dec[rc.subimage], rc.indices);
 
     auto motion = out.roles.find(Role::Motion);
     if (motion != out.roles.end() && out.mapping.renderer == "blender" && allZero(motion->second))
         out.mapping.warnings.push_back(
             "Vector pass is all zero: motion blur was on when rendering, so it holds no motion");
 
-    if (options.keepAll) {
-        for (int s = 0; s < static_cast<int>(specs.size()); ++s)
-            if (dec[s].pixels.empty() && sameWindow(specs[s], specs[ref]))
-                dec[s] = decode(*in, s, specs[s], path);
+    if (options.keepAll)
         out.all = layered(specs, dec, ref, out.mapping.warnings);
-    }
     return out;
 }
 

@@ -230,7 +230,7 @@ TEST(IoRead, NoColourChannelsNamesWhatWasLookedFor)
 {
     ScratchDir dir;
     Part p;
-    p.channels = { "depth.Z", "foo.X" };
+    p.channels = { "depth.Z", "aaa.X" }; // stored sorted: depth.Z is the second channel
     const std::string path = dir.file("nocolor.exr");
     afn_test::writeExr(path, { p });
     std::string file;
@@ -243,7 +243,12 @@ TEST(IoRead, NoColourChannelsNamesWhatWasLookedFor)
     ReadOptions ro;
     ro.required = {};
     const FrameImages f = readFrame(path, ro);
-    EXPECT_TRUE(f.roles.count(Role::Depth));
+    ASSERT_TRUE(f.roles.count(Role::Depth));
+    EXPECT_EQ(f.mapping.find(Role::Depth)->indices, (std::vector<int> { 1 }));
+    const RoleImage& d = f.roles.at(Role::Depth);
+    for (int y = 0; y < 3; ++y)
+        for (int x = 0; x < 4; ++x)
+            EXPECT_EQ(d.pixels[y * 4 + x], expected(x, y, 0)); // depth.Z was given first
 }
 
 TEST(IoRead, RequiredRoleMissingNamesOverride)
