@@ -44,6 +44,7 @@ const std::vector<FilterType>& filterTypes()
         withCommon(taFilterType()),
         withCommon(svgfFilterType()),
         withCommon(bmfrFilterType()),
+        withCommon(afnFilterType()), // needs weights (embedded or set as data)
     };
     return types;
 }

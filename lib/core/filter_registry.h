@@ -36,5 +36,6 @@ FilterType identityFilterType();
 FilterType taFilterType();
 FilterType svgfFilterType();
 FilterType bmfrFilterType();
+FilterType afnFilterType();
 
 } // namespace afn

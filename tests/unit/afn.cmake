@@ -5,4 +5,8 @@ afn_add_gtest(test_afn
     unit/test_afn_weights.cpp
     unit/test_afn_layers.cpp
     unit/test_afn_parity.cpp
+    unit/test_afn_filter.cpp
   LIBS afn_core)
+# The embedding mechanism of the shipped weights, exercised on a committed parity file.
+include(AfnEmbed)
+afn_embed_file(test_afn ${AFN_TEST_DATA}/afn_parity/weights_fusion.afnw afnTestEmbedded)

@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: Apache-2.0
 // The .afnw reader: a hand-built archive, and rejection of every kind of corruption.
+#include "afn_test_util.h"
 #include "core/afn_weights.h"
 #include "core/exception.h"
 
@@ -104,4 +105,19 @@ TEST(AfnWeights, RejectsBadFields)
     const Bytes p(lfs.begin(), lfs.end());
     EXPECT_NE(parseError(p).find("Git LFS pointer"), std::string::npos);
     EXPECT_NE(parseError(Bytes()).find("invalid or corrupted weights"), std::string::npos);
+}
+
+extern "C" const unsigned char afnTestEmbedded[];
+extern "C" const unsigned long long afnTestEmbedded_size;
+
+TEST(AfnWeights, EmbeddedBytesEqualTheFile)
+{
+    const auto fromFile = afntest::loadFile(std::string(AFN_TEST_DATA) + "/afn_parity/weights_fusion.afnw");
+    std::ifstream f(std::string(AFN_TEST_DATA) + "/afn_parity/weights_fusion.afnw", std::ios::binary);
+    const std::vector<char> bytes((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
+    ASSERT_EQ(afnTestEmbedded_size, bytes.size());
+    EXPECT_EQ(std::memcmp(afnTestEmbedded, bytes.data(), bytes.size()), 0);
+    const auto a = afn::WeightsArchive::parse(afnTestEmbedded, afnTestEmbedded_size, "embedded");
+    EXPECT_EQ(a.tensors().size(), fromFile.tensors().size());
+    EXPECT_EQ(a.meta("variant"), "fusion");
 }

@@ -1,0 +1,100 @@
+// SPDX-License-Identifier: Apache-2.0
+// The "afn" filter type: refuses to run without weights, takes weights as data (rejecting corrupt
+// ones without losing the previous), denoises a small sequence; feature scaling hand cases.
+#include "afn_test_util.h"
+#include "core/afn_features.h"
+#include "core/exception.h"
+#include "core/filter_registry.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <fstream>
+#include <iterator>
+
+namespace {
+
+afn::ImageBinding bind(afn::Image& img)
+{
+    afn::ImageBinding b;
+    b.ptr = img.data();
+    b.format = static_cast<AFNFormat>(img.channels());
+    b.width = img.width();
+    b.height = img.height();
+    b.pixelStride = static_cast<std::ptrdiff_t>(img.channels() * sizeof(float));
+    b.rowStride = b.pixelStride * img.width();
+    return b;
+}
+
+std::vector<char> readBytes(const std::string& path)
+{
+    std::ifstream f(path, std::ios::binary);
+    return std::vector<char>((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
+}
+
+} // namespace
+
+TEST(AfnFilter, NeedsWeightsThenDenoises)
+{
+    auto f = afn::createFilter("afn");
+    const int w = 19, h = 11;
+    afn::Image color(w, h, 3), albedo(w, h, 3, 0.5f), normal(w, h, 3), depth(w, h, 1), out(w, h, 3);
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) {
+            for (int c = 0; c < 3; ++c) color(x, y, c) = static_cast<float>(((x * 7 + y * 3 + c) % 5)) * 0.3f;
+            normal(x, y, 2) = 1.0f;
+            depth(x, y, 0) = 1.0f + 0.1f * static_cast<float>(x);
+        }
+    f->setImage("color", bind(color));
+    f->setImage("albedo", bind(albedo));
+    f->setImage("normal", bind(normal));
+    f->setImage("depth", bind(depth));
+    f->setImage("output", bind(out));
+#ifndef AFN_HAS_EMBEDDED_WEIGHTS
+    try {
+        f->commit();
+        FAIL() << "commit without weights must fail";
+    } catch (const afn::Exception& e) {
+        EXPECT_NE(std::string(e.what()).find("no weights"), std::string::npos) << e.what();
+    }
+#endif
+    EXPECT_THROW(f->setData("weights", "garbage", 7), afn::Exception);
+    EXPECT_THROW(f->setData("other", "x", 1), afn::Exception);
+    const auto bytes = readBytes(std::string(AFN_TEST_DATA) + "/afn_parity/weights_full.afnw");
+    f->setData("weights", bytes.data(), bytes.size());
+    EXPECT_THROW(f->setData("weights", bytes.data(), bytes.size() / 2), afn::Exception); // truncated
+    f->commit(); // the valid weights survived the failed replacement
+    for (int frame = 0; frame < 3; ++frame) {
+        f->execute();
+        for (std::size_t k = 0; k < out.size(); ++k) {
+            ASSERT_TRUE(std::isfinite(out.data()[k]));
+            ASSERT_GE(out.data()[k], 0.0f);
+        }
+    }
+}
+
+TEST(AfnFeatures, NormalAndDepthScaling)
+{
+    afn::Image n(2, 1, 3), n01;
+    n(0, 0, 0) = -1.0f;
+    n(0, 0, 1) = 1.0f;
+    n(1, 0, 2) = NAN;
+    afn::afnNormalToUnitRange(n, 2, 1, n01);
+    EXPECT_EQ(n01(0, 0, 0), 0.0f);
+    EXPECT_EQ(n01(0, 0, 1), 1.0f);
+    EXPECT_EQ(n01(0, 0, 2), 0.5f);
+    EXPECT_EQ(n01(1, 0, 2), 0.5f);
+    afn::Image z(4, 1, 1), z01;
+    z(0, 0, 0) = 2.0f;
+    z(1, 0, 0) = 4.0f;
+    z(2, 0, 0) = 6.0f;
+    z(3, 0, 0) = 1e10f; // sky
+    afn::afnDepthToUnitRange(z, 4, 1, z01);
+    EXPECT_EQ(z01(0, 0, 0), 0.0f);
+    EXPECT_EQ(z01(1, 0, 0), 0.5f);
+    EXPECT_EQ(z01(2, 0, 0), 1.0f);
+    EXPECT_EQ(z01(3, 0, 0), 1.0f);
+    afn::afnDepthToUnitRange(afn::Image(), 3, 2, z01);
+    EXPECT_EQ(z01.width(), 3);
+    EXPECT_EQ(z01(2, 1, 0), 0.0f);
+}
