@@ -44,10 +44,31 @@ bool endsWith(const std::string& s, const std::string& suffix)
         && s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
 }
 
+bool beautyPartName(const std::string& name)
+{
+    static const char* const names[] = { "rgba", "rgb", "beauty", "main", "default", "c", "ci" };
+    const std::string n = lower(name);
+    for (const char* b : names)
+        if (n == b)
+            return true;
+    return false;
+}
+
+/// The part whose bare channels (R, G, B, ...) count as top-level: one with a beauty-like name
+/// ("rgba", "beauty", ...), else the first part.
+int topLevelPart(const FileInfo& info)
+{
+    for (int s = 0; s < static_cast<int>(info.subimages.size()); ++s)
+        if (beautyPartName(info.subimages[s].name))
+            return s;
+    return 0;
+}
+
 std::vector<Entry> buildEntries(const FileInfo& info)
 {
     std::vector<Entry> entries;
     const bool multi = info.subimages.size() > 1;
+    const int top = topLevelPart(info);
     for (int s = 0; s < static_cast<int>(info.subimages.size()); ++s) {
         const SubimageInfo& si = info.subimages[s];
         for (int i = 0; i < static_cast<int>(si.channels.size()); ++i) {
@@ -57,8 +78,8 @@ std::vector<Entry> buildEntries(const FileInfo& info)
             e.name = si.channels[i];
             e.qualified = multi && !si.name.empty() ? si.name + "." + e.name : e.name;
             std::tie(e.layer, e.comp) = detail::splitLast(e.name);
-            // Bare channels of a later named part belong to that part's layer only.
-            if (!(multi && s > 0 && e.layer.empty() && !si.name.empty()))
+            // Bare channels of other named parts belong to that part's layer only.
+            if (!(multi && s != top && e.layer.empty() && !si.name.empty()))
                 entries.push_back(e);
             if (multi && !si.name.empty()) {
                 e.layer = e.layer.empty() ? si.name : si.name + "." + e.layer;
@@ -203,7 +224,8 @@ std::vector<std::string> lookedForRole(Role role, const Preset& chosen, const Ro
     if (const RoleChannels* c = mapping.find(Role::Color); c && mapping.renderer == "blender") {
         const std::string layer = detail::splitLast(c->channels.front()).first;
         viewLayer = detail::splitLast(layer).first;
-        if (viewLayer.empty()) viewLayer = "<view layer>";
+        if (viewLayer.empty())
+            viewLayer = "<view layer>";
     }
     std::vector<std::string> out;
     std::vector<const Preset*> order { &chosen };

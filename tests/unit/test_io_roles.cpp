@@ -278,6 +278,23 @@ TEST(IoRoles, MultiPartLayersFromPartNames)
     EXPECT_EQ(n->indices, (std::vector<int> { 0, 1, 2 }));
 }
 
+TEST(IoRoles, MultiPartBeautyNotFirst)
+{
+    FileInfo info;
+    SubimageInfo albedo, beauty;
+    albedo.name = "albedo";
+    albedo.channels = { "R", "G", "B" };
+    beauty.name = "beauty";
+    beauty.channels = { "R", "G", "B", "A" };
+    info.subimages = { albedo, beauty };
+    const RoleMapping m = mapRoles(info);
+    ASSERT_TRUE(m.find(Role::Color));
+    EXPECT_EQ(m.find(Role::Color)->subimage, 1);
+    ASSERT_TRUE(m.find(Role::Albedo));
+    EXPECT_EQ(m.find(Role::Albedo)->subimage, 0);
+    EXPECT_EQ(m.find(Role::Alpha)->subimage, 1);
+}
+
 TEST(IoRoles, OverridesChannelsLayersAndTags)
 {
     MappingOverrides o;

@@ -81,6 +81,13 @@ TEST(IoWrite, PngIsClampedTo8Bit)
     const float expect[] = { 1.0f, 0.0f, 128.0f / 255.0f, 0.0f, 1.0f, 64.0f / 255.0f };
     for (int i = 0; i < 6; ++i)
         EXPECT_NEAR(got[i], expect[i], 1e-6f) << i;
+    // TIFF goes the same 8-bit way.
+    const std::string tif = dir.file("t.tif");
+    writeImageAtomic(tif, 2, 1, { "R", "G", "B" }, px.data());
+    EXPECT_EQ(inspect(tif).subimages[0].types[0], "uint8");
+    const std::vector<float> t = readFrame(tif).roles.at(Role::Color).pixels;
+    for (int i = 0; i < 6; ++i)
+        EXPECT_NEAR(t[i], expect[i], 1e-6f) << i;
 }
 
 TEST(IoWrite, RefusesToOverwriteAnInput)
