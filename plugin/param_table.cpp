@@ -3,6 +3,10 @@
 
 #include "ofx_support.h"
 
+#include <sys/stat.h>
+
+#include <afn/afn.hpp>
+
 #include <algorithm>
 #include <cstring>
 #include <sstream>
@@ -46,6 +50,21 @@ std::vector<std::string> splitChoices(const char* choices)
     return out;
 }
 
+// True when the method commits with every input bound and nothing else set: a learned method
+// without built-in weights fails here and must not be the default.
+bool runsOutOfTheBox(const char* method)
+{
+    afn::DeviceRef device = afn::newDevice();
+    device.commit();
+    afn::FilterRef f = device.newFilter(method);
+    std::vector<float> px(8 * 8 * 4, 0.5f);
+    for (const char* role : { "color", "albedo", "normal", "depth", "motion" })
+        f.setImage(role, px.data(), afn::Format::Float4, 8, 8);
+    f.setImage("output", px.data(), afn::Format::Float4, 8, 8);
+    f.commit();
+    return device.getError() == afn::Error::None;
+}
+
 ParamCatalog buildCatalog()
 {
     ParamCatalog c;
@@ -53,7 +72,7 @@ ParamCatalog buildCatalog()
     c.defaultMethod = 0;
     for (const char* p : kPreferred) {
         auto it = std::find(c.methods.begin(), c.methods.end(), p);
-        if (it != c.methods.end()) {
+        if (it != c.methods.end() && runsOutOfTheBox(p)) {
             c.defaultMethod = static_cast<int>(it - c.methods.begin());
             break;
         }
@@ -125,6 +144,15 @@ void defineParams(OfxImageEffectHandle descriptor, bool temporalDefault)
     temporal.set(kOfxParamPropDefault, temporalDefault ? 1 : 0);
     temporal.set(kOfxParamPropAnimates, 0);
 
+    Props weights(define(set, kOfxParamTypeString, kParamWeights));
+    weights.set(kOfxPropLabel, "Weights file");
+    weights.set(kOfxParamPropHint, "trained weights archive (.afnw) for learned methods such as "
+                                   "afn; empty = the weights built into the library, if any");
+    weights.set(kOfxParamPropStringMode, kOfxParamStringIsFilePath);
+    weights.set(kOfxParamPropStringFilePathExists, 1);
+    weights.set(kOfxParamPropDefault, "");
+    weights.set(kOfxParamPropAnimates, 0);
+
     std::string group;
     for (const ParamSpec& p : c.params) {
         const std::string wanted = p.method.empty() ? "inputs" : p.method;
@@ -193,6 +221,13 @@ Settings readSettings(OfxImageEffectHandle instance)
         throw OfxError(kOfxStatErrValue, "method index " + std::to_string(m) + " is out of range");
     s.method = c.methods[m];
     s.temporal = getIntValue(set, kParamTemporal) != 0;
+    char* path = nullptr;
+    check(suites().param->paramGetValue(paramHandle(set, kParamWeights), &path),
+          "reading parameter weights");
+    s.weightsPath = path ? path : "";
+    struct stat st {};
+    if (!s.weightsPath.empty() && ::stat(s.weightsPath.c_str(), &st) == 0)
+        s.weightsStamp = std::to_string(st.st_size) + "@" + std::to_string(st.st_mtime);
     for (const ParamSpec& p : c.params) {
         if (!p.method.empty() && p.method != s.method) continue;
         Settings::Value v { &p, 0.0, {} };
@@ -217,7 +252,7 @@ std::string Settings::key() const
 {
     std::ostringstream os;
     os.precision(17);
-    os << method << ';' << temporal;
+    os << method << ';' << temporal << ';' << weightsPath << ';' << weightsStamp;
     for (const Value& v : values) os << ';' << v.spec->ofxName << '=' << v.number << v.choice;
     return os.str();
 }

@@ -16,6 +16,8 @@ namespace afnofx {
 constexpr const char* kParamMethod = "method";
 /// OFX name of the temporal on/off switch.
 constexpr const char* kParamTemporal = "temporal";
+/// OFX name of the weights file (learned methods; empty = the weights built into the library).
+constexpr const char* kParamWeights = "weights";
 
 /// One OFX parameter mirroring one library parameter.
 struct ParamSpec {
@@ -42,6 +44,8 @@ void defineParams(OfxImageEffectHandle descriptor, bool temporalDefault);
 struct Settings {
     std::string method;
     bool temporal = true;
+    std::string weightsPath;  ///< "" = none
+    std::string weightsStamp; ///< size and modification time of the file (reload on change)
     struct Value {
         const ParamSpec* spec;
         double number;      ///< bool/int/float value

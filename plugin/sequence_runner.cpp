@@ -6,6 +6,8 @@
 
 #include <cmath>
 #include <cstring>
+#include <fstream>
+#include <iterator>
 #include <memory>
 #include <sstream>
 
@@ -84,11 +86,15 @@ const std::vector<float>& SequenceRunner::frame(double time, const Settings& set
         m_device.commit();
         checkError("creating the afn device");
     }
-    if (!m_filter || m_filterMethod != settings.method) {
+    const std::string weights = settings.weightsPath + "|" + settings.weightsStamp;
+    if (!m_filter || m_filterMethod != settings.method || m_filterWeights != weights) {
         m_filter = m_device.newFilter(settings.method.c_str());
         checkError(("creating filter " + settings.method).c_str());
         m_filterMethod = settings.method;
+        m_filterWeights.clear();
         m_hasState = false;
+        loadWeights(settings);
+        m_filterWeights = weights;
     }
     m_filter.setProgressMonitorFunction(abortRequested, req.instance);
 
@@ -119,6 +125,18 @@ const std::vector<float>& SequenceRunner::frame(double time, const Settings& set
         m_hasState = settings.temporal;
     }
     return m_results.back().rgba;
+}
+
+void SequenceRunner::loadWeights(const Settings& settings)
+{
+    if (settings.weightsPath.empty()) return;
+    std::ifstream in(settings.weightsPath, std::ios::binary);
+    if (!in)
+        throw OfxError(kOfxStatFailed, "cannot read the weights file '" + settings.weightsPath + "'");
+    const std::vector<char> bytes((std::istreambuf_iterator<char>(in)),
+                                  std::istreambuf_iterator<char>());
+    m_filter.setData("weights", bytes.data(), bytes.size());
+    checkError(("weights file '" + settings.weightsPath + "'").c_str());
 }
 
 void SequenceRunner::runFrame(double time, const Settings& settings, const FrameRequest& req,

@@ -47,10 +47,12 @@ private:
                   std::vector<float>& out);
     std::vector<float>& storeSlot(const std::string& key, double time);
     void checkError(const char* what);
+    void loadWeights(const Settings& settings);
 
     afn::DeviceRef m_device;
     afn::FilterRef m_filter;
     std::string m_filterMethod;
+    std::string m_filterWeights; ///< path and stamp of the weights set on the filter
     std::string m_stateKey;   ///< key of the frames the filter's history was built from
     double m_stateTime = 0.0; ///< last frame the filter executed
     bool m_hasState = false;

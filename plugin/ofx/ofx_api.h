@@ -247,6 +247,10 @@ typedef struct OfxParameterSuiteV1 {
 #define kOfxParamTypeBoolean "OfxParamTypeBoolean"
 #define kOfxParamTypeChoice "OfxParamTypeChoice"
 #define kOfxParamTypeGroup "OfxParamTypeGroup"
+#define kOfxParamTypeString "OfxParamTypeString"
+#define kOfxParamPropStringMode "OfxParamPropStringMode"
+#define kOfxParamStringIsFilePath "OfxParamStringIsFilePath"
+#define kOfxParamPropStringFilePathExists "OfxParamPropStringFilePathExists"
 
 #define kOfxParamPropType "OfxParamPropType"
 #define kOfxParamPropDefault "OfxParamPropDefault"

@@ -1,0 +1,379 @@
+// SPDX-License-Identifier: Apache-2.0
+// The OFX plugin driven through the in-process test host, compared with the same filter run
+// directly through the C API over the same frames (whole frames, tiles, render scale 0.5,
+// out-of-order times, two threads), plus describe contracts, identity, abort and errors.
+#include "ofx_test_host.h"
+#include "synthetic_sequence.h"
+
+#include <afn/afn.hpp>
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <thread>
+
+using namespace ofxhost;
+using namespace ofxtest;
+
+namespace {
+
+const std::vector<std::string> kAllAux = { "albedo", "normal", "depth", "motion" };
+const char* const kClipOf[] = { "Albedo", "Normal", "Depth", "Motion" };
+
+std::vector<std::string> methodsUnderTest()
+{
+    std::vector<std::string> out;
+    for (const std::string& m : afn::filterTypes())
+        if (m != "identity") out.push_back(m);
+    if (out.empty()) out.push_back("identity");
+    return out;
+}
+
+int methodIndex(const std::string& m)
+{
+    const std::vector<std::string> all = afn::filterTypes();
+    return int(std::find(all.begin(), all.end(), m) - all.begin());
+}
+
+/// |got - want| <= 1e-5 * max(|want|, 1e-3) everywhere (relative, with a floor near zero).
+::testing::AssertionResult nearlyEqual(const std::vector<float>& got, const std::vector<float>& want)
+{
+    if (got.size() != want.size())
+        return ::testing::AssertionFailure() << "size " << got.size() << " vs " << want.size();
+    for (size_t i = 0; i < got.size(); ++i) {
+        const double tol = 1e-5 * std::max(std::abs(double(want[i])), 1e-3);
+        if (!(std::abs(double(got[i]) - want[i]) <= tol))
+            return ::testing::AssertionFailure() << "value " << i << " (pixel " << i / 4 << ", channel "
+                                                 << i % 4 << "): plugin " << got[i] << " vs C API "
+                                                 << want[i];
+    }
+    return ::testing::AssertionSuccess();
+}
+
+/// A loaded host with both context descriptors and a source per role.
+struct Session {
+    explicit Session(Layout layout = {}) : host(layout)
+    {
+        std::string error;
+        loaded = host.load(AFN_OFX_BINARY, &error);
+        EXPECT_TRUE(loaded) << error;
+        if (!loaded) return;
+        EXPECT_EQ(host.describe(), kOfxStatOK);
+        EXPECT_EQ(host.describeInContext(kOfxImageEffectContextGeneral, general), kOfxStatOK);
+        EXPECT_EQ(host.describeInContext(kOfxImageEffectContextFilter, filter), kOfxStatOK);
+        for (const char* role : { "color", "albedo", "normal", "depth", "motion" })
+            sources[role] = seq.source(role);
+    }
+    ~Session()
+    {
+        if (loaded) EXPECT_EQ(host.unload(), kOfxStatOK);
+    }
+
+    /// An instance with Source and the given auxiliary roles connected, running `method`.
+    std::unique_ptr<OfxImageEffectStruct> instance(const std::string& method,
+                                                   const std::vector<std::string>& aux,
+                                                   bool general = true)
+    {
+        std::map<std::string, const ClipSource*> inputs = { { "Source", &sources["color"] } };
+        for (const std::string& role : aux)
+            for (int i = 0; i < 4; ++i)
+                if (kAllAux[i] == role) inputs[kClipOf[i]] = &sources[role];
+        OfxStatus s = kOfxStatFailed;
+        auto inst = host.createInstance(general ? *this->general : *filter,
+                                        general ? kOfxImageEffectContextGeneral
+                                                : kOfxImageEffectContextFilter,
+                                        inputs, &s);
+        EXPECT_EQ(s, kOfxStatOK);
+        EXPECT_EQ(host.setParam(inst.get(), "method", methodIndex(method)), kOfxStatOK);
+        if (const std::string w = testWeightsFor(method); !w.empty())
+            EXPECT_EQ(host.setParam(inst.get(), "weights", w), kOfxStatOK);
+        return inst;
+    }
+
+    std::vector<float> render(OfxImageEffectStruct* inst, double t, double scale = 1.0, int tiles = 1)
+    {
+        Frame f;
+        const OfxStatus s = host.renderFrame(inst, t, scale, tiles, f);
+        EXPECT_EQ(s, kOfxStatOK) << "time " << t;
+        return f.rgba;
+    }
+
+    Host host;
+    bool loaded = false;
+    Sequence seq;
+    std::map<std::string, ClipSource> sources;
+    std::unique_ptr<OfxImageEffectStruct> general, filter;
+};
+
+std::string ofxName(const OfxImageEffectStruct& desc, const std::string& method, std::string name)
+{
+    std::replace(name.begin(), name.end(), '.', '_');
+    return desc.params.find(method + "_" + name) ? method + "_" + name : name;
+}
+
+} // namespace
+
+TEST(PluginHost, LoadsDescribesAndUnloads)
+{
+    Session s;
+    ASSERT_TRUE(s.loaded);
+    const OfxPlugin* p = s.host.plugin();
+    EXPECT_EQ(s.host.numPlugins(), 1);
+    EXPECT_STREQ(p->pluginApi, "OfxImageEffectPluginAPI");
+    EXPECT_EQ(p->apiVersion, 1);
+    EXPECT_STREQ(p->pluginIdentifier, "org.afn.Denoise");
+    EXPECT_EQ(p->pluginVersionMajor, 1u);
+    EXPECT_EQ(p->pluginVersionMinor, 0u);
+    ASSERT_NE(p->setHost, nullptr);
+    ASSERT_NE(p->mainEntry, nullptr);
+
+    const OfxPropertySetStruct& d = s.host.descriptor()->props;
+    EXPECT_EQ(d.getStrings(kOfxImageEffectPropSupportedContexts).size(), 2u);
+    EXPECT_EQ(d.getString(kOfxImageEffectPropSupportedPixelDepths), kOfxBitDepthFloat);
+    EXPECT_EQ(d.getInt(kOfxImageEffectPropSupportsTiles), 1);
+    EXPECT_EQ(d.getInt(kOfxImageEffectPropTemporalClipAccess), 1);
+    EXPECT_EQ(d.getString(kOfxImageEffectPluginRenderThreadSafety), kOfxImageEffectRenderFullySafe);
+
+    // Clips: General has the four optional auxiliary clips, Filter only Source and Output.
+    for (const char* c : { "Source", "Output" }) {
+        ASSERT_NE(s.general->clip(c), nullptr) << c;
+        ASSERT_NE(s.filter->clip(c), nullptr) << c;
+    }
+    for (const char* c : kClipOf) {
+        ASSERT_NE(s.general->clip(c), nullptr) << c;
+        EXPECT_EQ(s.general->clip(c)->props.getInt(kOfxImageClipPropOptional), 1) << c;
+        EXPECT_EQ(s.filter->clip(c), nullptr) << c;
+    }
+    EXPECT_EQ(s.filter->clips.size(), 2u);
+
+    // Parameters: the method choice lists the library's methods; every library parameter except
+    // the two the plugin sets itself appears with the library's default.
+    const OfxParamStruct* method = s.general->params.find("method");
+    ASSERT_NE(method, nullptr);
+    EXPECT_EQ(method->props.getStrings(kOfxParamPropChoiceOption), afn::filterTypes());
+    EXPECT_EQ(s.general->params.find("temporal")->props.getInt(kOfxParamPropDefault), 1);
+    EXPECT_EQ(s.filter->params.find("temporal")->props.getInt(kOfxParamPropDefault), 0);
+    for (const std::string& m : afn::filterTypes())
+        for (const AFNParamInfo& info : afn::filterTypeParams(m.c_str())) {
+            const std::string n = info.name;
+            if (n == "motion.yUp" || n == "motion.scale") continue;
+            const OfxParamStruct* p = s.general->params.find(ofxName(*s.general, m, n));
+            ASSERT_NE(p, nullptr) << m << " " << n;
+            EXPECT_EQ(p->props.getInt(kOfxParamPropAnimates), 0);
+            if (info.type == AFN_PARAM_FLOAT) {
+                EXPECT_EQ(p->type, kOfxParamTypeDouble);
+                EXPECT_EQ(p->props.getDouble(kOfxParamPropDefault), info.defaultValue) << n;
+            } else if (info.type == AFN_PARAM_STRING) {
+                EXPECT_EQ(p->type, kOfxParamTypeChoice);
+                const auto& options = p->props.getStrings(kOfxParamPropChoiceOption);
+                EXPECT_EQ(options.at(p->props.getInt(kOfxParamPropDefault)), info.defaultString);
+            } else {
+                EXPECT_EQ(p->props.getInt(kOfxParamPropDefault), int(info.defaultValue)) << n;
+            }
+        }
+}
+
+TEST(PluginHost, WholeFramesMatchCApi)
+{
+    Session s;
+    ASSERT_TRUE(s.loaded);
+    for (const std::string& m : methodsUnderTest()) {
+        SCOPED_TRACE("method " + m);
+        auto inst = s.instance(m, kAllAux);
+        const auto ref = referenceFrames(s.seq, { m, true, 1.0, kAllAux });
+        for (int k = 0; k < s.seq.numFrames; ++k) {
+            const double t = s.seq.firstFrame + k;
+            EXPECT_TRUE(nearlyEqual(s.render(inst.get(), t), ref[k])) << "frame " << t;
+            const OfxImageClipStruct* src = inst->clip("Source");
+            if (m != "identity") {
+                EXPECT_EQ(src->framesNeeded, (std::vector<double> { double(s.seq.firstFrame), t }));
+                EXPECT_EQ(src->lastRoI, (std::vector<double> { 10, -6, 50, 18 })); // whole RoD
+            }
+        }
+        EXPECT_EQ(s.host.liveImages(), 0);
+        EXPECT_EQ(s.host.destroyInstance(inst.get()), kOfxStatOK);
+    }
+}
+
+TEST(PluginHost, StitchedTilesWithNegativeRowBytesMatchCApi)
+{
+    Session s(Layout { true, 3 });
+    ASSERT_TRUE(s.loaded);
+    for (const std::string& m : methodsUnderTest()) {
+        SCOPED_TRACE("method " + m);
+        auto inst = s.instance(m, kAllAux);
+        const auto ref = referenceFrames(s.seq, { m, true, 1.0, kAllAux });
+        for (int k = 0; k < s.seq.numFrames; ++k)
+            EXPECT_TRUE(nearlyEqual(s.render(inst.get(), s.seq.firstFrame + k, 1.0, 3), ref[k]))
+                << "frame " << k;
+        EXPECT_EQ(s.host.destroyInstance(inst.get()), kOfxStatOK);
+    }
+}
+
+TEST(PluginHost, RenderScaleHalfMatchesCApiAtHalfResolution)
+{
+    Session s(Layout { false, 2 });
+    ASSERT_TRUE(s.loaded);
+    for (const std::string& m : methodsUnderTest()) {
+        SCOPED_TRACE("method " + m);
+        auto inst = s.instance(m, kAllAux);
+        const auto ref = referenceFrames(s.seq, { m, true, 0.5, kAllAux });
+        for (int k = 0; k < s.seq.numFrames; ++k)
+            EXPECT_TRUE(nearlyEqual(s.render(inst.get(), s.seq.firstFrame + k, 0.5, 2), ref[k]))
+                << "frame " << k;
+        EXPECT_EQ(s.host.destroyInstance(inst.get()), kOfxStatOK);
+    }
+}
+
+TEST(PluginHost, OutOfOrderRequestsMatchSequentialResults)
+{
+    Session s(Layout { true, 0 });
+    ASSERT_TRUE(s.loaded);
+    const std::string m = methodsUnderTest().front();
+    auto inst = s.instance(m, kAllAux);
+    const auto ref = referenceFrames(s.seq, { m, true, 1.0, kAllAux });
+    for (int t : { 4, 2, 6, 1, 3, 5, 5, 6, 2 })
+        EXPECT_TRUE(nearlyEqual(s.render(inst.get(), t, 1.0, 2), ref[t - s.seq.firstFrame]))
+            << "frame " << t;
+
+    // A parameter change invalidates the history: results follow the new value, and going back
+    // restores the old results.
+    for (const AFNParamInfo& info : afn::filterTypeParams(m.c_str())) {
+        if (info.type != AFN_PARAM_FLOAT || std::strncmp(info.name, "motion.", 7) == 0) continue;
+        const double v = info.defaultValue != info.minValue ? 0.5 * (info.defaultValue + info.minValue)
+                                                            : 0.5 * (info.defaultValue + info.maxValue);
+        const std::string name = ofxName(*s.general, m, info.name);
+        ASSERT_EQ(s.host.setParam(inst.get(), name, v), kOfxStatOK);
+        const auto changed = referenceFrames(s.seq, { m, true, 1.0, kAllAux, info.name, v });
+        EXPECT_TRUE(nearlyEqual(s.render(inst.get(), 3), changed[3 - s.seq.firstFrame])) << name;
+        ASSERT_EQ(s.host.setParam(inst.get(), name, info.defaultValue), kOfxStatOK);
+        EXPECT_TRUE(nearlyEqual(s.render(inst.get(), 3), ref[3 - s.seq.firstFrame])) << name;
+        break;
+    }
+    EXPECT_EQ(s.host.destroyInstance(inst.get()), kOfxStatOK);
+}
+
+TEST(PluginHost, TwoThreadsRenderInstancesAndFramesConcurrently)
+{
+    Session s;
+    ASSERT_TRUE(s.loaded);
+    const std::string m = methodsUnderTest().front();
+    auto a = s.instance(m, kAllAux);
+    auto b = s.instance(m, kAllAux);
+    auto shared = s.instance(m, kAllAux);
+    const auto ref = referenceFrames(s.seq, { m, true, 1.0, kAllAux });
+    const int n = s.seq.numFrames, first = s.seq.firstFrame;
+    std::vector<std::vector<float>> gotA(n), gotB(n), gotShared(n);
+    std::thread t1([&] {
+        for (int k = 0; k < n; ++k) {
+            gotA[k] = s.render(a.get(), first + k, 1.0, 2);
+            if (k % 2 == 0) gotShared[k] = s.render(shared.get(), first + k);
+        }
+    });
+    std::thread t2([&] {
+        for (int k = n - 1; k >= 0; --k) {
+            gotB[k] = s.render(b.get(), first + k);
+            if (k % 2 == 1) gotShared[k] = s.render(shared.get(), first + k, 1.0, 2);
+        }
+    });
+    t1.join();
+    t2.join();
+    for (int k = 0; k < n; ++k) {
+        EXPECT_TRUE(nearlyEqual(gotA[k], ref[k])) << "instance A frame " << k;
+        EXPECT_TRUE(nearlyEqual(gotB[k], ref[k])) << "instance B frame " << k;
+        EXPECT_TRUE(nearlyEqual(gotShared[k], ref[k])) << "shared instance frame " << k;
+    }
+    for (auto* i : { a.get(), b.get(), shared.get() }) EXPECT_EQ(s.host.destroyInstance(i), kOfxStatOK);
+}
+
+TEST(PluginHost, FilterContextIsSingleFrameUnlessTemporalIsOn)
+{
+    Session s(Layout { true, 1 });
+    ASSERT_TRUE(s.loaded);
+    const std::string m = methodsUnderTest().front();
+    auto inst = s.instance(m, {}, false);
+    const auto single = referenceFrames(s.seq, { m, false, 1.0, {} });
+    for (int t : { 3, 1, 6 })
+        EXPECT_TRUE(nearlyEqual(s.render(inst.get(), t), single[t - s.seq.firstFrame])) << t;
+    ASSERT_EQ(s.host.setParam(inst.get(), "temporal", 1), kOfxStatOK);
+    const auto temporal = referenceFrames(s.seq, { m, true, 1.0, {} });
+    for (int t : { 5, 2, 3 })
+        EXPECT_TRUE(nearlyEqual(s.render(inst.get(), t), temporal[t - s.seq.firstFrame])) << t;
+    EXPECT_EQ(s.host.destroyInstance(inst.get()), kOfxStatOK);
+}
+
+TEST(PluginHost, UnconnectedOptionalClipsAreNotBound)
+{
+    Session s;
+    ASSERT_TRUE(s.loaded);
+    const std::string m = methodsUnderTest().front();
+    const std::vector<std::string> aux = { "albedo", "normal" };
+    auto inst = s.instance(m, aux);
+    const auto ref = referenceFrames(s.seq, { m, true, 1.0, aux });
+    for (int t : { 2, 4 }) EXPECT_TRUE(nearlyEqual(s.render(inst.get(), t), ref[t - 1])) << t;
+    EXPECT_TRUE(inst->clip("Motion")->framesNeeded.empty()); // not asked for
+    EXPECT_EQ(s.host.destroyInstance(inst.get()), kOfxStatOK);
+}
+
+TEST(PluginHost, IsIdentityOnlyForTheIdentityMethod)
+{
+    Session s;
+    ASSERT_TRUE(s.loaded);
+    for (const std::string& m : afn::filterTypes()) {
+        auto inst = s.instance(m, kAllAux);
+        OfxPropertySetStruct in, out;
+        in.setDoubles(kOfxPropTime, { 3.0 });
+        in.setDoubles(kOfxImageEffectPropRenderScale, { 1.0, 1.0 });
+        in.setInts(kOfxImageEffectPropRenderWindow, { 10, -6, 50, 18 });
+        in.setStrings(kOfxImageEffectPropFieldToRender, { kOfxImageFieldNone });
+        const OfxStatus st = s.host.action(kOfxImageEffectActionIsIdentity, inst.get(), &in, &out);
+        if (m == "identity") {
+            EXPECT_EQ(st, kOfxStatOK);
+            EXPECT_EQ(out.getString(kOfxPropName), "Source");
+            EXPECT_EQ(out.getDouble(kOfxPropTime), 3.0);
+        } else {
+            EXPECT_EQ(st, kOfxStatReplyDefault) << m;
+        }
+        EXPECT_EQ(s.host.destroyInstance(inst.get()), kOfxStatOK);
+    }
+}
+
+TEST(PluginHost, AbortStopsARenderAndLeavesNoBadState)
+{
+    Session s;
+    ASSERT_TRUE(s.loaded);
+    const std::string m = methodsUnderTest().front();
+    auto inst = s.instance(m, kAllAux);
+    const auto ref = referenceFrames(s.seq, { m, true, 1.0, kAllAux });
+    s.host.abortFlag = true;
+    Frame f;
+    EXPECT_NE(s.host.renderFrame(inst.get(), 4, 1.0, 1, f), kOfxStatOK);
+    s.host.abortFlag = false;
+    EXPECT_TRUE(nearlyEqual(s.render(inst.get(), 4), ref[3]));
+    EXPECT_TRUE(nearlyEqual(s.render(inst.get(), 5), ref[4]));
+    EXPECT_EQ(s.host.liveImages(), 0);
+    EXPECT_EQ(s.host.destroyInstance(inst.get()), kOfxStatOK);
+}
+
+TEST(PluginHost, BadInputIsReportedThroughTheMessageSuite)
+{
+    Session s;
+    ASSERT_TRUE(s.loaded);
+    ClipSource oneChannel = s.sources["depth"]; // a single-channel image on the Motion clip
+    const std::string m = methodsUnderTest().front();
+    OfxStatus st = kOfxStatFailed;
+    auto inst = s.host.createInstance(*s.general, kOfxImageEffectContextGeneral,
+                                      { { "Source", &s.sources["color"] }, { "Motion", &oneChannel } },
+                                      &st);
+    ASSERT_EQ(st, kOfxStatOK);
+    ASSERT_EQ(s.host.setParam(inst.get(), "method", methodIndex(m)), kOfxStatOK);
+    Frame f;
+    EXPECT_NE(s.host.renderFrame(inst.get(), 2, 1.0, 1, f), kOfxStatOK);
+    const auto messages = s.host.messages();
+    ASSERT_FALSE(messages.empty());
+    EXPECT_NE(messages.back().find("motion"), std::string::npos) << messages.back();
+    EXPECT_EQ(s.host.liveImages(), 0);
+    EXPECT_EQ(s.host.destroyInstance(inst.get()), kOfxStatOK);
+}
