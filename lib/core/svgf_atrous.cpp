@@ -10,6 +10,7 @@ namespace afn {
 
 namespace {
 
+constexpr float kMaxExponent = 40.0f; ///< taps with exp(-e) below exp(-40) are skipped
 constexpr float kB3[3] = { 3.0f / 8.0f, 1.0f / 4.0f, 1.0f / 16.0f }; ///< by |offset|
 
 /// 3x3 Gaussian of the variance channel (1/4 centre, 1/8 edges, 1/16 corners), in-image taps.
@@ -49,9 +50,12 @@ void SvgfDenoiser::atrous(const Image& in, Image& out, int step) const
                         const float* cq = in.at(qx, qy);
                         float wq = kB3[std::abs(i)] * kB3[std::abs(j)];
                         if (i != 0 || j != 0) {
+                            const float wn = m_guide.normalFactor(x, y, qx, qy);
                             const float e = m_guide.depthTerm(x, y, qx, qy, i * step, j * step) +
                                             std::fabs(lp - luminance(cq)) / phiL;
-                            wq *= std::exp(-e) * m_guide.normalFactor(x, y, qx, qy);
+                            // exp(-40) < 5e-18: such taps are negligible; skipping them saves the exp().
+                            if (!(wn > 0.0f) || !(e < kMaxExponent)) continue;
+                            wq *= std::exp(-e) * wn;
                         }
                         ws += wq;
                         vsum += wq * wq * cq[3];

@@ -6,20 +6,6 @@
 
 namespace afn {
 
-float SvgfGuide::integerPower(float d) const
-{
-    if (!integerSigmaN) return std::pow(d, sigmaN);
-    // Exponentiation by squaring: sigmaN = 128 costs 7 multiplications instead of a pow().
-    unsigned e = static_cast<unsigned>(sigmaN);
-    float result = 1.0f, base = d;
-    while (e) {
-        if (e & 1u) result *= base;
-        base *= base;
-        e >>= 1u;
-    }
-    return result;
-}
-
 void SvgfGuide::build(const Frame& f, const SvgfSettings& s)
 {
     sigmaZ = s.sigmaZ;

@@ -60,7 +60,19 @@ struct SvgfGuide {
     }
 
 private:
-    float integerPower(float d) const;
+    float integerPower(float d) const
+    {
+        if (!integerSigmaN) return std::pow(d, sigmaN);
+        // Exponentiation by squaring: sigmaN = 128 costs 7 multiplications instead of a pow().
+        unsigned e = static_cast<unsigned>(sigmaN);
+        float result = 1.0f, base = d;
+        while (e) {
+            if (e & 1u) result *= base;
+            base *= base;
+            e >>= 1u;
+        }
+        return result;
+    }
 };
 
 /// Rec. 709 luminance.

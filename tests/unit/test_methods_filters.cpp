@@ -172,6 +172,21 @@ TEST(MethodsFilters, NoisyGradientErrorFallsClearly)
     }
 }
 
+TEST(MethodsFilters, TinyAndOddSizesWork)
+{
+    for (const char* m : kMethods)
+        for (int size : { 1, 2, 3, 33 }) {
+            auto f = afn::createFilter(m);
+            Buffers b = staticScene(size, size + 1);
+            b.motion = makeImage(size, size + 1, 2, [](int, int, int c) { return c ? 0.5f : -1.5f; });
+            for (int k = 0; k < 3; ++k) {
+                b.color = Image(size, size + 1, 3, 0.5f + 0.1f * k);
+                runFrame(*f, b);
+                ASSERT_TRUE(methods_test::allFiniteNonNegative(b.out)) << m << " " << size;
+            }
+        }
+}
+
 TEST(MethodsFilters, BmfrRegressionReproducesAnExactlyRepresentableBlock)
 {
     // Colour quadratic in the screen coordinates (no position input: x, y, x^2, y^2 are features);
