@@ -11,6 +11,10 @@
 //     independent of the thread count) is added after scaling to every feature but the constant.
 //   - Colour is centred on its block mean (computed in double) before the fit and the mean added
 //     back after: a constant block is reproduced exactly.
+//   - Pixels whose colour was divided by an albedo below kAlbedoEpsilon in some channel (black
+//     albedo: their irradiance is amplified up to 1024x, see demodulate.h) are left out of the fit
+//     (zero rows do not change a least-squares QR) and keep their accumulated value, so they
+//     neither pollute their block nor get polluted by it.
 //   - Out-of-image block pixels are mirrored into the image (BMFR reflects at the borders), so every
 //     block has blockSize^2 rows. The 16 block offsets below are our own values in BMFR's range
 //     [-16, 14] (cycle of frameIndex % 16), not the official table.
@@ -61,6 +65,14 @@ inline int gridStart(int offset, int b)
     while (s > 0) s -= b;
     while (s + b <= 0) s += b;
     return s;
+}
+
+/// True if the pixel's irradiance came from a division by the albedo floor (see the file comment).
+inline bool unreliable(const Frame& f, int x, int y)
+{
+    if (!f.hasAlbedo() || f.colorDemodulated) return false;
+    const float* a = f.albedo.at(x, y);
+    return a[0] < kAlbedoEpsilon || a[1] < kAlbedoEpsilon || a[2] < kAlbedoEpsilon;
 }
 
 struct Layout {
@@ -148,25 +160,32 @@ void bmfrRegression(const Frame& f, const Image& noisy, const BmfrSettings& s, i
         // Load raw features and colour.
         float lo[3] = { 0, 0, 0 }, hi[3] = { 0, 0, 0 };
         double mean[3] = { 0, 0, 0 };
+        int used = 0;
         for (int r = 0; r < n; ++r) {
             const int x = mirror(bx0 + r % B, W), y = mirror(by0 + r / B, H);
+            if (unreliable(f, x, y)) continue;
+            ++used;
             float* fr = &feat[static_cast<std::size_t>(r) * nf];
             fr[0] = 1.0f;
             for (int k = 0; k < L.normals; ++k) fr[1 + k] = f.normal(x, y, k);
             float* sc = fr + 1 + L.normals;
             scaledRaw(f, x, y, L.scaled, sc);
             for (int k = 0; k < L.scaled; ++k) {
-                lo[k] = r == 0 ? sc[k] : std::min(lo[k], sc[k]);
-                hi[k] = r == 0 ? sc[k] : std::max(hi[k], sc[k]);
+                lo[k] = used == 1 ? sc[k] : std::min(lo[k], sc[k]);
+                hi[k] = used == 1 ? sc[k] : std::max(hi[k], sc[k]);
             }
             const float* c = noisy.at(x, y);
             for (int k = 0; k < 3; ++k) mean[k] += c[k];
         }
         float meanF[3];
-        for (int k = 0; k < 3; ++k) meanF[k] = static_cast<float>(mean[k] / n);
+        for (int k = 0; k < 3; ++k) meanF[k] = used ? static_cast<float>(mean[k] / used) : 0.0f;
         for (int r = 0; r < n; ++r) {
             const int x = mirror(bx0 + r % B, W), y = mirror(by0 + r / B, H);
             float* fr = &feat[static_cast<std::size_t>(r) * nf];
+            if (unreliable(f, x, y)) { // zero row: no influence on the fit
+                for (int k = 0; k < nf + 3; ++k) a[static_cast<std::size_t>(k) * n + r] = 0.0;
+                continue;
+            }
             float* sc = fr + 1 + L.normals;
             for (int k = 0; k < L.scaled; ++k) {
                 const float range = hi[k] - lo[k];
@@ -187,6 +206,10 @@ void bmfrRegression(const Frame& f, const Image& noisy, const BmfrSettings& s, i
         for (int r = 0; r < n; ++r) {
             const int x = bx0 + r % B, y = by0 + r / B;
             if (x < 0 || y < 0 || x >= W || y >= H) continue;
+            if (unreliable(f, x, y)) {
+                for (int c = 0; c < 3; ++c) filtered(x, y, c) = noisy(x, y, c);
+                continue;
+            }
             const float* fr = &feat[static_cast<std::size_t>(r) * nf];
             for (int c = 0; c < 3; ++c) {
                 double v = 0.0;
