@@ -131,6 +131,7 @@ void createInstance(OfxImageEffectHandle effect)
     if (inst->general)
         for (int i = 0; i < 4; ++i) inst->aux[i] = clip(kAuxClips[i].clip);
     p.setPointer(kOfxPropInstanceData, inst.release());
+    showCurrentMethod(effect);
 }
 
 void destroyInstance(OfxImageEffectHandle effect)
@@ -247,6 +248,13 @@ OfxStatus denoiseAction(const std::string& action, OfxImageEffectHandle effect,
         Instance& inst = instanceOf(effect);
         std::lock_guard<std::mutex> lock(inst.mutex);
         inst.runner.clear();
+        return kOfxStatOK;
+    }
+    if (action == kOfxActionInstanceChanged) {
+        Props in(inArgs);
+        if (in.getString(kOfxPropType) == kOfxTypeParameter &&
+            in.getString(kOfxPropName) == kParamMethod)
+            showCurrentMethod(effect);
         return kOfxStatOK;
     }
     if (action == kOfxImageEffectActionGetRegionOfDefinition) {

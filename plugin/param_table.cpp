@@ -210,6 +210,31 @@ static int getIntValue(OfxParamSetHandle set, const std::string& name)
     return v;
 }
 
+void showCurrentMethod(OfxImageEffectHandle instance)
+{
+    const ParamCatalog& c = paramCatalog();
+    OfxParamSetHandle set = nullptr;
+    check(suites().effect->getParamSet(instance, &set), "getting the parameter set");
+    const int m = getIntValue(set, kParamMethod);
+    const std::string current = m >= 0 && m < int(c.methods.size()) ? c.methods[m] : "";
+    auto hide = [&](const std::string& name, bool secret) {
+        OfxParamHandle h = nullptr;
+        OfxPropertySetHandle props = nullptr;
+        check(suites().param->paramGetHandle(set, name.c_str(), &h, &props), "finding " + name);
+        Props(props).set(kOfxParamPropSecret, secret ? 1 : 0);
+    };
+    std::string group;
+    for (const ParamSpec& p : c.params) {
+        if (p.method.empty()) continue;
+        const bool secret = p.method != current;
+        if (p.method != group) {
+            group = p.method;
+            hide("group_" + group, secret);
+        }
+        hide(p.ofxName, secret);
+    }
+}
+
 Settings readSettings(OfxImageEffectHandle instance)
 {
     const ParamCatalog& c = paramCatalog();

@@ -40,6 +40,10 @@ const ParamCatalog& paramCatalog();
 /// `temporalDefault`: default of the temporal switch (off in the Filter context).
 void defineParams(OfxImageEffectHandle descriptor, bool temporalDefault);
 
+/// Show the parameters of the instance's current method and hide (kOfxParamPropSecret) the other
+/// methods' groups and parameters; called at instance creation and when "method" changes.
+void showCurrentMethod(OfxImageEffectHandle instance);
+
 /// The parameter values of an instance that matter for its current method.
 struct Settings {
     std::string method;

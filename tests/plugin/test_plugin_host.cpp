@@ -175,6 +175,24 @@ TEST(PluginHost, LoadsDescribesAndUnloads)
         }
 }
 
+TEST(PluginHost, OnlyTheCurrentMethodsParametersAreShown)
+{
+    Session s;
+    ASSERT_TRUE(s.loaded);
+    for (const std::string& m : afn::filterTypes()) {
+        auto inst = s.instance(m, {});
+        int groups = 0;
+        for (const auto& p : inst->params.params) {
+            if (p->name.rfind("group_", 0) != 0 || p->name == "group_inputs") continue;
+            ++groups;
+            const std::string owner = p->name.substr(6);
+            EXPECT_EQ(p->props.getInt(kOfxParamPropSecret), owner == m ? 0 : 1) << m << " " << p->name;
+        }
+        if (afn::filterTypes().size() > 2) EXPECT_GT(groups, 1); // methods with own parameters
+        EXPECT_EQ(s.host.destroyInstance(inst.get()), kOfxStatOK);
+    }
+}
+
 TEST(PluginHost, WholeFramesMatchCApi)
 {
     Session s;
