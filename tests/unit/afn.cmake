@@ -6,6 +6,7 @@ afn_add_gtest(test_afn
     unit/test_afn_layers.cpp
     unit/test_afn_parity.cpp
     unit/test_afn_filter.cpp
+    unit/test_afn_ta_parity.cpp
   LIBS afn_core)
 # The embedding mechanism of the shipped weights, exercised on a committed parity file.
 include(AfnEmbed)
