@@ -172,6 +172,7 @@ FrameImages readFrame(const std::string& path, const ReadOptions& options = {});
 /// Parse oiiotool-style frame ranges: "1-10", "1-10x2", "3,5,7", "1-4,10". Throws IoError.
 std::vector<int> parseFrameRange(const std::string& text);
 /// True when the name holds a frame pattern: '#' (4 digits each), '@' (1 digit each), %0Nd.
+/// A lone '#' is 4 digits (oiiotool); a run of '#' is one digit each ("####" = 4, as in Nuke).
 bool hasFramePattern(const std::string& pattern);
 /// Substitute a frame number ("shot.####.exr", 7 -> "shot.0007.exr"; negative frames keep '-').
 std::string expandFramePattern(const std::string& pattern, int frame);
