@@ -16,6 +16,9 @@ std::vector<ParamDesc> reprojectParams()
                    "history tap accepted if its world position is closer than this many pixel "
                    "footprints (world size of the current pixel; scene-relative). BMFR's absolute "
                    "sponza limit 0.04 is about 4 footprints at 720p"),
+        floatParam("positionLimitSquared", 0.0, 0.0, 1e6, "Absolute position limit (squared)",
+                   "if > 0, BMFR's absolute test |p_prev - p|^2 < this (scene units squared, from "
+                   "camera_matrices.h: sponza 0.0016, classroom 0.01) replaces positionLimit"),
         floatParam("normalLimitSquared", 0.25, 0.0, 4.0, "Normal limit (squared)",
                    "history tap accepted if the squared distance of the unit normals is below this "
                    "(BMFR sponza 0.25, about 29 degrees; unitless)"),
@@ -29,6 +32,7 @@ ReprojectSettings readReprojectSettings(const ParamSet& params)
 {
     ReprojectSettings s;
     s.positionLimit = params.getFloat("positionLimit");
+    s.positionLimitSquared = params.getFloat("positionLimitSquared");
     s.normalLimitSquared = params.getFloat("normalLimitSquared");
     s.depthLimit = params.getFloat("depthLimit");
     return s;
@@ -111,8 +115,12 @@ bool Reprojector::accept(const Frame& f, int x, int y, int tx, int ty, float fp)
     if (tx < 0 || ty < 0 || tx >= f.width || ty >= f.height) return false;
     if (f.hasPosition() && !m_prevPosition.empty()) {
         const float d2 = dist2(m_prevPosition.at(tx, ty), f.position.at(x, y));
-        const float lim = m_settings.positionLimit * fp;
-        if (!(d2 == 0.0f || d2 < lim * lim)) return false;
+        if (m_settings.positionLimitSquared > 0.0f) {
+            if (!(d2 < m_settings.positionLimitSquared)) return false;
+        } else {
+            const float lim = m_settings.positionLimit * fp;
+            if (!(d2 == 0.0f || d2 < lim * lim)) return false;
+        }
     } else if (f.hasDepth() && !m_prevDepth.empty()) {
         const float z = f.depth(x, y, 0);
         const float dz = std::fabs(m_prevDepth(tx, ty, 0) - z);
@@ -138,7 +146,8 @@ void Reprojector::compute(const Frame& f)
                           (m_prevNormal.empty() || m_prevNormal.width() == f.width) &&
                           (m_prevDepth.empty() || m_prevDepth.width() == f.width);
     if (!sameSize) return;
-    const bool usePosition = f.hasPosition() && !m_prevPosition.empty();
+    const bool usePosition = f.hasPosition() && !m_prevPosition.empty() &&
+                             !(m_settings.positionLimitSquared > 0.0f);
     parallelRows(f.height, [&](int y0, int y1) {
         for (int y = y0; y < y1; ++y)
             for (int x = 0; x < f.width; ++x) {

@@ -14,7 +14,8 @@
 //     footprint = the world-space size of the current pixel, estimated as max over the two axes of
 //     the smaller distance to the left/right (top/bottom) neighbour's position. A scene scaled 10x
 //     has 10x larger footprints, so the limit is scene-relative. (BMFR uses absolute per-scene
-//     limits, e.g. sponza 0.04 units, which is about 4 footprints at 720p.)
+//     limits, e.g. sponza 0.04 units, which is about 4 footprints at 720p; positionLimitSquared > 0
+//     selects that absolute test, |p_prev(tap) - p|^2 < positionLimitSquared, to reproduce BMFR.)
 //   - depth (only when there is no position): |z_prev(tap) - z| < depthLimit * z (relative), or equal;
 //   - normal: |n_prev(tap) - n|^2 < normalLimitSquared (BMFR: squared distance of the normals,
 //     sponza 0.25); a zero normal never matches.
@@ -35,6 +36,9 @@ namespace afn {
 struct ReprojectSettings {
     /// [0; 1000] position limit in current-pixel footprints (default 4: about BMFR's sponza limit).
     float positionLimit = 4.0f;
+    /// [0; 1e6] if > 0: BMFR's absolute limit on the squared position distance (scene units^2,
+    /// camera_matrices.h position_limit_squared, sponza 0.0016), replacing positionLimit.
+    float positionLimitSquared = 0.0f;
     /// [0; 4] limit on the squared distance of unit normals (BMFR sponza 0.25 = 29 degrees).
     float normalLimitSquared = 0.25f;
     /// [0; 10] relative depth limit |dz| / z, used only without positions (default 0.1).

@@ -196,6 +196,23 @@ TEST(MethodsReproject, PositionLimitIsScaleInvariant)
     }
 }
 
+TEST(MethodsReproject, AbsolutePositionLimitIsBmfrsStrictTest)
+{
+    Frame f0 = baseFrame(), f1 = baseFrame();
+    f0.position = Image(W, H, 3, 0.0f);
+    f1.position = makeImage(W, H, 3, [](int x, int, int c) { return c == 2 && x == 5 ? 0.041f : 0.0f; });
+    f1.position(7, 2, 2) = 0.039f;
+    afn::ReprojectSettings s;
+    s.positionLimitSquared = 0.0016f; // sponza: 0.04^2, strict
+    Reprojector r;
+    r.setSettings(s);
+    r.storeGeometry(f0);
+    r.compute(f1);
+    EXPECT_EQ(r.taps(5, 3).mask & 1u, 0u);  // 0.041^2 > 0.0016
+    EXPECT_NE(r.taps(7, 2).mask & 1u, 0u);  // 0.039^2 < 0.0016
+    EXPECT_NE(r.taps(1, 1).mask & 1u, 0u);
+}
+
 TEST(MethodsReproject, MotionOnlyAcceptsEveryInImageTap)
 {
     Frame f0 = planeFrame(0, 0, true, 0, 0, false);
