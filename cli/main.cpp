@@ -1,2 +1,109 @@
 // SPDX-License-Identifier: Apache-2.0
-int main() { return 0; }
+// afntool: oiiotool-style command line over afn's public APIs (libafn, afn_io, afn_color).
+// Errors print "afntool ERROR: <what> (<file>)" on stderr and exit with 1; nothing half-written
+// is left behind (every output is written atomically).
+#include "cli_error.h"
+#include "frame_loader.h"
+#include "ops.h"
+#include "options.h"
+#include "progress.h"
+
+#include <cstdio>
+#include <memory>
+
+namespace afntool {
+
+namespace {
+
+bool needsAllChannels(const Options& opts)
+{
+    if (opts.keepAovs) return true;
+    for (const Action& a : opts.actions)
+        if (a.name == "contact-sheet") return true;
+    return false;
+}
+
+int run(const Options& opts)
+{
+    if (opts.help) {
+        std::fputs(helpText().c_str(), stdout);
+        return 0;
+    }
+    if (opts.version) {
+        std::printf("afntool %d.%d.%d\n", AFN_VERSION_MAJOR, AFN_VERSION_MINOR, AFN_VERSION_PATCH);
+        return 0;
+    }
+    const std::vector<FrameRef> frames = resolveFrames(opts);
+    RunContext ctx(opts);
+
+    bool infoOnly = !opts.actions.empty();
+    for (const Action& a : opts.actions) infoOnly = infoOnly && a.name == "info";
+    if (infoOnly) {
+        runInfo(ctx, frames);
+        return 0;
+    }
+    if (opts.actions.empty()) throw CliError("nothing to do: give an action (--info, --denoise, -o, ...)");
+    if (opts.inputs.size() != 1)
+        throw CliError("processing takes exactly one input (file, pattern or dataset folder)");
+
+    std::vector<std::string> inputPaths;
+    for (const FrameRef& f : frames) inputPaths.push_back(f.path);
+
+    std::unique_ptr<SequenceDenoiser> denoiser;
+    for (const Action& a : opts.actions)
+        if (a.name == "denoise") {
+            if (denoiser) throw CliError("--denoise given twice");
+            denoiser = std::make_unique<SequenceDenoiser>(opts, a);
+        }
+
+    Progress progress(static_cast<int>(frames.size()), opts.quiet);
+    const bool keepAll = needsAllChannels(opts);
+    for (std::size_t i = 0; i < frames.size(); ++i) {
+        progress.update(static_cast<int>(i), frames[i].path);
+        LoadedFrame frame = loadFrame(ctx, frames[i], keepAll);
+        for (const std::string& w : frame.images.mapping.warnings) warn(w + " (" + frames[i].path + ")", opts.quiet, &progress);
+        for (const Action& a : opts.actions) {
+            if (a.name == "info") {
+                runInfo(ctx, { frames[i] });
+            } else if (a.name == "denoise") {
+                denoiser->process(frame, &progress);
+            } else {
+                const std::string out = outputPath(a.arg, frames[i], frames.size(),
+                                                   a.name == "output" ? "-o" : "--" + a.name);
+                if (a.name == "output")
+                    writeOutput(ctx, frame, out, inputPaths);
+                else if (a.name == "preview")
+                    writePreview(ctx, frame, a, out, inputPaths);
+                else
+                    writeContactSheet(ctx, frame, a, out, inputPaths);
+            }
+        }
+    }
+    progress.update(static_cast<int>(frames.size()), "done");
+    return 0;
+}
+
+} // namespace
+
+} // namespace afntool
+
+int main(int argc, char** argv)
+{
+    using afntool::CliError;
+    try {
+        const afntool::Options opts = afntool::parseCommandLine(argc, argv);
+        return afntool::run(opts);
+    } catch (const CliError& e) {
+        if (e.file().empty())
+            std::fprintf(stderr, "afntool ERROR: %s\n", e.what());
+        else
+            std::fprintf(stderr, "afntool ERROR: %s (%s)\n", e.what(), e.file().c_str());
+    } catch (const std::bad_alloc&) {
+        std::fprintf(stderr, "afntool ERROR: out of memory\n");
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "afntool ERROR: %s\n", e.what());
+    } catch (...) {
+        std::fprintf(stderr, "afntool ERROR: unknown failure\n");
+    }
+    return 1;
+}

@@ -1,0 +1,50 @@
+// SPDX-License-Identifier: Apache-2.0
+// afntool's actions. Each calls the libraries' public APIs; no pixel math lives in the CLI.
+#pragma once
+
+#include "frame_loader.h"
+
+#include "afn/afn.hpp"
+
+#include <string>
+#include <vector>
+
+namespace afntool {
+
+class Progress;
+
+/// --info: print layers, channels, windows, role mapping and per-role statistics (text or JSON).
+void runInfo(RunContext& ctx, const std::vector<FrameRef>& frames);
+
+/// -o: write the current beauty as top-level R,G,B[,A] (+ other layers with --keep-aovs).
+void writeOutput(RunContext& ctx, const LoadedFrame& frame, const std::string& path,
+                 const std::vector<std::string>& inputs);
+
+/// --preview: the current beauty through the OCIO display/view (:display= :view=) to an 8-bit image.
+void writePreview(RunContext& ctx, const LoadedFrame& frame, const Action& action,
+                  const std::string& path, const std::vector<std::string>& inputs);
+
+/// --contact-sheet: every role and every other layer of the frame as labelled tiles.
+void writeContactSheet(RunContext& ctx, const LoadedFrame& frame, const Action& action,
+                       const std::string& path, const std::vector<std::string>& inputs);
+
+/// --denoise: one afn filter kept across the frames of the run (history in frame order).
+class SequenceDenoiser {
+public:
+    SequenceDenoiser(const Options& opts, const Action& action);
+    /// Denoise the frame's beauty in place; warnings (sanitised inputs) go through `progress`.
+    void process(LoadedFrame& frame, Progress* progress);
+    const std::string& method() const { return m_method; }
+
+private:
+    void check(const std::string& what, const std::string& file);
+
+    const Options& m_opts;
+    std::string m_method;
+    std::map<std::string, std::string> m_params;
+    afn::DeviceRef m_device;
+    afn::FilterRef m_filter;
+    std::vector<float> m_output;
+};
+
+} // namespace afntool

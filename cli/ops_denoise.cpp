@@ -1,0 +1,106 @@
+// SPDX-License-Identifier: Apache-2.0
+#include "ops.h"
+
+#include "cli_error.h"
+#include "progress.h"
+
+namespace afntool {
+
+using afn::io::Role;
+
+SequenceDenoiser::SequenceDenoiser(const Options& opts, const Action& action) : m_opts(opts)
+{
+    m_params = action.mods;
+    auto it = m_params.find("method");
+    if (it == m_params.end())
+        throw CliError("--denoise needs :method=NAME (see afntool --help for the methods)");
+    m_method = it->second;
+    m_params.erase(it);
+    m_device = afn::newDevice();
+    if (!m_device) throw CliError("cannot create an afn device");
+    m_device.set("numThreads", opts.threads);
+    m_device.commit();
+    check("device", "");
+    m_filter = m_device.newFilter(m_method.c_str());
+    check("--denoise", "");
+}
+
+void SequenceDenoiser::check(const std::string& what, const std::string& file)
+{
+    std::string message;
+    if (m_device.getError(&message) != afn::Error::None)
+        throw CliError(what + ": " + message, file);
+}
+
+namespace {
+
+afn::Format formatFor(int components)
+{
+    switch (components) {
+    case 1: return afn::Format::Float;
+    case 2: return afn::Format::Float2;
+    case 3: return afn::Format::Float3;
+    default: return afn::Format::Float4;
+    }
+}
+
+} // namespace
+
+void SequenceDenoiser::process(LoadedFrame& frame, Progress* progress)
+{
+    afn::io::FrameImages& img = frame.images;
+    const afn::io::RoleImage& color = img.roles.at(Role::Color);
+    const int w = color.width, h = color.height;
+
+    // Conventions of this file's AOVs, then the user's explicit parameters (which win).
+    const afn::io::SpaceTag& tag = img.mapping.tag;
+    m_filter.set("normal.space", tag.normalSpace);
+    m_filter.set("depth.kind", tag.depthKind);
+    m_filter.set("motion.direction", tag.motionDirection);
+    m_filter.set("motion.yUp", tag.motionYUp);
+    m_filter.set("motion.units", tag.motionUnits);
+    m_filter.set("color.demodulated", tag.colorDemodulated);
+    for (const auto& [key, value] : m_params) m_filter.set(key.c_str(), value);
+    check("--denoise", frame.ref.path);
+
+    // The working-space beauty is the colour input; other roles as read.
+    m_filter.setImage("color", frame.beauty.data(), afn::Format::Float3, w, h);
+    const std::pair<Role, const char*> roles[] = { { Role::Albedo, "albedo" },
+                                                   { Role::Normal, "normal" },
+                                                   { Role::Depth, "depth" },
+                                                   { Role::Position, "position" },
+                                                   { Role::Motion, "motion" },
+                                                   { Role::Alpha, "alpha" } };
+    for (const auto& [role, name] : roles) {
+        auto it = img.roles.find(role);
+        if (it == img.roles.end()) {
+            m_filter.unsetImage(name);
+            continue;
+        }
+        afn::io::RoleImage& r = it->second;
+        m_filter.setImage(name, r.pixels.data(), formatFor(r.components), r.width, r.height, 0,
+                          r.components * sizeof(float), 0);
+    }
+    if (img.camera) {
+        m_filter.setFloats("viewProjection", img.camera->viewProjection, 16);
+        m_filter.setFloats("pixelOffset", img.camera->pixelOffset, 2);
+    }
+    m_output.assign(static_cast<std::size_t>(w) * h * 3, 0.0f);
+    m_filter.setImage("output", m_output.data(), afn::Format::Float3, w, h);
+    m_filter.commit();
+    check("--denoise", frame.ref.path);
+    m_filter.execute();
+    check("--denoise", frame.ref.path);
+
+    const int nonFinite = m_filter.get<int>("stats.nonFinite");
+    const int negative = m_filter.get<int>("stats.negative");
+    if (nonFinite > 0)
+        warn(std::to_string(nonFinite) + " NaN/Inf input values replaced by 0 (" + frame.ref.path + ")",
+             m_opts.quiet, progress);
+    if (negative > 0)
+        warn(std::to_string(negative) + " negative colour values clamped to 0 (" + frame.ref.path + ")",
+             m_opts.quiet, progress);
+    frame.beauty.swap(m_output);
+}
+
+} // namespace afntool

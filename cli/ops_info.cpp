@@ -1,0 +1,170 @@
+// SPDX-License-Identifier: Apache-2.0
+#include "ops.h"
+
+#include "cli_error.h"
+#include "json_writer.h"
+
+#include <cstdio>
+#include <sstream>
+
+namespace afntool {
+
+namespace {
+
+using afn::io::Role;
+
+std::string join(const std::vector<std::string>& v, const char* sep = ", ")
+{
+    std::string out;
+    for (std::size_t i = 0; i < v.size(); ++i) out += (i ? sep : "") + v[i];
+    return out;
+}
+
+std::string boxText(const afn::io::Box& b)
+{
+    std::ostringstream os;
+    os << b.width << "x" << b.height << " at (" << b.x << ", " << b.y << ")";
+    return os.str();
+}
+
+struct FileReport {
+    std::string path;
+    afn::io::FileInfo info;
+    afn::io::RoleMapping mapping;
+    std::map<Role, afn::io::RoleStats> stats;
+};
+
+FileReport collect(const Options& opts, const FrameRef& ref)
+{
+    FileReport r;
+    r.path = ref.path;
+    try {
+        afn::io::ReadOptions ro;
+        ro.overrides = opts.overrides;
+        ro.required = {};
+        const afn::io::FrameImages fi = afn::io::readFrame(ref.path, ro);
+        r.mapping = fi.mapping;
+        for (const auto& [role, image] : fi.roles) r.stats[role] = afn::io::computeStats(image);
+        if (ref.path.find("#bmfr:") == std::string::npos) {
+            r.info = afn::io::inspect(ref.path);
+        } else {
+            r.info.path = ref.path;
+            r.info.format = "bmfr";
+        }
+    } catch (const afn::io::IoError& e) {
+        throw CliError(e.what(), e.file().empty() ? ref.path : e.file());
+    }
+    return r;
+}
+
+void printText(const FileReport& r)
+{
+    std::printf("%s\n", r.path.c_str());
+    std::printf("  format: %s, renderer: %s\n", r.info.format.c_str(), r.mapping.renderer.c_str());
+    for (std::size_t s = 0; s < r.info.subimages.size(); ++s) {
+        const afn::io::SubimageInfo& si = r.info.subimages[s];
+        std::printf("  subimage %zu%s%s: data window %s, display window %s, compression %s\n", s,
+                    si.name.empty() ? "" : " ", si.name.c_str(), boxText(si.dataWindow).c_str(),
+                    boxText(si.displayWindow).c_str(), si.compression.c_str());
+        std::printf("    %zu channels:", si.channels.size());
+        for (std::size_t c = 0; c < si.channels.size(); ++c)
+            std::printf("%s %s (%s)", c ? "," : "", si.channels[c].c_str(),
+                        c < si.types.size() ? si.types[c].c_str() : "?");
+        std::printf("\n");
+    }
+    std::printf("  roles:\n");
+    for (int i = 0; i < afn::io::kNumRoles; ++i) {
+        const Role role = static_cast<Role>(i);
+        const afn::io::RoleChannels* rc = r.mapping.find(role);
+        if (rc) {
+            std::printf("    %-9s %s  [%s]\n", afn::io::roleName(role), join(rc->channels).c_str(),
+                        rc->source.c_str());
+            auto st = r.stats.find(role);
+            if (st != r.stats.end())
+                std::printf("              min %.6g  max %.6g  mean %.6g  NaN %lld  Inf %lld  "
+                            "negative %lld\n",
+                            st->second.min, st->second.max, st->second.mean, st->second.nan,
+                            st->second.inf, st->second.negative);
+        } else {
+            auto lf = r.mapping.lookedFor.find(role);
+            std::printf("    %-9s (not found; looked for %s)\n", afn::io::roleName(role),
+                        lf == r.mapping.lookedFor.end() ? "-" : join(lf->second).c_str());
+        }
+    }
+    const afn::io::SpaceTag& t = r.mapping.tag;
+    std::printf("  conventions: normal.space=%s depth.kind=%s motion.direction=%s motion.yUp=%d "
+                "motion.units=%s color.demodulated=%d\n",
+                t.normalSpace.c_str(), t.depthKind.c_str(), t.motionDirection.c_str(),
+                t.motionYUp ? 1 : 0, t.motionUnits.c_str(), t.colorDemodulated ? 1 : 0);
+}
+
+void writeJson(JsonWriter& j, const FileReport& r)
+{
+    j.beginObject();
+    j.field("file", r.path);
+    j.field("format", r.info.format);
+    j.field("renderer", r.mapping.renderer);
+    const afn::io::SubimageInfo* first = r.info.subimages.empty() ? nullptr : &r.info.subimages[0];
+    j.field("width", first ? first->dataWindow.width : 0);
+    j.field("height", first ? first->dataWindow.height : 0);
+    std::vector<std::string> all;
+    for (const auto& si : r.info.subimages)
+        for (const auto& c : si.channels) all.push_back(si.name.empty() || r.info.subimages.size() == 1 ? c : si.name + "." + c);
+    j.key("channels").value(all);
+    j.key("subimages").beginArray();
+    for (const auto& si : r.info.subimages) {
+        j.beginObject();
+        j.field("name", si.name);
+        j.key("dataWindow").beginObject().field("x", si.dataWindow.x).field("y", si.dataWindow.y)
+            .field("width", si.dataWindow.width).field("height", si.dataWindow.height).endObject();
+        j.key("displayWindow").beginObject().field("x", si.displayWindow.x).field("y", si.displayWindow.y)
+            .field("width", si.displayWindow.width).field("height", si.displayWindow.height).endObject();
+        j.key("channels").value(si.channels);
+        j.key("types").value(si.types);
+        j.field("compression", si.compression);
+        j.endObject();
+    }
+    j.endArray();
+    j.key("roles").beginObject();
+    for (const auto& rc : r.mapping.roles) j.key(afn::io::roleName(rc.role)).value(rc.channels);
+    j.endObject();
+    j.key("missingRoles").beginObject();
+    for (const auto& [role, looked] : r.mapping.lookedFor) j.key(afn::io::roleName(role)).value(looked);
+    j.endObject();
+    const afn::io::SpaceTag& t = r.mapping.tag;
+    j.key("conventions").beginObject().field("normal.space", t.normalSpace).field("depth.kind", t.depthKind)
+        .field("motion.direction", t.motionDirection).field("motion.yUp", t.motionYUp)
+        .field("motion.units", t.motionUnits).field("color.demodulated", t.colorDemodulated).endObject();
+    j.key("stats").beginObject();
+    for (const auto& [role, s] : r.stats) {
+        j.key(afn::io::roleName(role)).beginObject().field("min", s.min).field("max", s.max)
+            .field("mean", s.mean).field("nan", s.nan).field("inf", s.inf).field("negative", s.negative)
+            .field("count", s.count).endObject();
+    }
+    j.endObject();
+    j.endObject();
+}
+
+} // namespace
+
+void runInfo(RunContext& ctx, const std::vector<FrameRef>& frames)
+{
+    const Options& opts = ctx.options();
+    std::vector<FileReport> reports;
+    for (const FrameRef& ref : frames) reports.push_back(collect(opts, ref));
+    if (!opts.json) {
+        for (const FileReport& r : reports) printText(r);
+        return;
+    }
+    JsonWriter j;
+    if (reports.size() == 1) {
+        writeJson(j, reports[0]);
+    } else {
+        j.beginArray();
+        for (const FileReport& r : reports) writeJson(j, r);
+        j.endArray();
+    }
+    std::printf("%s\n", j.str().c_str());
+}
+
+} // namespace afntool

@@ -1,0 +1,205 @@
+// SPDX-License-Identifier: Apache-2.0
+// afntool end to end: info/JSON on a real Blender EXR, conversion, AOV copying, sequences,
+// previews, and every error path (clear message, non-zero exit, nothing half-written).
+#include "cli_runner.h"
+
+#include "afn/io.hpp"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+
+namespace fs = std::filesystem;
+
+namespace {
+
+const std::string kBlender = std::string(AFN_TEST_DATA) + "/blender_64x36.exr";
+const std::string kSequence = std::string(AFN_EXAMPLES_DIR) + "/sequence/frame.####.exr";
+const std::string kFrame0 = std::string(AFN_EXAMPLES_DIR) + "/sequence/frame.0000.exr";
+
+void expectCleanError(const CliResult& r, const std::string& needle)
+{
+    EXPECT_NE(r.exitCode, 0);
+    EXPECT_EQ(r.err.rfind("afntool ERROR: ", 0), 0u) << r.err;
+    EXPECT_NE(r.err.find(needle), std::string::npos) << "stderr: " << r.err;
+    EXPECT_LT(r.exitCode, 128) << "killed by a signal";
+}
+
+/// Write a small EXR with the given channels, each channel c filled with value c + 0.25.
+void writeExr(const std::string& path, int w, int h, const std::vector<std::string>& channels)
+{
+    std::vector<float> px(static_cast<size_t>(w) * h * channels.size());
+    for (size_t i = 0; i < px.size(); ++i) px[i] = float(i % channels.size()) + 0.25f;
+    afn::io::WriteOptions wo;
+    wo.dataType = "float";
+    afn::io::writeImageAtomic(path, w, h, channels, px.data(), wo);
+}
+
+TEST(Afntool, HelpListsMethodsAndParameters)
+{
+    const CliResult r = runAfntool({ "--help" });
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_NE(r.out.find("identity"), std::string::npos);
+    EXPECT_NE(r.out.find("normal.space=world"), std::string::npos);
+    EXPECT_NE(r.out.find("--denoise:method=NAME"), std::string::npos);
+}
+
+TEST(Afntool, InfoJsonMapsBlenderRoles)
+{
+    const CliResult r = runAfntool({ "--info", "--json", kBlender });
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    for (const char* key : { "\"file\"", "\"width\": 64", "\"height\": 36", "\"channels\"",
+                             "\"renderer\": \"blender\"" })
+        EXPECT_NE(r.out.find(key), std::string::npos) << key << "\n" << r.out;
+    const size_t roles = r.out.find("\"roles\": {");
+    ASSERT_NE(roles, std::string::npos);
+    const std::string rolesObj = r.out.substr(roles, r.out.find('}', roles) - roles);
+    for (const char* role : { "color", "albedo", "normal", "depth", "position", "motion" })
+        EXPECT_NE(rolesObj.find(std::string("\"") + role + "\": [\"ViewLayer."), std::string::npos)
+            << role << " in " << rolesObj;
+    EXPECT_NE(r.out.find("\"motion.yUp\": true"), std::string::npos);
+}
+
+TEST(Afntool, InfoTextShowsStatisticsAndMissingRoles)
+{
+    TempDir dir;
+    writeExr(dir.file("plain.exr"), 4, 3, { "R", "G", "B" });
+    const CliResult r = runAfntool({ "--info", dir.file("plain.exr") });
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_NE(r.out.find("min 0.25  max 2.25  mean 1.25"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("albedo    (not found; looked for"), std::string::npos) << r.out;
+}
+
+TEST(Afntool, ConvertWritesTopLevelBeautyAndKeepsAovsOnRequest)
+{
+    TempDir dir;
+    const std::string out = dir.file("out.exr"), outAovs = dir.file("aovs.exr");
+    CliResult r = runAfntool({ kBlender, "-d", "float", "-o", out });
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    const afn::io::FileInfo info = afn::io::inspect(out);
+    ASSERT_EQ(info.subimages.size(), 1u);
+    EXPECT_EQ(info.subimages[0].channels, (std::vector<std::string> { "R", "G", "B", "A" }));
+    // Pixel values equal the input beauty (float output, working space = the file's space).
+    const afn::io::FrameImages in = afn::io::readFrame(kBlender);
+    const afn::io::FrameImages back = afn::io::readFrame(out);
+    const auto& a = in.roles.at(afn::io::Role::Color).pixels;
+    const auto& b = back.roles.at(afn::io::Role::Color).pixels;
+    ASSERT_EQ(a.size(), b.size());
+    for (size_t i = 0; i < a.size(); ++i) ASSERT_NEAR(a[i], b[i], 1e-5f * std::max(1.0f, std::fabs(a[i]))) << i;
+
+    r = runAfntool({ kBlender, "--keep-aovs", "-o", outAovs });
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    const afn::io::FileInfo kept = afn::io::inspect(outAovs);
+    const auto& ch = kept.subimages[0].channels;
+    EXPECT_NE(std::find(ch.begin(), ch.end(), "ViewLayer.Vector.X"), ch.end());
+    EXPECT_NE(std::find(ch.begin(), ch.end(), "ViewLayer.Denoising Albedo.R"), ch.end());
+    EXPECT_EQ(std::find(ch.begin(), ch.end(), "ViewLayer.Combined.R"), ch.end()) << "beauty is top-level";
+}
+
+TEST(Afntool, MissingFileIsAClearError)
+{
+    TempDir dir;
+    expectCleanError(runAfntool({ dir.file("nope.exr"), "-o", dir.file("o.exr") }), "nope.exr");
+    EXPECT_EQ(dir.entries().size(), 0u);
+}
+
+TEST(Afntool, TruncatedExrIsAClearError)
+{
+    TempDir dir;
+    const std::string good = dir.file("good.exr"), bad = dir.file("bad.exr");
+    writeExr(good, 64, 64, { "R", "G", "B" });
+    const auto size = fs::file_size(good);
+    fs::copy_file(good, bad);
+    fs::resize_file(bad, size / 2);
+    expectCleanError(runAfntool({ bad, "-o", dir.file("o.exr") }), "bad.exr");
+    EXPECT_FALSE(fs::exists(dir.file("o.exr")));
+    EXPECT_EQ(dir.entries().size(), 2u) << "no temporary file left behind";
+}
+
+TEST(Afntool, FileWithoutColourNamesWhatWasLookedFor)
+{
+    TempDir dir;
+    writeExr(dir.file("nocolor.exr"), 4, 4, { "N.X", "N.Y", "N.Z" });
+    const CliResult r = runAfntool({ dir.file("nocolor.exr"), "-o", dir.file("o.exr") });
+    expectCleanError(r, "nocolor.exr");
+    EXPECT_NE(r.err.find("color"), std::string::npos);
+    EXPECT_NE(r.err.find("R"), std::string::npos) << "names the channels looked for";
+    EXPECT_FALSE(fs::exists(dir.file("o.exr")));
+}
+
+TEST(Afntool, UnwritableOutputIsAClearError)
+{
+    TempDir dir;
+    writeExr(dir.file("in.exr"), 4, 4, { "R", "G", "B" });
+    // The parent of the output is a regular file (fails even for root).
+    expectCleanError(runAfntool({ dir.file("in.exr"), "-o", dir.file("in.exr") + "/o.exr" }), "o.exr");
+    // The output names an existing directory.
+    fs::create_directory(dir.file("adir"));
+    expectCleanError(runAfntool({ dir.file("in.exr"), "-o", dir.file("adir") }), "adir");
+    EXPECT_EQ(dir.entries().size(), 2u);
+}
+
+TEST(Afntool, RefusesToOverwriteItsInput)
+{
+    TempDir dir;
+    writeExr(dir.file("in.exr"), 4, 4, { "R", "G", "B" });
+    const auto before = fs::file_size(dir.file("in.exr"));
+    expectCleanError(runAfntool({ dir.file("in.exr"), "-d", "half", "-o", dir.file("in.exr") }), "in.exr");
+    EXPECT_EQ(fs::file_size(dir.file("in.exr")), before);
+}
+
+TEST(Afntool, UnknownArgumentsAndMethods)
+{
+    expectCleanError(runAfntool({ "--frobnicate" }), "--frobnicate");
+    expectCleanError(runAfntool({ kBlender, "--denoise:method=nope", "-o", "/tmp/x.exr" }), "nope");
+    expectCleanError(runAfntool({ kBlender, "--denoise", "-o", "/tmp/x.exr" }), "method");
+    expectCleanError(runAfntool({ kBlender, "-d", "int8", "-o", "/tmp/x.exr" }), "half or float");
+}
+
+TEST(Afntool, SequenceDenoiseWritesEveryFrame)
+{
+    TempDir dir;
+    const CliResult r = runAfntool({ "--frames", "0-7", kSequence, "--denoise:method=identity",
+                                     "-o", dir.file("out.####.exr") });
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    for (int f = 0; f < 8; ++f) {
+        char name[32];
+        std::snprintf(name, sizeof name, "out.%04d.exr", f);
+        EXPECT_TRUE(fs::exists(dir.file(name))) << name;
+    }
+    EXPECT_EQ(dir.entries().size(), 8u);
+}
+
+TEST(Afntool, MissingFrameIsNamed)
+{
+    TempDir dir;
+    expectCleanError(runAfntool({ "--frames", "0-9", kSequence, "-o", dir.file("out.####.exr") }),
+                     "frame.0008.exr");
+    EXPECT_EQ(dir.entries().size(), 0u) << "nothing is written when a frame is missing";
+}
+
+TEST(Afntool, SequenceOutputNeedsAPattern)
+{
+    TempDir dir;
+    expectCleanError(runAfntool({ "--frames", "0-1", kSequence, "-o", dir.file("out.exr") }), "pattern");
+}
+
+TEST(Afntool, PreviewAndContactSheet)
+{
+    TempDir dir;
+    const CliResult r = runAfntool({ kFrame0, "--preview", dir.file("p.png"), "--contact-sheet",
+                                     dir.file("c.png") });
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    const afn::io::FileInfo p = afn::io::inspect(dir.file("p.png"));
+    EXPECT_EQ(p.subimages[0].dataWindow.width, 320);
+    EXPECT_EQ(p.subimages[0].dataWindow.height, 180);
+    const afn::io::FileInfo c = afn::io::inspect(dir.file("c.png"));
+    EXPECT_GT(c.subimages[0].dataWindow.width, 320);
+    expectCleanError(runAfntool({ kFrame0, "--preview:view=NoSuchView", dir.file("q.png") }), "NoSuchView");
+    EXPECT_FALSE(fs::exists(dir.file("q.png")));
+}
+
+} // namespace
