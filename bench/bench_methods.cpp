@@ -21,7 +21,8 @@ struct Sequence {
 
     Sequence()
     {
-        for (int k = 0; k < 2; ++k) color[k] = Image(kWidth, kHeight, 3);
+        for (int k = 0; k < 2; ++k)
+            color[k] = Image(kWidth, kHeight, 3);
         albedo = Image(kWidth, kHeight, 3);
         normal = Image(kWidth, kHeight, 3);
         position = Image(kWidth, kHeight, 3);
@@ -31,7 +32,8 @@ struct Sequence {
         for (int y = 0; y < kHeight; ++y)
             for (int x = 0; x < kWidth; ++x) {
                 const bool wall = x > kWidth / 2; // two planes meeting at a crease
-                for (int c = 0; c < 3; ++c) albedo(x, y, c) = 0.2f + 0.6f * ((x / 16 + y / 16) % 2);
+                for (int c = 0; c < 3; ++c)
+                    albedo(x, y, c) = 0.2f + 0.6f * ((x / 16 + y / 16) % 2);
                 normal(x, y, 0) = wall ? -1.0f : 0.0f;
                 normal(x, y, 2) = wall ? 0.0f : 1.0f;
                 position(x, y, 0) = 0.01f * x;
@@ -43,7 +45,8 @@ struct Sequence {
                     for (int c = 0; c < 3; ++c) {
                         s = s * 1664525u + 1013904223u;
                         const float u = static_cast<float>(s >> 8) / 16777216.0f;
-                        color[k](x, y, c) = albedo(x, y, c) * (0.5f + 0.5f * std::sin(0.01f * x)) * 2.0f * u;
+                        color[k](x, y, c)
+                            = albedo(x, y, c) * (0.5f + 0.5f * std::sin(0.01f * x)) * 2.0f * u;
                     }
             }
     }
@@ -76,7 +79,8 @@ void runMethod(benchmark::State& state, const char* method)
         f->commit();
         f->execute();
     };
-    for (int k = 0; k < 6; ++k) step(); // warm history (alpha at its minimum)
+    for (int k = 0; k < 6; ++k)
+        step(); // warm history (alpha at its minimum)
     for (auto _ : state) {
         step();
         benchmark::DoNotOptimize(seq.out.data());
@@ -84,9 +88,18 @@ void runMethod(benchmark::State& state, const char* method)
     state.SetLabel(std::string(method) + " 1280x720");
 }
 
-void BM_ta(benchmark::State& s) { runMethod(s, "ta"); }
-void BM_svgf(benchmark::State& s) { runMethod(s, "svgf"); }
-void BM_bmfr(benchmark::State& s) { runMethod(s, "bmfr"); }
+void BM_ta(benchmark::State& s)
+{
+    runMethod(s, "ta");
+}
+void BM_svgf(benchmark::State& s)
+{
+    runMethod(s, "svgf");
+}
+void BM_bmfr(benchmark::State& s)
+{
+    runMethod(s, "bmfr");
+}
 
 BENCHMARK(BM_ta)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_svgf)->Unit(benchmark::kMillisecond)->UseRealTime();

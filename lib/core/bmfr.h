@@ -5,7 +5,7 @@
 //   2. regression of the accumulated colour in square blocks (bmfr_regression.cpp): features
 //      1, n.xyz, p.xyz, p.xyz^2 (no cross terms); without positions the screen coordinates (and the
 //      depth when present) take the place of p; without normals those are dropped. The block grid
-//      shifts every frame by one of 16 offsets; a Householder QR per block fits every colour channel;
+//      shifts every frame by one of 16 offsets; one Householder QR per block fits all channels;
 //   3. second accumulation of the regression output with the same taps and
 //      alpha = max(1/len, secondAlphaMin) (len = TA history length after this frame);
 //   4. remodulation by albedo, then TAA (bmfr_taa.cpp) on the linear radiance.
@@ -17,24 +17,24 @@ namespace afn {
 
 /// BMFR parameters (official values as defaults).
 struct BmfrSettings {
-    float alphaMin = 0.2f;        ///< [0; 1] TA minimum blend factor (BLEND_ALPHA 0.2)
-    float secondAlphaMin = 0.1f;  ///< [0; 1] second accumulation minimum (SECOND_BLEND_ALPHA 0.1)
-    int blockSize = 32;           ///< [8; 64] block edge in pixels (BMFR supports only 32)
-    float noise = 0.01f;          ///< [0; 1] uniform feature noise amplitude (NOISE_AMOUNT 1e-2)
-    bool taa = true;              ///< apply the final TAA step
-    float taaAlpha = 0.2f;        ///< [0; 1] TAA weight of the current frame (BMFR 0.2)
+    float alphaMin = 0.2f; ///< [0; 1] TA minimum blend factor (BLEND_ALPHA 0.2)
+    float secondAlphaMin = 0.1f; ///< [0; 1] second accumulation minimum (SECOND_BLEND_ALPHA 0.1)
+    int blockSize = 32; ///< [8; 64] block edge in pixels (BMFR supports only 32)
+    float noise = 0.01f; ///< [0; 1] uniform feature noise amplitude (NOISE_AMOUNT 1e-2)
+    bool taa = true; ///< apply the final TAA step
+    float taaAlpha = 0.2f; ///< [0; 1] TAA weight of the current frame (BMFR 0.2)
 };
 
 /// Fit the blockwise regression of `noisy` (3 ch, demodulated) over the frame's features and write
 /// the per-pixel fitted values (>= 0) into `filtered`. `blockFrame` selects the block offset.
-void bmfrRegression(const Frame& f, const Image& noisy, const BmfrSettings& s, int blockFrame,
-                    Image& filtered);
+void bmfrRegression(
+    const Frame& f, const Image& noisy, const BmfrSettings& s, int blockFrame, Image& filtered);
 
 /// Temporal anti-aliasing: blend `current` (3 ch radiance) with `history` sampled bilinearly at the
 /// reprojected position, the history clamped in YCoCg to the average of the 3x3 box and 5-tap cross
 /// min/max boxes of `current`. Writes `out` (may not alias the inputs).
-void bmfrTaa(const Reprojector& taps, const Image& current, const Image& history, float alpha,
-             Image& out);
+void bmfrTaa(
+    const Reprojector& taps, const Image& current, const Image& history, float alpha, Image& out);
 
 class BmfrDenoiser {
 public:

@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: Apache-2.0
 // BMFR's final temporal anti-aliasing (bmfr.cl taa), applied here to linear radiance (BMFR applies
-// it after its gamma tone map; afn's output stays linear). History outside the clamp box is replaced
-// by its YCoCg-clamped value; history inside is kept bit-exactly, so a static image is a fixed point.
+// it after its gamma tone map; afn's output stays linear). History outside the clamp box is
+// replaced by its YCoCg-clamped value; history inside is kept bit-exactly, so a static image is a
+// fixed point.
 #include "bmfr.h"
 
 #include "parallel.h"
@@ -29,9 +30,10 @@ inline void fromYCoCg(const float* o, float* c)
 /// Bilinear history at the reprojected position over in-image taps; false if none.
 bool sampleHistory(const PixelTaps& t, const Image& history, float* out)
 {
-    if (!t.onScreen || t.box) return false;
+    if (!t.onScreen || t.box)
+        return false;
     const float bw[4] = { (1.0f - t.fx) * (1.0f - t.fy), t.fx * (1.0f - t.fy), (1.0f - t.fx) * t.fy,
-                          t.fx * t.fy };
+        t.fx * t.fy };
     float ws = 0.0f;
     out[0] = out[1] = out[2] = 0.0f;
     for (int k = 0; k < 4; ++k) {
@@ -39,17 +41,21 @@ bool sampleHistory(const PixelTaps& t, const Image& history, float* out)
         if (!(bw[k] > 0.0f) || x < 0 || y < 0 || x >= history.width() || y >= history.height())
             continue;
         const float* h = history.at(x, y);
-        for (int c = 0; c < 3; ++c) out[c] += bw[k] * h[c];
+        for (int c = 0; c < 3; ++c)
+            out[c] += bw[k] * h[c];
         ws += bw[k];
     }
-    if (!(ws > 0.0f)) return false;
-    for (int c = 0; c < 3; ++c) out[c] /= ws;
+    if (!(ws > 0.0f))
+        return false;
+    for (int c = 0; c < 3; ++c)
+        out[c] /= ws;
     return true;
 }
 
 } // namespace
 
-void bmfrTaa(const Reprojector& taps, const Image& cur, const Image& history, float alpha, Image& out)
+void bmfrTaa(
+    const Reprojector& taps, const Image& cur, const Image& history, float alpha, Image& out)
 {
     const int w = cur.width(), h = cur.height();
     out.resize(w, h, 3);
@@ -73,7 +79,8 @@ void bmfrTaa(const Reprojector& taps, const Image& cur, const Image& history, fl
                 }
                 for (int dy = -1; dy <= 1; ++dy)
                     for (int dx = -1; dx <= 1; ++dx) {
-                        const int qx = std::clamp(x + dx, 0, w - 1), qy = std::clamp(y + dy, 0, h - 1);
+                        const int qx = std::clamp(x + dx, 0, w - 1),
+                                  qy = std::clamp(y + dy, 0, h - 1);
                         float q[3];
                         toYCoCg(cur.at(qx, qy), q);
                         const bool cross = dx == 0 || dy == 0;
@@ -97,7 +104,8 @@ void bmfrTaa(const Reprojector& taps, const Image& cur, const Image& history, fl
                         hy[k] = std::clamp(hy[k], lo, hi);
                     }
                 }
-                if (!inside) fromYCoCg(hy, hist);
+                if (!inside)
+                    fromYCoCg(hy, hist);
                 for (int k = 0; k < 3; ++k)
                     o[k] = std::max(0.0f, hist[k] + alpha * (c[k] - hist[k]));
             }

@@ -34,7 +34,8 @@ void demodulate(const Frame& frame, Image& irradiance)
                 const float* c = frame.color.at(x, y);
                 float* o = irradiance.at(x, y);
                 for (int k = 0; k < 3; ++k) {
-                    const float d = divide ? c[k] / albedoFactor(frame.albedo(x, y, k), false) : c[k];
+                    const float d
+                        = divide ? c[k] / albedoFactor(frame.albedo(x, y, k), false) : c[k];
                     o[k] = clampIrradiance(d);
                 }
             }
@@ -43,7 +44,8 @@ void demodulate(const Frame& frame, Image& irradiance)
 
 void remodulate(const Frame& frame, const Image& irradiance, Image& radiance)
 {
-    if (&radiance != &irradiance) radiance.resize(frame.width, frame.height, 3);
+    if (&radiance != &irradiance)
+        radiance.resize(frame.width, frame.height, 3);
     const bool hasAlbedo = frame.hasAlbedo();
     const bool plain = frame.colorDemodulated;
     parallelRows(frame.height, [&](int y0, int y1) {

@@ -10,7 +10,10 @@ namespace {
 
 class BmfrFilter final : public Filter {
 public:
-    explicit BmfrFilter(const std::vector<ParamDesc>* table) : Filter(table) {}
+    explicit BmfrFilter(const std::vector<ParamDesc>* table)
+        : Filter(table)
+    {
+    }
 
 private:
     void configure() override
@@ -37,7 +40,8 @@ FilterType bmfrFilterType()
     t.description = "blockwise multi-order feature regression (Koskela et al. 2019) with BMFR's "
                     "accumulations and TAA";
     t.params = bmfrParams();
-    for (ParamDesc& d : reprojectParams()) t.params.push_back(std::move(d));
+    for (ParamDesc& d : reprojectParams())
+        t.params.push_back(std::move(d));
     t.create = [](const std::vector<ParamDesc>* table) {
         return std::unique_ptr<Filter>(new BmfrFilter(table));
     };

@@ -10,7 +10,10 @@ namespace {
 
 class SvgfFilter final : public Filter {
 public:
-    explicit SvgfFilter(const std::vector<ParamDesc>* table) : Filter(table) {}
+    explicit SvgfFilter(const std::vector<ParamDesc>* table)
+        : Filter(table)
+    {
+    }
 
 private:
     void configure() override
@@ -35,9 +38,11 @@ FilterType svgfFilterType()
 {
     FilterType t;
     t.name = "svgf";
-    t.description = "spatiotemporal variance-guided filtering (Schied et al. 2017), paper parameters";
+    t.description
+        = "spatiotemporal variance-guided filtering (Schied et al. 2017), paper parameters";
     t.params = svgfParams();
-    for (ParamDesc& d : reprojectParams()) t.params.push_back(std::move(d));
+    for (ParamDesc& d : reprojectParams())
+        t.params.push_back(std::move(d));
     t.create = [](const std::vector<ParamDesc>* table) {
         return std::unique_ptr<Filter>(new SvgfFilter(table));
     };

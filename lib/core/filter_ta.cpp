@@ -11,7 +11,10 @@ namespace {
 
 class TaFilter final : public Filter {
 public:
-    explicit TaFilter(const std::vector<ParamDesc>* table) : Filter(table) {}
+    explicit TaFilter(const std::vector<ParamDesc>* table)
+        : Filter(table)
+    {
+    }
 
 private:
     void configure() override
@@ -26,7 +29,8 @@ private:
     }
     void denoise(const Frame& in, Image& out) override
     {
-        if (in.frameIndex == 0) resetHistory();
+        if (in.frameIndex == 0)
+            resetHistory();
         demodulate(in, m_irradiance);
         m_reproject.compute(in);
         m_ta.accumulate(m_reproject, m_irradiance);
@@ -48,8 +52,9 @@ FilterType taFilterType()
     t.description = "temporal accumulation only, exactly as BMFR (bilinear reprojection, per-tap "
                     "position/normal acceptance, alpha = max(1/(n+1), alphaMin))";
     t.params = { floatParam("alphaMin", 0.2, 0.0, 1.0, "Minimum blend factor",
-                            "weight of the current frame once the history is long (BMFR: 0.2)") };
-    for (ParamDesc& d : reprojectParams()) t.params.push_back(std::move(d));
+        "weight of the current frame once the history is long (BMFR: 0.2)") };
+    for (ParamDesc& d : reprojectParams())
+        t.params.push_back(std::move(d));
     t.create = [](const std::vector<ParamDesc>* table) {
         return std::unique_ptr<Filter>(new TaFilter(table));
     };

@@ -7,8 +7,9 @@
 //      uv = (c.xy / c.w + 1) / 2, pix = uv * (W, H) - (off.x, 1 - off.y) with off = the CURRENT
 //      frame's pixel offset (BMFR: matrix index i-1, offset index i); c.w <= 0 means no history;
 //   3. neither: a static camera is assumed (prev = (x, y)).
-// The four bilinear taps around pix (x0 = floor(pix.x), y0 = floor(pix.y), weights from the fraction)
-// are accepted one by one (all tests must pass; a test whose buffers are missing is skipped):
+// The four bilinear taps around pix (x0 = floor(pix.x), y0 = floor(pix.y), weights from the
+// fraction) are accepted one by one (all tests must pass; a test whose buffers are missing is
+// skipped):
 //   - the tap lies inside the image;
 //   - position: |p_prev(tap) - p|^2 < (positionLimit * footprint(p))^2, or the positions are equal.
 //     footprint = the world-space size of the current pixel, estimated as max over the two axes of
@@ -16,7 +17,8 @@
 //     has 10x larger footprints, so the limit is scene-relative. (BMFR uses absolute per-scene
 //     limits, e.g. sponza 0.04 units, which is about 4 footprints at 720p; positionLimitSquared > 0
 //     selects that absolute test, |p_prev(tap) - p|^2 < positionLimitSquared, to reproduce BMFR.)
-//   - depth (only when there is no position): |z_prev(tap) - z| < depthLimit * z (relative), or equal;
+//   - depth (only when there is no position): |z_prev(tap) - z| < depthLimit * z (relative), or
+//   equal;
 //   - normal: |n_prev(tap) - n|^2 < normalLimitSquared (BMFR: squared distance of the normals,
 //     sponza 0.25); a zero normal never matches.
 // With only colour and motion, every in-image tap is accepted. Weights of accepted taps are later
@@ -49,13 +51,13 @@ struct ReprojectSettings {
 
 /// The taps of one pixel into the previous frame.
 struct PixelTaps {
-    std::int32_t x0 = 0;     ///< bilinear: top-left tap column; box: centre column
-    std::int32_t y0 = 0;     ///< bilinear: top-left tap row; box: centre row
-    float fx = 0.0f;         ///< fractional column of the previous position (bilinear)
-    float fy = 0.0f;         ///< fractional row of the previous position (bilinear)
-    float w[4] = {};         ///< bilinear weights of the accepted taps (0 if rejected)
-    std::uint16_t mask = 0;  ///< accepted taps: bits 0-3 bilinear (TL, TR, BL, BR); box bits 0-8
-    std::uint8_t box = 0;    ///< 1: 3x3 box fallback with equal weights
+    std::int32_t x0 = 0; ///< bilinear: top-left tap column; box: centre column
+    std::int32_t y0 = 0; ///< bilinear: top-left tap row; box: centre row
+    float fx = 0.0f; ///< fractional column of the previous position (bilinear)
+    float fy = 0.0f; ///< fractional row of the previous position (bilinear)
+    float w[4] = {}; ///< bilinear weights of the accepted taps (0 if rejected)
+    std::uint16_t mask = 0; ///< accepted taps: bits 0-3 bilinear (TL, TR, BL, BR); box bits 0-8
+    std::uint8_t box = 0; ///< 1: 3x3 box fallback with equal weights
     std::uint8_t onScreen = 0; ///< 1: the previous position was computed (TAA may sample it)
 };
 
@@ -77,7 +79,10 @@ public:
     void reset();
 
     bool hasHistory() const { return m_hasPrev; }
-    const PixelTaps& taps(int x, int y) const { return m_taps[static_cast<std::size_t>(y) * m_width + x]; }
+    const PixelTaps& taps(int x, int y) const
+    {
+        return m_taps[static_cast<std::size_t>(y) * m_width + x];
+    }
     int width() const { return m_width; }
     int height() const { return m_height; }
 
@@ -97,25 +102,31 @@ private:
 /// `t` for the first C channels of `prev`. Returns sum(w_k); 0 means no history (out = 0).
 template <int C> inline float gatherHistory(const PixelTaps& t, const Image& prev, float* out)
 {
-    for (int c = 0; c < C; ++c) out[c] = 0.0f;
+    for (int c = 0; c < C; ++c)
+        out[c] = 0.0f;
     float ws = 0.0f;
     if (!t.box) {
         for (int k = 0; k < 4; ++k) {
-            if (!(t.mask & (1u << k)) || !(t.w[k] > 0.0f)) continue;
+            if (!(t.mask & (1u << k)) || !(t.w[k] > 0.0f))
+                continue;
             const float* v = prev.at(t.x0 + (k & 1), t.y0 + (k >> 1));
-            for (int c = 0; c < C; ++c) out[c] += t.w[k] * v[c];
+            for (int c = 0; c < C; ++c)
+                out[c] += t.w[k] * v[c];
             ws += t.w[k];
         }
     } else {
         for (int k = 0; k < 9; ++k) {
-            if (!(t.mask & (1u << k))) continue;
+            if (!(t.mask & (1u << k)))
+                continue;
             const float* v = prev.at(t.x0 + k % 3 - 1, t.y0 + k / 3 - 1);
-            for (int c = 0; c < C; ++c) out[c] += v[c];
+            for (int c = 0; c < C; ++c)
+                out[c] += v[c];
             ws += 1.0f;
         }
     }
     if (ws > 0.0f)
-        for (int c = 0; c < C; ++c) out[c] /= ws;
+        for (int c = 0; c < C; ++c)
+            out[c] /= ws;
     return ws;
 }
 

@@ -3,15 +3,17 @@
 // Per frame:
 //   1. reprojection with SVGF's 3x3 box fallback (reproject.h acceptance tests);
 //   2. temporal integration of colour and luminance moments (l, l^2) with
-//      alpha = max(alpha, 1/len), alphaMoments = max(momentsAlpha, 1/len) (Falcor's cumulative start;
-//      the paper's fixed 0.2 is reached after 5 frames); len = history length, 1 on disocclusion;
+//      alpha = max(alpha, 1/len), alphaMoments = max(momentsAlpha, 1/len) (Falcor's cumulative
+//      start; the paper's fixed 0.2 is reached after 5 frames); len = history length, 1 on
+//      disocclusion;
 //   3. variance = max(0, m2 - m1^2); while len < varianceHistory a 7x7 cross-bilateral estimate of
-//      moments and colour replaces it (phiL = sigmaL, not variance-scaled), boosted by 4/len (Falcor);
+//      moments and colour replaces it (phiL = sigmaL, not variance-scaled), boosted by 4/len
+//      (Falcor);
 //   4. à-trous: 5x5 B3-spline taps h = (1/16, 1/4, 3/8, 1/4, 1/16), step 2^i, weights of
 //      svgf_guide.h with phiL = sigmaL * sqrt(g3x3(var)) + 1e-10; variance filtered with squared
 //      weights; the output of iteration feedbackTap is the next frame's colour history.
-// Filtered values are written as c_p + sum(w (c_q - c_p)) / sum(w), identical in exact arithmetic to
-// sum(w c_q) / sum(w), so a constant image stays bit-exactly constant.
+// Filtered values are written as c_p + sum(w (c_q - c_p)) / sum(w), identical in exact arithmetic
+// to sum(w c_q) / sum(w), so a constant image stays bit-exactly constant.
 #pragma once
 
 #include "reproject.h"
@@ -38,9 +40,9 @@ private:
     Reprojector m_reproject;
     SvgfGuide m_guide;
     bool m_hasHistory = false;
-    Image m_color, m_moments, m_len;             ///< this frame: integrated colour, moments, length
+    Image m_color, m_moments, m_len; ///< this frame: integrated colour, moments, length
     Image m_prevColor, m_prevMoments, m_prevLen; ///< history
-    Image m_cv, m_cvTmp;                         ///< colour + variance (4 ch) ping-pong
+    Image m_cv, m_cvTmp; ///< colour + variance (4 ch) ping-pong
 };
 
 /// Descriptor table of the svgf parameters (without the reprojection ones).

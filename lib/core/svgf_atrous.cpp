@@ -21,7 +21,8 @@ float blurredVariance(const Image& cv, int x, int y)
     for (int dy = -1; dy <= 1; ++dy)
         for (int dx = -1; dx <= 1; ++dx) {
             const int qx = x + dx, qy = y + dy;
-            if (qx < 0 || qy < 0 || qx >= cv.width() || qy >= cv.height()) continue;
+            if (qx < 0 || qy < 0 || qx >= cv.width() || qy >= cv.height())
+                continue;
             const float wq = (dx == 0 ? k[0] : k[1]) * (dy == 0 ? k[0] : k[1]);
             sum += wq * cv(qx, qy, 3);
             wsum += wq;
@@ -41,29 +42,35 @@ void SvgfDenoiser::atrous(const Image& in, Image& out, int step) const
             for (int x = 0; x < w; ++x) {
                 const float* cp = in.at(x, y);
                 const float lp = luminance(cp);
-                const float phiL = sigmaL * std::sqrt(std::max(0.0f, blurredVariance(in, x, y))) + 1e-10f;
+                const float phiL
+                    = sigmaL * std::sqrt(std::max(0.0f, blurredVariance(in, x, y))) + 1e-10f;
                 float ws = 0.0f, vsum = 0.0f, dc[3] = { 0, 0, 0 };
                 for (int j = -2; j <= 2; ++j)
                     for (int i = -2; i <= 2; ++i) {
                         const int qx = x + i * step, qy = y + j * step;
-                        if (qx < 0 || qy < 0 || qx >= w || qy >= h) continue;
+                        if (qx < 0 || qy < 0 || qx >= w || qy >= h)
+                            continue;
                         const float* cq = in.at(qx, qy);
                         float wq = kB3[std::abs(i)] * kB3[std::abs(j)];
                         if (i != 0 || j != 0) {
                             const float wn = m_guide.normalFactor(x, y, qx, qy);
-                            const float e = m_guide.depthTerm(x, y, qx, qy, i * step, j * step) +
-                                            std::fabs(lp - luminance(cq)) / phiL;
-                            // exp(-40) < 5e-18: such taps are negligible; skipping them saves the exp().
-                            if (!(wn > 0.0f) || !(e < kMaxExponent)) continue;
+                            const float e = m_guide.depthTerm(x, y, qx, qy, i * step, j * step)
+                                + std::fabs(lp - luminance(cq)) / phiL;
+                            // exp(-40) < 5e-18: such taps are negligible; skipping them saves the
+                            // exp().
+                            if (!(wn > 0.0f) || !(e < kMaxExponent))
+                                continue;
                             wq *= std::exp(-e) * wn;
                         }
                         ws += wq;
                         vsum += wq * wq * cq[3];
-                        for (int k = 0; k < 3; ++k) dc[k] += wq * (cq[k] - cp[k]);
+                        for (int k = 0; k < 3; ++k)
+                            dc[k] += wq * (cq[k] - cp[k]);
                     }
                 float* o = out.at(x, y);
                 const float inv = 1.0f / ws; // ws >= centre weight (3/8)^2 > 0
-                for (int k = 0; k < 3; ++k) o[k] = std::max(0.0f, cp[k] + dc[k] * inv);
+                for (int k = 0; k < 3; ++k)
+                    o[k] = std::max(0.0f, cp[k] + dc[k] * inv);
                 o[3] = vsum * inv * inv;
             }
     });
@@ -73,24 +80,24 @@ std::vector<ParamDesc> svgfParams()
 {
     return {
         intParam("iterations", 5, 0, 10, "À-trous iterations",
-                 "number of 5x5 à-trous passes with step 2^i (paper 5, Falcor 4)"),
+            "number of 5x5 à-trous passes with step 2^i (paper 5, Falcor 4)"),
         intParam("feedbackTap", 0, -1, 9, "Feedback iteration",
-                 "iteration whose output becomes the colour history (0 = first, as the paper; "
-                 "-1 = unfiltered integrated colour; Falcor 1)"),
+            "iteration whose output becomes the colour history (0 = first, as the paper; "
+            "-1 = unfiltered integrated colour; Falcor 1)"),
         floatParam("sigmaL", 4.0, 0.0, 1000.0, "Luminance sigma",
-                   "luminance edge-stopping, in standard deviations of the local luminance "
-                   "(paper 4, Falcor 10)"),
+            "luminance edge-stopping, in standard deviations of the local luminance "
+            "(paper 4, Falcor 10)"),
         floatParam("sigmaN", 128.0, 0.0, 1024.0, "Normal exponent",
-                   "exponent of max(0, n.n') (paper and Falcor 128)"),
+            "exponent of max(0, n.n') (paper and Falcor 128)"),
         floatParam("sigmaZ", 1.0, 0.0, 1000.0, "Depth sigma",
-                   "depth edge-stopping relative to the depth gradient (paper 1)"),
+            "depth edge-stopping relative to the depth gradient (paper 1)"),
         floatParam("alpha", 0.2, 0.0, 1.0, "Colour blend factor",
-                   "minimum weight of the current frame in the colour history (paper 0.2, "
-                   "Falcor 0.05)"),
+            "minimum weight of the current frame in the colour history (paper 0.2, "
+            "Falcor 0.05)"),
         floatParam("momentsAlpha", 0.2, 0.0, 1.0, "Moments blend factor",
-                   "minimum weight of the current frame in the moments history (paper 0.2)"),
+            "minimum weight of the current frame in the moments history (paper 0.2)"),
         intParam("varianceHistory", 4, 1, 255, "Spatial variance below",
-                 "history length (frames) below which variance is estimated over 7x7 (paper 4)"),
+            "history length (frames) below which variance is estimated over 7x7 (paper 4)"),
     };
 }
 

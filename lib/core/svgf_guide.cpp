@@ -40,9 +40,11 @@ void SvgfGuide::build(const Frame& f, const SvgfSettings& s)
                     bool any = false;
                     for (int sgn = -1; sgn <= 1; sgn += 2) {
                         const int nx = x + sgn * dx, ny = y + sgn * dy;
-                        if (nx < 0 || ny < 0 || nx >= w || ny >= h) continue;
+                        if (nx < 0 || ny < 0 || nx >= w || ny >= h)
+                            continue;
                         const float d = sgn * (depth(nx, ny, 0) - z);
-                        if (!any || std::fabs(d) < std::fabs(best)) best = d;
+                        if (!any || std::fabs(d) < std::fabs(best))
+                            best = d;
                         any = true;
                     }
                     return best;

@@ -32,8 +32,8 @@ void SvgfDenoiser::integrate(const Image& irr)
     m_color.resize(w, h, 3);
     m_moments.resize(w, h, 2);
     m_len.resize(w, h, 1);
-    const bool history = m_hasHistory && m_reproject.hasHistory() && m_prevColor.width() == w &&
-                         m_prevColor.height() == h;
+    const bool history = m_hasHistory && m_reproject.hasHistory() && m_prevColor.width() == w
+        && m_prevColor.height() == h;
     parallelRows(h, [&](int y0, int y1) {
         for (int y = y0; y < y1; ++y)
             for (int x = 0; x < w; ++x) {
@@ -53,11 +53,14 @@ void SvgfDenoiser::integrate(const Image& irr)
                     const float len = std::min(plen + 1.0f, 255.0f);
                     const float a = std::max(m_settings.alpha, 1.0f / len);
                     const float am = std::max(m_settings.momentsAlpha, 1.0f / len);
-                    for (int k = 0; k < 3; ++k) oc[k] = pc[k] + a * (c[k] - pc[k]);
-                    for (int k = 0; k < 2; ++k) om[k] = pm[k] + am * (m[k] - pm[k]);
+                    for (int k = 0; k < 3; ++k)
+                        oc[k] = pc[k] + a * (c[k] - pc[k]);
+                    for (int k = 0; k < 2; ++k)
+                        om[k] = pm[k] + am * (m[k] - pm[k]);
                     m_len(x, y, 0) = len;
                 } else {
-                    for (int k = 0; k < 3; ++k) oc[k] = c[k];
+                    for (int k = 0; k < 3; ++k)
+                        oc[k] = c[k];
                     om[0] = m[0];
                     om[1] = m[1];
                     m_len(x, y, 0) = 1.0f;
@@ -92,18 +95,22 @@ void SvgfDenoiser::estimateVariance()
                 for (int dy = -3; dy <= 3; ++dy)
                     for (int dx = -3; dx <= 3; ++dx) {
                         const int qx = x + dx, qy = y + dy;
-                        if (qx < 0 || qy < 0 || qx >= w || qy >= h) continue;
+                        if (qx < 0 || qy < 0 || qx >= w || qy >= h)
+                            continue;
                         const float* cq = m_color.at(qx, qy);
                         const float* mq = m_moments.at(qx, qy);
-                        const float e = m_guide.depthTerm(x, y, qx, qy, dx, dy) +
-                                        std::fabs(lp - luminance(cq)) / (phiL + 1e-10f);
+                        const float e = m_guide.depthTerm(x, y, qx, qy, dx, dy)
+                            + std::fabs(lp - luminance(cq)) / (phiL + 1e-10f);
                         const float wq = std::exp(-e) * m_guide.normalFactor(x, y, qx, qy);
                         ws += wq;
-                        for (int k = 0; k < 3; ++k) dc[k] += wq * (cq[k] - c[k]);
-                        for (int k = 0; k < 2; ++k) dm[k] += wq * (mq[k] - m[k]);
+                        for (int k = 0; k < 3; ++k)
+                            dc[k] += wq * (cq[k] - c[k]);
+                        for (int k = 0; k < 2; ++k)
+                            dm[k] += wq * (mq[k] - m[k]);
                     }
                 const float inv = ws > 0.0f ? 1.0f / ws : 0.0f;
-                for (int k = 0; k < 3; ++k) o[k] = c[k] + dc[k] * inv;
+                for (int k = 0; k < 3; ++k)
+                    o[k] = c[k] + dc[k] * inv;
                 const float m0 = m[0] + dm[0] * inv, m1 = m[1] + dm[1] * inv;
                 o[3] = std::max(0.0f, m1 - m0 * m0) * (4.0f / len);
             }
@@ -112,7 +119,8 @@ void SvgfDenoiser::estimateVariance()
 
 void SvgfDenoiser::process(const Frame& f, const Image& irr, Image& filtered)
 {
-    if (f.frameIndex == 0) reset();
+    if (f.frameIndex == 0)
+        reset();
     m_reproject.compute(f);
     m_guide.build(f, m_settings);
     integrate(irr);
@@ -128,7 +136,8 @@ void SvgfDenoiser::process(const Frame& f, const Image& irr, Image& filtered)
             parallelRows(h, [&](int y0, int y1) {
                 for (int y = y0; y < y1; ++y)
                     for (int x = 0; x < w; ++x)
-                        for (int k = 0; k < 3; ++k) m_color(x, y, k) = m_cv(x, y, k);
+                        for (int k = 0; k < 3; ++k)
+                            m_color(x, y, k) = m_cv(x, y, k);
             });
         }
     }
@@ -136,7 +145,8 @@ void SvgfDenoiser::process(const Frame& f, const Image& irr, Image& filtered)
     parallelRows(f.height, [&](int y0, int y1) {
         for (int y = y0; y < y1; ++y)
             for (int x = 0; x < f.width; ++x)
-                for (int k = 0; k < 3; ++k) filtered(x, y, k) = m_cv(x, y, k);
+                for (int k = 0; k < 3; ++k)
+                    filtered(x, y, k) = m_cv(x, y, k);
     });
 }
 

@@ -21,8 +21,8 @@ void TemporalAccumulator::accumulate(const Reprojector& taps, const Image& irr)
     std::swap(m_spp, m_prevSpp);
     m_color.resize(w, h, 3);
     m_spp.resize(w, h, 1);
-    const bool history = m_hasHistory && taps.hasHistory() && m_prevColor.width() == w &&
-                         m_prevColor.height() == h;
+    const bool history = m_hasHistory && taps.hasHistory() && m_prevColor.width() == w
+        && m_prevColor.height() == h;
     parallelRows(h, [&](int y0, int y1) {
         for (int y = y0; y < y1; ++y)
             for (int x = 0; x < w; ++x) {
@@ -36,10 +36,12 @@ void TemporalAccumulator::accumulate(const Reprojector& taps, const Image& irr)
                 }
                 if (ws > 0.0f) {
                     const float alpha = std::max(1.0f / (sppS + 1.0f), m_alphaMin);
-                    for (int k = 0; k < 3; ++k) acc[k] = prev[k] + alpha * (c[k] - prev[k]);
+                    for (int k = 0; k < 3; ++k)
+                        acc[k] = prev[k] + alpha * (c[k] - prev[k]);
                     m_spp(x, y, 0) = alpha < 1.0f ? std::min(sppS + 1.0f, kMaxHistoryLength) : 1.0f;
                 } else {
-                    for (int k = 0; k < 3; ++k) acc[k] = c[k];
+                    for (int k = 0; k < 3; ++k)
+                        acc[k] = c[k];
                     m_spp(x, y, 0) = 1.0f;
                 }
             }

@@ -6,8 +6,8 @@
 //   acc = prev + alpha * (colour - prev)
 // The blend is written as a lerp from the history (BMFR: alpha*c + (1-alpha)*prev; identical in
 // exact arithmetic) so that an unchanged value stays bit-exactly unchanged. spp is kept as a float
-// capped at 255 (BMFR stores a uchar; the cap has no effect once alpha = alphaMin). Inputs are finite
-// and non-negative (demodulate.h), so the history never holds NaN/Inf.
+// capped at 255 (BMFR stores a uchar; the cap has no effect once alpha = alphaMin). Inputs are
+// finite and non-negative (demodulate.h), so the history never holds NaN/Inf.
 #pragma once
 
 #include "reproject.h"

@@ -24,16 +24,20 @@ constexpr int kFrames = 8;
 Image readChannels(const std::string& path, const std::vector<std::string>& names)
 {
     auto in = OIIO::ImageInput::open(path);
-    if (!in) return Image();
+    if (!in)
+        return Image();
     const OIIO::ImageSpec& spec = in->spec();
     std::vector<float> all(static_cast<std::size_t>(spec.width) * spec.height * spec.nchannels);
-    if (!in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, all.data())) return Image();
+    if (!in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, all.data()))
+        return Image();
     Image img(spec.width, spec.height, static_cast<int>(names.size()));
     for (std::size_t c = 0; c < names.size(); ++c) {
         const int idx = spec.channelindex(names[c]);
-        if (idx < 0) return Image();
+        if (idx < 0)
+            return Image();
         for (int p = 0; p < spec.width * spec.height; ++p)
-            img.data()[p * names.size() + c] = all[static_cast<std::size_t>(p) * spec.nchannels + idx];
+            img.data()[p * names.size() + c]
+                = all[static_cast<std::size_t>(p) * spec.nchannels + idx];
     }
     return img;
 }
@@ -41,7 +45,8 @@ Image readChannels(const std::string& path, const std::vector<std::string>& name
 std::vector<std::string> layer(const std::string& pass, const char* comps)
 {
     std::vector<std::string> v;
-    for (const char* c = comps; *c; ++c) v.push_back("ViewLayer." + pass + "." + std::string(1, *c));
+    for (const char* c = comps; *c; ++c)
+        v.push_back("ViewLayer." + pass + "." + std::string(1, *c));
     return v;
 }
 
@@ -67,18 +72,20 @@ TEST(MethodsBlender, EveryMethodClearlyBeatsTheNoisyInput)
         const std::string path = dir + name;
         methods_test::Buffers& b = frames[k];
         b.color = readChannels(path, layer("Combined", "RGB"));
-        if (b.color.empty()) GTEST_SKIP() << "cannot read " << path;
+        if (b.color.empty())
+            GTEST_SKIP() << "cannot read " << path;
         b.albedo = readChannels(path, layer("Denoising Albedo", "RGB"));
-        b.normal = readChannels(path, layer("Normal", "XYZ"));     // world space
-        b.depth = readChannels(path, layer("Depth", "Z"));         // planar
+        b.normal = readChannels(path, layer("Normal", "XYZ")); // world space
+        b.depth = readChannels(path, layer("Depth", "Z")); // planar
         b.position = readChannels(path, layer("Position", "XYZ")); // world, metres
-        b.motion = readChannels(path, layer("Vector", "XY"));      // pixels, y up, to previous
+        b.motion = readChannels(path, layer("Vector", "XY")); // pixels, y up, to previous
         std::snprintf(name, sizeof name, "reference.%04d.exr", k);
         refs[k] = readChannels(dir + name, layer("Combined", "RGB"));
         ASSERT_FALSE(refs[k].empty() || b.albedo.empty() || b.motion.empty()) << path;
     }
     double noisyMean = 0.0;
-    for (int k = 0; k < kFrames; ++k) noisyMean += psnr(frames[k].color, refs[k]) / kFrames;
+    for (int k = 0; k < kFrames; ++k)
+        noisyMean += psnr(frames[k].color, refs[k]) / kFrames;
     std::printf("%-6s mean %6.2f dB (noisy 1 spp input)\n", "input", noisyMean);
     for (const char* m : { "ta", "svgf", "bmfr" }) {
         auto f = afn::createFilter(m);

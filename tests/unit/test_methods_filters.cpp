@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: Apache-2.0
 // The three methods through createFilter: a static constant scene stays exactly constant, bad input
-// (NaN, Inf, negative, zero albedo) never reaches the output, outputs are bit-identical with 1 and 2
-// threads, and svgf/bmfr (and ta) reduce the error of a noisy synthetic sequence. Plus BMFR's fit
+// (NaN, Inf, negative, zero albedo) never reaches the output, outputs are bit-identical with 1 and
+// 2 threads, and svgf/bmfr (and ta) reduce the error of a noisy synthetic sequence. Plus BMFR's fit
 // of an exactly representable block.
 #include "core/bmfr.h"
 #include "test_methods_util.h"
@@ -27,8 +27,11 @@ const char* const kMethods[] = { "ta", "svgf", "bmfr" };
 Buffers staticScene(int w, int h)
 {
     Buffers b;
-    b.albedo = makeImage(w, h, 3, [](int x, int, int c) { return 0.37f + 0.1f * c + 0.01f * (x % 3); });
-    b.normal = makeImage(w, h, 3, [](int, int, int c) { return c == 0 ? 0.6f : c == 2 ? 0.8f : 0.0f; });
+    b.albedo
+        = makeImage(w, h, 3, [](int x, int, int c) { return 0.37f + 0.1f * c + 0.01f * (x % 3); });
+    b.normal = makeImage(w, h, 3, [](int, int, int c) {
+        return c == 0 ? 0.6f : c == 2 ? 0.8f : 0.0f;
+    });
     b.position = makeImage(w, h, 3, [](int x, int y, int c) {
         return c == 0 ? 0.1f * x : c == 1 ? 0.1f * y : 2.0f + 0.05f * x;
     });
@@ -41,12 +44,14 @@ TEST(MethodsFilters, StaticConstantSceneStaysExactlyConstant)
     for (const char* m : kMethods) {
         auto f = afn::createFilter(m);
         Buffers b = staticScene(40, 36);
-        b.color = makeImage(40, 36, 3, [&](int x, int y, int c) { return b.albedo(x, y, c) * 0.7f; });
+        b.color
+            = makeImage(40, 36, 3, [&](int x, int y, int c) { return b.albedo(x, y, c) * 0.7f; });
         runFrame(*f, b);
         const Image first = b.out;
         for (int y = 0; y < 36; ++y)
             for (int x = 0; x < 40; ++x)
-                for (int c = 0; c < 3; ++c) ASSERT_NEAR(first(x, y, c), b.color(x, y, c), 1e-6f) << m;
+                for (int c = 0; c < 3; ++c)
+                    ASSERT_NEAR(first(x, y, c), b.color(x, y, c), 1e-6f) << m;
         for (int k = 1; k < 8; ++k) {
             runFrame(*f, b);
             ASSERT_TRUE(methods_test::bitEqual(b.out, first)) << m << " frame " << k;
@@ -81,7 +86,8 @@ TEST(MethodsFilters, BadInputNeverReachesOutputOrHistory)
         // The history is clean too: clean frames after the bad ones converge to finite values.
         b = staticScene(24, 20);
         b.color = Image(24, 20, 3, 0.25f);
-        for (int k = 0; k < 3; ++k) runFrame(*f, b);
+        for (int k = 0; k < 3; ++k)
+            runFrame(*f, b);
         EXPECT_TRUE(methods_test::allFiniteNonNegative(b.out)) << m;
     }
 }
@@ -100,9 +106,11 @@ TEST(MethodsFilters, ZeroAlbedoDoesNotBlowUp)
             // amplified irradiance does not leak into the other half (svgf: luminance
             // edge-stopping; bmfr: such pixels are left out of the regression).
             for (int y = 0; y < 32; ++y)
-                for (int x = 0; x < 16; ++x) ASSERT_NEAR(b.out(x, y, 0), 0.3f, 1e-5f) << m << " " << x;
+                for (int x = 0; x < 16; ++x)
+                    ASSERT_NEAR(b.out(x, y, 0), 0.3f, 1e-5f) << m << " " << x;
             for (int y = 0; y < 32; ++y)
-                for (int x = 16; x < 32; ++x) ASSERT_NEAR(b.out(x, y, 0), 0.25f, 1e-3f) << m << " " << x;
+                for (int x = 16; x < 32; ++x)
+                    ASSERT_NEAR(b.out(x, y, 0), 0.25f, 1e-3f) << m << " " << x;
         }
     }
 }
@@ -141,14 +149,15 @@ TEST(MethodsFilters, BitIdenticalWithOneAndTwoThreads)
 TEST(MethodsFilters, NoisyGradientErrorFallsClearly)
 {
     const int w = 64, h = 64;
-    const Image clean = makeImage(w, h, 3, [](int x, int y, int c) {
-        return 0.2f + 0.006f * x + 0.003f * y + 0.05f * c;
-    });
+    const Image clean = makeImage(
+        w, h, 3, [](int x, int y, int c) { return 0.2f + 0.006f * x + 0.003f * y + 0.05f * c; });
     for (const char* m : kMethods) {
         auto f = afn::createFilter(m);
         Buffers b;
         b.normal = makeImage(w, h, 3, [](int, int, int c) { return c == 2 ? 1.0f : 0.0f; });
-        b.position = makeImage(w, h, 3, [](int x, int y, int c) { return c == 0 ? x : c == 1 ? y : 0.0f; });
+        b.position = makeImage(w, h, 3, [](int x, int y, int c) {
+            return c == 0 ? x : c == 1 ? y : 0.0f;
+        });
         double noisyErr = 0.0, err = 0.0;
         for (int k = 0; k < 8; ++k) {
             methods_test::Lcg rng { 1234u + static_cast<std::uint32_t>(k) };
@@ -163,7 +172,8 @@ TEST(MethodsFilters, NoisyGradientErrorFallsClearly)
         // TA over 8 frames alone averages about 5 effective samples (RMSE / 2.2); the spatial
         // filters must do clearly better than the noisy input.
         EXPECT_LT(err, 0.5 * noisyErr) << m << ": " << err << " vs noisy " << noisyErr;
-        if (std::string(m) != "ta") EXPECT_LT(err, 0.25 * noisyErr) << m;
+        if (std::string(m) != "ta")
+            EXPECT_LT(err, 0.25 * noisyErr) << m;
     }
 }
 
@@ -173,7 +183,8 @@ TEST(MethodsFilters, TinyAndOddSizesWork)
         for (int size : { 1, 2, 3, 33 }) {
             auto f = afn::createFilter(m);
             Buffers b = staticScene(size, size + 1);
-            b.motion = makeImage(size, size + 1, 2, [](int, int, int c) { return c ? 0.5f : -1.5f; });
+            b.motion
+                = makeImage(size, size + 1, 2, [](int, int, int c) { return c ? 0.5f : -1.5f; });
             for (int k = 0; k < 3; ++k) {
                 b.color = Image(size, size + 1, 3, 0.5f + 0.1f * k);
                 runFrame(*f, b);
@@ -199,7 +210,8 @@ TEST(MethodsFilters, BmfrRegressionReproducesAnExactlyRepresentableBlock)
         afn::bmfrRegression(f, f.color, s, frame, out);
         for (int y = 0; y < 64; ++y)
             for (int x = 0; x < 64; ++x)
-                for (int c = 0; c < 3; ++c) ASSERT_NEAR(out(x, y, c), f.color(x, y, c), 1e-4f) << x << "," << y;
+                for (int c = 0; c < 3; ++c)
+                    ASSERT_NEAR(out(x, y, c), f.color(x, y, c), 1e-4f) << x << "," << y;
     }
 }
 

@@ -20,7 +20,10 @@ using methods_test::makeImage;
 constexpr int W = 16, H = 16;
 
 /// A smooth test function of continuous world coordinates.
-float smooth(float x, float y) { return 2.0f + std::sin(0.2f * x) + std::cos(0.15f * y); }
+float smooth(float x, float y)
+{
+    return 2.0f + std::sin(0.2f * x) + std::cos(0.15f * y);
+}
 
 Frame baseFrame()
 {
@@ -39,11 +42,13 @@ Frame planeFrame(float cx, float cy, bool withMotion, float mx, float my, bool w
     f.color = makeImage(W, H, 3, [&](int x, int y, int) {
         return smooth(static_cast<float>(x) + 0.5f - cx, static_cast<float>(y) + 0.5f - cy);
     });
-    if (withMotion) f.motion = makeImage(W, H, 2, [&](int, int, int c) { return c == 0 ? mx : my; });
+    if (withMotion)
+        f.motion = makeImage(W, H, 2, [&](int, int, int c) { return c == 0 ? mx : my; });
     if (withCamera) {
         f.position = makeImage(W, H, 3, [&](int x, int y, int c) {
             return c == 0 ? static_cast<float>(x) + 0.5f - cx
-                          : c == 1 ? static_cast<float>(y) + 0.5f - cy : 0.0f;
+                : c == 1  ? static_cast<float>(y) + 0.5f - cy
+                          : 0.0f;
         });
         const auto m = methods_test::shiftedCamera(W, H, cx, cy);
         f.camera.valid = true;
@@ -59,7 +64,8 @@ float reprojectionError(float cx, float cy, bool viaCamera)
 {
     Frame f0 = planeFrame(0, 0, !viaCamera, 0, 0, viaCamera);
     Frame f1 = planeFrame(cx, cy, !viaCamera, -cx, -cy, viaCamera);
-    if (viaCamera) f1.prevCamera = f0.camera;
+    if (viaCamera)
+        f1.prevCamera = f0.camera;
     Reprojector r;
     r.compute(f0);
     r.storeGeometry(f0);
@@ -76,14 +82,16 @@ float reprojectionError(float cx, float cy, bool viaCamera)
                 continue;
             }
             EXPECT_GT(ws, 0.0f) << x << "," << y;
-            for (int c = 0; c < 3; ++c) maxErr = std::fmax(maxErr, std::fabs(prev[c] - f1.color(x, y, c)));
+            for (int c = 0; c < 3; ++c)
+                maxErr = std::fmax(maxErr, std::fabs(prev[c] - f1.color(x, y, c)));
         }
     // Pixels whose whole bilinear footprint is outside have no history.
     for (int y = 0; y < H; ++y)
         for (int x = 0; x < W; ++x)
             if (static_cast<float>(x) - cx <= -1.0f || static_cast<float>(y) - cy <= -1.0f) {
                 float prev[3];
-                EXPECT_EQ(afn::gatherHistory<3>(r.taps(x, y), f0.color, prev), 0.0f) << x << "," << y;
+                EXPECT_EQ(afn::gatherHistory<3>(r.taps(x, y), f0.color, prev), 0.0f)
+                    << x << "," << y;
             }
     return maxErr;
 }
@@ -142,7 +150,9 @@ void expectSquareReset(const char* which)
     const std::string w = which;
     auto inSquare = [](int x, int y) { return x >= 4 && x < 8 && y >= 4 && y < 8; };
     if (w == "position") {
-        f0.position = makeImage(W, H, 3, [](int x, int y, int c) { return c == 0 ? x : c == 1 ? y : 0.0f; });
+        f0.position = makeImage(W, H, 3, [](int x, int y, int c) {
+            return c == 0 ? x : c == 1 ? y : 0.0f;
+        });
         f1.position = makeImage(W, H, 3, [&](int x, int y, int c) {
             return c == 0 ? x : c == 1 ? y : (inSquare(x, y) ? -5.0f : 0.0f); // an object appears
         });
@@ -156,7 +166,8 @@ void expectSquareReset(const char* which)
             }
     } else {
         f0.depth = Image(W, H, 1, 10.0f);
-        f1.depth = makeImage(W, H, 1, [&](int x, int y, int) { return inSquare(x, y) ? 5.0f : 10.5f; });
+        f1.depth
+            = makeImage(W, H, 1, [&](int x, int y, int) { return inSquare(x, y) ? 5.0f : 10.5f; });
     }
     Reprojector r;
     afn::TemporalAccumulator ta;
@@ -167,12 +178,22 @@ void expectSquareReset(const char* which)
     ta.accumulate(r, f1.color);
     for (int y = 0; y < H; ++y)
         for (int x = 0; x < W; ++x)
-            EXPECT_EQ(ta.historyLength()(x, y, 0), inSquare(x, y) ? 1.0f : 2.0f) << w << " " << x << "," << y;
+            EXPECT_EQ(ta.historyLength()(x, y, 0), inSquare(x, y) ? 1.0f : 2.0f)
+                << w << " " << x << "," << y;
 }
 
-TEST(MethodsReproject, DisoccludedPixelsResetHistoryByPosition) { expectSquareReset("position"); }
-TEST(MethodsReproject, DisoccludedPixelsResetHistoryByNormal) { expectSquareReset("normal"); }
-TEST(MethodsReproject, DisoccludedPixelsResetHistoryByRelativeDepth) { expectSquareReset("depth"); }
+TEST(MethodsReproject, DisoccludedPixelsResetHistoryByPosition)
+{
+    expectSquareReset("position");
+}
+TEST(MethodsReproject, DisoccludedPixelsResetHistoryByNormal)
+{
+    expectSquareReset("normal");
+}
+TEST(MethodsReproject, DisoccludedPixelsResetHistoryByRelativeDepth)
+{
+    expectSquareReset("depth");
+}
 
 TEST(MethodsReproject, PositionLimitIsScaleInvariant)
 {
@@ -200,7 +221,8 @@ TEST(MethodsReproject, AbsolutePositionLimitIsBmfrsStrictTest)
 {
     Frame f0 = baseFrame(), f1 = baseFrame();
     f0.position = Image(W, H, 3, 0.0f);
-    f1.position = makeImage(W, H, 3, [](int x, int, int c) { return c == 2 && x == 5 ? 0.041f : 0.0f; });
+    f1.position
+        = makeImage(W, H, 3, [](int x, int, int c) { return c == 2 && x == 5 ? 0.041f : 0.0f; });
     f1.position(7, 2, 2) = 0.039f;
     afn::ReprojectSettings s;
     s.positionLimitSquared = 0.0016f; // sponza: 0.04^2, strict
@@ -208,8 +230,8 @@ TEST(MethodsReproject, AbsolutePositionLimitIsBmfrsStrictTest)
     r.setSettings(s);
     r.storeGeometry(f0);
     r.compute(f1);
-    EXPECT_EQ(r.taps(5, 3).mask & 1u, 0u);  // 0.041^2 > 0.0016
-    EXPECT_NE(r.taps(7, 2).mask & 1u, 0u);  // 0.039^2 < 0.0016
+    EXPECT_EQ(r.taps(5, 3).mask & 1u, 0u); // 0.041^2 > 0.0016
+    EXPECT_NE(r.taps(7, 2).mask & 1u, 0u); // 0.039^2 < 0.0016
     EXPECT_NE(r.taps(1, 1).mask & 1u, 0u);
 }
 
@@ -221,9 +243,10 @@ TEST(MethodsReproject, MotionOnlyAcceptsEveryInImageTap)
     r.storeGeometry(f0);
     r.compute(f1);
     for (int y = 1; y < H; ++y)
-        for (int x = 0; x < W - 1; ++x) EXPECT_EQ(r.taps(x, y).mask, 0xFu) << x << "," << y;
+        for (int x = 0; x < W - 1; ++x)
+            EXPECT_EQ(r.taps(x, y).mask, 0xFu) << x << "," << y;
     EXPECT_EQ(r.taps(W - 1, 3).mask, 0x5u); // right taps outside
-    EXPECT_EQ(r.taps(4, 0).mask, 0xCu);     // top taps outside
+    EXPECT_EQ(r.taps(4, 0).mask, 0xCu); // top taps outside
 }
 
 TEST(MethodsReproject, SvgfBoxFallbackFindsHistoryWhenBilinearTapsFail)

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: Apache-2.0
-// Demodulation and temporal accumulation ("ta"): the alpha schedule and lag of TA after a step change
-// of the light (static camera), exact round trips for zero albedo, clamping of absurd values.
+// Demodulation and temporal accumulation ("ta"): the alpha schedule and lag of TA after a step
+// change of the light (static camera), exact round trips for zero albedo, clamping of absurd
+// values.
 #include "core/demodulate.h"
 #include "core/exception.h"
 #include "core/temporal_accumulation.h"
@@ -26,7 +27,9 @@ TEST(MethodsDemodulate, ZeroAndTinyAlbedoRoundTripExactly)
     f.width = 3;
     f.height = 1;
     f.color = makeImage(3, 1, 3, [](int x, int, int c) { return 0.3f + 0.1f * x + 0.01f * c; });
-    f.albedo = makeImage(3, 1, 3, [](int x, int, int) { return x == 0 ? 0.0f : x == 1 ? 1e-6f : 0.5f; });
+    f.albedo = makeImage(3, 1, 3, [](int x, int, int) {
+        return x == 0 ? 0.0f : x == 1 ? 1e-6f : 0.5f;
+    });
     Image irr, back;
     afn::demodulate(f, irr);
     afn::remodulate(f, irr, back);
@@ -82,13 +85,16 @@ TEST(MethodsTa, MovingLightShowsTheDocumentedLag)
 {
     // Static camera; the light switches from 0.2 to 1.0 at frame 3 and back to 0.5 at frame 12.
     std::vector<float> light;
-    for (int k = 0; k < 20; ++k) light.push_back(k < 3 ? 0.2f : k < 12 ? 1.0f : 0.5f);
+    for (int k = 0; k < 20; ++k)
+        light.push_back(k < 3 ? 0.2f : k < 12 ? 1.0f : 0.5f);
     const std::vector<double> expect = expectedSchedule(light);
     auto ta = afn::createFilter("ta");
     Buffers b;
     b.albedo = Image(W, H, 3, 0.5f);
     b.normal = makeImage(W, H, 3, [](int, int, int c) { return c == 2 ? 1.0f : 0.0f; });
-    b.position = makeImage(W, H, 3, [](int x, int y, int c) { return c == 0 ? x : c == 1 ? y : 3.0f; });
+    b.position = makeImage(W, H, 3, [](int x, int y, int c) {
+        return c == 0 ? x : c == 1 ? y : 3.0f;
+    });
     for (std::size_t k = 0; k < light.size(); ++k) {
         b.color = Image(W, H, 3, light[k] * 0.5f); // radiance = albedo * light
         runFrame(*ta, b);

@@ -36,13 +36,16 @@ inline afn::ImageBinding binding(Image& img)
 /// Bind every non-empty buffer (and the output, allocated here), set the camera, commit, execute.
 inline void runFrame(afn::Filter& f, Buffers& b)
 {
-    if (b.out.empty()) b.out = Image(b.color.width(), b.color.height(), 3);
+    if (b.out.empty())
+        b.out = Image(b.color.width(), b.color.height(), 3);
     const char* names[] = { "color", "albedo", "normal", "depth", "position", "motion" };
     Image* imgs[] = { &b.color, &b.albedo, &b.normal, &b.depth, &b.position, &b.motion };
     for (int i = 0; i < 6; ++i)
-        if (!imgs[i]->empty()) f.setImage(names[i], binding(*imgs[i]));
+        if (!imgs[i]->empty())
+            f.setImage(names[i], binding(*imgs[i]));
     f.setImage("output", binding(b.out));
-    if (!b.viewProjection.empty()) f.setFloats("viewProjection", b.viewProjection);
+    if (!b.viewProjection.empty())
+        f.setFloats("viewProjection", b.viewProjection);
     f.commit();
     f.execute();
 }
@@ -70,15 +73,18 @@ inline double rmse(const Image& a, const Image& b)
 inline bool allFiniteNonNegative(const Image& a)
 {
     for (std::size_t i = 0; i < a.size(); ++i)
-        if (!std::isfinite(a.data()[i]) || a.data()[i] < 0.0f) return false;
+        if (!std::isfinite(a.data()[i]) || a.data()[i] < 0.0f)
+            return false;
     return true;
 }
 
 inline bool bitEqual(const Image& a, const Image& b)
 {
-    if (a.size() != b.size()) return false;
+    if (a.size() != b.size())
+        return false;
     for (std::size_t i = 0; i < a.size(); ++i)
-        if (a.data()[i] != b.data()[i]) return false;
+        if (a.data()[i] != b.data()[i])
+            return false;
     return true;
 }
 
@@ -88,7 +94,8 @@ template <typename Fn> Image makeImage(int w, int h, int ch, Fn fn)
     Image img(w, h, ch);
     for (int y = 0; y < h; ++y)
         for (int x = 0; x < w; ++x)
-            for (int c = 0; c < ch; ++c) img(x, y, c) = fn(x, y, c);
+            for (int c = 0; c < ch; ++c)
+                img(x, y, c) = fn(x, y, c);
     return img;
 }
 
