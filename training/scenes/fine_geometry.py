@@ -12,7 +12,7 @@ DEFAULTS = {
     "post_radius": 0.02,  # metres (thinner than a pixel at 320x180 from afar)
     "wires": 12,
     "pan_speed": 0.35,  # camera metres per frame (fast)
-    "texture_scale": 60.0,  # checker cells per unit texture space on the floor
+    "texture_scale": 300.0,  # checker cells across the 40 m floor (13 cm cells)
 }
 
 

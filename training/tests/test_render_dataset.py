@@ -7,6 +7,8 @@ import shutil
 import subprocess
 import sys
 
+import numpy as np
+import OpenImageIO as oiio
 import pytest
 
 TRAINING = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
@@ -69,18 +71,49 @@ def test_list_prints_every_scene(capsys):
         assert name in out
 
 
+def _project(camera, points, width, height):
+    """Blender raster position (pixels, y up) of world ``points`` seen by a recorded camera."""
+    world_to_cam = np.linalg.inv(np.array(camera["matrix_world"]))
+    pc = points @ world_to_cam[:3, :3].T + world_to_cam[:3, 3]
+    focal = camera["lens_mm"] / camera["sensor_width_mm"]  # horizontal sensor fit (16:9)
+    x = (0.5 + focal * pc[..., 0] / -pc[..., 2]) * width
+    y = 0.5 * height + focal * width * pc[..., 1] / -pc[..., 2]
+    return np.stack([x, y], -1)
+
+
+def _passes(path):
+    buf = oiio.ImageBuf(path)
+    names = list(buf.spec().channelnames)
+    pixels = buf.get_pixels(oiio.FLOAT)
+    return lambda name: pixels[:, :, names.index("ViewLayer." + name)]
+
+
 @pytest.mark.skipif(shutil.which("blender") is None, reason="Blender not installed")
-def test_render_one_tiny_frame_and_resume(tmp_path):
+def test_render_two_tiny_frames_resume_and_motion_vectors(tmp_path):
     cmd = [sys.executable, os.path.join(TRAINING, "render-dataset"), "--out", str(tmp_path),
-           "--scenes", "neon", "--frames", "1", "--height", "18", "--ref-spp", "2"]
-    first = subprocess.run(cmd, capture_output=True, text=True, timeout=120)
+           "--scenes", "fine_geometry", "--frames", "2", "--height", "18", "--ref-spp", "2"]
+    first = subprocess.run(cmd, capture_output=True, text=True, timeout=300)
     assert first.returncode == 0, first.stderr
-    for name in ("frame.0000.exr", "reference.0000.exr", "scene.json"):
-        assert (tmp_path / "neon" / name).exists()
+    scene_dir = tmp_path / "fine_geometry"
+    for name in ("frame.0000.exr", "frame.0001.exr", "reference.0001.exr", "scene.json"):
+        assert (scene_dir / name).exists()
     manifest = json.loads((tmp_path / "manifest.json").read_text())
-    rec = manifest["scenes"]["neon"]
+    rec = manifest["scenes"]["fine_geometry"]
     assert (rec["width"], rec["height"], rec["spp"], rec["ref_spp"]) == (32, 18, 1, 2)
     assert manifest["blender"]
-    second = subprocess.run(cmd, capture_output=True, text=True, timeout=120)
+
+    # Vector.XY = (where the surface was at t-1) - (where it is at t), in pixels with y up:
+    # recompute it from the Position pass and the cameras recorded in scene.json.
+    state = json.loads((scene_dir / "scene.json").read_text())
+    chan = _passes(str(scene_dir / "frame.0001.exr"))
+    points = np.stack([chan("Position.X"), chan("Position.Y"), chan("Position.Z")], -1)
+    vector = np.stack([chan("Vector.X"), chan("Vector.Y")], -1)
+    hit = chan("Depth.Z") < 1e9
+    expected = (_project(state["cameras"]["0"], points, 32, 18)
+                - _project(state["cameras"]["1"], points, 32, 18))
+    assert np.abs(vector[hit]).max() > 0.5  # the camera pans fast
+    assert np.median(np.abs(vector - expected)[hit]) < 1e-2
+
+    second = subprocess.run(cmd, capture_output=True, text=True, timeout=300)
     assert second.returncode == 0, second.stderr
     assert "skip" in second.stdout and "wrote" not in second.stdout
