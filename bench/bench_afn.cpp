@@ -7,6 +7,9 @@
 #include "core/afn_random_weights.h"
 
 #include <benchmark/benchmark.h>
+#include <tbb/global_control.h>
+
+#include <memory>
 
 #include <random>
 
@@ -42,14 +45,24 @@ Setup& setup720()
     return s;
 }
 
+// Argument = worker threads (1: the CPU time is the whole cost; 0: all hardware threads).
 void configure(benchmark::internal::Benchmark* b)
 {
     b->Unit(benchmark::kMillisecond)->Iterations(2)->Repetitions(5)->ReportAggregatesOnly(true);
+    b->ArgName("threads")->Arg(1)->Arg(0)->UseRealTime();
+}
+
+std::unique_ptr<tbb::global_control> threads(const benchmark::State& state)
+{
+    if (state.range(0) <= 0) return nullptr;
+    return std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism,
+                                                 static_cast<std::size_t>(state.range(0)));
 }
 
 void BM_AfnKernelPrediction(benchmark::State& state)
 {
     Setup& s = setup720();
+    const auto limit = threads(state);
     for (auto _ : state) {
         s.net.prepare(s.in);
         s.net.predict();
@@ -60,6 +73,7 @@ BENCHMARK(BM_AfnKernelPrediction)->Name("afn.kernel_prediction.1280x720")->Apply
 void BM_AfnFilterFuse(benchmark::State& state)
 {
     Setup& s = setup720();
+    const auto limit = threads(state);
     for (auto _ : state) s.net.filterAndFuse();
 }
 BENCHMARK(BM_AfnFilterFuse)->Name("afn.filtering_fusion.1280x720")->Apply(configure);
@@ -67,6 +81,7 @@ BENCHMARK(BM_AfnFilterFuse)->Name("afn.filtering_fusion.1280x720")->Apply(config
 void BM_AfnRefine(benchmark::State& state)
 {
     Setup& s = setup720();
+    const auto limit = threads(state);
     for (auto _ : state) s.net.refine();
 }
 BENCHMARK(BM_AfnRefine)->Name("afn.refinement.1280x720")->Apply(configure);
@@ -74,6 +89,7 @@ BENCHMARK(BM_AfnRefine)->Name("afn.refinement.1280x720")->Apply(configure);
 void BM_AfnWhole(benchmark::State& state)
 {
     Setup& s = setup720();
+    const auto limit = threads(state);
     for (auto _ : state) s.net.run(s.in, s.out);
 }
 BENCHMARK(BM_AfnWhole)->Name("afn.whole.1280x720")->Apply(configure);

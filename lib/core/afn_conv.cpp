@@ -2,10 +2,14 @@
 // Direct convolutions of the AFN engine (see afn_conv.h).
 #include "afn_conv.h"
 
+#include "afn_simd.h"
 #include "exception.h"
 #include "parallel.h"
 
 #include <algorithm>
+
+// Vector helpers are always inlined within one target clone: the AVX ABI note does not apply.
+#pragma GCC diagnostic ignored "-Wpsabi"
 
 namespace afn {
 
@@ -40,14 +44,91 @@ void AfnConv::load(const WeightsArchive& a, const std::string& name, int expecte
     m_in = in;
     m_out = out;
     m_k = k;
-    m_b = b.data;
-    m_w.assign(static_cast<std::size_t>(k) * k * in * out, 0.0f);
+    m_outPadded = (out + 7) / 8 * 8;
+    m_bp.assign(m_outPadded, 0.0f);
+    std::copy(b.data.begin(), b.data.end(), m_bp.begin());
+    m_wp.assign(static_cast<std::size_t>(k) * k * in * m_outPadded, 0.0f);
     for (int co = 0; co < out; ++co)
         for (int ci = 0; ci < in; ++ci)
             for (int t = 0; t < k * k; ++t)
-                m_w[(static_cast<std::size_t>(t) * in + ci) * out + co] =
+                m_wp[(static_cast<std::size_t>(t) * in + ci) * m_outPadded + co] =
                     w.data[(static_cast<std::size_t>(co) * in + ci) * k * k + t];
 }
+
+namespace {
+
+typedef AfnV8 V8;
+typedef AfnV8u V8u;
+constexpr int kLanes = 8;
+constexpr int kPixels = 4; // output pixels per micro-kernel call (register blocking)
+
+const float* zeros()
+{
+    static const float z[kAfnMaxChannels] = {};
+    return z;
+}
+
+} // namespace
+
+namespace {
+
+struct ConvArgs {
+    const Image* up;
+    const Image* same;
+    Image* out;
+    const float* wp; ///< [ky][kx][ci][cp]
+    const float* bp; ///< [cp]
+    int in, k, cp, outC, nu, ns;
+    bool relu;
+};
+
+// Rows [y0, y1) of one convolution: 4 output pixels x 8 output channels per micro-kernel step.
+// Compiled twice (ifunc dispatch at load time): for x86-64-v3 (AVX2 + FMA) and the baseline.
+// Results may differ in the last bit between the two (FMA contraction); parity holds for both.
+__attribute__((target_clones("arch=x86-64-v3", "default"))) void convRows(const ConvArgs& a, int y0,
+                                                                           int y1)
+{
+    const int w = a.same->width(), h = a.same->height(), r = a.k / 2, cp = a.cp;
+    for (int y = y0; y < y1; ++y)
+        for (int x = 0; x < w; x += kPixels) {
+            const int np = std::min(kPixels, w - x);
+            for (int cb = 0; cb < cp; cb += kLanes) {
+                V8 acc[kPixels];
+                const V8 bias = *reinterpret_cast<const V8u*>(a.bp + cb);
+                for (int p = 0; p < kPixels; ++p) acc[p] = bias;
+                for (int ky = 0; ky < a.k; ++ky) {
+                    const int yy = y + ky - r;
+                    if (yy < 0 || yy >= h) continue;
+                    for (int kx = 0; kx < a.k; ++kx) {
+                        const float* wt = a.wp + static_cast<std::size_t>(ky * a.k + kx) * a.in * cp + cb;
+                        const float* pu[kPixels];
+                        const float* ps[kPixels];
+                        for (int p = 0; p < kPixels; ++p) {
+                            const int xx = x + p + kx - r;
+                            const bool in = p < np && xx >= 0 && xx < w;
+                            pu[p] = in && a.nu ? a.up->at(xx >> 1, yy >> 1) : zeros();
+                            ps[p] = in ? a.same->at(xx, yy) : zeros();
+                        }
+                        for (int ci = 0; ci < a.nu; ++ci, wt += cp) {
+                            const V8 wv = *reinterpret_cast<const V8u*>(wt);
+                            for (int p = 0; p < kPixels; ++p) acc[p] += pu[p][ci] * wv;
+                        }
+                        for (int ci = 0; ci < a.ns; ++ci, wt += cp) {
+                            const V8 wv = *reinterpret_cast<const V8u*>(wt);
+                            for (int p = 0; p < kPixels; ++p) acc[p] += ps[p][ci] * wv;
+                        }
+                    }
+                }
+                const int nc = std::min(kLanes, a.outC - cb);
+                for (int p = 0; p < np; ++p) {
+                    float* dst = a.out->at(x + p, y) + cb;
+                    for (int o = 0; o < nc; ++o) dst[o] = a.relu ? std::max(acc[p][o], 0.0f) : acc[p][o];
+                }
+            }
+        }
+}
+
+} // namespace
 
 void AfnConv::run(const Image* up, const Image& same, Image& out, bool relu) const
 {
@@ -57,55 +138,9 @@ void AfnConv::run(const Image* up, const Image& same, Image& out, bool relu) con
         throwInvalidOperation("AFN conv: input has " + std::to_string(nu + ns) + " channels, layer " +
                               "expects " + std::to_string(m_in));
     out.resize(w, h, m_out);
-    const int r = m_k / 2, co = m_out;
-    parallelRows(h, [&](int y0, int y1) {
-        float acc[kAfnMaxChannels];
-        for (int y = y0; y < y1; ++y)
-            for (int x = 0; x < w; ++x) {
-                std::copy(m_b.begin(), m_b.end(), acc);
-                for (int ky = 0; ky < m_k; ++ky) {
-                    const int yy = y + ky - r;
-                    if (yy < 0 || yy >= h) continue;
-                    for (int kx = 0; kx < m_k; ++kx) {
-                        const int xx = x + kx - r;
-                        if (xx < 0 || xx >= w) continue;
-                        const float* wt = m_w.data() + static_cast<std::size_t>(ky * m_k + kx) * m_in * co;
-                        if (nu) {
-                            const float* p = up->at(xx >> 1, yy >> 1);
-                            for (int ci = 0; ci < nu; ++ci, wt += co) {
-                                const float v = p[ci];
-                                for (int o = 0; o < co; ++o) acc[o] += v * wt[o];
-                            }
-                        }
-                        const float* p = same.at(xx, yy);
-                        for (int ci = 0; ci < ns; ++ci, wt += co) {
-                            const float v = p[ci];
-                            for (int o = 0; o < co; ++o) acc[o] += v * wt[o];
-                        }
-                    }
-                }
-                float* dst = out.at(x, y);
-                if (relu)
-                    for (int o = 0; o < co; ++o) dst[o] = std::max(acc[o], 0.0f);
-                else
-                    std::copy(acc, acc + co, dst);
-            }
-    });
-}
-
-void AfnConv::evalPixel(const float* a, int na, const float* b, int nb, float* acc) const
-{
-    const int co = m_out;
-    std::copy(m_b.begin(), m_b.end(), acc);
-    const float* wt = m_w.data();
-    for (int ci = 0; ci < na; ++ci, wt += co) {
-        const float v = a[ci];
-        for (int o = 0; o < co; ++o) acc[o] += v * wt[o];
-    }
-    for (int ci = 0; ci < nb; ++ci, wt += co) {
-        const float v = b[ci];
-        for (int o = 0; o < co; ++o) acc[o] += v * wt[o];
-    }
+    const ConvArgs args { up, &same, &out, m_wp.data(), m_bp.data(), m_in, m_k, m_outPadded,
+                          m_out, nu, ns, relu };
+    parallelRows(h, [&](int y0, int y1) { convRows(args, y0, y1); });
 }
 
 void afnDown2(const Image& in, Image& out)

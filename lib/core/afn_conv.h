@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: Apache-2.0
 // Convolution layers of the AFN engine: direct (im2col-free) k x k convolutions, stride 1, zero
 // padding k/2, on interleaved (H, W, C) images, with oneTBB over rows. The inner loop runs over
-// the output channels with the weights stored [tap][in][out], so it vectorises.
+// blocks of 8 output channels x 4 output pixels (weights stored [tap][in][out padded to 8]);
+// the row loop is compiled for x86-64-v3 (AVX2+FMA) and baseline x86-64, chosen at load time.
 #pragma once
 
 #include "afn_weights.h"
@@ -33,13 +34,16 @@ public:
     /// the others read `same` (out's size). `up` may be null. `out` is resized to same's size.
     void run(const Image* up, const Image& same, Image& out, bool relu) const;
 
-    /// 1x1 layers only: acc[co] = bias + sum_ci W[co][ci] * in[ci], in = concat(a[0..na), b[0..nb)).
-    void evalPixel(const float* a, int na, const float* b, int nb, float* acc) const;
+    /// Output channels rounded up to 8; the padded weights [ky][kx][ci][co] and bias are zero there.
+    int paddedOutChannels() const { return m_outPadded; }
+    const float* paddedWeights() const { return m_wp.data(); }
+    const float* paddedBias() const { return m_bp.data(); }
 
 private:
     int m_in = 0, m_out = 0, m_k = 0;
-    std::vector<float> m_w; ///< [ky][kx][ci][co]
-    std::vector<float> m_b; ///< [co]
+    int m_outPadded = 0;     ///< output channels rounded up to 8 (vector lanes)
+    std::vector<float> m_wp; ///< [ky][kx][ci][co padded to 8], zero padding
+    std::vector<float> m_bp; ///< [co padded to 8]
 };
 
 /// D: 2x2 average pooling of an image with even size into `out` (half size).

@@ -2,10 +2,14 @@
 // Fused heads + softmax + 7x7 filtering + fusion of AFN (see afn_fusion.h).
 #include "afn_fusion.h"
 
+#include "afn_simd.h"
 #include "parallel.h"
 
 #include <algorithm>
 #include <cmath>
+
+// Vector helpers are always inlined within one target clone: the AVX ABI note does not apply.
+#pragma GCC diagnostic ignored "-Wpsabi"
 
 namespace afn {
 
@@ -57,48 +61,91 @@ void afnApplyKernel(const Image& img, int x, int y, const float* k, float* rgb)
     rgb[2] = a2;
 }
 
-void afnFilterAndFuse(const AfnFusionInputs& in, const AfnFusionOutputs& out)
+namespace {
+
+// 1x1 head on one pixel with 8-wide vectors: acc[0..cp) = bias + W * concat(a, b).
+inline __attribute__((always_inline)) void head1x1(const AfnConv& conv, const float* a, int na,
+                                                   const float* b, int nb, float* acc)
+{
+    const int cp = conv.paddedOutChannels();
+    const float* wt = conv.paddedWeights();
+    AfnV8 v[kAfnMaxChannels / 8];
+    const int nv = cp / 8;
+    for (int j = 0; j < nv; ++j) v[j] = afnLoad8(conv.paddedBias() + 8 * j);
+    for (int ci = 0; ci < na; ++ci, wt += cp)
+        for (int j = 0; j < nv; ++j) v[j] += a[ci] * afnLoad8(wt + 8 * j);
+    for (int ci = 0; ci < nb; ++ci, wt += cp)
+        for (int j = 0; j < nv; ++j) v[j] += b[ci] * afnLoad8(wt + 8 * j);
+    for (int j = 0; j < nv; ++j) afnStore8(acc + 8 * j, v[j]);
+}
+
+// Softmax over the 49 taps: 6 vectors of 8 plus one scalar tap.
+inline __attribute__((always_inline)) void softmax49(float* l)
+{
+    float m = l[0];
+    for (int j = 1; j < kAfnKernelTaps; ++j) m = std::max(m, l[j]);
+    const AfnV8 mv = afnSplat8(m);
+    AfnV8 sv = afnSplat8(0.0f);
+    for (int j = 0; j < 48; j += 8) {
+        const AfnV8 e = afnExp8(afnLoad8(l + j) - mv);
+        afnStore8(l + j, e);
+        sv += e;
+    }
+    l[48] = std::exp(l[48] - m);
+    const float s = sv[0] + sv[1] + sv[2] + sv[3] + sv[4] + sv[5] + sv[6] + sv[7] + l[48];
+    const float inv = 1.0f / s;
+    for (int j = 0; j < kAfnKernelTaps; ++j) l[j] *= inv;
+}
+
+// Rows [y0, y1) of half-resolution blocks; compiled for x86-64-v3 and the baseline (ifunc).
+__attribute__((target_clones("arch=x86-64-v3", "default"))) void fuseRows(const AfnFusionInputs& in,
+                                                                           const AfnFusionOutputs& out,
+                                                                           int y0, int y1)
 {
     const Image& d1 = *in.d1;
     const Image& x = *in.x;
-    const int wh = d1.width(), hh = d1.height();
-    const int w = 2 * wh, h = 2 * hh;
-    out.fused->resize(w, h, 3);
-    out.filteredTa->resize(w, h, 3);
-    out.alpha->resize(w, h, 1);
-    out.filtered1Half->resize(wh, hh, 3);
-    const int cd = d1.channels(), cx = x.channels();
-    parallelRows(hh, [&](int y0, int y1) {
-        float logits[kAfnMaxChannels];
-        for (int yh = y0; yh < y1; ++yh)
-            for (int xh = 0; xh < wh; ++xh) {
-                const float* feat = d1.at(xh, yh);
-                // 1-spp branch at half resolution.
-                in.head1->evalPixel(feat, cd, nullptr, 0, logits);
-                afnSoftmax(logits, kAfnKernelTaps);
-                float* d1s = out.filtered1Half->at(xh, yh);
-                afnApplyKernel(*in.color1Half, xh, yh, logits, d1s);
-                // TA branch on the four full-resolution pixels of this block.
-                float dta[4][3], alpha[4];
+    const int wh = d1.width(), cd = d1.channels(), cx = x.channels();
+    alignas(32) float logits[kAfnMaxChannels];
+    for (int yh = y0; yh < y1; ++yh)
+        for (int xh = 0; xh < wh; ++xh) {
+            const float* feat = d1.at(xh, yh);
+            // 1-spp branch at half resolution.
+            head1x1(*in.head1, feat, cd, nullptr, 0, logits);
+            softmax49(logits);
+            float* d1s = out.filtered1Half->at(xh, yh);
+            afnApplyKernel(*in.color1Half, xh, yh, logits, d1s);
+            // TA branch on the four full-resolution pixels of this block.
+            float dta[4][3], alpha[4];
+            for (int q = 0; q < 4; ++q) {
+                const int px = 2 * xh + (q & 1), py = 2 * yh + (q >> 1);
+                head1x1(*in.headTa, feat, cd, x.at(px, py), cx, logits);
+                alpha[q] = 1.0f / (1.0f + std::exp(-logits[kAfnKernelTaps]));
+                softmax49(logits);
+                afnApplyKernel(*in.colorTa, px, py, logits, dta[q]);
+            }
+            // Eq. 3 on the block; D sums in row order then divides by 4 (as avg_pool2d).
+            for (int c = 0; c < 3; ++c) {
+                const float mean = (dta[0][c] + dta[1][c] + dta[2][c] + dta[3][c]) / 4.0f;
                 for (int q = 0; q < 4; ++q) {
                     const int px = 2 * xh + (q & 1), py = 2 * yh + (q >> 1);
-                    in.headTa->evalPixel(feat, cd, x.at(px, py), cx, logits);
-                    alpha[q] = 1.0f / (1.0f + std::exp(-logits[kAfnKernelTaps]));
-                    afnSoftmax(logits, kAfnKernelTaps);
-                    afnApplyKernel(*in.colorTa, px, py, logits, dta[q]);
+                    (*out.fused)(px, py, c) = dta[q][c] - alpha[q] * mean + alpha[q] * d1s[c];
+                    (*out.filteredTa)(px, py, c) = dta[q][c];
                 }
-                // Eq. 3 on the block; D sums in row order then divides by 4 (as avg_pool2d).
-                for (int c = 0; c < 3; ++c) {
-                    const float mean = (dta[0][c] + dta[1][c] + dta[2][c] + dta[3][c]) / 4.0f;
-                    for (int q = 0; q < 4; ++q) {
-                        const int px = 2 * xh + (q & 1), py = 2 * yh + (q >> 1);
-                        (*out.fused)(px, py, c) = dta[q][c] - alpha[q] * mean + alpha[q] * d1s[c];
-                        (*out.filteredTa)(px, py, c) = dta[q][c];
-                    }
-                }
-                for (int q = 0; q < 4; ++q) (*out.alpha)(2 * xh + (q & 1), 2 * yh + (q >> 1), 0) = alpha[q];
             }
-    });
+            for (int q = 0; q < 4; ++q) (*out.alpha)(2 * xh + (q & 1), 2 * yh + (q >> 1), 0) = alpha[q];
+        }
+}
+
+} // namespace
+
+void afnFilterAndFuse(const AfnFusionInputs& in, const AfnFusionOutputs& out)
+{
+    const int wh = in.d1->width(), hh = in.d1->height();
+    out.fused->resize(2 * wh, 2 * hh, 3);
+    out.filteredTa->resize(2 * wh, 2 * hh, 3);
+    out.alpha->resize(2 * wh, 2 * hh, 1);
+    out.filtered1Half->resize(wh, hh, 3);
+    parallelRows(hh, [&](int y0, int y1) { fuseRows(in, out, y0, y1); });
 }
 
 } // namespace afn
