@@ -272,7 +272,7 @@ const detail::Preset& choosePreset(
     return all[pick];
 }
 
-void applyChannelOverride(const std::vector<Entry>& entries, Role role,
+void applyChannelOverride(const std::vector<Entry>& entries, const Preset& preset, Role role,
     const std::vector<std::string>& names, RoleMapping& mapping)
 {
     auto& roles = mapping.roles;
@@ -327,6 +327,17 @@ void applyChannelOverride(const std::vector<Entry>& entries, Role role,
     }
     mapping.lookedFor.erase(role);
     roles.push_back({ role, m->sub, m->names, m->indices, "--aov " + spelled });
+    // A pass the preset knows keeps its conventions ("normal=ViewLayer.Denoising Normal" is camera
+    // space); explicit tag overrides are applied afterwards and win.
+    const std::string layer = detail::splitLast(m->names.front()).first;
+    for (const detail::RoleCandidates& rc : preset.roles)
+        if (rc.role == role)
+            for (const Candidate& cand : rc.candidates)
+                if (!cand.layer.empty() && layerMatches(layer, cand.layer)) {
+                    for (const auto& [k, v] : cand.tags)
+                        detail::applyTag(mapping.tag, k, v);
+                    return;
+                }
 }
 
 } // namespace
@@ -343,7 +354,7 @@ RoleMapping mapRoles(const FileInfo& info, const MappingOverrides& overrides)
                 = lookedForRole(static_cast<Role>(r), chosen, mapping);
 
     for (const auto& [role, names] : overrides.channels)
-        applyChannelOverride(entries, role, names, mapping);
+        applyChannelOverride(entries, chosen, role, names, mapping);
     for (const auto& [key, value] : overrides.tags)
         if (!detail::applyTag(mapping.tag, key, value))
             throw IoError("--aov: invalid tag " + key + "=" + value, info.path);

@@ -334,6 +334,21 @@ TEST(IoRoles, OverrideColourOnBlenderFile)
     EXPECT_EQ(chans(m, Role::Color)[0], "ViewLayer.Denoising Albedo.R");
 }
 
+TEST(IoRoles, OverrideToAKnownPassKeepsItsConventions)
+{
+    MappingOverrides o;
+    parseOverride("normal=ViewLayer.Denoising Normal", o);
+    parseOverride("depth=ViewLayer.Denoising Depth.Z", o);
+    const RoleMapping m = mapRoles(fileWith(afn_test::blenderChannels("ViewLayer")), o);
+    EXPECT_EQ(chans(m, Role::Normal)[0], "ViewLayer.Denoising Normal.X");
+    EXPECT_EQ(m.tag.normalSpace, "camera");
+    EXPECT_EQ(chans(m, Role::Depth), (V { "ViewLayer.Denoising Depth.Z" }));
+    EXPECT_EQ(m.tag.depthKind, "radial");
+    parseOverride("normal.space=world", o); // explicit tags win
+    EXPECT_EQ(
+        mapRoles(fileWith(afn_test::blenderChannels("ViewLayer")), o).tag.normalSpace, "world");
+}
+
 TEST(IoRoles, ParseOverrideErrors)
 {
     MappingOverrides o;
