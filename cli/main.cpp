@@ -33,6 +33,8 @@ int run(const Options& opts)
         std::printf("afntool %d.%d.%d\n", AFN_VERSION_MAJOR, AFN_VERSION_MINOR, AFN_VERSION_PATCH);
         return 0;
     }
+    for (const Action& a : opts.actions)
+        if (a.name == "benchmark") return runBenchmark(opts, a);
     const std::vector<FrameRef> frames = resolveFrames(opts);
     RunContext ctx(opts);
 
@@ -55,6 +57,12 @@ int run(const Options& opts)
             if (denoiser) throw CliError("--denoise given twice");
             denoiser = std::make_unique<SequenceDenoiser>(opts, a);
         }
+    std::unique_ptr<SequenceComparer> comparer;
+    for (const Action& a : opts.actions)
+        if (a.name == "compare") {
+            if (comparer) throw CliError("--compare given twice");
+            comparer = std::make_unique<SequenceComparer>(ctx, a);
+        }
 
     Progress progress(static_cast<int>(frames.size()), opts.quiet);
     const bool keepAll = needsAllChannels(opts);
@@ -67,6 +75,8 @@ int run(const Options& opts)
                 runInfo(ctx, { frames[i] });
             } else if (a.name == "denoise") {
                 denoiser->process(frame, &progress);
+            } else if (a.name == "compare") {
+                comparer->process(frame, &progress);
             } else {
                 const std::string out = outputPath(a.arg, frames[i], frames.size(),
                                                    a.name == "output" ? "-o" : "--" + a.name);
@@ -80,6 +90,8 @@ int run(const Options& opts)
         }
     }
     progress.update(static_cast<int>(frames.size()), "done");
+    progress.clear();
+    if (comparer) comparer->finish();
     return 0;
 }
 

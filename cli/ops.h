@@ -6,6 +6,7 @@
 
 #include "afn/afn.hpp"
 
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -46,5 +47,23 @@ private:
     afn::FilterRef m_filter;
     std::vector<float> m_output;
 };
+
+/// --compare REF: per-frame and mean metrics of the current beauty against the reference frames
+/// (REF: a file or a frame pattern); printed by finish() as a table, or JSON with --json.
+class SequenceComparer {
+public:
+    SequenceComparer(RunContext& ctx, const Action& action);
+    ~SequenceComparer();
+    void process(const LoadedFrame& frame, Progress* progress);
+    void finish();
+
+private:
+    struct Impl;
+    std::unique_ptr<Impl> m_impl;
+};
+
+/// --benchmark:methods=a,b,... (with --compare REF --report DIR) or --benchmark:size=WxH,...:
+/// run, time and score the methods, print a summary and write the report files.
+int runBenchmark(const Options& opts, const Action& action);
 
 } // namespace afntool

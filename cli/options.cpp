@@ -102,6 +102,12 @@ Options parseCommandLine(int argc, const char* const* argv)
             o.actions.push_back({ "preview", needValue(i, argc, argv, flag), mods });
         } else if (flag == "--contact-sheet") {
             o.actions.push_back({ "contact-sheet", needValue(i, argc, argv, flag), mods });
+        } else if (flag == "--compare") {
+            o.actions.push_back({ "compare", needValue(i, argc, argv, flag), mods });
+        } else if (flag == "--benchmark") {
+            o.actions.push_back({ "benchmark", "", mods });
+        } else if (flag == "--report") {
+            o.report = needValue(i, argc, argv, flag);
         } else if (flag == "-o") {
             o.actions.push_back({ "output", needValue(i, argc, argv, flag), mods });
         } else {
@@ -155,7 +161,17 @@ std::string helpText()
        << "  --preview OUT.png       display-referred beauty (:display=NAME:view=NAME)\n"
        << "  --contact-sheet OUT.png every AOV of the frame as a labelled tile\n"
        << "                          (:columns=4:tilesize=480)\n"
-       << "  -o OUT                  write the beauty as top-level R,G,B[,A] (atomic)\n\n"
+       << "  -o OUT                  write the beauty as top-level R,G,B[,A] (atomic)\n"
+       << "  --compare REF           metrics of the current beauty against REF (file or pattern):\n"
+       << "                          per frame and mean; table, or JSON with --json\n"
+       << "  --benchmark:methods=ta,svgf/iterations=2,...  (with --compare REF [--report DIR])\n"
+       << "                          time and score each method on the sequence; report folder with\n"
+       << "                          results.json/.csv, runtime-vs-error.svg, index.html\n"
+       << "                          (:repeat=N :error=rmse|psnr|ssim|smape|... :crop=X,Y,W,H\n"
+       << "                          :crop-frames=F,G)\n"
+       << "  --benchmark:size=1280x720,1920x1080,...  time the denoise stage on generated inputs\n"
+       << "                          (:methods=a,b :frames=N :warmup=W; --json, --report DIR)\n"
+       << "  --report DIR            folder for --benchmark's report files\n\n"
        << "Denoising methods and their parameters (name=default (type range)):\n";
     for (const std::string& type : afn::filterTypes()) {
         const char* desc = afnGetFilterTypeDescription(type.c_str());

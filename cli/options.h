@@ -31,6 +31,7 @@ struct Options {
     std::string compression;           ///< --compression ("" = keep the input's)
     bool keepAovs = false;             ///< --keep-aovs
     bool json = false;                 ///< --json (with --info)
+    std::string report;                ///< --report DIR (with --benchmark): report folder
     bool quiet = false;                ///< --quiet: no progress, no warnings
     bool help = false;
     bool version = false;

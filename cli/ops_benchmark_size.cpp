@@ -1,0 +1,210 @@
+// SPDX-License-Identifier: Apache-2.0
+// --benchmark:size=1280x720,1920x1080,...: time the denoise stage alone on generated inputs of each
+// size, for scaling curves (time against pixel count). Modifiers: methods=a,b (default: every type
+// but "identity"), frames=N timed frames (default 5) after warmup=W untimed ones (default 2).
+// The inputs are plain fills plus hashed per-pixel noise (no rendering): a lit plane facing the
+// camera, static camera, zero motion. Written by hand here; they carry no product pixel math.
+#include "ops.h"
+
+#include "cli_error.h"
+#include "json_writer.h"
+#include "progress.h"
+#include "report.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cstdint>
+#include <cstdio>
+#include <filesystem>
+#include <sstream>
+
+namespace afntool {
+
+namespace {
+
+struct SizePoint {
+    std::string method;
+    int width = 0, height = 0;
+    double medianMs = 0.0;
+    double msPerMegapixel = 0.0;
+};
+
+std::vector<std::string> splitList(const std::string& s, char sep)
+{
+    std::vector<std::string> out;
+    std::stringstream ss(s);
+    std::string item;
+    while (std::getline(ss, item, sep))
+        if (!item.empty()) out.push_back(item);
+    return out;
+}
+
+std::pair<int, int> parseSize(const std::string& text)
+{
+    const std::size_t x = text.find('x');
+    try {
+        if (x != std::string::npos) {
+            const int w = std::stoi(text.substr(0, x)), h = std::stoi(text.substr(x + 1));
+            if (w > 0 && h > 0 && w <= 16384 && h <= 16384) return { w, h };
+        }
+    } catch (const std::exception&) {
+    }
+    throw CliError("--benchmark: size expects WIDTHxHEIGHT (1..16384), got '" + text + "'");
+}
+
+/// Hash noise in [0, 1) for (x, y, frame, channel): integer mixing, independent of thread count.
+float hashNoise(std::uint32_t x, std::uint32_t y, std::uint32_t f, std::uint32_t c)
+{
+    std::uint32_t h = x * 0x8da6b343u ^ y * 0xd8163841u ^ f * 0xcb1ab31fu ^ c * 0x9e3779b9u;
+    h ^= h >> 16, h *= 0x7feb352du, h ^= h >> 15, h *= 0x846ca68bu, h ^= h >> 16;
+    return static_cast<float>(h >> 8) / 16777216.0f;
+}
+
+afn::io::RoleImage fill(int w, int h, int components, std::initializer_list<float> value)
+{
+    afn::io::RoleImage r;
+    r.width = w, r.height = h, r.components = components;
+    r.pixels.resize(static_cast<std::size_t>(w) * h * components);
+    const std::vector<float> v(value);
+    for (std::size_t i = 0; i < r.pixels.size(); ++i) r.pixels[i] = v[i % components];
+    return r;
+}
+
+/// A generated frame: 1-spp-like noisy beauty over constant albedo, normal, depth; zero motion.
+void makeFrame(LoadedFrame& f, int w, int h, int frame)
+{
+    using afn::io::Role;
+    if (f.images.roles.empty()) {
+        f.images.roles[Role::Color] = fill(w, h, 3, { 0.0f, 0.0f, 0.0f });
+        f.images.roles[Role::Albedo] = fill(w, h, 3, { 0.6f, 0.5f, 0.4f });
+        f.images.roles[Role::Normal] = fill(w, h, 3, { 0.0f, 0.0f, 1.0f });
+        f.images.roles[Role::Depth] = fill(w, h, 1, { 5.0f });
+        f.images.roles[Role::Motion] = fill(w, h, 2, { 0.0f, 0.0f });
+        afn::io::RoleImage pos = fill(w, h, 3, { 0.0f, 0.0f, -5.0f });
+        for (int y = 0; y < h; ++y)
+            for (int x = 0; x < w; ++x) {
+                float* p = &pos.pixels[(static_cast<std::size_t>(y) * w + x) * 3];
+                p[0] = (x + 0.5f) / w * 2.0f - 1.0f, p[1] = 1.0f - (y + 0.5f) / h * 2.0f;
+            }
+        f.images.roles[Role::Position] = std::move(pos);
+    }
+    f.ref.frame = frame;
+    f.ref.path = "generated " + std::to_string(w) + "x" + std::to_string(h);
+    f.beauty.resize(static_cast<std::size_t>(w) * h * 3);
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x)
+            for (int c = 0; c < 3; ++c) {
+                // Mostly dark with rare bright samples, as 1 spp path tracing gives.
+                const float u = hashNoise(x, y, frame, c);
+                f.beauty[(static_cast<std::size_t>(y) * w + x) * 3 + c] = u > 0.9f ? 4.0f * u : 0.3f * u;
+            }
+}
+
+} // namespace
+
+int runSizeBenchmark(const Options& opts, const Action& action)
+{
+    auto mod = [&](const char* k, const std::string& def) {
+        auto it = action.mods.find(k);
+        return it == action.mods.end() ? def : it->second;
+    };
+    std::vector<std::pair<int, int>> sizes;
+    for (const std::string& s : splitList(mod("size", ""), ',')) sizes.push_back(parseSize(s));
+    if (sizes.empty()) throw CliError("--benchmark:size needs at least one WIDTHxHEIGHT");
+    const std::vector<std::string> known = afn::filterTypes();
+    std::vector<std::string> methods;
+    for (const std::string& m : splitList(mod("methods", ""), ',')) {
+        if (std::find(known.begin(), known.end(), m) == known.end())
+            warn("method '" + m + "' is not in this build; skipped", opts.quiet);
+        else
+            methods.push_back(m);
+    }
+    if (mod("methods", "").empty())
+        for (const std::string& m : known)
+            if (m != "identity") methods.push_back(m);
+    if (methods.empty()) throw CliError("--benchmark:size: no method to time");
+    int timed = 5, warmup = 2;
+    try {
+        timed = std::max(1, std::stoi(mod("frames", "5")));
+        warmup = std::max(0, std::stoi(mod("warmup", "2")));
+    } catch (const std::exception&) {
+        throw CliError("--benchmark: frames and warmup expect integers");
+    }
+
+    std::vector<SizePoint> points;
+    Progress progress(static_cast<int>(sizes.size() * methods.size()), opts.quiet);
+    int done = 0;
+    for (const auto& [w, h] : sizes) {
+        LoadedFrame frame;
+        for (const std::string& m : methods) {
+            progress.update(done++, m + " " + std::to_string(w) + "x" + std::to_string(h));
+            Action denoise { "denoise", "", { { "method", m } } };
+            std::vector<double> times;
+            try {
+                SequenceDenoiser denoiser(opts, denoise);
+                for (int i = 0; i < warmup + timed; ++i) {
+                    makeFrame(frame, w, h, i);
+                    const auto t0 = std::chrono::steady_clock::now();
+                    denoiser.process(frame, &progress);
+                    const double ms = std::chrono::duration<double, std::milli>(
+                                          std::chrono::steady_clock::now() - t0).count();
+                    if (i >= warmup) times.push_back(ms);
+                }
+            } catch (const CliError& e) {
+                // One method failing (e.g. "afn" without weights) does not end the benchmark.
+                warn("method '" + m + "' failed at " + std::to_string(w) + "x" + std::to_string(h) +
+                         " and is left out: " + e.what(), opts.quiet, &progress);
+                continue;
+            }
+            SizePoint p { m, w, h, median(times), 0.0 };
+            p.msPerMegapixel = p.medianMs / (static_cast<double>(w) * h / 1e6);
+            points.push_back(p);
+        }
+    }
+    progress.clear();
+
+    // Linearity: ms per megapixel relative to the first listed size of the same method.
+    auto baseRate = [&](const std::string& m) {
+        for (const SizePoint& p : points)
+            if (p.method == m) return p.msPerMegapixel;
+        return 0.0;
+    };
+    JsonWriter j;
+    j.beginObject().field("timedFrames", timed).field("warmupFrames", warmup).field("threads", opts.threads);
+    j.key("points").beginArray();
+    std::ostringstream csv;
+    csv << "method,width,height,megapixels,medianMs,msPerMegapixel,relativeToFirst\n";
+    if (!opts.json)
+        std::printf("%-10s %11s %8s %12s %12s %10s\n", "method", "size", "MP", "ms/frame", "ms/MP", "rel.");
+    for (const SizePoint& p : points) {
+        const double mp = static_cast<double>(p.width) * p.height / 1e6;
+        const double rel = p.msPerMegapixel / baseRate(p.method);
+        if (!opts.json)
+            std::printf("%-10s %5dx%-5d %8.2f %12.2f %12.2f %10.3f\n", p.method.c_str(), p.width,
+                        p.height, mp, p.medianMs, p.msPerMegapixel, rel);
+        j.beginObject().field("method", p.method).field("width", p.width).field("height", p.height);
+        j.field("megapixels", mp).field("medianMs", p.medianMs).field("msPerMegapixel", p.msPerMegapixel);
+        j.field("relativeToFirst", rel).endObject();
+        char line[256];
+        std::snprintf(line, sizeof line, "%s,%d,%d,%.6f,%.4f,%.4f,%.4f\n", p.method.c_str(), p.width,
+                      p.height, mp, p.medianMs, p.msPerMegapixel, rel);
+        csv << line;
+    }
+    j.endArray().endObject();
+    if (opts.json)
+        std::printf("%s\n", j.str().c_str());
+    else
+        std::printf("(median of %d timed frames after %d warm-up frames; rel. = ms/MP against the "
+                    "method's first size: 1.0 = linear in pixel count)\n",
+                    timed, warmup);
+    if (!opts.report.empty()) {
+        std::error_code ec;
+        std::filesystem::create_directories(opts.report, ec);
+        if (ec) throw CliError("cannot create the report folder: " + ec.message(), opts.report);
+        writeTextAtomic(opts.report + "/scaling.json", j.str() + "\n");
+        writeTextAtomic(opts.report + "/scaling.csv", csv.str());
+    }
+    return 0;
+}
+
+} // namespace afntool
