@@ -83,7 +83,7 @@ std::vector<ParamDesc> svgfParams()
             "number of 5x5 à-trous passes with step 2^i (paper 5, Falcor 4)"),
         intParam("feedbackTap", 0, -1, 9, "Feedback iteration",
             "iteration whose output becomes the colour history (0 = first, as the paper; "
-            "-1 = unfiltered integrated colour; Falcor 1)"),
+            "-1 or >= iterations = unfiltered integrated colour; Falcor 1)"),
         floatParam("sigmaL", 4.0, 0.0, 1000.0, "Luminance sigma",
             "luminance edge-stopping, in standard deviations of the local luminance "
             "(paper 4, Falcor 10)"),

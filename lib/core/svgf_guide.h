@@ -18,7 +18,7 @@ namespace afn {
 struct SvgfSettings {
     int iterations = 5; ///< [0; 10] à-trous iterations (Falcor 4)
     int feedbackTap = 0; ///< [-1; 9] iteration whose output becomes the colour history
-                         ///< (0 = first; -1 = the unfiltered integrated colour; Falcor 1)
+                         ///< (0 = first; -1 or >= iterations: unfiltered; Falcor 1)
     float sigmaL = 4.0f; ///< [0; 1000] luminance edge-stopping (Falcor PhiColor 10)
     float sigmaN = 128.0f; ///< [0; 1024] normal exponent
     float sigmaZ = 1.0f; ///< [0; 1000] depth edge-stopping
