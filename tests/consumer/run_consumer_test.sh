@@ -10,8 +10,8 @@ test -f "$tmp/prefix/share/afn/ocio/config.ocio"
 cmake -S "$source_dir/tests/consumer" -B "$tmp/build" -DCMAKE_PREFIX_PATH="$tmp/prefix" >/dev/null
 cmake --build "$tmp/build" >/dev/null
 LD_LIBRARY_PATH="$tmp/prefix/lib:${LD_LIBRARY_PATH:-}" "$tmp/build/consumer"
-# The installed afntool runs without LD_LIBRARY_PATH (RPATH) and finds its installed colour config
-# with nothing set: move the source tree's config out of sight by running from the prefix copy.
+# The installed afntool runs without LD_LIBRARY_PATH (install RPATH) and finds a colour config with
+# nothing set (the lookup of the config installed beside the library is tested in test_color_config).
 OCIO= "$tmp/prefix/bin/afntool" --version
 OCIO= "$tmp/prefix/bin/afntool" "$source_dir/tests/data/blender_64x36.exr" --preview "$tmp/preview.png"
 test -s "$tmp/preview.png"
