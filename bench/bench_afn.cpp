@@ -26,7 +26,8 @@ struct Setup {
         std::uniform_real_distribution<float> u(0.0f, 1.0f);
         auto fill = [&](afn::Image& img, int c, float scale) {
             img = afn::Image(w, h, c);
-            for (std::size_t k = 0; k < img.size(); ++k) img.data()[k] = scale * u(rng);
+            for (std::size_t k = 0; k < img.size(); ++k)
+                img.data()[k] = scale * u(rng);
         };
         fill(c1, 3, 4.0f);
         fill(cta, 3, 2.0f);
@@ -54,9 +55,10 @@ void configure(benchmark::internal::Benchmark* b)
 
 std::unique_ptr<tbb::global_control> threads(const benchmark::State& state)
 {
-    if (state.range(0) <= 0) return nullptr;
-    return std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism,
-                                                 static_cast<std::size_t>(state.range(0)));
+    if (state.range(0) <= 0)
+        return nullptr;
+    return std::make_unique<tbb::global_control>(
+        tbb::global_control::max_allowed_parallelism, static_cast<std::size_t>(state.range(0)));
 }
 
 void BM_AfnKernelPrediction(benchmark::State& state)
@@ -74,7 +76,8 @@ void BM_AfnFilterFuse(benchmark::State& state)
 {
     Setup& s = setup720();
     const auto limit = threads(state);
-    for (auto _ : state) s.net.filterAndFuse();
+    for (auto _ : state)
+        s.net.filterAndFuse();
 }
 BENCHMARK(BM_AfnFilterFuse)->Name("afn.filtering_fusion.1280x720")->Apply(configure);
 
@@ -82,7 +85,8 @@ void BM_AfnRefine(benchmark::State& state)
 {
     Setup& s = setup720();
     const auto limit = threads(state);
-    for (auto _ : state) s.net.refine();
+    for (auto _ : state)
+        s.net.refine();
 }
 BENCHMARK(BM_AfnRefine)->Name("afn.refinement.1280x720")->Apply(configure);
 
@@ -90,7 +94,8 @@ void BM_AfnWhole(benchmark::State& state)
 {
     Setup& s = setup720();
     const auto limit = threads(state);
-    for (auto _ : state) s.net.run(s.in, s.out);
+    for (auto _ : state)
+        s.net.run(s.in, s.out);
 }
 BENCHMARK(BM_AfnWhole)->Name("afn.whole.1280x720")->Apply(configure);
 

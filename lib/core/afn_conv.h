@@ -22,7 +22,8 @@ public:
     /// Load "<name>.weight" (Cout, Cin, k, k) and "<name>.bias" (Cout). Throws "invalid or
     /// corrupted weights" if the shapes are inconsistent, k is not 1 or 3, Cin differs from
     /// `expectedIn`, or Cout from `expectedOut` (when >= 0).
-    void load(const WeightsArchive& a, const std::string& name, int expectedIn, int expectedOut = -1);
+    void load(
+        const WeightsArchive& a, const std::string& name, int expectedIn, int expectedOut = -1);
 
     int inChannels() const { return m_in; }
     int outChannels() const { return m_out; }
@@ -34,14 +35,15 @@ public:
     /// the others read `same` (out's size). `up` may be null. `out` is resized to same's size.
     void run(const Image* up, const Image& same, Image& out, bool relu) const;
 
-    /// Output channels rounded up to 8; the padded weights [ky][kx][ci][co] and bias are zero there.
+    /// Output channels rounded up to 8; the padded weights [ky][kx][ci][co] and bias are zero
+    /// there.
     int paddedOutChannels() const { return m_outPadded; }
     const float* paddedWeights() const { return m_wp.data(); }
     const float* paddedBias() const { return m_bp.data(); }
 
 private:
     int m_in = 0, m_out = 0, m_k = 0;
-    int m_outPadded = 0;     ///< output channels rounded up to 8 (vector lanes)
+    int m_outPadded = 0; ///< output channels rounded up to 8 (vector lanes)
     std::vector<float> m_wp; ///< [ky][kx][ci][co padded to 8], zero padding
     std::vector<float> m_bp; ///< [co padded to 8]
 };

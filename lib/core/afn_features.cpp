@@ -32,7 +32,8 @@ void afnDepthToUnitRange(const Image& depth, int w, int h, Image& out)
     bool any = false;
     for (std::size_t k = 0; k < out.size(); ++k) {
         const float z = depth.data()[k];
-        if (!valid(z)) continue;
+        if (!valid(z))
+            continue;
         lo = any ? std::min(lo, z) : z;
         hi = any ? std::max(hi, z) : z;
         any = true;

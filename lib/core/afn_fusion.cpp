@@ -16,14 +16,16 @@ namespace afn {
 void afnSoftmax(float* v, int n)
 {
     float m = v[0];
-    for (int j = 1; j < n; ++j) m = std::max(m, v[j]);
+    for (int j = 1; j < n; ++j)
+        m = std::max(m, v[j]);
     float s = 0.0f;
     for (int j = 0; j < n; ++j) {
         v[j] = std::exp(v[j] - m);
         s += v[j];
     }
     const float inv = 1.0f / s;
-    for (int j = 0; j < n; ++j) v[j] *= inv;
+    for (int j = 0; j < n; ++j)
+        v[j] *= inv;
 }
 
 void afnApplyKernel(const Image& img, int x, int y, const float* k, float* rgb)
@@ -44,10 +46,12 @@ void afnApplyKernel(const Image& img, int x, int y, const float* k, float* rgb)
     } else {
         for (int dy = 0; dy < kAfnKernelSize; ++dy) {
             const int yy = y + dy - r;
-            if (yy < 0 || yy >= h) continue;
+            if (yy < 0 || yy >= h)
+                continue;
             for (int dx = 0; dx < kAfnKernelSize; ++dx) {
                 const int xx = x + dx - r;
-                if (xx < 0 || xx >= w) continue;
+                if (xx < 0 || xx >= w)
+                    continue;
                 const float* p = img.at(xx, yy);
                 const float kv = k[dy * kAfnKernelSize + dx];
                 a0 += kv * p[0];
@@ -64,26 +68,31 @@ void afnApplyKernel(const Image& img, int x, int y, const float* k, float* rgb)
 namespace {
 
 // 1x1 head on one pixel with 8-wide vectors: acc[0..cp) = bias + W * concat(a, b).
-inline __attribute__((always_inline)) void head1x1(const AfnConv& conv, const float* a, int na,
-                                                   const float* b, int nb, float* acc)
+inline __attribute__((always_inline)) void head1x1(
+    const AfnConv& conv, const float* a, int na, const float* b, int nb, float* acc)
 {
     const int cp = conv.paddedOutChannels();
     const float* wt = conv.paddedWeights();
     AfnV8 v[kAfnMaxChannels / 8];
     const int nv = cp / 8;
-    for (int j = 0; j < nv; ++j) v[j] = afnLoad8(conv.paddedBias() + 8 * j);
+    for (int j = 0; j < nv; ++j)
+        v[j] = afnLoad8(conv.paddedBias() + 8 * j);
     for (int ci = 0; ci < na; ++ci, wt += cp)
-        for (int j = 0; j < nv; ++j) v[j] += a[ci] * afnLoad8(wt + 8 * j);
+        for (int j = 0; j < nv; ++j)
+            v[j] += a[ci] * afnLoad8(wt + 8 * j);
     for (int ci = 0; ci < nb; ++ci, wt += cp)
-        for (int j = 0; j < nv; ++j) v[j] += b[ci] * afnLoad8(wt + 8 * j);
-    for (int j = 0; j < nv; ++j) afnStore8(acc + 8 * j, v[j]);
+        for (int j = 0; j < nv; ++j)
+            v[j] += b[ci] * afnLoad8(wt + 8 * j);
+    for (int j = 0; j < nv; ++j)
+        afnStore8(acc + 8 * j, v[j]);
 }
 
 // Softmax over the 49 taps: 6 vectors of 8 plus one scalar tap.
 inline __attribute__((always_inline)) void softmax49(float* l)
 {
     float m = l[0];
-    for (int j = 1; j < kAfnKernelTaps; ++j) m = std::max(m, l[j]);
+    for (int j = 1; j < kAfnKernelTaps; ++j)
+        m = std::max(m, l[j]);
     const AfnV8 mv = afnSplat8(m);
     AfnV8 sv = afnSplat8(0.0f);
     for (int j = 0; j < 48; j += 8) {
@@ -94,13 +103,13 @@ inline __attribute__((always_inline)) void softmax49(float* l)
     l[48] = std::exp(l[48] - m);
     const float s = sv[0] + sv[1] + sv[2] + sv[3] + sv[4] + sv[5] + sv[6] + sv[7] + l[48];
     const float inv = 1.0f / s;
-    for (int j = 0; j < kAfnKernelTaps; ++j) l[j] *= inv;
+    for (int j = 0; j < kAfnKernelTaps; ++j)
+        l[j] *= inv;
 }
 
 // Rows [y0, y1) of half-resolution blocks; compiled for x86-64-v3 and the baseline (ifunc).
-__attribute__((target_clones("arch=x86-64-v3", "default"))) void fuseRows(const AfnFusionInputs& in,
-                                                                           const AfnFusionOutputs& out,
-                                                                           int y0, int y1)
+__attribute__((target_clones("arch=x86-64-v3", "default"))) void fuseRows(
+    const AfnFusionInputs& in, const AfnFusionOutputs& out, int y0, int y1)
 {
     const Image& d1 = *in.d1;
     const Image& x = *in.x;
@@ -132,7 +141,8 @@ __attribute__((target_clones("arch=x86-64-v3", "default"))) void fuseRows(const 
                     (*out.filteredTa)(px, py, c) = dta[q][c];
                 }
             }
-            for (int q = 0; q < 4; ++q) (*out.alpha)(2 * xh + (q & 1), 2 * yh + (q >> 1), 0) = alpha[q];
+            for (int q = 0; q < 4; ++q)
+                (*out.alpha)(2 * xh + (q & 1), 2 * yh + (q >> 1), 0) = alpha[q];
         }
 }
 

@@ -4,8 +4,8 @@
 // fusion run per pixel, so neither the kernel maps nor the unfolded 49-channel image stack is
 // ever stored.
 //   K_1spp = softmax(head1(d1))               at half resolution, applied to D(r_1spp)
-//   [K_TA, a] = headTA(concat(U(d1), x))      at full resolution, applied to r_TA; alpha = sigmoid(a)
-//   i = d_TA - alpha * U(D(d_TA)) + alpha * U(d_1spp)
+//   [K_TA, a] = headTA(concat(U(d1), x))      at full resolution, applied to r_TA; alpha =
+//   sigmoid(a) i = d_TA - alpha * U(D(d_TA)) + alpha * U(d_1spp)
 // Tap j = (dy + 3) * 7 + (dx + 3) reads the image at (x + dx, y + dy); taps outside the image
 // read 0 and the kernel is not renormalised (PyTorch F.unfold with zero padding).
 #pragma once
@@ -21,11 +21,11 @@ constexpr int kAfnKernelTaps = kAfnKernelSize * kAfnKernelSize;
 
 /// Inputs of the fused pass; every full-resolution image has the same even size.
 struct AfnFusionInputs {
-    const Image* d1 = nullptr;     ///< half-res decoder features
-    const Image* x = nullptr;      ///< full-res network input (13 ch)
+    const Image* d1 = nullptr; ///< half-res decoder features
+    const Image* x = nullptr; ///< full-res network input (13 ch)
     const Image* colorTa = nullptr; ///< full-res TA colour, demodulated HDR (3 ch)
     const Image* color1Half = nullptr; ///< D(1-spp colour), half res (3 ch)
-    const AfnConv* head1 = nullptr;  ///< 1x1, d1 -> 49
+    const AfnConv* head1 = nullptr; ///< 1x1, d1 -> 49
     const AfnConv* headTa = nullptr; ///< 1x1, d1 + 13 -> 50
 };
 

@@ -13,11 +13,14 @@ namespace afn {
 
 namespace {
 
-constexpr int kInputChannels = 13;  // T(1spp) 3, T(TA) 3, albedo 3, normal01 3, depth01 1
+constexpr int kInputChannels = 13; // T(1spp) 3, T(TA) 3, albedo 3, normal01 3, depth01 1
 constexpr int kRefineChannels = 10; // T(i) 3, albedo 3, normal01 3, depth01 1
 constexpr int kPadMultiple = 8;
 
-int padded(int n) { return (n + kPadMultiple - 1) / kPadMultiple * kPadMultiple; }
+int padded(int n)
+{
+    return (n + kPadMultiple - 1) / kPadMultiple * kPadMultiple;
+}
 
 } // namespace
 
@@ -30,11 +33,17 @@ void AfnNetwork::load(const WeightsArchive& a)
 {
     m_loaded = false;
     const std::string v = a.meta("variant", "full");
-    if (v == "full") m_variant = AfnVariant::Full;
-    else if (v == "fusion") m_variant = AfnVariant::Fusion;
-    else if (v == "1spp") m_variant = AfnVariant::OneSpp;
-    else if (v == "ta") m_variant = AfnVariant::Ta;
-    else throwInvalidArgument("invalid or corrupted weights (" + a.source() + "): unknown variant '" + v + "'");
+    if (v == "full")
+        m_variant = AfnVariant::Full;
+    else if (v == "fusion")
+        m_variant = AfnVariant::Fusion;
+    else if (v == "1spp")
+        m_variant = AfnVariant::OneSpp;
+    else if (v == "ta")
+        m_variant = AfnVariant::Ta;
+    else
+        throwInvalidArgument(
+            "invalid or corrupted weights (" + a.source() + "): unknown variant '" + v + "'");
     // Widths follow from the tensor shapes; each layer checks its input against its producer.
     m_enc1.load(a, "enc1", kInputChannels);
     m_enc2.load(a, "enc2", m_enc1.outChannels());
@@ -44,9 +53,12 @@ void AfnNetwork::load(const WeightsArchive& a)
     m_head1.load(a, "head1", m_dec1.outChannels(), kAfnKernelTaps);
     m_headTa.load(a, "headTA", m_dec1.outChannels() + kInputChannels, kAfnKernelTaps + 1);
     for (const AfnConv* c : { &m_enc1, &m_enc2, &m_enc3, &m_dec2, &m_dec1 })
-        if (c->kernelSize() != 3) throwInvalidArgument("invalid or corrupted weights (" + a.source() + "): encoder/decoder layers must be 3x3");
+        if (c->kernelSize() != 3)
+            throwInvalidArgument("invalid or corrupted weights (" + a.source()
+                + "): encoder/decoder layers must be 3x3");
     if (m_head1.kernelSize() != 1 || m_headTa.kernelSize() != 1)
-        throwInvalidArgument("invalid or corrupted weights (" + a.source() + "): heads must be 1x1");
+        throwInvalidArgument(
+            "invalid or corrupted weights (" + a.source() + "): heads must be 1x1");
     if (m_variant == AfnVariant::Full) {
         m_ref1.load(a, "ref1", kRefineChannels);
         m_ref2.load(a, "ref2", m_ref1.outChannels());
@@ -57,17 +69,22 @@ void AfnNetwork::load(const WeightsArchive& a)
 
 void AfnNetwork::prepare(const AfnInputs& in)
 {
-    if (!m_loaded) throwInvalidOperation("AFN: no weights loaded");
+    if (!m_loaded)
+        throwInvalidOperation("AFN: no weights loaded");
     const Image* c1 = in.color1;
     const Image* cta = in.colorTa;
-    if (m_variant == AfnVariant::OneSpp) cta = c1;
-    if (m_variant == AfnVariant::Ta) c1 = cta;
+    if (m_variant == AfnVariant::OneSpp)
+        cta = c1;
+    if (m_variant == AfnVariant::Ta)
+        c1 = cta;
     const int w = c1->width(), h = c1->height();
     const Image* all[] = { c1, cta, in.albedo, in.normal01, in.depth01 };
     const int chans[] = { 3, 3, 3, 3, 1 };
     for (int k = 0; k < 5; ++k)
-        if (!all[k] || all[k]->width() != w || all[k]->height() != h || all[k]->channels() != chans[k])
-            throwInvalidArgument("AFN: input " + std::to_string(k) + " missing or of the wrong shape");
+        if (!all[k] || all[k]->width() != w || all[k]->height() != h
+            || all[k]->channels() != chans[k])
+            throwInvalidArgument(
+                "AFN: input " + std::to_string(k) + " missing or of the wrong shape");
     m_width = w;
     m_height = h;
     const int wp = padded(w), hp = padded(h);
@@ -139,15 +156,18 @@ void AfnNetwork::refine()
                 const float* i = m_fused.at(x, y);
                 const float* f = m_x.at(x, y);
                 float* o = m_refIn.at(x, y);
-                for (int c = 0; c < 3; ++c) o[c] = afnToneMap(i[c]);
-                for (int c = 0; c < 7; ++c) o[3 + c] = f[6 + c]; // albedo, normal01, depth01
+                for (int c = 0; c < 3; ++c)
+                    o[c] = afnToneMap(i[c]);
+                for (int c = 0; c < 7; ++c)
+                    o[3 + c] = f[6 + c]; // albedo, normal01, depth01
             }
     });
     m_ref1.run(nullptr, m_refIn, m_r1, true);
     m_ref2.run(nullptr, m_r1, m_r2, true);
     m_ref3.run(nullptr, m_r2, m_r3, false);
     const std::size_t n = m_out.size();
-    for (std::size_t k = 0; k < n; ++k) m_out.data()[k] = m_fused.data()[k] + m_r3.data()[k];
+    for (std::size_t k = 0; k < n; ++k)
+        m_out.data()[k] = m_fused.data()[k] + m_r3.data()[k];
 }
 
 void AfnNetwork::crop(Image& out) const

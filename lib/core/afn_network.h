@@ -24,9 +24,9 @@ enum class AfnVariant { Full, Fusion, OneSpp, Ta };
 
 /// Network inputs, all W x H with the channel counts noted.
 struct AfnInputs {
-    const Image* color1 = nullptr;  ///< 3 ch, 1-spp colour, albedo-demodulated linear HDR, >= 0
+    const Image* color1 = nullptr; ///< 3 ch, 1-spp colour, albedo-demodulated linear HDR, >= 0
     const Image* colorTa = nullptr; ///< 3 ch, TA-1spp colour, demodulated linear HDR, >= 0
-    const Image* albedo = nullptr;  ///< 3 ch, [0, 1]
+    const Image* albedo = nullptr; ///< 3 ch, [0, 1]
     const Image* normal01 = nullptr; ///< 3 ch, shading normal * 0.5 + 0.5, [0, 1]
     const Image* depth01 = nullptr; ///< 1 ch, per-frame min-max depth, [0, 1]
 };
@@ -46,10 +46,10 @@ public:
 
     // The stages, callable one by one (benchmark): prepare + predict = kernel prediction.
     void prepare(const AfnInputs& in); ///< pad, tone map, build x and D(r_1spp)
-    void predict();                    ///< encoder-decoder up to d1
-    void filterAndFuse();              ///< heads, softmax, filtering, fusion
-    void refine();                     ///< refinement (copy of i when the variant has none)
-    void crop(Image& out) const;       ///< o cropped to the input size
+    void predict(); ///< encoder-decoder up to d1
+    void filterAndFuse(); ///< heads, softmax, filtering, fusion
+    void refine(); ///< refinement (copy of i when the variant has none)
+    void crop(Image& out) const; ///< o cropped to the input size
 
     /// Intermediates at the padded size (tests): fused i, d_TA, alpha; d_1spp at half size.
     const Image& fused() const { return m_fused; }

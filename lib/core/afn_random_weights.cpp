@@ -17,10 +17,12 @@ WeightsArchive afnRandomWeights(const AfnArchitecture& a, unsigned seed)
         WeightTensor w, b;
         w.dims = { out, in, k, k };
         w.data.resize(static_cast<std::size_t>(out) * in * k * k);
-        for (float& v : w.data) v = u(rng);
+        for (float& v : w.data)
+            v = u(rng);
         b.dims = { out };
         b.data.resize(out);
-        for (float& v : b.data) v = u(rng);
+        for (float& v : b.data)
+            v = u(rng);
         t[name + ".weight"] = std::move(w);
         t[name + ".bias"] = std::move(b);
     };
@@ -36,7 +38,8 @@ WeightsArchive afnRandomWeights(const AfnArchitecture& a, unsigned seed)
         conv("ref2", a.refine, a.refine, 3);
         conv("ref3", a.refine, 3, 3);
     }
-    return WeightsArchive::fromTensors(std::move(t), { { "variant", a.variant } }, "random weights");
+    return WeightsArchive::fromTensors(
+        std::move(t), { { "variant", a.variant } }, "random weights");
 }
 
 } // namespace afn

@@ -13,9 +13,9 @@ namespace afn {
 /// Widths of an AFN model (training/afn/model.py AFNConfig; defaults = the shipped architecture).
 struct AfnArchitecture {
     std::array<int, 3> enc { 16, 32, 64 }; ///< e1, e2, e3 channels
-    std::array<int, 2> dec { 32, 24 };     ///< d2, d1 channels
-    int refine = 16;                       ///< refinement hidden channels
-    std::string variant = "full";          ///< full | fusion | 1spp | ta
+    std::array<int, 2> dec { 32, 24 }; ///< d2, d1 channels
+    int refine = 16; ///< refinement hidden channels
+    std::string variant = "full"; ///< full | fusion | 1spp | ta
 };
 
 /// Build random weights for `arch` with a fixed seed.

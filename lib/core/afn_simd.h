@@ -17,9 +17,18 @@ typedef float AfnV8 __attribute__((vector_size(32)));
 typedef float AfnV8u __attribute__((vector_size(32), aligned(4))); ///< unaligned access
 typedef std::int32_t AfnI8 __attribute__((vector_size(32)));
 
-inline __attribute__((always_inline)) AfnV8 afnLoad8(const float* p) { return *reinterpret_cast<const AfnV8u*>(p); }
-inline __attribute__((always_inline)) void afnStore8(float* p, AfnV8 v) { *reinterpret_cast<AfnV8u*>(p) = v; }
-inline __attribute__((always_inline)) AfnV8 afnSplat8(float v) { return AfnV8 { v, v, v, v, v, v, v, v }; }
+inline __attribute__((always_inline)) AfnV8 afnLoad8(const float* p)
+{
+    return *reinterpret_cast<const AfnV8u*>(p);
+}
+inline __attribute__((always_inline)) void afnStore8(float* p, AfnV8 v)
+{
+    *reinterpret_cast<AfnV8u*>(p) = v;
+}
+inline __attribute__((always_inline)) AfnV8 afnSplat8(float v)
+{
+    return AfnV8 { v, v, v, v, v, v, v, v };
+}
 
 /// exp(x) for x <= 0 (softmax after max subtraction), about 2 ulp (Cephes expf polynomial);
 /// x below -87 gives exp(-87) ~ 1.6e-38 instead of a denormal or 0.

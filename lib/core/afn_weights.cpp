@@ -13,7 +13,12 @@ namespace {
 
 class Reader {
 public:
-    Reader(const unsigned char* p, std::size_t n, const std::string& src) : m_p(p), m_n(n), m_src(src) {}
+    Reader(const unsigned char* p, std::size_t n, const std::string& src)
+        : m_p(p)
+        , m_n(n)
+        , m_src(src)
+    {
+    }
 
     [[noreturn]] void fail(const std::string& what) const
     {
@@ -21,7 +26,8 @@ public:
     }
     void need(std::size_t pos, std::size_t bytes, const char* what) const
     {
-        if (pos > m_n || bytes > m_n - pos) fail(std::string("truncated ") + what);
+        if (pos > m_n || bytes > m_n - pos)
+            fail(std::string("truncated ") + what);
     }
     template <typename T> T read(std::size_t& pos, const char* what) const
     {
@@ -55,7 +61,8 @@ WeightsArchive WeightsArchive::parse(const void* data, std::size_t size, const s
 {
     WeightsArchive a;
     a.m_source = source;
-    if (!data) throwInvalidArgument("invalid or corrupted weights (" + source + "): no data");
+    if (!data)
+        throwInvalidArgument("invalid or corrupted weights (" + source + "): no data");
     Reader r(static_cast<const unsigned char*>(data), size, source);
     std::size_t pos = 0;
     if (r.bytes(pos, 4, "header") != "AFNW") {
@@ -65,18 +72,19 @@ WeightsArchive WeightsArchive::parse(const void* data, std::size_t size, const s
     }
     const auto version = r.read<std::uint32_t>(pos, "header");
     if (version != kVersion)
-        throwInvalidArgument("unsupported weights format version " + std::to_string(version) +
-                             " in " + source + " (this build reads version " +
-                             std::to_string(kVersion) + ")");
+        throwInvalidArgument("unsupported weights format version " + std::to_string(version)
+            + " in " + source + " (this build reads version " + std::to_string(kVersion) + ")");
     const auto count = r.read<std::uint32_t>(pos, "header");
     const auto metaSize = r.read<std::uint32_t>(pos, "header");
     const std::string meta = r.bytes(pos, metaSize, "metadata");
     for (std::size_t b = 0; b < meta.size();) {
         std::size_t e = meta.find('\n', b);
-        if (e == std::string::npos) e = meta.size();
+        if (e == std::string::npos)
+            e = meta.size();
         const std::string line = meta.substr(b, e - b);
         const std::size_t eq = line.find('=');
-        if (eq != std::string::npos) a.m_meta[line.substr(0, eq)] = line.substr(eq + 1);
+        if (eq != std::string::npos)
+            a.m_meta[line.substr(0, eq)] = line.substr(eq + 1);
         b = e + 1;
     }
     for (std::uint32_t t = 0; t < count; ++t) {
@@ -84,22 +92,29 @@ WeightsArchive WeightsArchive::parse(const void* data, std::size_t size, const s
         const std::string name = r.bytes(pos, nameSize, "tensor table");
         const auto dtype = r.read<std::uint8_t>(pos, "tensor table");
         const auto rank = r.read<std::uint8_t>(pos, "tensor table");
-        if (dtype != 1) r.fail("tensor '" + name + "' has unknown dtype " + std::to_string(dtype));
-        if (rank < 1 || rank > 4) r.fail("tensor '" + name + "' has rank " + std::to_string(rank));
+        if (dtype != 1)
+            r.fail("tensor '" + name + "' has unknown dtype " + std::to_string(dtype));
+        if (rank < 1 || rank > 4)
+            r.fail("tensor '" + name + "' has rank " + std::to_string(rank));
         WeightTensor w;
         std::uint64_t numel = 1;
         for (int d = 0; d < rank; ++d) {
             const auto dim = r.read<std::uint32_t>(pos, "tensor table");
-            if (dim > (1u << 28)) r.fail("tensor '" + name + "' dimension too large");
+            if (dim > (1u << 28))
+                r.fail("tensor '" + name + "' dimension too large");
             numel *= dim;
-            if (numel > (std::uint64_t(1) << 30)) r.fail("tensor '" + name + "' too large");
+            if (numel > (std::uint64_t(1) << 30))
+                r.fail("tensor '" + name + "' too large");
             w.dims.push_back(dim);
         }
         const auto offset = r.read<std::uint64_t>(pos, "tensor table");
         const auto bytes = r.read<std::uint64_t>(pos, "tensor table");
-        if (bytes != numel * 4) r.fail("tensor '" + name + "' data size does not match its dims");
-        if (offset > size || bytes > size - offset) r.fail("tensor '" + name + "' lies outside the file");
-        if (a.m_tensors.count(name)) r.fail("duplicate tensor '" + name + "'");
+        if (bytes != numel * 4)
+            r.fail("tensor '" + name + "' data size does not match its dims");
+        if (offset > size || bytes > size - offset)
+            r.fail("tensor '" + name + "' lies outside the file");
+        if (a.m_tensors.count(name))
+            r.fail("duplicate tensor '" + name + "'");
         w.data.resize(numel);
         std::size_t dpos = static_cast<std::size_t>(offset);
         for (std::uint64_t i = 0; i < numel; ++i) {
@@ -112,8 +127,7 @@ WeightsArchive WeightsArchive::parse(const void* data, std::size_t size, const s
 }
 
 WeightsArchive WeightsArchive::fromTensors(std::map<std::string, WeightTensor> tensors,
-                                           std::map<std::string, std::string> meta,
-                                           const std::string& source)
+    std::map<std::string, std::string> meta, const std::string& source)
 {
     WeightsArchive a;
     a.m_tensors = std::move(tensors);
@@ -126,8 +140,8 @@ const WeightTensor& WeightsArchive::tensor(const std::string& name) const
 {
     auto it = m_tensors.find(name);
     if (it == m_tensors.end())
-        throwInvalidArgument("invalid or corrupted weights (" + m_source + "): missing tensor '" +
-                             name + "'");
+        throwInvalidArgument(
+            "invalid or corrupted weights (" + m_source + "): missing tensor '" + name + "'");
     return it->second;
 }
 

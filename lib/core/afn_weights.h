@@ -31,7 +31,7 @@ public:
     static WeightsArchive parse(const void* data, std::size_t size, const std::string& source);
     /// An archive made in memory (benchmarks, tests); no validation beyond the layers' own.
     static WeightsArchive fromTensors(std::map<std::string, WeightTensor> tensors,
-                                      std::map<std::string, std::string> meta, const std::string& source);
+        std::map<std::string, std::string> meta, const std::string& source);
 
     bool has(const std::string& name) const { return m_tensors.count(name) != 0; }
     /// The tensor `name`; throws "invalid or corrupted weights: missing tensor 'name'".

@@ -27,18 +27,19 @@ namespace {
 
 class AfnFilter final : public Filter {
 public:
-    explicit AfnFilter(const std::vector<ParamDesc>* table) : Filter(table)
+    explicit AfnFilter(const std::vector<ParamDesc>* table)
+        : Filter(table)
     {
 #ifdef AFN_HAS_EMBEDDED_WEIGHTS
         m_net.load(WeightsArchive::parse(afnEmbeddedWeights,
-                                         static_cast<std::size_t>(afnEmbeddedWeights_size),
-                                         "embedded AFN weights"));
+            static_cast<std::size_t>(afnEmbeddedWeights_size), "embedded AFN weights"));
 #endif
     }
 
     void setData(const std::string& name, const void* data, std::size_t size) override
     {
-        if (name != "weights") Filter::setData(name, data, size);
+        if (name != "weights")
+            Filter::setData(name, data, size);
         AfnNetwork net;
         net.load(WeightsArchive::parse(data, size, "weights set with afnSetFilterData"));
         m_net = std::move(net); // only valid weights replace the current ones
@@ -63,7 +64,8 @@ private:
     }
     void denoise(const Frame& in, Image& out) override
     {
-        if (in.frameIndex == 0) resetHistory();
+        if (in.frameIndex == 0)
+            resetHistory();
         demodulate(in, m_irradiance);
         m_reproject.compute(in);
         m_ta.accumulate(m_reproject, m_irradiance);
@@ -100,9 +102,10 @@ FilterType afnFilterType()
                     "1-spp frame and its BMFR temporal accumulation; needs trained weights "
                     "(embedded, or set with the 'weights' data parameter)";
     t.params = { floatParam("alphaMin", 0.2, 0.0, 1.0, "Minimum blend factor",
-                            "temporal accumulation of the TA-1spp input: weight of the current frame "
-                            "once the history is long (BMFR: 0.2)") };
-    for (ParamDesc& d : reprojectParams()) t.params.push_back(std::move(d));
+        "temporal accumulation of the TA-1spp input: weight of the current frame "
+        "once the history is long (BMFR: 0.2)") };
+    for (ParamDesc& d : reprojectParams())
+        t.params.push_back(std::move(d));
     t.create = [](const std::vector<ParamDesc>* table) {
         return std::unique_ptr<Filter>(new AfnFilter(table));
     };

@@ -22,11 +22,13 @@ struct NamedTensor {
 };
 
 /// Serialise tensors into the .afnw layout (training/afn/weights.py dumps()).
-inline std::vector<unsigned char> buildArchive(const std::vector<NamedTensor>& ts, const std::string& meta)
+inline std::vector<unsigned char> buildArchive(
+    const std::vector<NamedTensor>& ts, const std::string& meta)
 {
     std::vector<unsigned char> b;
     auto put = [&](std::uint64_t v, int n) {
-        for (int i = 0; i < n; ++i) b.push_back(static_cast<unsigned char>(v >> (8 * i)));
+        for (int i = 0; i < n; ++i)
+            b.push_back(static_cast<unsigned char>(v >> (8 * i)));
     };
     b = { 'A', 'F', 'N', 'W' };
     put(1, 4);
@@ -34,7 +36,8 @@ inline std::vector<unsigned char> buildArchive(const std::vector<NamedTensor>& t
     put(meta.size(), 4);
     b.insert(b.end(), meta.begin(), meta.end());
     std::size_t pos = b.size();
-    for (const auto& t : ts) pos += 2 + t.name.size() + 2 + 4 * t.dims.size() + 16;
+    for (const auto& t : ts)
+        pos += 2 + t.name.size() + 2 + 4 * t.dims.size() + 16;
     std::vector<std::size_t> offsets;
     for (const auto& t : ts) {
         pos = (pos + 15) / 16 * 16;
@@ -46,7 +49,8 @@ inline std::vector<unsigned char> buildArchive(const std::vector<NamedTensor>& t
         b.insert(b.end(), ts[k].name.begin(), ts[k].name.end());
         b.push_back(1);
         b.push_back(static_cast<unsigned char>(ts[k].dims.size()));
-        for (auto d : ts[k].dims) put(d, 4);
+        for (auto d : ts[k].dims)
+            put(d, 4);
         put(offsets[k], 8);
         put(4 * ts[k].data.size(), 8);
     }
@@ -61,7 +65,8 @@ inline std::vector<unsigned char> buildArchive(const std::vector<NamedTensor>& t
     return b;
 }
 
-inline afn::WeightsArchive parseArchive(const std::vector<NamedTensor>& ts, const std::string& meta = "")
+inline afn::WeightsArchive parseArchive(
+    const std::vector<NamedTensor>& ts, const std::string& meta = "")
 {
     const auto b = buildArchive(ts, meta);
     return afn::WeightsArchive::parse(b.data(), b.size(), "in-memory");
@@ -70,14 +75,16 @@ inline afn::WeightsArchive parseArchive(const std::vector<NamedTensor>& ts, cons
 inline afn::WeightsArchive loadFile(const std::string& path)
 {
     std::ifstream f(path, std::ios::binary);
-    const std::vector<char> bytes((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
+    const std::vector<char> bytes(
+        (std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
     return afn::WeightsArchive::parse(bytes.data(), bytes.size(), path);
 }
 
 /// An (H, W, C) tensor of an archive as an image.
 inline afn::Image toImage(const afn::WeightTensor& t)
 {
-    afn::Image img(static_cast<int>(t.dims[1]), static_cast<int>(t.dims[0]), static_cast<int>(t.dims[2]));
+    afn::Image img(
+        static_cast<int>(t.dims[1]), static_cast<int>(t.dims[0]), static_cast<int>(t.dims[2]));
     std::memcpy(img.data(), t.data.data(), 4 * t.data.size());
     return img;
 }

@@ -41,7 +41,8 @@ TEST(AfnFilter, NeedsWeightsThenDenoises)
     afn::Image color(w, h, 3), albedo(w, h, 3, 0.5f), normal(w, h, 3), depth(w, h, 1), out(w, h, 3);
     for (int y = 0; y < h; ++y)
         for (int x = 0; x < w; ++x) {
-            for (int c = 0; c < 3; ++c) color(x, y, c) = static_cast<float>(((x * 7 + y * 3 + c) % 5)) * 0.3f;
+            for (int c = 0; c < 3; ++c)
+                color(x, y, c) = static_cast<float>(((x * 7 + y * 3 + c) % 5)) * 0.3f;
             normal(x, y, 2) = 1.0f;
             depth(x, y, 0) = 1.0f + 0.1f * static_cast<float>(x);
         }
@@ -62,7 +63,8 @@ TEST(AfnFilter, NeedsWeightsThenDenoises)
     EXPECT_THROW(f->setData("other", "x", 1), afn::Exception);
     const auto bytes = readBytes(std::string(AFN_TEST_DATA) + "/afn_parity/weights_full.afnw");
     f->setData("weights", bytes.data(), bytes.size());
-    EXPECT_THROW(f->setData("weights", bytes.data(), bytes.size() / 2), afn::Exception); // truncated
+    EXPECT_THROW(
+        f->setData("weights", bytes.data(), bytes.size() / 2), afn::Exception); // truncated
     f->commit(); // the valid weights survived the failed replacement
     for (int frame = 0; frame < 3; ++frame) {
         f->execute();

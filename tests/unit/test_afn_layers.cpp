@@ -22,7 +22,8 @@ Image randomImage(int w, int h, int c, unsigned seed)
     std::mt19937 rng(seed);
     std::uniform_real_distribution<float> u(-1.0f, 1.0f);
     Image img(w, h, c);
-    for (std::size_t k = 0; k < img.size(); ++k) img.data()[k] = u(rng);
+    for (std::size_t k = 0; k < img.size(); ++k)
+        img.data()[k] = u(rng);
     return img;
 }
 
@@ -31,7 +32,8 @@ std::vector<float> randomVec(std::size_t n, unsigned seed)
     std::mt19937 rng(seed);
     std::uniform_real_distribution<float> u(-0.5f, 0.5f);
     std::vector<float> v(n);
-    for (float& f : v) f = u(rng);
+    for (float& f : v)
+        f = u(rng);
     return v;
 }
 
@@ -42,8 +44,9 @@ TEST(AfnLayers, ConvMatchesNaiveReferenceWithUpsampledInput)
     const int cu = 3, cs = 2, co = 5, w = 6, h = 4;
     const auto wt = randomVec(co * (cu + cs) * 9, 1), bias = randomVec(co, 2);
     afn::AfnConv conv;
-    conv.load(afntest::parseArchive({ { "c.weight", { co, cu + cs, 3, 3 }, wt }, { "c.bias", { co }, bias } }),
-              "c", cu + cs);
+    conv.load(afntest::parseArchive(
+                  { { "c.weight", { co, cu + cs, 3, 3 }, wt }, { "c.bias", { co }, bias } }),
+        "c", cu + cs);
     const Image up = randomImage(w / 2, h / 2, cu, 3), same = randomImage(w, h, cs, 4);
     Image out;
     conv.run(&up, same, out, true);
@@ -55,8 +58,10 @@ TEST(AfnLayers, ConvMatchesNaiveReferenceWithUpsampledInput)
                     for (int ky = 0; ky < 3; ++ky)
                         for (int kx = 0; kx < 3; ++kx) {
                             const int xx = x + kx - 1, yy = y + ky - 1;
-                            if (xx < 0 || yy < 0 || xx >= w || yy >= h) continue;
-                            const float v = ci < cu ? up(xx / 2, yy / 2, ci) : same(xx, yy, ci - cu);
+                            if (xx < 0 || yy < 0 || xx >= w || yy >= h)
+                                continue;
+                            const float v
+                                = ci < cu ? up(xx / 2, yy / 2, ci) : same(xx, yy, ci - cu);
                             acc += v * wt[((o * (cu + cs) + ci) * 3 + ky) * 3 + kx];
                         }
                 EXPECT_NEAR(out(x, y, o), std::max(acc, 0.0), 1e-5) << x << "," << y << "," << o;
@@ -66,13 +71,12 @@ TEST(AfnLayers, ConvMatchesNaiveReferenceWithUpsampledInput)
 TEST(AfnLayers, ConvRejectsInconsistentShapes)
 {
     const auto a = afntest::parseArchive({ { "c.weight", { 4, 2, 3, 3 }, randomVec(72, 1) },
-                                           { "c.bias", { 3 }, randomVec(3, 2) },
-                                           { "d.weight", { 4, 2, 5, 5 }, randomVec(200, 1) },
-                                           { "d.bias", { 4 }, randomVec(4, 2) } });
+        { "c.bias", { 3 }, randomVec(3, 2) }, { "d.weight", { 4, 2, 5, 5 }, randomVec(200, 1) },
+        { "d.bias", { 4 }, randomVec(4, 2) } });
     afn::AfnConv conv;
-    EXPECT_THROW(conv.load(a, "c", 2), afn::Exception);  // bias size
-    EXPECT_THROW(conv.load(a, "d", 2), afn::Exception);  // 5x5
-    EXPECT_THROW(conv.load(a, "e", 2), afn::Exception);  // missing
+    EXPECT_THROW(conv.load(a, "c", 2), afn::Exception); // bias size
+    EXPECT_THROW(conv.load(a, "d", 2), afn::Exception); // 5x5
+    EXPECT_THROW(conv.load(a, "e", 2), afn::Exception); // missing
 }
 
 TEST(AfnLayers, Down2AndSoftmax)
@@ -86,7 +90,8 @@ TEST(AfnLayers, Down2AndSoftmax)
     afn::afnDown2(in, out);
     EXPECT_EQ(out(0, 0, 0), 3.0f);
     float v[49];
-    for (int j = 0; j < 49; ++j) v[j] = j == 10 ? 1e30f : -1e30f;
+    for (int j = 0; j < 49; ++j)
+        v[j] = j == 10 ? 1e30f : -1e30f;
     afn::afnSoftmax(v, 49);
     EXPECT_EQ(v[10], 1.0f);
     EXPECT_EQ(v[0], 0.0f);
@@ -109,11 +114,13 @@ TEST(AfnLayers, KernelApplyIdentityShiftAndBorder)
     EXPECT_EQ(rgb[0], 0.0f);
     afn::afnApplyKernel(img, 0, 0, k, rgb);
     EXPECT_EQ(rgb[2], img(1, 0, 2));
-    for (float& f : k) f = 1.0f / 49; // box at the corner: 16 of 49 taps inside, no renormalisation
+    for (float& f : k)
+        f = 1.0f / 49; // box at the corner: 16 of 49 taps inside, no renormalisation
     afn::afnApplyKernel(img, 0, 0, k, rgb);
     double s = 0;
     for (int y = 0; y < 4; ++y)
-        for (int x = 0; x < 4; ++x) s += img(x, y, 0);
+        for (int x = 0; x < 4; ++x)
+            s += img(x, y, 0);
     EXPECT_NEAR(rgb[0], s / 49, 1e-6);
 }
 
@@ -127,10 +134,11 @@ TEST(AfnLayers, FusionEq3HandCase)
     b1[24] = 0.0f;
     bt[24] = 0.0f;
     bt[49] = 0.0f;
-    const auto a = afntest::parseArchive({ { "h1.weight", { 49, cd, 1, 1 }, std::vector<float>(49 * cd, 0.0f) },
-                                           { "h1.bias", { 49 }, b1 },
-                                           { "ht.weight", { 50, cd + 13, 1, 1 }, std::vector<float>(50 * 15, 0.0f) },
-                                           { "ht.bias", { 50 }, bt } });
+    const auto a = afntest::parseArchive(
+        { { "h1.weight", { 49, cd, 1, 1 }, std::vector<float>(49 * cd, 0.0f) },
+            { "h1.bias", { 49 }, b1 },
+            { "ht.weight", { 50, cd + 13, 1, 1 }, std::vector<float>(50 * 15, 0.0f) },
+            { "ht.bias", { 50 }, bt } });
     afn::AfnConv h1, ht;
     h1.load(a, "h1", cd, 49);
     ht.load(a, "ht", cd + 13, 50);

@@ -25,7 +25,8 @@ Err compare(const afn::Image& got, const afn::WeightTensor& want, const char* wh
     EXPECT_EQ(got.height(), want.dims[0]) << what;
     EXPECT_EQ(got.width(), want.dims[1]) << what;
     EXPECT_EQ(got.channels(), want.dims[2]) << what;
-    if (static_cast<std::int64_t>(got.size()) != want.numel()) return e;
+    if (static_cast<std::int64_t>(got.size()) != want.numel())
+        return e;
     for (std::size_t k = 0; k < got.size(); ++k) {
         const double g = got.data()[k], w = want.data[k], d = std::fabs(g - w);
         e.maxAbs = std::max(e.maxAbs, d);
@@ -67,9 +68,15 @@ void checkVariant(const std::string& variant, afn::AfnVariant expect)
 
 } // namespace
 
-TEST(AfnParity, FullModelMatchesPyTorch) { checkVariant("full", afn::AfnVariant::Full); }
+TEST(AfnParity, FullModelMatchesPyTorch)
+{
+    checkVariant("full", afn::AfnVariant::Full);
+}
 
-TEST(AfnParity, FusionModelMatchesPyTorch) { checkVariant("fusion", afn::AfnVariant::Fusion); }
+TEST(AfnParity, FusionModelMatchesPyTorch)
+{
+    checkVariant("fusion", afn::AfnVariant::Fusion);
+}
 
 TEST(AfnParity, RejectsWeightsOfAnotherShape)
 {
@@ -80,7 +87,8 @@ TEST(AfnParity, RejectsWeightsOfAnotherShape)
         net.load(c);
         FAIL() << "expected an exception";
     } catch (const afn::Exception& e) {
-        EXPECT_NE(std::string(e.what()).find("missing tensor 'enc1.weight'"), std::string::npos) << e.what();
+        EXPECT_NE(std::string(e.what()).find("missing tensor 'enc1.weight'"), std::string::npos)
+            << e.what();
     }
     EXPECT_FALSE(net.loaded());
 }

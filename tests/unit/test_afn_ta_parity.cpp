@@ -40,7 +40,8 @@ TEST(AfnTaParity, PythonTaEqualsCoreTa)
             maxDiff = std::max(maxDiff, static_cast<double>(std::fabs(a - b)));
         }
         for (std::size_t k = 0; k < spp.size(); ++k) {
-            EXPECT_EQ(ta.historyLength().data()[k], spp.data()[k]) << "frame " << f << " pixel " << k;
+            EXPECT_EQ(ta.historyLength().data()[k], spp.data()[k])
+                << "frame " << f << " pixel " << k;
             resets += spp.data()[k] == 1.0f;
         }
         EXPECT_EQ(differ, 0) << "frame " << f << ": max difference " << maxDiff;

@@ -17,7 +17,8 @@ using Bytes = std::vector<unsigned char>;
 
 void put(Bytes& b, std::uint64_t v, int n)
 {
-    for (int i = 0; i < n; ++i) b.push_back(static_cast<unsigned char>(v >> (8 * i)));
+    for (int i = 0; i < n; ++i)
+        b.push_back(static_cast<unsigned char>(v >> (8 * i)));
 }
 
 /// The same archive as training/tests/test_afn_weights.py::test_layout_by_hand:
@@ -28,7 +29,8 @@ Bytes handArchive()
     put(b, 1, 4);
     put(b, 1, 4);
     put(b, 4, 4);
-    for (char c : std::string("k=v\n")) b.push_back(static_cast<unsigned char>(c));
+    for (char c : std::string("k=v\n"))
+        b.push_back(static_cast<unsigned char>(c));
     put(b, 1, 2);
     b.push_back('a');
     b.push_back(1); // float32
@@ -36,7 +38,8 @@ Bytes handArchive()
     put(b, 2, 4);
     put(b, 48, 8);
     put(b, 8, 8);
-    while (b.size() < 48) b.push_back(0);
+    while (b.size() < 48)
+        b.push_back(0);
     const float v[2] = { 1.5f, -2.0f };
     std::uint32_t bits[2];
     std::memcpy(bits, v, 8);
@@ -112,9 +115,12 @@ extern "C" const unsigned long long afnTestEmbedded_size;
 
 TEST(AfnWeights, EmbeddedBytesEqualTheFile)
 {
-    const auto fromFile = afntest::loadFile(std::string(AFN_TEST_DATA) + "/afn_parity/weights_fusion.afnw");
-    std::ifstream f(std::string(AFN_TEST_DATA) + "/afn_parity/weights_fusion.afnw", std::ios::binary);
-    const std::vector<char> bytes((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
+    const auto fromFile
+        = afntest::loadFile(std::string(AFN_TEST_DATA) + "/afn_parity/weights_fusion.afnw");
+    std::ifstream f(
+        std::string(AFN_TEST_DATA) + "/afn_parity/weights_fusion.afnw", std::ios::binary);
+    const std::vector<char> bytes(
+        (std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
     ASSERT_EQ(afnTestEmbedded_size, bytes.size());
     EXPECT_EQ(std::memcmp(afnTestEmbedded, bytes.data(), bytes.size()), 0);
     const auto a = afn::WeightsArchive::parse(afnTestEmbedded, afnTestEmbedded_size, "embedded");
