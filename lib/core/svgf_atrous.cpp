@@ -42,8 +42,8 @@ void SvgfDenoiser::atrous(const Image& in, Image& out, int step) const
             for (int x = 0; x < w; ++x) {
                 const float* cp = in.at(x, y);
                 const float lp = luminance(cp);
-                const float phiL
-                    = sigmaL * std::sqrt(std::max(0.0f, blurredVariance(in, x, y))) + 1e-10f;
+                const float invPhiL = 1.0f
+                    / (sigmaL * std::sqrt(std::max(0.0f, blurredVariance(in, x, y))) + 1e-10f);
                 float ws = 0.0f, vsum = 0.0f, dc[3] = { 0, 0, 0 };
                 for (int j = -2; j <= 2; ++j)
                     for (int i = -2; i <= 2; ++i) {
@@ -55,7 +55,7 @@ void SvgfDenoiser::atrous(const Image& in, Image& out, int step) const
                         if (i != 0 || j != 0) {
                             const float wn = m_guide.normalFactor(x, y, qx, qy);
                             const float e = m_guide.depthTerm(x, y, qx, qy, i * step, j * step)
-                                + std::fabs(lp - luminance(cq)) / phiL;
+                                + std::fabs(lp - luminance(cq)) * invPhiL;
                             // exp(-40) < 5e-18: such taps are negligible; skipping them saves the
                             // exp().
                             if (!(wn > 0.0f) || !(e < kMaxExponent))
