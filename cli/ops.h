@@ -19,15 +19,16 @@ void runInfo(RunContext& ctx, const std::vector<FrameRef>& frames);
 
 /// -o: write the current beauty as top-level R,G,B[,A] (+ other layers with --keep-aovs).
 void writeOutput(RunContext& ctx, const LoadedFrame& frame, const std::string& path,
-                 const std::vector<std::string>& inputs);
+    const std::vector<std::string>& inputs);
 
-/// --preview: the current beauty through the OCIO display/view (:display= :view=) to an 8-bit image.
+/// --preview: the current beauty through the OCIO display/view (:display= :view=) to an 8-bit
+/// image.
 void writePreview(RunContext& ctx, const LoadedFrame& frame, const Action& action,
-                  const std::string& path, const std::vector<std::string>& inputs);
+    const std::string& path, const std::vector<std::string>& inputs);
 
 /// --contact-sheet: every role and every other layer of the frame as labelled tiles.
 void writeContactSheet(RunContext& ctx, const LoadedFrame& frame, const Action& action,
-                       const std::string& path, const std::vector<std::string>& inputs);
+    const std::string& path, const std::vector<std::string>& inputs);
 
 /// --denoise: one afn filter kept across the frames of the run (history in frame order).
 class SequenceDenoiser {

@@ -38,7 +38,8 @@ std::vector<std::string> split(const std::string& s, char sep)
     std::stringstream ss(s);
     std::string item;
     while (std::getline(ss, item, sep))
-        if (!item.empty()) out.push_back(item);
+        if (!item.empty())
+            out.push_back(item);
     return out;
 }
 
@@ -47,7 +48,8 @@ int toInt(const std::string& text, const std::string& what)
     try {
         std::size_t used = 0;
         const int v = std::stoi(text, &used);
-        if (used == text.size()) return v;
+        if (used == text.size())
+            return v;
     } catch (const std::exception&) {
     }
     throw CliError("--benchmark: " + what + " expects an integer, got '" + text + "'");
@@ -65,8 +67,10 @@ std::string commandLine()
     std::ifstream f("/proc/self/cmdline", std::ios::binary);
     std::string all((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
     for (char& c : all)
-        if (c == '\0') c = ' ';
-    while (!all.empty() && all.back() == ' ') all.pop_back();
+        if (c == '\0')
+            c = ' ';
+    while (!all.empty() && all.back() == ' ')
+        all.pop_back();
     return all;
 }
 
@@ -80,17 +84,20 @@ MethodResult parseSetting(const std::string& item)
     for (std::size_t i = 1; i < parts.size(); ++i) {
         const std::size_t eq = parts[i].find('=');
         if (eq == std::string::npos || eq == 0)
-            throw CliError("--benchmark: malformed setting '" + item + "' (expected method/param=value)");
+            throw CliError(
+                "--benchmark: malformed setting '" + item + "' (expected method/param=value)");
         m.params[parts[i].substr(0, eq)] = parts[i].substr(eq + 1);
     }
     return m;
 }
 
-void finishTimes(MethodResult& m, const std::vector<double>& times)
+void finishTimes(MethodResult& m, const std::vector<double>& times, const std::vector<double>& cpu)
 {
     m.medianMs = median(times);
+    m.medianCpuMs = median(cpu);
     double sum = 0.0, minMs = std::numeric_limits<double>::infinity();
-    for (double t : times) sum += t, minMs = std::min(minMs, t);
+    for (double t : times)
+        sum += t, minMs = std::min(minMs, t);
     m.meanMs = times.empty() ? 0.0 : sum / times.size();
     m.minMs = times.empty() ? 0.0 : minMs;
     m.means = sequenceMeans(m.frames);
@@ -98,12 +105,12 @@ void finishTimes(MethodResult& m, const std::vector<double>& times)
 
 /// A rectangle of a packed RGB image, through the display transform, written as PNG.
 void writeCrop(RunContext& ctx, const std::vector<float>& rgb, int width, const CropSet& c,
-               const std::string& path, const std::vector<std::string>& inputs)
+    const std::string& path, const std::vector<std::string>& inputs)
 {
     std::vector<float> crop(static_cast<std::size_t>(c.width) * c.height * 3);
     for (int y = 0; y < c.height; ++y)
         std::copy_n(&rgb[((static_cast<std::size_t>(c.y) + y) * width + c.x) * 3], c.width * 3,
-                    &crop[static_cast<std::size_t>(y) * c.width * 3]);
+            &crop[static_cast<std::size_t>(y) * c.width * 3]);
     try {
         ctx.color().toDisplay(crop.data(), c.width, c.height, 3, {});
         afn::io::WriteOptions wo;
@@ -119,40 +126,49 @@ void writeCrop(RunContext& ctx, const std::vector<float>& rgb, int width, const 
 std::string fileLabel(const std::string& label)
 {
     std::string s;
-    for (char c : label) s += std::isalnum(static_cast<unsigned char>(c)) ? c : '_';
+    for (char c : label)
+        s += std::isalnum(static_cast<unsigned char>(c)) ? c : '_';
     return s;
 }
 
 void printSummary(const BenchmarkReport& r, double ioMsPerFrame)
 {
-    std::printf("%-28s %10s %10s %8s %8s %8s %10s\n", "method", "ms/frame", "PSNR(dB)", "SSIM", "RMSE",
-                "SMAPE", "tge");
+    std::printf("%-24s %10s %10s %10s %8s %8s %8s %10s\n", "method", "ms/frame", "cpu ms",
+        "PSNR(dB)", "SSIM", "RMSE", "SMAPE", "tge");
     auto row = [](const MethodResult& m, bool timed) {
-        char ms[32] = "-";
-        if (timed) std::snprintf(ms, sizeof ms, "%.2f", m.medianMs);
-        std::printf("%-28s %10s %10.3f %8.4f %8.4f %8.4f %10.5f\n", m.label.c_str(), ms,
-                    m.means.at("psnr"), m.means.at("ssim"), m.means.at("rmse"), m.means.at("smape"),
-                    m.means.at("tge"));
+        char ms[32] = "-", cpu[32] = "-";
+        if (timed)
+            std::snprintf(ms, sizeof ms, "%.2f", m.medianMs);
+        if (timed)
+            std::snprintf(cpu, sizeof cpu, "%.2f", m.medianCpuMs);
+        std::printf("%-24s %10s %10s %10.3f %8.4f %8.4f %8.4f %10.5f\n", m.label.c_str(), ms, cpu,
+            m.means.at("psnr"), m.means.at("ssim"), m.means.at("rmse"), m.means.at("smape"),
+            m.means.at("tge"));
     };
-    if (!r.noisy.label.empty()) row(r.noisy, false);
-    for (const MethodResult& m : r.methods) row(m, true);
+    if (!r.noisy.label.empty())
+        row(r.noisy, false);
+    for (const MethodResult& m : r.methods)
+        row(m, true);
     std::printf("(median denoise-stage ms per frame over %d frame(s) x %d run(s); file I/O %.1f ms "
                 "per frame, not included)\n",
-                r.frameCount, r.repeat, ioMsPerFrame);
+        r.frameCount, r.repeat, ioMsPerFrame);
 }
 
 } // namespace
 
 int runBenchmark(const Options& opts, const Action& action)
 {
-    if (action.mods.count("size")) return runSizeBenchmark(opts, action);
+    if (action.mods.count("size"))
+        return runSizeBenchmark(opts, action);
     const std::string methodsText = modifier(action, "methods");
     if (methodsText.empty())
         throw CliError("--benchmark needs :methods=a,b,... or :size=WxH,... (see afntool --help)");
     std::string refPattern;
     for (const Action& a : opts.actions)
-        if (a.name == "compare") refPattern = a.arg;
-    if (refPattern.empty()) throw CliError("--benchmark:methods needs --compare REF (the references)");
+        if (a.name == "compare")
+            refPattern = a.arg;
+    if (refPattern.empty())
+        throw CliError("--benchmark:methods needs --compare REF (the references)");
 
     BenchmarkReport report;
     report.commandLine = commandLine();
@@ -175,7 +191,8 @@ int runBenchmark(const Options& opts, const Action& action)
         }
         settings.push_back(m);
     }
-    if (settings.empty()) throw CliError("--benchmark: none of the methods '" + methodsText + "' exists");
+    if (settings.empty())
+        throw CliError("--benchmark: none of the methods '" + methodsText + "' exists");
 
     // File I/O, timed apart: every input frame and reference, loaded once.
     RunContext ctx(opts);
@@ -188,7 +205,8 @@ int runBenchmark(const Options& opts, const Action& action)
         inputPaths.push_back(f.path);
         std::string rp = refPattern;
         if (afn::io::hasFramePattern(refPattern)) {
-            if (f.frame < 0) throw CliError("--compare has a frame pattern but the input is a single file", rp);
+            if (f.frame < 0)
+                throw CliError("--compare has a frame pattern but the input is a single file", rp);
             rp = afn::io::expandFramePattern(refPattern, f.frame);
         }
         references.push_back(loadFrame(ctx, { rp, f.frame }, false));
@@ -204,8 +222,9 @@ int runBenchmark(const Options& opts, const Action& action)
         const afn::io::RoleImage& c = frames[i].images.roles.at(afn::io::Role::Color);
         const afn::io::RoleImage& r = references[i].images.roles.at(afn::io::Role::Color);
         if (c.width != w || c.height != h || r.width != w || r.height != h)
-            throw CliError("--benchmark: every frame and reference must be " + std::to_string(w) + "x" +
-                               std::to_string(h), references[i].ref.path);
+            throw CliError("--benchmark: every frame and reference must be " + std::to_string(w)
+                    + "x" + std::to_string(h),
+                references[i].ref.path);
     }
 
     // Crop frames and rectangle (default: the last frame, a centred square of up to 128 pixels).
@@ -213,9 +232,11 @@ int runBenchmark(const Options& opts, const Action& action)
     for (const std::string& s : split(modifier(action, "crop-frames"), ',')) {
         const int f = toInt(s, "crop-frames");
         for (std::size_t i = 0; i < frames.size(); ++i)
-            if (frames[i].ref.frame == f) cropIdx.push_back(static_cast<int>(i));
+            if (frames[i].ref.frame == f)
+                cropIdx.push_back(static_cast<int>(i));
     }
-    if (cropIdx.empty()) cropIdx.push_back(static_cast<int>(frames.size()) - 1);
+    if (cropIdx.empty())
+        cropIdx.push_back(static_cast<int>(frames.size()) - 1);
     CropSet rect;
     const std::vector<std::string> cr = split(modifier(action, "crop"), ',');
     if (cr.size() == 4) {
@@ -227,10 +248,10 @@ int runBenchmark(const Options& opts, const Action& action)
         rect.width = std::min(w, 128), rect.height = std::min(h, 128);
         rect.x = (w - rect.width) / 2, rect.y = (h - rect.height) / 2;
     }
-    if (rect.x < 0 || rect.y < 0 || rect.width <= 0 || rect.height <= 0 || rect.x + rect.width > w ||
-        rect.y + rect.height > h)
-        throw CliError("--benchmark: crop rectangle outside the " + std::to_string(w) + "x" +
-                       std::to_string(h) + " frame");
+    if (rect.x < 0 || rect.y < 0 || rect.width <= 0 || rect.height <= 0 || rect.x + rect.width > w
+        || rect.y + rect.height > h)
+        throw CliError("--benchmark: crop rectangle outside the " + std::to_string(w) + "x"
+            + std::to_string(h) + " frame");
 
     // The noisy input scored as a baseline (not when the beauty is albedo-demodulated).
     SequenceEvaluator evaluator(opts.threads);
@@ -238,58 +259,67 @@ int runBenchmark(const Options& opts, const Action& action)
         report.noisy.label = "noisy input";
         for (std::size_t i = 0; i < frames.size(); ++i)
             report.noisy.frames.push_back(evaluator.evaluate(frames[i].ref.frame, frames[i].beauty,
-                                                             references[i].beauty, w, h,
-                                                             frames[i].ref.path));
-        finishTimes(report.noisy, {});
+                references[i].beauty, w, h, frames[i].ref.path));
+        finishTimes(report.noisy, {}, {});
     }
 
-    Progress progress(static_cast<int>(settings.size() * report.repeat * frames.size()), opts.quiet);
+    Progress progress(
+        static_cast<int>(settings.size() * report.repeat * frames.size()), opts.quiet);
     int done = 0;
     std::vector<std::vector<std::vector<float>>> cropImages; // [method][crop frame]: outputs
     for (MethodResult& m : settings) {
         Action denoise { "denoise", "", m.params };
         denoise.mods["method"] = m.method;
-        std::vector<double> times;
+        std::vector<double> times, cpuTimes;
         std::vector<std::vector<float>> crops;
         try {
             for (int rep = 0; rep < report.repeat; ++rep) {
                 SequenceDenoiser denoiser(opts, denoise); // fresh history per run
                 const bool last = rep + 1 == report.repeat;
-                if (last) evaluator.restart();
+                if (last)
+                    evaluator.restart();
                 for (std::size_t i = 0; i < frames.size(); ++i) {
                     progress.update(done++, m.label + " " + frames[i].ref.path);
                     LoadedFrame frame = frames[i]; // copy outside the timed stage
+                    const double cpu0 = processCpuMs();
                     const Clock::time_point t0 = Clock::now();
                     denoiser.process(frame, &progress);
-                    const double ms = msSince(t0);
+                    const double ms = msSince(t0), cpuMs = processCpuMs() - cpu0;
                     times.push_back(ms);
-                    if (!last) continue;
-                    FrameResult r = evaluator.evaluate(frame.ref.frame, frame.beauty,
-                                                       references[i].beauty, w, h, frame.ref.path);
+                    cpuTimes.push_back(cpuMs);
+                    if (!last)
+                        continue;
+                    FrameResult r = evaluator.evaluate(
+                        frame.ref.frame, frame.beauty, references[i].beauty, w, h, frame.ref.path);
                     r.ms = ms;
+                    r.cpuMs = cpuMs;
                     m.frames.push_back(r);
-                    if (std::find(cropIdx.begin(), cropIdx.end(), static_cast<int>(i)) != cropIdx.end())
+                    if (std::find(cropIdx.begin(), cropIdx.end(), static_cast<int>(i))
+                        != cropIdx.end())
                         crops.push_back(frame.beauty);
                 }
             }
         } catch (const CliError& e) {
             // One method failing (e.g. "afn" without weights) does not end the benchmark.
-            report.warnings.push_back("method '" + m.label + "' failed and is left out: " + e.what());
+            report.warnings.push_back(
+                "method '" + m.label + "' failed and is left out: " + e.what());
             warn(report.warnings.back(), opts.quiet, &progress);
             continue;
         }
-        finishTimes(m, times);
+        finishTimes(m, times, cpuTimes);
         report.methods.push_back(m);
         cropImages.push_back(std::move(crops));
     }
     progress.update(done, "done");
     progress.clear();
-    if (report.methods.empty()) throw CliError("--benchmark: every method failed (see the warnings)");
+    if (report.methods.empty())
+        throw CliError("--benchmark: every method failed (see the warnings)");
 
     if (!opts.report.empty()) {
         std::error_code ec;
         std::filesystem::create_directories(opts.report, ec);
-        if (ec) throw CliError("cannot create the report folder: " + ec.message(), opts.report);
+        if (ec)
+            throw CliError("cannot create the report folder: " + ec.message(), opts.report);
         for (std::size_t k = 0; k < cropIdx.size(); ++k) {
             const int i = cropIdx[k];
             CropSet c = rect;
@@ -312,7 +342,8 @@ int runBenchmark(const Options& opts, const Action& action)
         writeIndexHtml(opts.report, report);
     }
     printSummary(report, report.ioMsPerFrame);
-    if (!opts.report.empty()) std::printf("report: %s/index.html\n", opts.report.c_str());
+    if (!opts.report.empty())
+        std::printf("report: %s/index.html\n", opts.report.c_str());
     return 0;
 }
 

@@ -27,6 +27,8 @@ struct SizePoint {
     int width = 0, height = 0;
     double medianMs = 0.0;
     double msPerMegapixel = 0.0;
+    double medianCpuMs = 0.0; ///< process CPU time, all threads
+    double cpuMsPerMegapixel = 0.0;
 };
 
 std::vector<std::string> splitList(const std::string& s, char sep)
@@ -35,7 +37,8 @@ std::vector<std::string> splitList(const std::string& s, char sep)
     std::stringstream ss(s);
     std::string item;
     while (std::getline(ss, item, sep))
-        if (!item.empty()) out.push_back(item);
+        if (!item.empty())
+            out.push_back(item);
     return out;
 }
 
@@ -45,7 +48,8 @@ std::pair<int, int> parseSize(const std::string& text)
     try {
         if (x != std::string::npos) {
             const int w = std::stoi(text.substr(0, x)), h = std::stoi(text.substr(x + 1));
-            if (w > 0 && h > 0 && w <= 16384 && h <= 16384) return { w, h };
+            if (w > 0 && h > 0 && w <= 16384 && h <= 16384)
+                return { w, h };
         }
     } catch (const std::exception&) {
     }
@@ -66,7 +70,8 @@ afn::io::RoleImage fill(int w, int h, int components, std::initializer_list<floa
     r.width = w, r.height = h, r.components = components;
     r.pixels.resize(static_cast<std::size_t>(w) * h * components);
     const std::vector<float> v(value);
-    for (std::size_t i = 0; i < r.pixels.size(); ++i) r.pixels[i] = v[i % components];
+    for (std::size_t i = 0; i < r.pixels.size(); ++i)
+        r.pixels[i] = v[i % components];
     return r;
 }
 
@@ -96,7 +101,8 @@ void makeFrame(LoadedFrame& f, int w, int h, int frame)
             for (int c = 0; c < 3; ++c) {
                 // Mostly dark with rare bright samples, as 1 spp path tracing gives.
                 const float u = hashNoise(x, y, frame, c);
-                f.beauty[(static_cast<std::size_t>(y) * w + x) * 3 + c] = u > 0.9f ? 4.0f * u : 0.3f * u;
+                f.beauty[(static_cast<std::size_t>(y) * w + x) * 3 + c]
+                    = u > 0.9f ? 4.0f * u : 0.3f * u;
             }
 }
 
@@ -109,8 +115,10 @@ int runSizeBenchmark(const Options& opts, const Action& action)
         return it == action.mods.end() ? def : it->second;
     };
     std::vector<std::pair<int, int>> sizes;
-    for (const std::string& s : splitList(mod("size", ""), ',')) sizes.push_back(parseSize(s));
-    if (sizes.empty()) throw CliError("--benchmark:size needs at least one WIDTHxHEIGHT");
+    for (const std::string& s : splitList(mod("size", ""), ','))
+        sizes.push_back(parseSize(s));
+    if (sizes.empty())
+        throw CliError("--benchmark:size needs at least one WIDTHxHEIGHT");
     const std::vector<std::string> known = afn::filterTypes();
     std::vector<std::string> methods;
     for (const std::string& m : splitList(mod("methods", ""), ',')) {
@@ -121,8 +129,10 @@ int runSizeBenchmark(const Options& opts, const Action& action)
     }
     if (mod("methods", "").empty())
         for (const std::string& m : known)
-            if (m != "identity") methods.push_back(m);
-    if (methods.empty()) throw CliError("--benchmark:size: no method to time");
+            if (m != "identity")
+                methods.push_back(m);
+    if (methods.empty())
+        throw CliError("--benchmark:size: no method to time");
     int timed = 5, warmup = 2;
     try {
         timed = std::max(1, std::stoi(mod("frames", "5")));
@@ -139,68 +149,91 @@ int runSizeBenchmark(const Options& opts, const Action& action)
         for (const std::string& m : methods) {
             progress.update(done++, m + " " + std::to_string(w) + "x" + std::to_string(h));
             Action denoise { "denoise", "", { { "method", m } } };
-            std::vector<double> times;
+            std::vector<double> times, cpuTimes;
             try {
                 SequenceDenoiser denoiser(opts, denoise);
                 for (int i = 0; i < warmup + timed; ++i) {
                     makeFrame(frame, w, h, i);
+                    const double cpu0 = processCpuMs();
                     const auto t0 = std::chrono::steady_clock::now();
                     denoiser.process(frame, &progress);
                     const double ms = std::chrono::duration<double, std::milli>(
-                                          std::chrono::steady_clock::now() - t0).count();
-                    if (i >= warmup) times.push_back(ms);
+                        std::chrono::steady_clock::now() - t0)
+                                          .count();
+                    if (i < warmup)
+                        continue;
+                    times.push_back(ms);
+                    cpuTimes.push_back(processCpuMs() - cpu0);
                 }
             } catch (const CliError& e) {
                 // One method failing (e.g. "afn" without weights) does not end the benchmark.
-                warn("method '" + m + "' failed at " + std::to_string(w) + "x" + std::to_string(h) +
-                         " and is left out: " + e.what(), opts.quiet, &progress);
+                warn("method '" + m + "' failed at " + std::to_string(w) + "x" + std::to_string(h)
+                        + " and is left out: " + e.what(),
+                    opts.quiet, &progress);
                 continue;
             }
-            SizePoint p { m, w, h, median(times), 0.0 };
+            SizePoint p { m, w, h, median(times), 0.0, median(cpuTimes), 0.0 };
             p.msPerMegapixel = p.medianMs / (static_cast<double>(w) * h / 1e6);
+            p.cpuMsPerMegapixel = p.medianCpuMs / (static_cast<double>(w) * h / 1e6);
             points.push_back(p);
         }
     }
     progress.clear();
 
     // Linearity: ms per megapixel relative to the first listed size of the same method.
-    auto baseRate = [&](const std::string& m) {
+    auto base = [&](const std::string& m) -> const SizePoint& {
         for (const SizePoint& p : points)
-            if (p.method == m) return p.msPerMegapixel;
-        return 0.0;
+            if (p.method == m)
+                return p;
+        return points.front();
     };
     JsonWriter j;
-    j.beginObject().field("timedFrames", timed).field("warmupFrames", warmup).field("threads", opts.threads);
+    j.beginObject()
+        .field("timedFrames", timed)
+        .field("warmupFrames", warmup)
+        .field("threads", opts.threads);
     j.key("points").beginArray();
     std::ostringstream csv;
-    csv << "method,width,height,megapixels,medianMs,msPerMegapixel,relativeToFirst\n";
+    csv << "method,width,height,megapixels,medianMs,msPerMegapixel,relativeToFirst,medianCpuMs,"
+           "cpuMsPerMegapixel,cpuRelativeToFirst\n";
     if (!opts.json)
-        std::printf("%-10s %11s %8s %12s %12s %10s\n", "method", "size", "MP", "ms/frame", "ms/MP", "rel.");
+        std::printf("%-8s %11s %6s %11s %9s %6s %11s %9s %6s\n", "method", "size", "MP", "ms/frame",
+            "ms/MP", "rel.", "cpu ms", "cpu ms/MP", "rel.");
     for (const SizePoint& p : points) {
         const double mp = static_cast<double>(p.width) * p.height / 1e6;
-        const double rel = p.msPerMegapixel / baseRate(p.method);
+        const double rel = p.msPerMegapixel / base(p.method).msPerMegapixel;
+        const double relCpu = p.cpuMsPerMegapixel / base(p.method).cpuMsPerMegapixel;
         if (!opts.json)
-            std::printf("%-10s %5dx%-5d %8.2f %12.2f %12.2f %10.3f\n", p.method.c_str(), p.width,
-                        p.height, mp, p.medianMs, p.msPerMegapixel, rel);
+            std::printf("%-8s %5dx%-5d %6.2f %11.2f %9.2f %6.3f %11.2f %9.2f %6.3f\n",
+                p.method.c_str(), p.width, p.height, mp, p.medianMs, p.msPerMegapixel, rel,
+                p.medianCpuMs, p.cpuMsPerMegapixel, relCpu);
         j.beginObject().field("method", p.method).field("width", p.width).field("height", p.height);
-        j.field("megapixels", mp).field("medianMs", p.medianMs).field("msPerMegapixel", p.msPerMegapixel);
-        j.field("relativeToFirst", rel).endObject();
-        char line[256];
-        std::snprintf(line, sizeof line, "%s,%d,%d,%.6f,%.4f,%.4f,%.4f\n", p.method.c_str(), p.width,
-                      p.height, mp, p.medianMs, p.msPerMegapixel, rel);
+        j.field("megapixels", mp)
+            .field("medianMs", p.medianMs)
+            .field("msPerMegapixel", p.msPerMegapixel);
+        j.field("relativeToFirst", rel).field("medianCpuMs", p.medianCpuMs);
+        j.field("cpuMsPerMegapixel", p.cpuMsPerMegapixel)
+            .field("cpuRelativeToFirst", relCpu)
+            .endObject();
+        char line[320];
+        std::snprintf(line, sizeof line, "%s,%d,%d,%.6f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f\n",
+            p.method.c_str(), p.width, p.height, mp, p.medianMs, p.msPerMegapixel, rel,
+            p.medianCpuMs, p.cpuMsPerMegapixel, relCpu);
         csv << line;
     }
     j.endArray().endObject();
     if (opts.json)
         std::printf("%s\n", j.str().c_str());
     else
-        std::printf("(median of %d timed frames after %d warm-up frames; rel. = ms/MP against the "
-                    "method's first size: 1.0 = linear in pixel count)\n",
-                    timed, warmup);
+        std::printf("(median of %d timed frames after %d warm-up frames; rel. = per-megapixel time "
+                    "against the method's first size: 1.0 = linear in pixel count; cpu = process "
+                    "CPU time of all threads)\n",
+            timed, warmup);
     if (!opts.report.empty()) {
         std::error_code ec;
         std::filesystem::create_directories(opts.report, ec);
-        if (ec) throw CliError("cannot create the report folder: " + ec.message(), opts.report);
+        if (ec)
+            throw CliError("cannot create the report folder: " + ec.message(), opts.report);
         writeTextAtomic(opts.report + "/scaling.json", j.str() + "\n");
         writeTextAtomic(opts.report + "/scaling.csv", csv.str());
     }

@@ -1,6 +1,9 @@
 // SPDX-License-Identifier: Apache-2.0
 #include "ops.h"
 
+#include <fstream>
+#include <iterator>
+
 #include "cli_error.h"
 #include "progress.h"
 
@@ -8,7 +11,8 @@ namespace afntool {
 
 using afn::io::Role;
 
-SequenceDenoiser::SequenceDenoiser(const Options& opts, const Action& action) : m_opts(opts)
+SequenceDenoiser::SequenceDenoiser(const Options& opts, const Action& action)
+    : m_opts(opts)
 {
     m_params = action.mods;
     auto it = m_params.find("method");
@@ -17,12 +21,31 @@ SequenceDenoiser::SequenceDenoiser(const Options& opts, const Action& action) : 
     m_method = it->second;
     m_params.erase(it);
     m_device = afn::newDevice();
-    if (!m_device) throw CliError("cannot create an afn device");
+    if (!m_device)
+        throw CliError("cannot create an afn device");
     m_device.set("numThreads", opts.threads);
     m_device.commit();
     check("device", "");
     m_filter = m_device.newFilter(m_method.c_str());
     check("--denoise", "");
+
+    // Weights: ":weights=FILE" on this action, else --weights FILE; read once, handed over as data.
+    std::string weights = opts.weights;
+    if (auto w = m_params.find("weights"); w != m_params.end()) {
+        weights = w->second;
+        m_params.erase(w);
+    }
+    if (!weights.empty()) {
+        std::ifstream in(weights, std::ios::binary);
+        if (!in)
+            throw CliError("cannot read the weights file", weights);
+        const std::vector<char> data(
+            (std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+        if (in.bad())
+            throw CliError("cannot read the weights file", weights);
+        m_filter.setData("weights", data.data(), data.size()); // the library copies them
+        check("--weights (" + weights + ")", "");
+    }
 }
 
 void SequenceDenoiser::check(const std::string& what, const std::string& file)
@@ -37,10 +60,14 @@ namespace {
 afn::Format formatFor(int components)
 {
     switch (components) {
-    case 1: return afn::Format::Float;
-    case 2: return afn::Format::Float2;
-    case 3: return afn::Format::Float3;
-    default: return afn::Format::Float4;
+    case 1:
+        return afn::Format::Float;
+    case 2:
+        return afn::Format::Float2;
+    case 3:
+        return afn::Format::Float3;
+    default:
+        return afn::Format::Float4;
     }
 }
 
@@ -60,17 +87,15 @@ void SequenceDenoiser::process(LoadedFrame& frame, Progress* progress)
     m_filter.set("motion.yUp", tag.motionYUp);
     m_filter.set("motion.units", tag.motionUnits);
     m_filter.set("color.demodulated", tag.colorDemodulated);
-    for (const auto& [key, value] : m_params) m_filter.set(key.c_str(), value);
+    for (const auto& [key, value] : m_params)
+        m_filter.set(key.c_str(), value);
     check("--denoise", frame.ref.path);
 
     // The working-space beauty is the colour input; other roles as read.
     m_filter.setImage("color", frame.beauty.data(), afn::Format::Float3, w, h);
     const std::pair<Role, const char*> roles[] = { { Role::Albedo, "albedo" },
-                                                   { Role::Normal, "normal" },
-                                                   { Role::Depth, "depth" },
-                                                   { Role::Position, "position" },
-                                                   { Role::Motion, "motion" },
-                                                   { Role::Alpha, "alpha" } };
+        { Role::Normal, "normal" }, { Role::Depth, "depth" }, { Role::Position, "position" },
+        { Role::Motion, "motion" }, { Role::Alpha, "alpha" } };
     for (const auto& [role, name] : roles) {
         auto it = img.roles.find(role);
         if (it == img.roles.end()) {
@@ -79,7 +104,7 @@ void SequenceDenoiser::process(LoadedFrame& frame, Progress* progress)
         }
         afn::io::RoleImage& r = it->second;
         m_filter.setImage(name, r.pixels.data(), formatFor(r.components), r.width, r.height, 0,
-                          r.components * sizeof(float), 0);
+            r.components * sizeof(float), 0);
     }
     if (img.camera) {
         m_filter.setFloats("viewProjection", img.camera->viewProjection, 16);
@@ -95,11 +120,13 @@ void SequenceDenoiser::process(LoadedFrame& frame, Progress* progress)
     const int nonFinite = m_filter.get<int>("stats.nonFinite");
     const int negative = m_filter.get<int>("stats.negative");
     if (nonFinite > 0)
-        warn(std::to_string(nonFinite) + " NaN/Inf input values replaced by 0 (" + frame.ref.path + ")",
-             m_opts.quiet, progress);
+        warn(std::to_string(nonFinite) + " NaN/Inf input values replaced by 0 (" + frame.ref.path
+                + ")",
+            m_opts.quiet, progress);
     if (negative > 0)
-        warn(std::to_string(negative) + " negative colour values clamped to 0 (" + frame.ref.path + ")",
-             m_opts.quiet, progress);
+        warn(std::to_string(negative) + " negative colour values clamped to 0 (" + frame.ref.path
+                + ")",
+            m_opts.quiet, progress);
     frame.beauty.swap(m_output);
 }
 

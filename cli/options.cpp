@@ -15,7 +15,8 @@ std::string splitModifiers(const std::string& arg, std::map<std::string, std::st
     const std::string name = arg.substr(0, pos);
     while (pos != std::string::npos) {
         const std::size_t next = arg.find(':', pos + 1);
-        const std::string item = arg.substr(pos + 1, next == std::string::npos ? next : next - pos - 1);
+        const std::string item
+            = arg.substr(pos + 1, next == std::string::npos ? next : next - pos - 1);
         const std::size_t eq = item.find('=');
         if (item.empty() || eq == 0)
             throw CliError("malformed modifier in '" + arg + "' (expected :key=value)");
@@ -32,7 +33,8 @@ namespace {
 
 const char* needValue(int& i, int argc, const char* const* argv, const std::string& flag)
 {
-    if (i + 1 >= argc) throw CliError(flag + " needs an argument");
+    if (i + 1 >= argc)
+        throw CliError(flag + " needs an argument");
     return argv[++i];
 }
 
@@ -41,7 +43,8 @@ int parseInt(const std::string& text, const std::string& flag)
     try {
         std::size_t used = 0;
         const int v = std::stoi(text, &used);
-        if (used != text.size()) throw std::invalid_argument(text);
+        if (used != text.size())
+            throw std::invalid_argument(text);
         return v;
     } catch (const std::exception&) {
         throw CliError(flag + " expects an integer, got '" + text + "'");
@@ -81,7 +84,10 @@ Options parseCommandLine(int argc, const char* const* argv)
             }
         } else if (flag == "--threads") {
             o.threads = parseInt(needValue(i, argc, argv, flag), flag);
-            if (o.threads < 0) throw CliError("--threads must be >= 0");
+            if (o.threads < 0)
+                throw CliError("--threads must be >= 0");
+        } else if (flag == "--weights") {
+            o.weights = needValue(i, argc, argv, flag);
         } else if (flag == "-d") {
             o.dataType = needValue(i, argc, argv, flag);
             if (o.dataType != "half" && o.dataType != "float")
@@ -122,10 +128,18 @@ static std::string paramLine(const AFNParamInfo& p)
     std::ostringstream os;
     os << "        " << p.name << "=";
     switch (p.type) {
-    case AFN_PARAM_BOOL: os << (p.defaultValue != 0.0 ? "1" : "0") << "  (bool)"; break;
-    case AFN_PARAM_INT: os << p.defaultValue << "  (int " << p.minValue << ".." << p.maxValue << ")"; break;
-    case AFN_PARAM_FLOAT: os << p.defaultValue << "  (float " << p.minValue << ".." << p.maxValue << ")"; break;
-    case AFN_PARAM_STRING: os << p.defaultString << "  (" << p.choices << ")"; break;
+    case AFN_PARAM_BOOL:
+        os << (p.defaultValue != 0.0 ? "1" : "0") << "  (bool)";
+        break;
+    case AFN_PARAM_INT:
+        os << p.defaultValue << "  (int " << p.minValue << ".." << p.maxValue << ")";
+        break;
+    case AFN_PARAM_FLOAT:
+        os << p.defaultValue << "  (float " << p.minValue << ".." << p.maxValue << ")";
+        break;
+    case AFN_PARAM_STRING:
+        os << p.defaultString << "  (" << p.choices << ")";
+        break;
     }
     os << "\n            " << p.help << "\n";
     return os.str();
@@ -149,8 +163,12 @@ std::string helpText()
        << "                          the working space)\n"
        << "  --outcolorspace NAME    colour space of written images (default: the input's)\n"
        << "  --threads N             worker threads (0 = all cores)\n"
+       << "  --weights FILE          network weights (.afnw) for learned methods such as afn,\n"
+       << "                          instead of the ones built in (also :weights=FILE on "
+          "--denoise)\n"
        << "  -d half|float           output data type (default: the input's)\n"
-       << "  --compression NAME      EXR compression (zip, piz, dwaa, none, ...; default: input's)\n"
+       << "  --compression NAME      EXR compression (zip, piz, dwaa, none, ...; default: "
+          "input's)\n"
        << "  --keep-aovs             copy every other input layer into -o outputs\n"
        << "  --json                  machine-readable --info\n"
        << "  -q, --quiet             no progress bar and no warnings\n\n"
@@ -165,7 +183,8 @@ std::string helpText()
        << "  --compare REF           metrics of the current beauty against REF (file or pattern):\n"
        << "                          per frame and mean; table, or JSON with --json\n"
        << "  --benchmark:methods=ta,svgf/iterations=2,...  (with --compare REF [--report DIR])\n"
-       << "                          time and score each method on the sequence; report folder with\n"
+       << "                          time and score each method on the sequence; report folder "
+          "with\n"
        << "                          results.json/.csv, runtime-vs-error.svg, index.html\n"
        << "                          (:repeat=N :error=rmse|psnr|ssim|smape|... :crop=X,Y,W,H\n"
        << "                          :crop-frames=F,G)\n"
@@ -179,7 +198,8 @@ std::string helpText()
         for (const AFNParamInfo& p : afn::filterTypeParams(type.c_str())) {
             const std::string name = p.name;
             // Input conventions are set from the role mapping; list them once below.
-            if (name.find('.') != std::string::npos) continue;
+            if (name.find('.') != std::string::npos)
+                continue;
             os << paramLine(p);
         }
     }
@@ -187,7 +207,8 @@ std::string helpText()
        << "  override with --aov or as modifiers):\n";
     if (!afn::filterTypes().empty()) {
         for (const AFNParamInfo& p : afn::filterTypeParams(afn::filterTypes().front().c_str()))
-            if (std::string(p.name).find('.') != std::string::npos) os << paramLine(p);
+            if (std::string(p.name).find('.') != std::string::npos)
+                os << paramLine(p);
     }
     os << "\nExamples:\n"
        << "  afntool --info --json render.exr\n"

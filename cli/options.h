@@ -14,25 +14,26 @@ namespace afntool {
 
 /// One action with its modifiers, e.g. "--denoise:method=svgf:iterations=4".
 struct Action {
-    std::string name;                        ///< info | denoise | preview | contact-sheet | output
-    std::string arg;                         ///< output path (preview, contact-sheet, output)
+    std::string name; ///< info | denoise | preview | contact-sheet | output
+    std::string arg; ///< output path (preview, contact-sheet, output)
     std::map<std::string, std::string> mods; ///< modifiers in the order given (keys unique)
 };
 
 struct Options {
-    std::vector<std::string> inputs;   ///< files or frame patterns
-    std::string frames;                ///< "--frames" range text ("" = single files)
-    std::string colorConfig;           ///< --colorconfig
-    std::string inColorSpace;          ///< --incolorspace ("" = from the file, else working space)
-    std::string outColorSpace;         ///< --outcolorspace ("" = the input's colour space)
+    std::vector<std::string> inputs; ///< files or frame patterns
+    std::string frames; ///< "--frames" range text ("" = single files)
+    std::string colorConfig; ///< --colorconfig
+    std::string inColorSpace; ///< --incolorspace ("" = from the file, else working space)
+    std::string outColorSpace; ///< --outcolorspace ("" = the input's colour space)
     afn::io::MappingOverrides overrides;
-    int threads = 0;                   ///< --threads (0 = all cores)
-    std::string dataType;              ///< -d half|float ("" = keep the input's)
-    std::string compression;           ///< --compression ("" = keep the input's)
-    bool keepAovs = false;             ///< --keep-aovs
-    bool json = false;                 ///< --json (with --info)
-    std::string report;                ///< --report DIR (with --benchmark): report folder
-    bool quiet = false;                ///< --quiet: no progress, no warnings
+    int threads = 0; ///< --threads (0 = all cores)
+    std::string weights; ///< --weights FILE: network weights for afn (and :weights=)
+    std::string dataType; ///< -d half|float ("" = keep the input's)
+    std::string compression; ///< --compression ("" = keep the input's)
+    bool keepAovs = false; ///< --keep-aovs
+    bool json = false; ///< --json (with --info)
+    std::string report; ///< --report DIR (with --benchmark): report folder
+    bool quiet = false; ///< --quiet: no progress, no warnings
     bool help = false;
     bool version = false;
     std::vector<Action> actions;

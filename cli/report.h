@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: Apache-2.0
 // Evaluation results of afntool --compare and --benchmark, and the files that report them
-// (results.json, results.csv, runtime-vs-error.svg, index.html). Metric definitions: docs/metrics.md.
+// (results.json, results.csv, runtime-vs-error.svg, index.html). Metric definitions:
+// docs/metrics.md.
 #pragma once
 
 #include "afn/afn.hpp"
@@ -14,7 +15,8 @@ namespace afntool {
 /// Metrics of one frame; `hasTemporal` is false for the first frame of a sequence.
 struct FrameResult {
     int frame = -1;
-    double ms = 0.0; ///< denoise-stage time of this frame (benchmark only), milliseconds
+    double ms = 0.0; ///< denoise-stage wall time of this frame (benchmark only), milliseconds
+    double cpuMs = 0.0; ///< process CPU time (all threads) of the same stage, milliseconds
     AFNMetrics metrics {};
     bool hasTemporal = false;
     AFNTemporalMetrics temporal {};
@@ -22,10 +24,10 @@ struct FrameResult {
 
 /// One metric column: name, label and how to read it from a FrameResult.
 struct MetricColumn {
-    const char* name;     ///< JSON/CSV key ("psnr", "ssim", ...)
-    const char* label;    ///< table header
+    const char* name; ///< JSON/CSV key ("psnr", "ssim", ...)
+    const char* label; ///< table header
     bool higherIsBetter;
-    bool temporal;        ///< only defined from the second frame on
+    bool temporal; ///< only defined from the second frame on
     double (*get)(const FrameResult&);
 };
 
@@ -45,8 +47,7 @@ public:
     explicit SequenceEvaluator(int threads);
     /// `test`, `reference`: packed RGB, width*height*3 floats, same size; `file` names errors.
     FrameResult evaluate(int frame, const std::vector<float>& test,
-                         const std::vector<float>& reference, int width, int height,
-                         const std::string& file);
+        const std::vector<float>& reference, int width, int height, const std::string& file);
     /// Forget the previous frame (a new sequence starts).
     void restart() { m_prevTest.clear(); }
 
@@ -57,18 +58,19 @@ private:
 
 /// One run of a method (or the noisy input) over the sequence.
 struct MethodResult {
-    std::string label;                         ///< "svgf" or "svgf/iterations=2"
-    std::string method;                        ///< filter type ("" for the noisy input)
+    std::string label; ///< "svgf" or "svgf/iterations=2"
+    std::string method; ///< filter type ("" for the noisy input)
     std::map<std::string, std::string> params; ///< explicit parameters of this setting
     std::vector<FrameResult> frames;
     double medianMs = 0.0, meanMs = 0.0, minMs = 0.0;
-    std::map<std::string, double> means;       ///< sequenceMeans(frames)
+    double medianCpuMs = 0.0; ///< median process CPU time per frame (robust on a shared machine)
+    std::map<std::string, double> means; ///< sequenceMeans(frames)
 };
 
 /// Crops of one frame, as PNG file names relative to the report folder.
 struct CropSet {
     int frame = -1;
-    int x = 0, y = 0, width = 0, height = 0;  ///< crop rectangle in the frame
+    int x = 0, y = 0, width = 0, height = 0; ///< crop rectangle in the frame
     std::vector<std::pair<std::string, std::string>> images; ///< (label, file name)
 };
 
@@ -77,11 +79,11 @@ struct BenchmarkReport {
     std::string commandLine;
     std::string input, reference;
     int width = 0, height = 0, frameCount = 0, repeat = 1;
-    int threads = 0;                 ///< --threads (0 = all cores)
-    double ioMsPerFrame = 0.0;       ///< file reading per frame (input + reference), milliseconds
+    int threads = 0; ///< --threads (0 = all cores)
+    double ioMsPerFrame = 0.0; ///< file reading per frame (input + reference), milliseconds
     unsigned hardwareThreads = 0;
     std::string errorMetric = "rmse"; ///< y axis of the plot
-    MethodResult noisy;              ///< the input itself (no timing); empty label = not scored
+    MethodResult noisy; ///< the input itself (no timing); empty label = not scored
     std::vector<MethodResult> methods;
     std::vector<CropSet> crops;
     std::vector<std::string> warnings;
@@ -89,6 +91,8 @@ struct BenchmarkReport {
 
 /// Median of a list of times (0 for an empty list).
 double median(std::vector<double> values);
+/// CPU time of this process so far (every thread), milliseconds.
+double processCpuMs();
 
 /// Indices of methods on the Pareto front of (medianMs, error): no other method is at least as
 /// fast and at least as good with one of the two strictly better. NaN errors are never on it.

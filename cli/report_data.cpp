@@ -14,6 +14,7 @@
 #include <limits>
 #include <sstream>
 
+#include <time.h>
 #include <unistd.h>
 
 namespace afntool {
@@ -48,7 +49,8 @@ const MetricColumn& metricColumn(const std::string& name)
 {
     std::string names;
     for (const MetricColumn& c : metricColumns()) {
-        if (name == c.name) return c;
+        if (name == c.name)
+            return c;
         names += names.empty() ? c.name : std::string(", ") + c.name;
     }
     throw CliError("unknown metric '" + name + "' (known: " + names + ")");
@@ -61,7 +63,8 @@ std::map<std::string, double> sequenceMeans(const std::vector<FrameResult>& fram
         double sum = 0.0;
         int n = 0;
         for (const FrameResult& f : frames) {
-            if (c.temporal && !f.hasTemporal) continue;
+            if (c.temporal && !f.hasTemporal)
+                continue;
             sum += c.get(f); // NaN and inf propagate on purpose
             ++n;
         }
@@ -72,10 +75,18 @@ std::map<std::string, double> sequenceMeans(const std::vector<FrameResult>& fram
 
 double median(std::vector<double> values)
 {
-    if (values.empty()) return 0.0;
+    if (values.empty())
+        return 0.0;
     std::sort(values.begin(), values.end());
     const std::size_t n = values.size();
     return n % 2 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
+}
+
+double processCpuMs()
+{
+    timespec ts {};
+    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
+    return ts.tv_sec * 1e3 + ts.tv_nsec * 1e-6;
 }
 
 std::vector<bool> paretoFront(const std::vector<MethodResult>& methods, const MetricColumn& error)
@@ -87,11 +98,13 @@ std::vector<bool> paretoFront(const std::vector<MethodResult>& methods, const Me
     std::vector<bool> front(methods.size(), false);
     for (std::size_t i = 0; i < methods.size(); ++i) {
         const double ei = err(methods[i]), ti = methods[i].medianMs;
-        if (std::isnan(ei)) continue;
+        if (std::isnan(ei))
+            continue;
         bool dominated = false;
         for (std::size_t j = 0; j < methods.size() && !dominated; ++j) {
             const double ej = err(methods[j]), tj = methods[j].medianMs;
-            if (j == i || std::isnan(ej)) continue;
+            if (j == i || std::isnan(ej))
+                continue;
             dominated = tj <= ti && ej <= ei && (tj < ti || ej < ei);
         }
         front[i] = !dominated;
@@ -124,18 +137,22 @@ void writeMethodJson(JsonWriter& j, const MethodResult& m, bool pareto)
     j.beginObject();
     j.field("label", m.label).field("method", m.method);
     j.key("params").beginObject();
-    for (const auto& [k, v] : m.params) j.field(k, v);
+    for (const auto& [k, v] : m.params)
+        j.field(k, v);
     j.endObject();
     j.field("medianMs", m.medianMs).field("meanMs", m.meanMs).field("minMs", m.minMs);
+    j.field("medianCpuMs", m.medianCpuMs);
     j.field("pareto", pareto);
     j.key("mean").beginObject();
-    for (const auto& [k, v] : m.means) j.field(k, v);
+    for (const auto& [k, v] : m.means)
+        j.field(k, v);
     j.endObject();
     j.key("frames").beginArray();
     for (const FrameResult& f : m.frames) {
-        j.beginObject().field("frame", f.frame).field("ms", f.ms);
+        j.beginObject().field("frame", f.frame).field("ms", f.ms).field("cpuMs", f.cpuMs);
         for (const MetricColumn& c : metricColumns()) {
-            if (c.temporal && !f.hasTemporal) continue;
+            if (c.temporal && !f.hasTemporal)
+                continue;
             j.field(c.name, c.get(f));
         }
         j.field("nonFiniteTest", static_cast<long long>(f.metrics.nonFiniteTest));
@@ -148,8 +165,10 @@ void writeMethodJson(JsonWriter& j, const MethodResult& m, bool pareto)
 
 std::string csvNumber(double v)
 {
-    if (std::isnan(v)) return "nan";
-    if (std::isinf(v)) return v > 0 ? "inf" : "-inf";
+    if (std::isnan(v))
+        return "nan";
+    if (std::isinf(v))
+        return v > 0 ? "inf" : "-inf";
     char buf[64];
     std::snprintf(buf, sizeof buf, "%.9g", v);
     return buf;
@@ -157,9 +176,11 @@ std::string csvNumber(double v)
 
 std::string csvText(const std::string& s)
 {
-    if (s.find_first_of(",\"\n") == std::string::npos) return s;
+    if (s.find_first_of(",\"\n") == std::string::npos)
+        return s;
     std::string o = "\"";
-    for (char c : s) o += c == '"' ? std::string("\"\"") : std::string(1, c);
+    for (char c : s)
+        o += c == '"' ? std::string("\"\"") : std::string(1, c);
     return o + "\"";
 }
 
@@ -172,24 +193,27 @@ void writeResultsJson(const std::string& dir, const BenchmarkReport& r)
     JsonWriter j;
     j.beginObject();
     j.field("tool", "afntool --benchmark");
-    j.field("version", std::to_string(AFN_VERSION_MAJOR) + "." + std::to_string(AFN_VERSION_MINOR) +
-                           "." + std::to_string(AFN_VERSION_PATCH));
+    j.field("version",
+        std::to_string(AFN_VERSION_MAJOR) + "." + std::to_string(AFN_VERSION_MINOR) + "."
+            + std::to_string(AFN_VERSION_PATCH));
     j.field("command", r.commandLine).field("input", r.input).field("reference", r.reference);
     j.field("width", r.width).field("height", r.height).field("frames", r.frameCount);
     j.field("repeat", r.repeat).field("threads", r.threads);
     j.field("hardwareThreads", static_cast<long long>(r.hardwareThreads));
     j.field("errorMetric", r.errorMetric);
-    j.field("conventions", "docs/metrics.md: T(x)=clip(max(x,0)^(1/2.2),0,1); PSNR/SSIM/RMSE on "
-                           "T(x); SMAPE linear eps=1e-3; sequence value = mean of per-frame values; "
-                           "non-finite JSON numbers (PSNR of identical images, NaN) are null; "
-                           "ms = median denoise-stage time per frame, file I/O excluded");
+    j.field("conventions",
+        "docs/metrics.md: T(x)=clip(max(x,0)^(1/2.2),0,1); PSNR/SSIM/RMSE on "
+        "T(x); SMAPE linear eps=1e-3; sequence value = mean of per-frame values; "
+        "non-finite JSON numbers (PSNR of identical images, NaN) are null; "
+        "ms = median denoise-stage time per frame, file I/O excluded");
     j.key("noisy");
     if (r.noisy.label.empty())
         j.value("not scored");
     else
         writeMethodJson(j, r.noisy, false);
     j.key("methods").beginArray();
-    for (std::size_t i = 0; i < r.methods.size(); ++i) writeMethodJson(j, r.methods[i], front[i]);
+    for (std::size_t i = 0; i < r.methods.size(); ++i)
+        writeMethodJson(j, r.methods[i], front[i]);
     j.endArray();
     j.key("crops").beginArray();
     for (const CropSet& c : r.crops) {
@@ -209,22 +233,28 @@ void writeResultsJson(const std::string& dir, const BenchmarkReport& r)
 void writeResultsCsv(const std::string& dir, const BenchmarkReport& r)
 {
     std::ostringstream os;
-    os << "label,method,frame,ms";
-    for (const MetricColumn& c : metricColumns()) os << "," << c.name;
+    os << "label,method,frame,ms,cpuMs";
+    for (const MetricColumn& c : metricColumns())
+        os << "," << c.name;
     os << "\n";
     auto rows = [&](const MethodResult& m) {
         for (const FrameResult& f : m.frames) {
-            os << csvText(m.label) << "," << m.method << "," << f.frame << "," << csvNumber(f.ms);
+            os << csvText(m.label) << "," << m.method << "," << f.frame << "," << csvNumber(f.ms)
+               << "," << csvNumber(f.cpuMs);
             for (const MetricColumn& c : metricColumns())
                 os << "," << (c.temporal && !f.hasTemporal ? "" : csvNumber(c.get(f)));
             os << "\n";
         }
-        os << csvText(m.label) << "," << m.method << ",mean," << csvNumber(m.medianMs);
-        for (const MetricColumn& c : metricColumns()) os << "," << csvNumber(m.means.at(c.name));
+        os << csvText(m.label) << "," << m.method << ",mean," << csvNumber(m.medianMs) << ","
+           << csvNumber(m.medianCpuMs);
+        for (const MetricColumn& c : metricColumns())
+            os << "," << csvNumber(m.means.at(c.name));
         os << "\n";
     };
-    if (!r.noisy.label.empty()) rows(r.noisy);
-    for (const MethodResult& m : r.methods) rows(m);
+    if (!r.noisy.label.empty())
+        rows(r.noisy);
+    for (const MethodResult& m : r.methods)
+        rows(m);
     writeTextAtomic(dir + "/results.csv", os.str());
 }
 

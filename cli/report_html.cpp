@@ -16,11 +16,20 @@ std::string esc(const std::string& s)
     std::string o;
     for (char c : s) {
         switch (c) {
-        case '<': o += "&lt;"; break;
-        case '>': o += "&gt;"; break;
-        case '&': o += "&amp;"; break;
-        case '"': o += "&quot;"; break;
-        default: o += c;
+        case '<':
+            o += "&lt;";
+            break;
+        case '>':
+            o += "&gt;";
+            break;
+        case '&':
+            o += "&amp;";
+            break;
+        case '"':
+            o += "&quot;";
+            break;
+        default:
+            o += c;
         }
     }
     return o;
@@ -28,8 +37,10 @@ std::string esc(const std::string& s)
 
 std::string fmt(double v, const char* f)
 {
-    if (std::isnan(v)) return "NaN";
-    if (std::isinf(v)) return v > 0 ? "&infin;" : "-&infin;";
+    if (std::isnan(v))
+        return "NaN";
+    if (std::isinf(v))
+        return v > 0 ? "&infin;" : "-&infin;";
     char buf[48];
     std::snprintf(buf, sizeof buf, f, v);
     return buf;
@@ -38,8 +49,10 @@ std::string fmt(double v, const char* f)
 const char* formatOf(const MetricColumn& c)
 {
     const std::string n = c.name;
-    if (n == "psnr" || n == "psnr8" || n == "tpsnr") return "%.2f";
-    if (n == "tge") return "%.5f";
+    if (n == "psnr" || n == "psnr8" || n == "tpsnr")
+        return "%.2f";
+    if (n == "tge")
+        return "%.5f";
     return "%.4f";
 }
 
@@ -66,47 +79,59 @@ void summaryTable(std::ostringstream& h, const BenchmarkReport& r)
         int distinct = 0;
         for (const MethodResult& m : r.methods) {
             const double v = m.means.at(cols[c].name);
-            if (std::isnan(v)) continue;
+            if (std::isnan(v))
+                continue;
             distinct += std::isnan(best[c]) || v != best[c];
-            if (std::isnan(best[c]) || (cols[c].higherIsBetter ? v > best[c] : v < best[c])) best[c] = v;
+            if (std::isnan(best[c]) || (cols[c].higherIsBetter ? v > best[c] : v < best[c]))
+                best[c] = v;
         }
-        if (distinct < 2) best[c] = NAN; // nothing to single out
+        if (distinct < 2)
+            best[c] = NAN; // nothing to single out
     }
     h << "<table><tr><th class=l>method / setting</th><th>median ms/frame</th><th>mean ms</th>"
-      << "<th>min ms</th><th>fps</th>";
-    for (const MetricColumn& c : cols) h << "<th>" << esc(c.label) << "</th>";
+      << "<th>min ms</th><th>fps</th><th>median CPU ms</th>";
+    for (const MetricColumn& c : cols)
+        h << "<th>" << esc(c.label) << "</th>";
     h << "<th>Pareto</th></tr>\n";
     auto row = [&](const MethodResult& m, bool timed, bool pareto) {
         h << "<tr><td class=l>" << esc(m.label) << "</td>";
         if (timed)
-            h << "<td>" << fmt(m.medianMs, "%.2f") << "</td><td>" << fmt(m.meanMs, "%.2f") << "</td><td>"
-              << fmt(m.minMs, "%.2f") << "</td><td>" << fmt(m.medianMs > 0 ? 1000.0 / m.medianMs : NAN, "%.1f")
-              << "</td>";
+            h << "<td>" << fmt(m.medianMs, "%.2f") << "</td><td>" << fmt(m.meanMs, "%.2f")
+              << "</td><td>" << fmt(m.minMs, "%.2f") << "</td><td>"
+              << fmt(m.medianMs > 0 ? 1000.0 / m.medianMs : NAN, "%.1f") << "</td><td>"
+              << fmt(m.medianCpuMs, "%.2f") << "</td>";
         else
-            h << "<td>-</td><td>-</td><td>-</td><td>-</td>";
+            h << "<td>-</td><td>-</td><td>-</td><td>-</td><td>-</td>";
         for (std::size_t c = 0; c < cols.size(); ++c) {
             const double v = m.means.at(cols[c].name);
             const bool isBest = timed && !std::isnan(v) && v == best[c];
-            h << "<td" << (isBest ? " class=best" : "") << ">" << fmt(v, formatOf(cols[c])) << "</td>";
+            h << "<td" << (isBest ? " class=best" : "") << ">" << fmt(v, formatOf(cols[c]))
+              << "</td>";
         }
         h << "<td>" << (timed ? (pareto ? "&#9679;" : "") : "-") << "</td></tr>\n";
     };
-    if (!r.noisy.label.empty()) row(r.noisy, false, false);
-    for (std::size_t i = 0; i < r.methods.size(); ++i) row(r.methods[i], true, front[i]);
+    if (!r.noisy.label.empty())
+        row(r.noisy, false, false);
+    for (std::size_t i = 0; i < r.methods.size(); ++i)
+        row(r.methods[i], true, front[i]);
     h << "</table>\n";
 }
 
 void frameTable(std::ostringstream& h, const MethodResult& m, bool timed)
 {
     h << "<details><summary>" << esc(m.label) << ": per frame</summary><table><tr><th>frame</th>";
-    if (timed) h << "<th>ms</th>";
-    for (const MetricColumn& c : metricColumns()) h << "<th>" << esc(c.label) << "</th>";
+    if (timed)
+        h << "<th>ms</th><th>CPU ms</th>";
+    for (const MetricColumn& c : metricColumns())
+        h << "<th>" << esc(c.label) << "</th>";
     h << "</tr>\n";
     for (const FrameResult& f : m.frames) {
         h << "<tr><td>" << f.frame << "</td>";
-        if (timed) h << "<td>" << fmt(f.ms, "%.2f") << "</td>";
+        if (timed)
+            h << "<td>" << fmt(f.ms, "%.2f") << "</td><td>" << fmt(f.cpuMs, "%.2f") << "</td>";
         for (const MetricColumn& c : metricColumns())
-            h << "<td>" << (c.temporal && !f.hasTemporal ? "-" : fmt(c.get(f), formatOf(c))) << "</td>";
+            h << "<td>" << (c.temporal && !f.hasTemporal ? "-" : fmt(c.get(f), formatOf(c)))
+              << "</td>";
         h << "</tr>\n";
     }
     h << "</table></details>\n";
@@ -118,43 +143,55 @@ void writeIndexHtml(const std::string& dir, const BenchmarkReport& r)
 {
     std::ostringstream h;
     h << "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">\n"
-      << "<title>afn benchmark: run time against error</title>\n" << kStyle << "</head><body>\n"
-      << "<h1>Run time against error</h1>\n<p>Input <code>" << esc(r.input) << "</code>, references <code>"
-      << esc(r.reference) << "</code>: " << r.width << "&times;" << r.height << ", " << r.frameCount
-      << " frame(s), each method run " << r.repeat << " time(s) over the sequence; threads: "
+      << "<title>afn benchmark: run time against error</title>\n"
+      << kStyle << "</head><body>\n"
+      << "<h1>Run time against error</h1>\n<p>Input <code>" << esc(r.input)
+      << "</code>, references <code>" << esc(r.reference) << "</code>: " << r.width << "&times;"
+      << r.height << ", " << r.frameCount << " frame(s), each method run " << r.repeat
+      << " time(s) over the sequence; threads: "
       << (r.threads > 0 ? std::to_string(r.threads) : "all") << " (" << r.hardwareThreads
       << " hardware threads). File I/O " << fmt(r.ioMsPerFrame, "%.1f")
       << " ms per frame (input + reference), not included in the times.</p>\n"
       << "<p class=note>Command: <code>" << esc(r.commandLine) << "</code></p>\n";
-    for (const std::string& w : r.warnings) h << "<p class=note>Warning: " << esc(w) << "</p>\n";
+    for (const std::string& w : r.warnings)
+        h << "<p class=note>Warning: " << esc(w) << "</p>\n";
 
     h << "<h2>Summary</h2>\n";
     summaryTable(h, r);
-    h << "<p class=note>Times: median (mean, min) of the denoise stage per frame (binding inputs, "
-         "execute, fetching the output), every frame of every run. Metrics: mean of per-frame values; "
-         "PSNR, SSIM and RMSE on T(x) = clip(max(x,0)<sup>1/2.2</sup>, 0, 1); SMAPE on linear values "
+    h << "<p class=note>Times: median (mean, min) wall time of the denoise stage per frame "
+         "(binding "
+         "inputs, execute, fetching the output), every frame of every run; CPU ms: process CPU "
+         "time "
+         "of all threads over the same stage (less sensitive to other load on a shared machine). "
+         "Metrics: mean of per-frame values; "
+         "PSNR, SSIM and RMSE on T(x) = clip(max(x,0)<sup>1/2.2</sup>, 0, 1); SMAPE on linear "
+         "values "
          "with &epsilon; = 0.001 (AFN Eq. 5); 8-bit variants quantise T(x) to 8 bits; the temporal "
          "gradient error is mean |(o<sub>t</sub>&minus;o<sub>t&minus;1</sub>) &minus; "
-         "(r<sub>t</sub>&minus;r<sub>t&minus;1</sub>)| on T(x) over frames 2..N. Best per column in "
+         "(r<sub>t</sub>&minus;r<sub>t&minus;1</sub>)| on T(x) over frames 2..N. Best per column "
+         "in "
          "bold. Definitions: <code>docs/metrics.md</code>.</p>\n";
 
-    h << "<h2>Run time against error</h2>\n<p><img src=\"runtime-vs-error.svg\" alt=\"run time against "
+    h << "<h2>Run time against error</h2>\n<p><img src=\"runtime-vs-error.svg\" alt=\"run time "
+         "against "
       << esc(metricColumn(r.errorMetric).label) << "\"></p>\n";
 
     for (const CropSet& c : r.crops) {
-        h << "<h2>Frame " << c.frame << ": crop " << c.width << "&times;" << c.height << " at (" << c.x
-          << ", " << c.y << ")</h2>\n<div class=crops>\n";
+        h << "<h2>Frame " << c.frame << ": crop " << c.width << "&times;" << c.height << " at ("
+          << c.x << ", " << c.y << ")</h2>\n<div class=crops>\n";
         for (const auto& [label, file] : c.images)
-            h << "<figure><img src=\"" << esc(file) << "\" width=\"" << 2 * c.width << "\" height=\""
-              << 2 * c.height << "\" alt=\"" << esc(label) << "\"><figcaption>" << esc(label)
-              << "</figcaption></figure>\n";
+            h << "<figure><img src=\"" << esc(file) << "\" width=\"" << 2 * c.width
+              << "\" height=\"" << 2 * c.height << "\" alt=\"" << esc(label) << "\"><figcaption>"
+              << esc(label) << "</figcaption></figure>\n";
         h << "</div>\n<p class=note>Display transform of the colour config's default view; shown "
              "at 2&times; (nearest neighbour).</p>\n";
     }
 
     h << "<h2>Per frame</h2>\n";
-    if (!r.noisy.label.empty()) frameTable(h, r.noisy, false);
-    for (const MethodResult& m : r.methods) frameTable(h, m, true);
+    if (!r.noisy.label.empty())
+        frameTable(h, r.noisy, false);
+    for (const MethodResult& m : r.methods)
+        frameTable(h, m, true);
     h << "<p class=note>Data: <a href=\"results.json\">results.json</a>, "
          "<a href=\"results.csv\">results.csv</a>.</p>\n</body></html>\n";
     writeTextAtomic(dir + "/index.html", h.str());

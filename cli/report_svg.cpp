@@ -24,11 +24,20 @@ std::string escapeXml(const std::string& s)
     std::string o;
     for (char c : s) {
         switch (c) {
-        case '<': o += "&lt;"; break;
-        case '>': o += "&gt;"; break;
-        case '&': o += "&amp;"; break;
-        case '"': o += "&quot;"; break;
-        default: o += c;
+        case '<':
+            o += "&lt;";
+            break;
+        case '>':
+            o += "&gt;";
+            break;
+        case '&':
+            o += "&amp;";
+            break;
+        case '"':
+            o += "&quot;";
+            break;
+        default:
+            o += c;
         }
     }
     return o;
@@ -37,11 +46,13 @@ std::string escapeXml(const std::string& s)
 /// Round step for about `n` ticks over `range` (1, 2 or 5 times a power of ten).
 double niceStep(double range, int n)
 {
-    if (!(range > 0.0)) return 1.0;
+    if (!(range > 0.0))
+        return 1.0;
     const double raw = range / n;
     const double p = std::pow(10.0, std::floor(std::log10(raw)));
     for (double m : { 1.0, 2.0, 5.0, 10.0 })
-        if (raw <= m * p) return m * p;
+        if (raw <= m * p)
+            return m * p;
     return 10.0 * p;
 }
 
@@ -65,15 +76,19 @@ std::string runtimeErrorSvg(const BenchmarkReport& r)
     double tMax = 0.0, eMin = INFINITY, eMax = -INFINITY;
     for (const MethodResult& m : r.methods) {
         const double e = m.means.at(metric.name);
-        if (!std::isfinite(e)) continue;
+        if (!std::isfinite(e))
+            continue;
         tMax = std::max(tMax, m.medianMs);
         eMin = std::min(eMin, e);
         eMax = std::max(eMax, e);
     }
     const double noisyErr = r.noisy.label.empty() ? NAN : r.noisy.means.at(metric.name);
-    if (std::isfinite(noisyErr)) eMin = std::min(eMin, noisyErr), eMax = std::max(eMax, noisyErr);
-    if (!std::isfinite(eMin)) eMin = 0.0, eMax = 1.0;
-    if (eMax - eMin < 1e-9) eMin -= 0.5 * std::max(1e-3, std::abs(eMin)), eMax += 0.5 * std::max(1e-3, std::abs(eMax));
+    if (std::isfinite(noisyErr))
+        eMin = std::min(eMin, noisyErr), eMax = std::max(eMax, noisyErr);
+    if (!std::isfinite(eMin))
+        eMin = 0.0, eMax = 1.0;
+    if (eMax - eMin < 1e-9)
+        eMin -= 0.5 * std::max(1e-3, std::abs(eMin)), eMax += 0.5 * std::max(1e-3, std::abs(eMax));
     const double ePad = 0.08 * (eMax - eMin);
     eMin -= ePad, eMax += ePad;
     const double xStep = niceStep(tMax > 0 ? tMax * 1.1 : 1.0, 6);
@@ -87,39 +102,44 @@ std::string runtimeErrorSvg(const BenchmarkReport& r)
     s << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << W << "\" height=\"" << H
       << "\" viewBox=\"0 0 " << W << " " << H << "\" font-family=\"sans-serif\" font-size=\"12\">\n"
       << "<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n"
-      << "<text x=\"" << left << "\" y=\"22\" font-size=\"15\">Run time against error ("
-      << r.width << "x" << r.height << ", " << r.frameCount << " frames)</text>\n";
+      << "<text x=\"" << left << "\" y=\"22\" font-size=\"15\">Run time against error (" << r.width
+      << "x" << r.height << ", " << r.frameCount << " frames)</text>\n";
     // Grid and ticks.
     const std::string xf = tickFormat(xStep), yf = tickFormat(yStep);
     for (double t = 0.0; t <= xMax + 1e-9 * xMax; t += xStep)
-        s << "<line x1=\"" << num(X(t)) << "\" y1=\"" << top << "\" x2=\"" << num(X(t)) << "\" y2=\""
-          << top + ph << "\" stroke=\"#e4e4e4\"/>\n<text x=\"" << num(X(t)) << "\" y=\"" << top + ph + 16
-          << "\" text-anchor=\"middle\">" << num(t, xf.c_str()) << "</text>\n";
+        s << "<line x1=\"" << num(X(t)) << "\" y1=\"" << top << "\" x2=\"" << num(X(t))
+          << "\" y2=\"" << top + ph << "\" stroke=\"#e4e4e4\"/>\n<text x=\"" << num(X(t))
+          << "\" y=\"" << top + ph + 16 << "\" text-anchor=\"middle\">" << num(t, xf.c_str())
+          << "</text>\n";
     for (double e = yLo; e <= yHi + 1e-9 * std::abs(yHi) + 1e-12; e += yStep)
-        s << "<line x1=\"" << left << "\" y1=\"" << num(Y(e)) << "\" x2=\"" << left + pw << "\" y2=\""
-          << num(Y(e)) << "\" stroke=\"#e4e4e4\"/>\n<text x=\"" << left - 6 << "\" y=\"" << num(Y(e) + 4)
-          << "\" text-anchor=\"end\">" << num(e, yf.c_str()) << "</text>\n";
+        s << "<line x1=\"" << left << "\" y1=\"" << num(Y(e)) << "\" x2=\"" << left + pw
+          << "\" y2=\"" << num(Y(e)) << "\" stroke=\"#e4e4e4\"/>\n<text x=\"" << left - 6
+          << "\" y=\"" << num(Y(e) + 4) << "\" text-anchor=\"end\">" << num(e, yf.c_str())
+          << "</text>\n";
     s << "<rect x=\"" << left << "\" y=\"" << top << "\" width=\"" << pw << "\" height=\"" << ph
       << "\" fill=\"none\" stroke=\"#444\"/>\n"
       << "<text x=\"" << left + pw / 2 << "\" y=\"" << H - 18
       << "\" text-anchor=\"middle\">median denoise time per frame (ms)</text>\n"
-      << "<text transform=\"translate(18," << top + ph / 2 << ") rotate(-90)\" text-anchor=\"middle\">"
-      << escapeXml(metric.label) << (metric.higherIsBetter ? " (higher is better)" : " (lower is better)")
-      << "</text>\n";
+      << "<text transform=\"translate(18," << top + ph / 2
+      << ") rotate(-90)\" text-anchor=\"middle\">" << escapeXml(metric.label)
+      << (metric.higherIsBetter ? " (higher is better)" : " (lower is better)") << "</text>\n";
     if (std::isfinite(noisyErr))
         s << "<line x1=\"" << left << "\" y1=\"" << num(Y(noisyErr)) << "\" x2=\"" << left + pw
-          << "\" y2=\"" << num(Y(noisyErr)) << "\" stroke=\"#999\" stroke-dasharray=\"5,4\"/>\n<text x=\""
-          << left + pw - 4 << "\" y=\"" << num(Y(noisyErr) - 5)
+          << "\" y2=\"" << num(Y(noisyErr))
+          << "\" stroke=\"#999\" stroke-dasharray=\"5,4\"/>\n<text x=\"" << left + pw - 4
+          << "\" y=\"" << num(Y(noisyErr) - 5)
           << "\" text-anchor=\"end\" fill=\"#777\">noisy input</text>\n";
 
     // Pareto front: its points joined in time order.
     std::vector<std::pair<double, double>> fp;
     for (std::size_t i = 0; i < r.methods.size(); ++i)
-        if (front[i]) fp.emplace_back(r.methods[i].medianMs, r.methods[i].means.at(metric.name));
+        if (front[i])
+            fp.emplace_back(r.methods[i].medianMs, r.methods[i].means.at(metric.name));
     std::sort(fp.begin(), fp.end());
     if (fp.size() > 1) {
         s << "<polyline fill=\"none\" stroke=\"#d62728\" stroke-width=\"1.5\" points=\"";
-        for (const auto& [t, e] : fp) s << num(X(t)) << "," << num(Y(e)) << " ";
+        for (const auto& [t, e] : fp)
+            s << num(X(t)) << "," << num(Y(e)) << " ";
         s << "\"/>\n";
     }
     // Points and labels; the legend lists the methods with their numbers.
@@ -134,21 +154,25 @@ std::string runtimeErrorSvg(const BenchmarkReport& r)
             continue;
         }
         const char* colour = front[i] ? "#d62728" : "#1f77b4";
-        s << "<circle cx=\"" << num(X(m.medianMs)) << "\" cy=\"" << num(Y(e)) << "\" r=\"5\" fill=\""
-          << colour << "\"><title>" << label << ": " << num(m.medianMs, "%.2f") << " ms, "
-          << num(e, "%.5g") << "</title></circle>\n<text x=\"" << num(X(m.medianMs) + 8) << "\" y=\""
-          << num(Y(e) - 6) << "\" fill=\"" << colour << "\">" << label << "</text>\n";
-        s << "<text x=\"" << left + pw + 14 << "\" y=\"" << ly << "\" font-size=\"11\" fill=\"" << colour << "\">" << label
-          << ": " << num(m.medianMs, "%.2f") << " ms, " << num(e, "%.4g") << "</text>\n";
+        s << "<circle cx=\"" << num(X(m.medianMs)) << "\" cy=\"" << num(Y(e))
+          << "\" r=\"5\" fill=\"" << colour << "\"><title>" << label << ": "
+          << num(m.medianMs, "%.2f") << " ms, " << num(e, "%.5g") << "</title></circle>\n<text x=\""
+          << num(X(m.medianMs) + 8) << "\" y=\"" << num(Y(e) - 6) << "\" fill=\"" << colour << "\">"
+          << label << "</text>\n";
+        s << "<text x=\"" << left + pw + 14 << "\" y=\"" << ly << "\" font-size=\"11\" fill=\""
+          << colour << "\">" << label << ": " << num(m.medianMs, "%.2f") << " ms, "
+          << num(e, "%.4g") << "</text>\n";
         ly += 16;
     }
-    s << "<circle cx=\"" << left + pw + 18 << "\" cy=\"" << ly + 6 << "\" r=\"5\" fill=\"#d62728\"/>"
+    s << "<circle cx=\"" << left + pw + 18 << "\" cy=\"" << ly + 6
+      << "\" r=\"5\" fill=\"#d62728\"/>"
       << "<text x=\"" << left + pw + 28 << "\" y=\"" << ly + 10 << "\">Pareto front</text>\n"
-      << "<circle cx=\"" << left + pw + 18 << "\" cy=\"" << ly + 24 << "\" r=\"5\" fill=\"#1f77b4\"/>"
+      << "<circle cx=\"" << left + pw + 18 << "\" cy=\"" << ly + 24
+      << "\" r=\"5\" fill=\"#1f77b4\"/>"
       << "<text x=\"" << left + pw + 28 << "\" y=\"" << ly + 28 << "\">dominated</text>\n";
     if (skipped)
-        s << "<text x=\"" << left + pw + 14 << "\" y=\"" << ly + 50 << "\" fill=\"#b00\">" << skipped
-          << " method(s) with NaN error not drawn</text>\n";
+        s << "<text x=\"" << left + pw + 14 << "\" y=\"" << ly + 50 << "\" fill=\"#b00\">"
+          << skipped << " method(s) with NaN error not drawn</text>\n";
     s << "</svg>\n";
     return s.str();
 }

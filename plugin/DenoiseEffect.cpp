@@ -19,9 +19,9 @@ struct ClipRole {
     const char* clip;
     const char* role;
 };
-const ClipRole kAuxClips[] = {
-    { "Albedo", "albedo" }, { "Normal", "normal" }, { "Depth", "depth" }, { "Motion", "motion" }
-};
+const ClipRole kAuxClips[] = { { "Albedo", "albedo" }, { "Normal", "normal" }, { "Depth", "depth" },
+    { "Position", "position" }, { "Motion", "motion" } };
+constexpr int kNumAux = sizeof(kAuxClips) / sizeof(kAuxClips[0]);
 
 /// Per-instance state; render calls of one instance are serialised by `mutex`, so the effect is
 /// declared fully thread-safe (different instances and frames may render at the same time).
@@ -29,7 +29,7 @@ struct Instance {
     bool general = false;
     OfxImageClipHandle source = nullptr;
     OfxImageClipHandle output = nullptr;
-    OfxImageClipHandle aux[4] = {};
+    OfxImageClipHandle aux[kNumAux] = {};
     std::mutex mutex;
     SequenceRunner runner;
 };
@@ -39,7 +39,8 @@ Instance& instanceOf(OfxImageEffectHandle effect)
     OfxPropertySetHandle props = nullptr;
     check(suites().effect->getPropertySet(effect, &props), "getting the instance properties");
     auto* inst = static_cast<Instance*>(Props(props).getPointer(kOfxPropInstanceData));
-    if (!inst) throw OfxError(kOfxStatErrBadHandle, "instance has no data");
+    if (!inst)
+        throw OfxError(kOfxStatErrBadHandle, "instance has no data");
     return *inst;
 }
 
@@ -52,7 +53,8 @@ Props effectProps(OfxImageEffectHandle effect)
 
 bool connected(OfxImageClipHandle clip)
 {
-    if (!clip) return false;
+    if (!clip)
+        return false;
     OfxPropertySetHandle props = nullptr;
     check(suites().effect->clipGetPropertySet(clip, &props), "getting clip properties");
     return Props(props).getInt(kOfxImageClipPropConnected) != 0;
@@ -62,7 +64,7 @@ OfxRectD sourceRod(const Instance& inst, double time)
 {
     OfxRectD rod {};
     check(suites().effect->clipGetRegionOfDefinition(inst.source, time, &rod),
-          "getting the Source region of definition");
+        "getting the Source region of definition");
     return rod;
 }
 
@@ -72,10 +74,10 @@ void describe(OfxImageEffectHandle effect)
     p.set(kOfxPropLabel, "afn Denoise");
     p.set(kOfxImageEffectPluginPropGrouping, "afn");
     p.set(kOfxPropPluginDescription,
-          "Monte Carlo render denoiser (afn library): spatial and temporal methods over a noisy "
-          "beauty with optional albedo, normal, depth and motion inputs.");
+        "Monte Carlo render denoiser (afn library): spatial and temporal methods over a noisy "
+        "beauty with optional albedo, normal, depth and motion inputs.");
     p.setStrings(kOfxImageEffectPropSupportedContexts,
-                 { kOfxImageEffectContextGeneral, kOfxImageEffectContextFilter });
+        { kOfxImageEffectContextGeneral, kOfxImageEffectContextFilter });
     p.set(kOfxImageEffectPropSupportedPixelDepths, kOfxBitDepthFloat);
     p.set(kOfxImageEffectPropSupportsTiles, 1);
     p.set(kOfxImageEffectPropSupportsMultiResolution, 1);
@@ -93,11 +95,13 @@ void defineClip(OfxImageEffectHandle effect, const char* name, bool optional, bo
     check(suites().effect->clipDefine(effect, name, &props), std::string("defining clip ") + name);
     Props p(props);
     std::vector<std::string> comps = { kOfxImageComponentRGBA, kOfxImageComponentRGB };
-    if (alpha) comps.push_back(kOfxImageComponentAlpha);
+    if (alpha)
+        comps.push_back(kOfxImageComponentAlpha);
     p.setStrings(kOfxImageEffectPropSupportedComponents, comps);
     p.set(kOfxImageEffectPropTemporalClipAccess, 1);
     p.set(kOfxImageEffectPropSupportsTiles, 1);
-    if (optional) p.set(kOfxImageClipPropOptional, 1);
+    if (optional)
+        p.set(kOfxImageClipPropOptional, 1);
 }
 
 void describeInContext(OfxImageEffectHandle effect, OfxPropertySetHandle inArgs)
@@ -123,13 +127,14 @@ void createInstance(OfxImageEffectHandle effect)
     auto clip = [&](const char* name) {
         OfxImageClipHandle h = nullptr;
         check(suites().effect->clipGetHandle(effect, name, &h, nullptr),
-              std::string("getting clip ") + name);
+            std::string("getting clip ") + name);
         return h;
     };
     inst->source = clip(kOfxImageEffectSimpleSourceClipName);
     inst->output = clip(kOfxImageEffectOutputClipName);
     if (inst->general)
-        for (int i = 0; i < 4; ++i) inst->aux[i] = clip(kAuxClips[i].clip);
+        for (int i = 0; i < kNumAux; ++i)
+            inst->aux[i] = clip(kAuxClips[i].clip);
     p.setPointer(kOfxPropInstanceData, inst.release());
     showCurrentMethod(effect);
 }
@@ -153,28 +158,30 @@ std::vector<std::pair<const char*, InputClip>> inputClips(const Instance& inst)
 {
     std::vector<std::pair<const char*, InputClip>> out;
     out.push_back({ kOfxImageEffectSimpleSourceClipName, { "color", inst.source } });
-    for (int i = 0; i < 4; ++i)
-        if (connected(inst.aux[i])) out.push_back({ kAuxClips[i].clip, { kAuxClips[i].role, inst.aux[i] } });
+    for (int i = 0; i < kNumAux; ++i)
+        if (connected(inst.aux[i]))
+            out.push_back({ kAuxClips[i].clip, { kAuxClips[i].role, inst.aux[i] } });
     return out;
 }
 
-OfxStatus regionsOfInterest(OfxImageEffectHandle effect, OfxPropertySetHandle inArgs,
-                            OfxPropertySetHandle outArgs)
+OfxStatus regionsOfInterest(
+    OfxImageEffectHandle effect, OfxPropertySetHandle inArgs, OfxPropertySetHandle outArgs)
 {
     Instance& inst = instanceOf(effect);
-    if (readSettings(effect).method == "identity") return kOfxStatReplyDefault;
+    if (readSettings(effect).method == "identity")
+        return kOfxStatReplyDefault;
     // Every method works on whole frames (temporal history, global regressions, wide kernels):
     // ask for the full Source frame whatever the tile.
     const OfxRectD rod = sourceRod(inst, Props(inArgs).getDouble(kOfxPropTime));
     Props out(outArgs);
     for (const auto& [name, in] : inputClips(inst))
-        out.setDoubles((std::string(kOfxImageClipPropRoI) + name).c_str(),
-                       { rod.x1, rod.y1, rod.x2, rod.y2 });
+        out.setDoubles(
+            (std::string(kOfxImageClipPropRoI) + name).c_str(), { rod.x1, rod.y1, rod.x2, rod.y2 });
     return kOfxStatOK;
 }
 
-OfxStatus framesNeeded(OfxImageEffectHandle effect, OfxPropertySetHandle inArgs,
-                       OfxPropertySetHandle outArgs)
+OfxStatus framesNeeded(
+    OfxImageEffectHandle effect, OfxPropertySetHandle inArgs, OfxPropertySetHandle outArgs)
 {
     Instance& inst = instanceOf(effect);
     const double t = Props(inArgs).getDouble(kOfxPropTime);
@@ -192,9 +199,9 @@ OfxStatus render(OfxImageEffectHandle effect, OfxPropertySetHandle inArgs)
     Props args(inArgs);
     const double time = args.getDouble(kOfxPropTime);
     const OfxRectI renderWindow = { args.getInt(kOfxImageEffectPropRenderWindow, 0),
-                                    args.getInt(kOfxImageEffectPropRenderWindow, 1),
-                                    args.getInt(kOfxImageEffectPropRenderWindow, 2),
-                                    args.getInt(kOfxImageEffectPropRenderWindow, 3) };
+        args.getInt(kOfxImageEffectPropRenderWindow, 1),
+        args.getInt(kOfxImageEffectPropRenderWindow, 2),
+        args.getInt(kOfxImageEffectPropRenderWindow, 3) };
     const double sx = args.getDouble(kOfxImageEffectPropRenderScale, 0);
     const double sy = args.getDouble(kOfxImageEffectPropRenderScale, 1);
 
@@ -204,16 +211,18 @@ OfxStatus render(OfxImageEffectHandle effect, OfxPropertySetHandle inArgs)
     // Pixel aspect ratio 1 is assumed (render-denoising inputs are square-pixel renders).
     const OfxRectD& c = req.windowCanonical;
     req.window = { int(std::floor(c.x1 * sx + 1e-6)), int(std::floor(c.y1 * sy + 1e-6)),
-                   int(std::ceil(c.x2 * sx - 1e-6)), int(std::ceil(c.y2 * sy - 1e-6)) };
+        int(std::ceil(c.x2 * sx - 1e-6)), int(std::ceil(c.y2 * sy - 1e-6)) };
     if (req.window.x2 <= req.window.x1 || req.window.y2 <= req.window.y1)
         throw OfxError(kOfxStatFailed, "the Source clip has an empty region of definition");
     req.renderScale = sx;
     req.firstFrame = std::min(firstFrame(inst), time);
-    for (const auto& [name, in] : inputClips(inst)) req.inputs.push_back(in);
+    for (const auto& [name, in] : inputClips(inst))
+        req.inputs.push_back(in);
     const Settings settings = readSettings(effect);
 
     ClipImage out(inst.output, time);
-    if (!out.valid()) throw OfxError(kOfxStatFailed, "the host gave no Output image");
+    if (!out.valid())
+        throw OfxError(kOfxStatFailed, "the host gave no Output image");
     std::lock_guard<std::mutex> lock(inst.mutex);
     const std::vector<float>& frame = inst.runner.frame(time, settings, req);
     writeTile(out, renderWindow, frame.data(), req.window);
@@ -223,11 +232,12 @@ OfxStatus render(OfxImageEffectHandle effect, OfxPropertySetHandle inArgs)
 } // namespace
 
 OfxStatus denoiseAction(const std::string& action, OfxImageEffectHandle effect,
-                        OfxPropertySetHandle inArgs, OfxPropertySetHandle outArgs)
+    OfxPropertySetHandle inArgs, OfxPropertySetHandle outArgs)
 {
     if (action == kOfxActionLoad)
         return fetchSuites() ? kOfxStatOK : kOfxStatErrMissingHostFeature;
-    if (action == kOfxActionUnload) return kOfxStatOK;
+    if (action == kOfxActionUnload)
+        return kOfxStatOK;
     if (action == kOfxActionDescribe) {
         describe(effect);
         return kOfxStatOK;
@@ -252,22 +262,24 @@ OfxStatus denoiseAction(const std::string& action, OfxImageEffectHandle effect,
     }
     if (action == kOfxActionInstanceChanged) {
         Props in(inArgs);
-        if (in.getString(kOfxPropType) == kOfxTypeParameter &&
-            in.getString(kOfxPropName) == kParamMethod)
+        if (in.getString(kOfxPropType) == kOfxTypeParameter
+            && in.getString(kOfxPropName) == kParamMethod)
             showCurrentMethod(effect);
         return kOfxStatOK;
     }
     if (action == kOfxImageEffectActionGetRegionOfDefinition) {
         const OfxRectD rod = sourceRod(instanceOf(effect), Props(inArgs).getDouble(kOfxPropTime));
-        Props(outArgs).setDoubles(kOfxImageEffectPropRegionOfDefinition,
-                                  { rod.x1, rod.y1, rod.x2, rod.y2 });
+        Props(outArgs).setDoubles(
+            kOfxImageEffectPropRegionOfDefinition, { rod.x1, rod.y1, rod.x2, rod.y2 });
         return kOfxStatOK;
     }
     if (action == kOfxImageEffectActionGetRegionsOfInterest)
         return regionsOfInterest(effect, inArgs, outArgs);
-    if (action == kOfxImageEffectActionGetFramesNeeded) return framesNeeded(effect, inArgs, outArgs);
+    if (action == kOfxImageEffectActionGetFramesNeeded)
+        return framesNeeded(effect, inArgs, outArgs);
     if (action == kOfxImageEffectActionIsIdentity) {
-        if (readSettings(effect).method != "identity") return kOfxStatReplyDefault;
+        if (readSettings(effect).method != "identity")
+            return kOfxStatReplyDefault;
         Props out(outArgs);
         out.set(kOfxPropName, kOfxImageEffectSimpleSourceClipName);
         out.set(kOfxPropTime, Props(inArgs).getDouble(kOfxPropTime));

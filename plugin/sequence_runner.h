@@ -15,7 +15,7 @@ namespace afnofx {
 
 /// Input clip roles, in the library's image names.
 struct InputClip {
-    const char* role;         ///< "color", "albedo", "normal", "depth" or "motion"
+    const char* role;         ///< "color", "albedo", "normal", "depth", "position" or "motion"
     OfxImageClipHandle clip;  ///< a connected clip
 };
 

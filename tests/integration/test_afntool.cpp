@@ -32,7 +32,8 @@ void expectCleanError(const CliResult& r, const std::string& needle)
 void writeExr(const std::string& path, int w, int h, const std::vector<std::string>& channels)
 {
     std::vector<float> px(static_cast<size_t>(w) * h * channels.size());
-    for (size_t i = 0; i < px.size(); ++i) px[i] = float(i % channels.size()) + 0.25f;
+    for (size_t i = 0; i < px.size(); ++i)
+        px[i] = float(i % channels.size()) + 0.25f;
     afn::io::WriteOptions wo;
     wo.dataType = "float";
     afn::io::writeImageAtomic(path, w, h, channels, px.data(), wo);
@@ -52,7 +53,7 @@ TEST(Afntool, InfoJsonMapsBlenderRoles)
     const CliResult r = runAfntool({ "--info", "--json", kBlender });
     ASSERT_EQ(r.exitCode, 0) << r.err;
     for (const char* key : { "\"file\"", "\"width\": 64", "\"height\": 36", "\"channels\"",
-                             "\"renderer\": \"blender\"" })
+             "\"renderer\": \"blender\"" })
         EXPECT_NE(r.out.find(key), std::string::npos) << key << "\n" << r.out;
     const size_t roles = r.out.find("\"roles\": {");
     ASSERT_NE(roles, std::string::npos);
@@ -88,7 +89,8 @@ TEST(Afntool, ConvertWritesTopLevelBeautyAndKeepsAovsOnRequest)
     const auto& a = in.roles.at(afn::io::Role::Color).pixels;
     const auto& b = back.roles.at(afn::io::Role::Color).pixels;
     ASSERT_EQ(a.size(), b.size());
-    for (size_t i = 0; i < a.size(); ++i) ASSERT_NEAR(a[i], b[i], 1e-5f * std::max(1.0f, std::fabs(a[i]))) << i;
+    for (size_t i = 0; i < a.size(); ++i)
+        ASSERT_NEAR(a[i], b[i], 1e-5f * std::max(1.0f, std::fabs(a[i]))) << i;
 
     r = runAfntool({ kBlender, "--keep-aovs", "-o", outAovs });
     ASSERT_EQ(r.exitCode, 0) << r.err;
@@ -96,7 +98,8 @@ TEST(Afntool, ConvertWritesTopLevelBeautyAndKeepsAovsOnRequest)
     const auto& ch = kept.subimages[0].channels;
     EXPECT_NE(std::find(ch.begin(), ch.end(), "ViewLayer.Vector.X"), ch.end());
     EXPECT_NE(std::find(ch.begin(), ch.end(), "ViewLayer.Denoising Albedo.R"), ch.end());
-    EXPECT_EQ(std::find(ch.begin(), ch.end(), "ViewLayer.Combined.R"), ch.end()) << "beauty is top-level";
+    EXPECT_EQ(std::find(ch.begin(), ch.end(), "ViewLayer.Combined.R"), ch.end())
+        << "beauty is top-level";
 }
 
 TEST(Afntool, MissingFileIsAClearError)
@@ -135,7 +138,8 @@ TEST(Afntool, UnwritableOutputIsAClearError)
     TempDir dir;
     writeExr(dir.file("in.exr"), 4, 4, { "R", "G", "B" });
     // The parent of the output is a regular file (fails even for root).
-    expectCleanError(runAfntool({ dir.file("in.exr"), "-o", dir.file("in.exr") + "/o.exr" }), "o.exr");
+    expectCleanError(
+        runAfntool({ dir.file("in.exr"), "-o", dir.file("in.exr") + "/o.exr" }), "o.exr");
     // The output names an existing directory.
     fs::create_directory(dir.file("adir"));
     expectCleanError(runAfntool({ dir.file("in.exr"), "-o", dir.file("adir") }), "adir");
@@ -147,7 +151,8 @@ TEST(Afntool, RefusesToOverwriteItsInput)
     TempDir dir;
     writeExr(dir.file("in.exr"), 4, 4, { "R", "G", "B" });
     const auto before = fs::file_size(dir.file("in.exr"));
-    expectCleanError(runAfntool({ dir.file("in.exr"), "-d", "half", "-o", dir.file("in.exr") }), "in.exr");
+    expectCleanError(
+        runAfntool({ dir.file("in.exr"), "-d", "half", "-o", dir.file("in.exr") }), "in.exr");
     EXPECT_EQ(fs::file_size(dir.file("in.exr")), before);
 }
 
@@ -163,7 +168,7 @@ TEST(Afntool, SequenceDenoiseWritesEveryFrame)
 {
     TempDir dir;
     const CliResult r = runAfntool({ "--frames", "0-7", kSequence, "--denoise:method=identity",
-                                     "-o", dir.file("out.####.exr") });
+        "-o", dir.file("out.####.exr") });
     ASSERT_EQ(r.exitCode, 0) << r.err;
     for (int f = 0; f < 8; ++f) {
         char name[32];
@@ -177,29 +182,63 @@ TEST(Afntool, MissingFrameIsNamed)
 {
     TempDir dir;
     expectCleanError(runAfntool({ "--frames", "0-9", kSequence, "-o", dir.file("out.####.exr") }),
-                     "frame.0008.exr");
+        "frame.0008.exr");
     EXPECT_EQ(dir.entries().size(), 0u) << "nothing is written when a frame is missing";
 }
 
 TEST(Afntool, SequenceOutputNeedsAPattern)
 {
     TempDir dir;
-    expectCleanError(runAfntool({ "--frames", "0-1", kSequence, "-o", dir.file("out.exr") }), "pattern");
+    expectCleanError(
+        runAfntool({ "--frames", "0-1", kSequence, "-o", dir.file("out.exr") }), "pattern");
 }
 
 TEST(Afntool, PreviewAndContactSheet)
 {
     TempDir dir;
-    const CliResult r = runAfntool({ kFrame0, "--preview", dir.file("p.png"), "--contact-sheet",
-                                     dir.file("c.png") });
+    const CliResult r = runAfntool(
+        { kFrame0, "--preview", dir.file("p.png"), "--contact-sheet", dir.file("c.png") });
     ASSERT_EQ(r.exitCode, 0) << r.err;
     const afn::io::FileInfo p = afn::io::inspect(dir.file("p.png"));
     EXPECT_EQ(p.subimages[0].dataWindow.width, 320);
     EXPECT_EQ(p.subimages[0].dataWindow.height, 180);
     const afn::io::FileInfo c = afn::io::inspect(dir.file("c.png"));
     EXPECT_GT(c.subimages[0].dataWindow.width, 320);
-    expectCleanError(runAfntool({ kFrame0, "--preview:view=NoSuchView", dir.file("q.png") }), "NoSuchView");
+    expectCleanError(
+        runAfntool({ kFrame0, "--preview:view=NoSuchView", dir.file("q.png") }), "NoSuchView");
     EXPECT_FALSE(fs::exists(dir.file("q.png")));
 }
 
 } // namespace
+
+TEST(Afntool, WeightsFileOverridesAndItsErrors)
+{
+    TempDir dir;
+    const std::string weights = std::string(AFN_TEST_DATA) + "/afn_parity/weights_full.afnw";
+    const CliResult global = runAfntool({ "--frames", "0-1", kSequence, "--weights", weights,
+        "--denoise:method=afn", "-o", dir.file("g.####.exr") });
+    ASSERT_EQ(global.exitCode, 0) << global.err;
+    const CliResult mod = runAfntool({ "--frames", "0-1", kSequence,
+        "--denoise:method=afn:weights=" + weights, "-o", dir.file("m.####.exr") });
+    ASSERT_EQ(mod.exitCode, 0) << mod.err;
+    for (const char* f : { "0000", "0001" }) {
+        const auto a = afn::io::readFrame(dir.file(std::string("g.") + f + ".exr"));
+        const auto b = afn::io::readFrame(dir.file(std::string("m.") + f + ".exr"));
+        EXPECT_EQ(a.roles.at(afn::io::Role::Color).pixels, b.roles.at(afn::io::Role::Color).pixels)
+            << f;
+    }
+    expectCleanError(runAfntool({ kFrame0, "--weights", dir.file("none.afnw"),
+                         "--denoise:method=afn", "-o", dir.file("x.exr") }),
+        "none.afnw");
+    {
+        std::ofstream junk(dir.file("junk.afnw"), std::ios::binary);
+        junk << "definitely not a weights archive";
+    }
+    expectCleanError(runAfntool({ kFrame0, "--denoise:method=afn:weights=" + dir.file("junk.afnw"),
+                         "-o", dir.file("x.exr") }),
+        "invalid or corrupted weights");
+    expectCleanError(runAfntool({ kFrame0, "--weights", weights, "--denoise:method=svgf", "-o",
+                         dir.file("x.exr") }),
+        "weights");
+    EXPECT_FALSE(fs::exists(dir.file("x.exr"))) << "nothing is written on error";
+}

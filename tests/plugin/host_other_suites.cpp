@@ -21,53 +21,62 @@ bool isIntType(const std::string& t)
     return t == kOfxParamTypeInteger || t == kOfxParamTypeBoolean || t == kOfxParamTypeChoice;
 }
 
-OfxStatus paramDefine(OfxParamSetHandle set, const char* type, const char* name,
-                      OfxPropertySetHandle* props)
+OfxStatus paramDefine(
+    OfxParamSetHandle set, const char* type, const char* name, OfxPropertySetHandle* props)
 {
-    if (!set || !type || !name) return kOfxStatErrBadHandle;
-    if (set->find(name)) return kOfxStatErrExists;
+    if (!set || !type || !name)
+        return kOfxStatErrBadHandle;
+    if (set->find(name))
+        return kOfxStatErrExists;
     const std::string t = type;
-    if (!isIntType(t) && t != kOfxParamTypeDouble && t != kOfxParamTypeGroup &&
-        t != kOfxParamTypeString)
+    if (!isIntType(t) && t != kOfxParamTypeDouble && t != kOfxParamTypeGroup
+        && t != kOfxParamTypeString)
         return kOfxStatErrUnknown;
     auto p = std::make_unique<OfxParamStruct>();
     p->type = t;
     p->name = name;
     p->props.setStrings(kOfxParamPropType, { t });
     p->props.setStrings(kOfxPropName, { name });
-    if (props) *props = &p->props;
+    if (props)
+        *props = &p->props;
     set->params.push_back(std::move(p));
     return kOfxStatOK;
 }
 
-OfxStatus paramGetHandle(OfxParamSetHandle set, const char* name, OfxParamHandle* param,
-                         OfxPropertySetHandle* props)
+OfxStatus paramGetHandle(
+    OfxParamSetHandle set, const char* name, OfxParamHandle* param, OfxPropertySetHandle* props)
 {
-    if (!set || !name || !param) return kOfxStatErrBadHandle;
+    if (!set || !name || !param)
+        return kOfxStatErrBadHandle;
     OfxParamStruct* p = set->find(name);
-    if (!p) return kOfxStatErrUnknown;
+    if (!p)
+        return kOfxStatErrUnknown;
     *param = p;
-    if (props) *props = &p->props;
+    if (props)
+        *props = &p->props;
     return kOfxStatOK;
 }
 
 OfxStatus paramSetGetPropertySet(OfxParamSetHandle set, OfxPropertySetHandle* props)
 {
-    if (!set || !props) return kOfxStatErrBadHandle;
+    if (!set || !props)
+        return kOfxStatErrBadHandle;
     *props = &set->props;
     return kOfxStatOK;
 }
 
 OfxStatus paramGetPropertySet(OfxParamHandle p, OfxPropertySetHandle* props)
 {
-    if (!p || !props) return kOfxStatErrBadHandle;
+    if (!p || !props)
+        return kOfxStatErrBadHandle;
     *props = &p->props;
     return kOfxStatOK;
 }
 
 OfxStatus getValue(OfxParamHandle p, va_list ap)
 {
-    if (!p) return kOfxStatErrBadHandle;
+    if (!p)
+        return kOfxStatErrBadHandle;
     if (isIntType(p->type))
         *va_arg(ap, int*) = p->intValue;
     else if (p->type == kOfxParamTypeDouble)
@@ -81,7 +90,8 @@ OfxStatus getValue(OfxParamHandle p, va_list ap)
 
 OfxStatus setValue(OfxParamHandle p, va_list ap)
 {
-    if (!p) return kOfxStatErrBadHandle;
+    if (!p)
+        return kOfxStatErrBadHandle;
     if (isIntType(p->type))
         p->intValue = va_arg(ap, int);
     else if (p->type == kOfxParamTypeDouble)
@@ -112,8 +122,14 @@ OfxStatus paramGetValueAtTime(OfxParamHandle p, OfxTime time, ...)
     return s;
 }
 
-OfxStatus paramGetDerivative(OfxParamHandle, OfxTime, ...) { return kOfxStatErrUnsupported; }
-OfxStatus paramGetIntegral(OfxParamHandle, OfxTime, OfxTime, ...) { return kOfxStatErrUnsupported; }
+OfxStatus paramGetDerivative(OfxParamHandle, OfxTime, ...)
+{
+    return kOfxStatErrUnsupported;
+}
+OfxStatus paramGetIntegral(OfxParamHandle, OfxTime, OfxTime, ...)
+{
+    return kOfxStatErrUnsupported;
+}
 
 OfxStatus paramSetValue(OfxParamHandle p, ...)
 {
@@ -135,34 +151,67 @@ OfxStatus paramSetValueAtTime(OfxParamHandle p, OfxTime time, ...)
 
 OfxStatus paramGetNumKeys(OfxParamHandle p, unsigned int* n)
 {
-    if (!p || !n) return kOfxStatErrBadHandle;
+    if (!p || !n)
+        return kOfxStatErrBadHandle;
     *n = 0;
     return kOfxStatOK;
 }
-OfxStatus paramGetKeyTime(OfxParamHandle, unsigned int, OfxTime*) { return kOfxStatErrBadIndex; }
-OfxStatus paramGetKeyIndex(OfxParamHandle, OfxTime, int, int*) { return kOfxStatFailed; }
-OfxStatus paramDeleteKey(OfxParamHandle, OfxTime) { return kOfxStatErrBadIndex; }
-OfxStatus paramDeleteAllKeys(OfxParamHandle) { return kOfxStatOK; }
+OfxStatus paramGetKeyTime(OfxParamHandle, unsigned int, OfxTime*)
+{
+    return kOfxStatErrBadIndex;
+}
+OfxStatus paramGetKeyIndex(OfxParamHandle, OfxTime, int, int*)
+{
+    return kOfxStatFailed;
+}
+OfxStatus paramDeleteKey(OfxParamHandle, OfxTime)
+{
+    return kOfxStatErrBadIndex;
+}
+OfxStatus paramDeleteAllKeys(OfxParamHandle)
+{
+    return kOfxStatOK;
+}
 OfxStatus paramCopy(OfxParamHandle, OfxParamHandle, OfxTime, const OfxRangeD*)
 {
     return kOfxStatErrUnsupported;
 }
-OfxStatus paramEditBegin(OfxParamSetHandle, const char*) { return kOfxStatOK; }
-OfxStatus paramEditEnd(OfxParamSetHandle) { return kOfxStatOK; }
+OfxStatus paramEditBegin(OfxParamSetHandle, const char*)
+{
+    return kOfxStatOK;
+}
+OfxStatus paramEditEnd(OfxParamSetHandle)
+{
+    return kOfxStatOK;
+}
 
 const OfxParameterSuiteV1 kParameterSuite = {
-    paramDefine,      paramGetHandle,      paramSetGetPropertySet, paramGetPropertySet,
-    paramGetValue,    paramGetValueAtTime, paramGetDerivative,     paramGetIntegral,
-    paramSetValue,    paramSetValueAtTime, paramGetNumKeys,        paramGetKeyTime,
-    paramGetKeyIndex, paramDeleteKey,      paramDeleteAllKeys,     paramCopy,
-    paramEditBegin,   paramEditEnd,
+    paramDefine,
+    paramGetHandle,
+    paramSetGetPropertySet,
+    paramGetPropertySet,
+    paramGetValue,
+    paramGetValueAtTime,
+    paramGetDerivative,
+    paramGetIntegral,
+    paramSetValue,
+    paramSetValueAtTime,
+    paramGetNumKeys,
+    paramGetKeyTime,
+    paramGetKeyIndex,
+    paramDeleteKey,
+    paramDeleteAllKeys,
+    paramCopy,
+    paramEditBegin,
+    paramEditEnd,
 };
 
 // ---- memory -------------------------------------------------------------------------------------
 
 OfxStatus memoryAlloc(void*, size_t n, void** data)
 {
-    if (!data) return kOfxStatErrBadHandle;
+    if (!data)
+        return kOfxStatErrBadHandle;
     *data = std::malloc(n);
     return *data ? kOfxStatOK : kOfxStatErrMemory;
 }
@@ -180,7 +229,8 @@ thread_local bool t_spawned = false;
 
 OfxStatus multiThread(OfxThreadFunctionV1 func, unsigned int n, void* arg)
 {
-    if (!func) return kOfxStatErrBadHandle;
+    if (!func)
+        return kOfxStatErrBadHandle;
     if (n <= 1) {
         func(0, 1, arg);
         return kOfxStatOK;
@@ -192,29 +242,39 @@ OfxStatus multiThread(OfxThreadFunctionV1 func, unsigned int n, void* arg)
             t_spawned = true;
             func(i, n, arg);
         });
-    for (std::thread& t : threads) t.join();
+    for (std::thread& t : threads)
+        t.join();
     return kOfxStatOK;
 }
 OfxStatus numCPUs(unsigned int* n)
 {
-    if (!n) return kOfxStatErrBadHandle;
+    if (!n)
+        return kOfxStatErrBadHandle;
     *n = std::max(2u, std::thread::hardware_concurrency()); // at least 2: exercise the split
     return kOfxStatOK;
 }
 OfxStatus threadIndex(unsigned int* i)
 {
-    if (!i) return kOfxStatErrBadHandle;
+    if (!i)
+        return kOfxStatErrBadHandle;
     *i = t_threadIndex;
     return kOfxStatOK;
 }
-int isSpawned() { return t_spawned; }
+int isSpawned()
+{
+    return t_spawned;
+}
 OfxStatus mutexCreate(OfxMutexHandle* m, int)
 {
-    if (!m) return kOfxStatErrBadHandle;
+    if (!m)
+        return kOfxStatErrBadHandle;
     *m = reinterpret_cast<OfxMutexHandle>(new std::recursive_mutex);
     return kOfxStatOK;
 }
-std::recursive_mutex* asMutex(OfxMutexHandle m) { return reinterpret_cast<std::recursive_mutex*>(m); }
+std::recursive_mutex* asMutex(OfxMutexHandle m)
+{
+    return reinterpret_cast<std::recursive_mutex*>(m);
+}
 OfxStatus mutexDestroy(const OfxMutexHandle m)
 {
     delete asMutex(m);
@@ -234,9 +294,8 @@ OfxStatus mutexTryLock(const OfxMutexHandle m)
 {
     return asMutex(m)->try_lock() ? kOfxStatOK : kOfxStatFailed;
 }
-const OfxMultiThreadSuiteV1 kThreadSuite = { multiThread,  numCPUs,     threadIndex,
-                                             isSpawned,    mutexCreate, mutexDestroy,
-                                             mutexLock,    mutexUnLock, mutexTryLock };
+const OfxMultiThreadSuiteV1 kThreadSuite = { multiThread, numCPUs, threadIndex, isSpawned,
+    mutexCreate, mutexDestroy, mutexLock, mutexUnLock, mutexTryLock };
 
 // ---- messages -----------------------------------------------------------------------------------
 
@@ -248,7 +307,8 @@ OfxStatus message(void* handle, const char* type, const char*, const char* forma
     std::vsnprintf(text, sizeof text, format ? format : "", ap);
     va_end(ap);
     auto* effect = static_cast<OfxImageEffectHandle>(handle);
-    if (effect && effect->host) effect->host->addMessage(std::string(type ? type : "") + ": " + text);
+    if (effect && effect->host)
+        effect->host->addMessage(std::string(type ? type : "") + ": " + text);
     return kOfxStatOK;
 }
 const OfxMessageSuiteV1 kMessageSuite = { message };
@@ -257,14 +317,21 @@ const OfxMessageSuiteV1 kMessageSuite = { message };
 
 const void* fetchSuite(OfxPropertySetHandle, const char* name, int version)
 {
-    if (!name || version != 1) return nullptr;
+    if (!name || version != 1)
+        return nullptr;
     const std::string n = name;
-    if (n == kOfxPropertySuite) return propertySuite();
-    if (n == kOfxImageEffectSuite) return imageEffectSuite();
-    if (n == kOfxParameterSuite) return &kParameterSuite;
-    if (n == kOfxMemorySuite) return &kMemorySuite;
-    if (n == kOfxMultiThreadSuite) return &kThreadSuite;
-    if (n == kOfxMessageSuite) return &kMessageSuite;
+    if (n == kOfxPropertySuite)
+        return propertySuite();
+    if (n == kOfxImageEffectSuite)
+        return imageEffectSuite();
+    if (n == kOfxParameterSuite)
+        return &kParameterSuite;
+    if (n == kOfxMemorySuite)
+        return &kMemorySuite;
+    if (n == kOfxMultiThreadSuite)
+        return &kThreadSuite;
+    if (n == kOfxMessageSuite)
+        return &kMessageSuite;
     return nullptr;
 }
 

@@ -62,15 +62,28 @@ void* OfxPropertySetStruct::getPointer(const std::string& name, int index) const
 namespace {
 
 template <typename T> std::vector<T>& values(Prop& p);
-template <> std::vector<int>& values<int>(Prop& p) { return p.i; }
-template <> std::vector<double>& values<double>(Prop& p) { return p.d; }
-template <> std::vector<std::string>& values<std::string>(Prop& p) { return p.s; }
-template <> std::vector<void*>& values<void*>(Prop& p) { return p.p; }
-
-template <typename T> OfxStatus setOne(OfxPropertySetHandle h, const char* name, int index,
-                                       Prop::Type type, const T& v)
+template <> std::vector<int>& values<int>(Prop& p)
 {
-    if (!h || !name || index < 0) return kOfxStatErrBadHandle;
+    return p.i;
+}
+template <> std::vector<double>& values<double>(Prop& p)
+{
+    return p.d;
+}
+template <> std::vector<std::string>& values<std::string>(Prop& p)
+{
+    return p.s;
+}
+template <> std::vector<void*>& values<void*>(Prop& p)
+{
+    return p.p;
+}
+
+template <typename T>
+OfxStatus setOne(OfxPropertySetHandle h, const char* name, int index, Prop::Type type, const T& v)
+{
+    if (!h || !name || index < 0)
+        return kOfxStatErrBadHandle;
     auto it = h->props.find(name);
     if (it == h->props.end()) {
         Prop p;
@@ -80,20 +93,25 @@ template <typename T> OfxStatus setOne(OfxPropertySetHandle h, const char* name,
         return kOfxStatErrValue;
     }
     std::vector<T>& vec = values<T>(it->second);
-    if (static_cast<size_t>(index) >= vec.size()) vec.resize(index + 1);
+    if (static_cast<size_t>(index) >= vec.size())
+        vec.resize(index + 1);
     vec[index] = v;
     return kOfxStatOK;
 }
 
-template <typename T> OfxStatus getOne(OfxPropertySetHandle h, const char* name, int index,
-                                       Prop::Type type, T* out)
+template <typename T>
+OfxStatus getOne(OfxPropertySetHandle h, const char* name, int index, Prop::Type type, T* out)
 {
-    if (!h || !name || !out) return kOfxStatErrBadHandle;
+    if (!h || !name || !out)
+        return kOfxStatErrBadHandle;
     auto it = h->props.find(name);
-    if (it == h->props.end()) return kOfxStatErrUnknown;
-    if (it->second.type != type) return kOfxStatErrValue;
+    if (it == h->props.end())
+        return kOfxStatErrUnknown;
+    if (it->second.type != type)
+        return kOfxStatErrValue;
     std::vector<T>& vec = values<T>(it->second);
-    if (index < 0 || static_cast<size_t>(index) >= vec.size()) return kOfxStatErrBadIndex;
+    if (index < 0 || static_cast<size_t>(index) >= vec.size())
+        return kOfxStatErrBadIndex;
     *out = vec[index];
     return kOfxStatOK;
 }
@@ -117,25 +135,29 @@ OfxStatus setInt(OfxPropertySetHandle h, const char* n, int i, int v)
 OfxStatus setPointerN(OfxPropertySetHandle h, const char* n, int c, void* const* v)
 {
     for (int i = 0; i < c; ++i)
-        if (OfxStatus s = setPointer(h, n, i, v[i])) return s;
+        if (OfxStatus s = setPointer(h, n, i, v[i]))
+            return s;
     return kOfxStatOK;
 }
 OfxStatus setStringN(OfxPropertySetHandle h, const char* n, int c, const char* const* v)
 {
     for (int i = 0; i < c; ++i)
-        if (OfxStatus s = setString(h, n, i, v[i])) return s;
+        if (OfxStatus s = setString(h, n, i, v[i]))
+            return s;
     return kOfxStatOK;
 }
 OfxStatus setDoubleN(OfxPropertySetHandle h, const char* n, int c, const double* v)
 {
     for (int i = 0; i < c; ++i)
-        if (OfxStatus s = setDouble(h, n, i, v[i])) return s;
+        if (OfxStatus s = setDouble(h, n, i, v[i]))
+            return s;
     return kOfxStatOK;
 }
 OfxStatus setIntN(OfxPropertySetHandle h, const char* n, int c, const int* v)
 {
     for (int i = 0; i < c; ++i)
-        if (OfxStatus s = setInt(h, n, i, v[i])) return s;
+        if (OfxStatus s = setInt(h, n, i, v[i]))
+            return s;
     return kOfxStatOK;
 }
 OfxStatus getPointer(OfxPropertySetHandle h, const char* n, int i, void** v)
@@ -144,11 +166,15 @@ OfxStatus getPointer(OfxPropertySetHandle h, const char* n, int i, void** v)
 }
 OfxStatus getString(OfxPropertySetHandle h, const char* n, int i, char** v)
 {
-    if (!h || !n || !v) return kOfxStatErrBadHandle;
+    if (!h || !n || !v)
+        return kOfxStatErrBadHandle;
     auto it = h->props.find(n);
-    if (it == h->props.end()) return kOfxStatErrUnknown;
-    if (it->second.type != Prop::String) return kOfxStatErrValue;
-    if (i < 0 || static_cast<size_t>(i) >= it->second.s.size()) return kOfxStatErrBadIndex;
+    if (it == h->props.end())
+        return kOfxStatErrUnknown;
+    if (it->second.type != Prop::String)
+        return kOfxStatErrValue;
+    if (i < 0 || static_cast<size_t>(i) >= it->second.s.size())
+        return kOfxStatErrBadIndex;
     *v = const_cast<char*>(it->second.s[i].c_str());
     return kOfxStatOK;
 }
@@ -163,42 +189,49 @@ OfxStatus getInt(OfxPropertySetHandle h, const char* n, int i, int* v)
 OfxStatus getPointerN(OfxPropertySetHandle h, const char* n, int c, void** v)
 {
     for (int i = 0; i < c; ++i)
-        if (OfxStatus s = getPointer(h, n, i, v + i)) return s;
+        if (OfxStatus s = getPointer(h, n, i, v + i))
+            return s;
     return kOfxStatOK;
 }
 OfxStatus getStringN(OfxPropertySetHandle h, const char* n, int c, char** v)
 {
     for (int i = 0; i < c; ++i)
-        if (OfxStatus s = getString(h, n, i, v + i)) return s;
+        if (OfxStatus s = getString(h, n, i, v + i))
+            return s;
     return kOfxStatOK;
 }
 OfxStatus getDoubleN(OfxPropertySetHandle h, const char* n, int c, double* v)
 {
     for (int i = 0; i < c; ++i)
-        if (OfxStatus s = getDouble(h, n, i, v + i)) return s;
+        if (OfxStatus s = getDouble(h, n, i, v + i))
+            return s;
     return kOfxStatOK;
 }
 OfxStatus getIntN(OfxPropertySetHandle h, const char* n, int c, int* v)
 {
     for (int i = 0; i < c; ++i)
-        if (OfxStatus s = getInt(h, n, i, v + i)) return s;
+        if (OfxStatus s = getInt(h, n, i, v + i))
+            return s;
     return kOfxStatOK;
 }
 OfxStatus reset(OfxPropertySetHandle h, const char* n)
 {
-    if (!h || !n) return kOfxStatErrBadHandle;
+    if (!h || !n)
+        return kOfxStatErrBadHandle;
     return h->props.erase(n) ? kOfxStatOK : kOfxStatErrUnknown;
 }
 OfxStatus dimension(OfxPropertySetHandle h, const char* n, int* count)
 {
-    if (!h || !n || !count) return kOfxStatErrBadHandle;
+    if (!h || !n || !count)
+        return kOfxStatErrBadHandle;
     auto it = h->props.find(n);
-    if (it == h->props.end()) return kOfxStatErrUnknown;
+    if (it == h->props.end())
+        return kOfxStatErrUnknown;
     const Prop& p = it->second;
     *count = int(p.type == Prop::Int ? p.i.size()
-                     : p.type == Prop::Double ? p.d.size()
-                     : p.type == Prop::String ? p.s.size()
-                                              : p.p.size());
+            : p.type == Prop::Double ? p.d.size()
+            : p.type == Prop::String ? p.s.size()
+                                     : p.p.size());
     return kOfxStatOK;
 }
 
@@ -209,9 +242,24 @@ namespace ofxhost {
 const OfxPropertySuiteV1* propertySuite()
 {
     static const OfxPropertySuiteV1 suite = {
-        setPointer,  setString,  setDouble,  setInt,  setPointerN, setStringN,
-        setDoubleN,  setIntN,    getPointer, getString, getDouble, getInt,
-        getPointerN, getStringN, getDoubleN, getIntN, reset,       dimension,
+        setPointer,
+        setString,
+        setDouble,
+        setInt,
+        setPointerN,
+        setStringN,
+        setDoubleN,
+        setIntN,
+        getPointer,
+        getString,
+        getDouble,
+        getInt,
+        getPointerN,
+        getStringN,
+        getDoubleN,
+        getIntN,
+        reset,
+        dimension,
     };
     return &suite;
 }

@@ -10,14 +10,16 @@
 OfxParamStruct* OfxParamSetStruct::find(const std::string& name) const
 {
     for (const auto& p : params)
-        if (p->name == name) return p.get();
+        if (p->name == name)
+            return p.get();
     return nullptr;
 }
 
 OfxImageClipStruct* OfxImageEffectStruct::clip(const std::string& name) const
 {
     for (const auto& c : clips)
-        if (c->name == name) return c.get();
+        if (c->name == name)
+            return c.get();
     return nullptr;
 }
 
@@ -47,12 +49,15 @@ void copyDescriptor(const OfxImageEffectStruct& from, OfxImageEffectStruct& to)
 
 const char* componentsName(int c)
 {
-    return c == 4 ? kOfxImageComponentRGBA : c == 3 ? kOfxImageComponentRGB : kOfxImageComponentAlpha;
+    return c == 4 ? kOfxImageComponentRGBA
+        : c == 3  ? kOfxImageComponentRGB
+                  : kOfxImageComponentAlpha;
 }
 
 } // namespace
 
-Host::Host(Layout layout) : m_layout(layout)
+Host::Host(Layout layout)
+    : m_layout(layout)
 {
     hostProps.setStrings(kOfxPropName, { "org.afn.TestHost" });
     hostProps.setStrings(kOfxPropLabel, { "afn test host" });
@@ -61,40 +66,44 @@ Host::Host(Layout layout) : m_layout(layout)
     hostProps.setInts(kOfxImageEffectPropSupportsMultiResolution, { 1 });
     hostProps.setInts(kOfxImageEffectPropSupportsMultipleClipDepths, { 0 });
     hostProps.setStrings(kOfxImageEffectPropSupportedContexts,
-                         { kOfxImageEffectContextFilter, kOfxImageEffectContextGeneral });
+        { kOfxImageEffectContextFilter, kOfxImageEffectContextGeneral });
     hostProps.setStrings(kOfxImageEffectPropSupportedPixelDepths, { kOfxBitDepthFloat });
     hostProps.setStrings(kOfxImageEffectPropSupportedComponents,
-                         { kOfxImageComponentRGBA, kOfxImageComponentRGB, kOfxImageComponentAlpha });
+        { kOfxImageComponentRGBA, kOfxImageComponentRGB, kOfxImageComponentAlpha });
     m_ofxHost.host = &hostProps;
     m_ofxHost.fetchSuite = fetchSuite;
 }
 
 Host::~Host()
 {
-    if (m_library) dlclose(m_library);
+    if (m_library)
+        dlclose(m_library);
 }
 
 bool Host::load(const std::string& path, std::string* error)
 {
     m_library = dlopen(path.c_str(), RTLD_NOW | RTLD_LOCAL);
     if (!m_library) {
-        if (error) *error = std::string("dlopen: ") + dlerror();
+        if (error)
+            *error = std::string("dlopen: ") + dlerror();
         return false;
     }
     auto count = reinterpret_cast<int (*)()>(dlsym(m_library, "OfxGetNumberOfPlugins"));
     auto get = reinterpret_cast<OfxPlugin* (*)(int)>(dlsym(m_library, "OfxGetPlugin"));
     if (!count || !get) {
-        if (error) *error = path + " lacks OfxGetNumberOfPlugins/OfxGetPlugin";
+        if (error)
+            *error = path + " lacks OfxGetNumberOfPlugins/OfxGetPlugin";
         return false;
     }
     m_numPlugins = count();
     m_plugin = m_numPlugins > 0 ? get(0) : nullptr;
-    if (!m_plugin && error) *error = path + " has no plugin";
+    if (!m_plugin && error)
+        *error = path + " has no plugin";
     return m_plugin != nullptr;
 }
 
 OfxStatus Host::action(const char* name, const void* handle, OfxPropertySetStruct* inArgs,
-                       OfxPropertySetStruct* outArgs)
+    OfxPropertySetStruct* outArgs)
 {
     return m_plugin->mainEntry(name, handle, inArgs, outArgs);
 }
@@ -102,16 +111,16 @@ OfxStatus Host::action(const char* name, const void* handle, OfxPropertySetStruc
 OfxStatus Host::describe()
 {
     m_plugin->setHost(&m_ofxHost);
-    if (OfxStatus s = action(kOfxActionLoad, nullptr, nullptr, nullptr); s != kOfxStatOK &&
-                                                                          s != kOfxStatReplyDefault)
+    if (OfxStatus s = action(kOfxActionLoad, nullptr, nullptr, nullptr);
+        s != kOfxStatOK && s != kOfxStatReplyDefault)
         return s;
     m_descriptor = std::make_unique<OfxImageEffectStruct>();
     m_descriptor->host = this;
     return action(kOfxActionDescribe, m_descriptor.get(), nullptr, nullptr);
 }
 
-OfxStatus Host::describeInContext(const std::string& context,
-                                  std::unique_ptr<OfxImageEffectStruct>& out)
+OfxStatus Host::describeInContext(
+    const std::string& context, std::unique_ptr<OfxImageEffectStruct>& out)
 {
     out = std::make_unique<OfxImageEffectStruct>();
     copyDescriptor(*m_descriptor, *out);
@@ -121,9 +130,9 @@ OfxStatus Host::describeInContext(const std::string& context,
     return action(kOfxImageEffectActionDescribeInContext, out.get(), &in, nullptr);
 }
 
-std::unique_ptr<OfxImageEffectStruct> Host::createInstance(
-    const OfxImageEffectStruct& desc, const std::string& context,
-    const std::map<std::string, const ClipSource*>& inputs, OfxStatus* status)
+std::unique_ptr<OfxImageEffectStruct> Host::createInstance(const OfxImageEffectStruct& desc,
+    const std::string& context, const std::map<std::string, const ClipSource*>& inputs,
+    OfxStatus* status)
 {
     auto inst = std::make_unique<OfxImageEffectStruct>();
     copyDescriptor(desc, *inst);
@@ -132,10 +141,14 @@ std::unique_ptr<OfxImageEffectStruct> Host::createInstance(
     inst->props.setPointer(kOfxPropInstanceData, nullptr);
     for (const auto& p : inst->params.params) {
         const auto it = p->props.props.find(kOfxParamPropDefault);
-        if (it == p->props.props.end()) continue;
-        if (it->second.type == Prop::Int && !it->second.i.empty()) p->intValue = it->second.i[0];
-        if (it->second.type == Prop::Double && !it->second.d.empty()) p->doubleValue = it->second.d[0];
-        if (it->second.type == Prop::String && !it->second.s.empty()) p->stringValue = it->second.s[0];
+        if (it == p->props.props.end())
+            continue;
+        if (it->second.type == Prop::Int && !it->second.i.empty())
+            p->intValue = it->second.i[0];
+        if (it->second.type == Prop::Double && !it->second.d.empty())
+            p->doubleValue = it->second.d[0];
+        if (it->second.type == Prop::String && !it->second.s.empty())
+            p->stringValue = it->second.s[0];
     }
     const auto sourceIt = inputs.find(kOfxImageEffectSimpleSourceClipName);
     for (const auto& c : inst->clips) {
@@ -145,9 +158,9 @@ std::unique_ptr<OfxImageEffectStruct> Host::createInstance(
         const ClipSource* range = output && sourceIt != inputs.end() ? sourceIt->second : c->source;
         c->props.setInts(kOfxImageClipPropConnected, { c->source || output ? 1 : 0 });
         c->props.setDoubles(kOfxImageEffectPropFrameRange,
-                            { range ? range->firstFrame : 0.0, range ? range->lastFrame : 0.0 });
+            { range ? range->firstFrame : 0.0, range ? range->lastFrame : 0.0 });
         c->props.setStrings(kOfxImageEffectPropComponents,
-                            { componentsName(c->source ? c->source->components : 4) });
+            { componentsName(c->source ? c->source->components : 4) });
         c->props.setStrings(kOfxImageEffectPropPixelDepth, { kOfxBitDepthFloat });
         c->props.setDoubles(kOfxImagePropPixelAspectRatio, { 1.0 });
         c->props.setStrings(kOfxImageEffectPropPreMultiplication, { kOfxImageUnPreMultiplied });
@@ -188,7 +201,8 @@ OfxStatus instanceChanged(Host& host, OfxImageEffectStruct* instance, const std:
 OfxStatus Host::setParam(OfxImageEffectStruct* instance, const std::string& name, double value)
 {
     OfxParamStruct* p = instance->params.find(name);
-    if (!p || p->type == kOfxParamTypeString || p->type == kOfxParamTypeGroup) return kOfxStatErrUnknown;
+    if (!p || p->type == kOfxParamTypeString || p->type == kOfxParamTypeGroup)
+        return kOfxStatErrUnknown;
     if (p->type == kOfxParamTypeDouble)
         p->doubleValue = value;
     else
@@ -196,11 +210,12 @@ OfxStatus Host::setParam(OfxImageEffectStruct* instance, const std::string& name
     return instanceChanged(*this, instance, name);
 }
 
-OfxStatus Host::setParam(OfxImageEffectStruct* instance, const std::string& name,
-                         const std::string& value)
+OfxStatus Host::setParam(
+    OfxImageEffectStruct* instance, const std::string& name, const std::string& value)
 {
     OfxParamStruct* p = instance->params.find(name);
-    if (!p || p->type != kOfxParamTypeString) return kOfxStatErrUnknown;
+    if (!p || p->type != kOfxParamTypeString)
+        return kOfxStatErrUnknown;
     p->stringValue = value;
     return instanceChanged(*this, instance, name);
 }
@@ -217,8 +232,8 @@ std::vector<std::string> Host::messages() const
     return m_messages;
 }
 
-OfxStatus Host::renderFrame(OfxImageEffectStruct* inst, double time, double scale, int tiles,
-                            Frame& out)
+OfxStatus Host::renderFrame(
+    OfxImageEffectStruct* inst, double time, double scale, int tiles, Frame& out)
 {
     OfxPropertySetStruct timeArgs;
     timeArgs.setDoubles(kOfxPropTime, { time });
@@ -226,10 +241,11 @@ OfxStatus Host::renderFrame(OfxImageEffectStruct* inst, double time, double scal
 
     OfxPropertySetStruct rodOut;
     OfxStatus s = action(kOfxImageEffectActionGetRegionOfDefinition, inst, &timeArgs, &rodOut);
-    if (s != kOfxStatOK) return s == kOfxStatReplyDefault ? kOfxStatFailed : s;
+    if (s != kOfxStatOK)
+        return s == kOfxStatReplyDefault ? kOfxStatFailed : s;
     const Prop& r = rodOut.props.at(kOfxImageEffectPropRegionOfDefinition);
     const OfxRectI rod = { int(std::floor(r.d.at(0) * scale)), int(std::floor(r.d.at(1) * scale)),
-                           int(std::ceil(r.d.at(2) * scale)), int(std::ceil(r.d.at(3) * scale)) };
+        int(std::ceil(r.d.at(2) * scale)), int(std::ceil(r.d.at(3) * scale)) };
     const int w = rod.x2 - rod.x1, h = rod.y2 - rod.y1;
     out.bounds = rod;
     out.rgba.assign(size_t(w) * h * 4, std::nanf(""));
@@ -237,7 +253,8 @@ OfxStatus Host::renderFrame(OfxImageEffectStruct* inst, double time, double scal
     // Frames needed (the host refuses images at other times from now on).
     OfxPropertySetStruct framesOut;
     s = action(kOfxImageEffectActionGetFramesNeeded, inst, &timeArgs, &framesOut);
-    if (s != kOfxStatOK && s != kOfxStatReplyDefault) return s;
+    if (s != kOfxStatOK && s != kOfxStatReplyDefault)
+        return s;
     std::map<std::string, std::vector<double>> framesNeeded;
     for (const auto& c : inst->clips) {
         auto it = framesOut.props.find(kOfxImageClipPropFrameRange + c->name);
@@ -250,14 +267,15 @@ OfxStatus Host::renderFrame(OfxImageEffectStruct* inst, double time, double scal
         for (int tx = 0; tx < tiles; ++tx) {
             // Uneven tiles: the first column and row are narrower.
             const OfxRectI win = { rod.x1 + (w * tx) / tiles - (tx > 0 ? 1 : 0),
-                                   rod.y1 + (h * ty) / tiles - (ty > 0 ? 1 : 0),
-                                   tx + 1 == tiles ? rod.x2 : rod.x1 + (w * (tx + 1)) / tiles - 1,
-                                   ty + 1 == tiles ? rod.y2 : rod.y1 + (h * (ty + 1)) / tiles - 1 };
+                rod.y1 + (h * ty) / tiles - (ty > 0 ? 1 : 0),
+                tx + 1 == tiles ? rod.x2 : rod.x1 + (w * (tx + 1)) / tiles - 1,
+                ty + 1 == tiles ? rod.y2 : rod.y1 + (h * (ty + 1)) / tiles - 1 };
             OfxPropertySetStruct roiIn = timeArgs, roiOut;
             roiIn.setDoubles(kOfxImageEffectPropRegionOfInterest,
-                             { win.x1 / scale, win.y1 / scale, win.x2 / scale, win.y2 / scale });
+                { win.x1 / scale, win.y1 / scale, win.x2 / scale, win.y2 / scale });
             s = action(kOfxImageEffectActionGetRegionsOfInterest, inst, &roiIn, &roiOut);
-            if (s != kOfxStatOK && s != kOfxStatReplyDefault) return s;
+            if (s != kOfxStatOK && s != kOfxStatReplyDefault)
+                return s;
             for (const auto& c : inst->clips) {
                 auto it = roiOut.props.find(kOfxImageClipPropRoI + c->name);
                 std::lock_guard<std::mutex> lock(c->framesMutex);
@@ -274,7 +292,8 @@ OfxStatus Host::renderFrame(OfxImageEffectStruct* inst, double time, double scal
             in.setInts(kOfxImageEffectPropSequentialRenderStatus, { 0 });
             s = action(kOfxImageEffectActionRender, inst, &in, nullptr);
             currentRenderTarget() = nullptr;
-            if (s != kOfxStatOK) return s;
+            if (s != kOfxStatOK)
+                return s;
             // Stitch: read the tile through its own data pointer and row bytes.
             const char* data = static_cast<const char*>(image->getPointer(kOfxImagePropData));
             const int rowBytes = image->getInt(kOfxImagePropRowBytes);
@@ -282,7 +301,8 @@ OfxStatus Host::renderFrame(OfxImageEffectStruct* inst, double time, double scal
                 for (int x = win.x1; x < win.x2; ++x) {
                     const float* src = reinterpret_cast<const float*>(
                         data + std::ptrdiff_t(y - win.y1) * rowBytes + (x - win.x1) * 16);
-                    std::memcpy(&out.rgba[(size_t(rod.y2 - 1 - y) * w + (x - rod.x1)) * 4], src, 16);
+                    std::memcpy(
+                        &out.rgba[(size_t(rod.y2 - 1 - y) * w + (x - rod.x1)) * 4], src, 16);
                 }
         }
     return kOfxStatOK;

@@ -32,8 +32,8 @@ class Host;
 /// Property set (the host's definition of the opaque OFX handle type).
 struct OfxPropertySetStruct {
     std::map<std::string, ofxhost::Prop> props;
-    std::shared_ptr<void> owned;         ///< image memory owned by an image property set
-    ofxhost::Host* imageHost = nullptr;  ///< the host that handed this image out
+    std::shared_ptr<void> owned; ///< image memory owned by an image property set
+    ofxhost::Host* imageHost = nullptr; ///< the host that handed this image out
 
     void setInts(const std::string& name, std::vector<int> v);
     void setDoubles(const std::string& name, std::vector<double> v);
@@ -53,7 +53,7 @@ struct OfxParamStruct {
     OfxPropertySetStruct props;
     std::string type;
     std::string name;
-    int intValue = 0;       ///< boolean, integer and choice parameters
+    int intValue = 0; ///< boolean, integer and choice parameters
     double doubleValue = 0; ///< double parameters
     std::string stringValue; ///< string parameters
 };
@@ -79,7 +79,7 @@ struct OfxImageClipStruct {
     struct OfxImageEffectStruct* effect = nullptr;
     std::mutex framesMutex;
     std::vector<double> framesNeeded; ///< last GetFramesNeeded answer (for the tests to inspect)
-    std::vector<double> lastRoI;      ///< last GetRegionsOfInterest answer, empty = default
+    std::vector<double> lastRoI; ///< last GetRegionsOfInterest answer, empty = default
 };
 
 /// An effect descriptor or instance.
@@ -109,7 +109,7 @@ struct ClipSource {
 /// How the host lays out the images it hands out.
 struct Layout {
     bool negativeRowBytes = false; ///< top-down memory with negative row bytes
-    int rowPaddingPixels = 0;      ///< unused pixels at the end of every row
+    int rowPaddingPixels = 0; ///< unused pixels at the end of every row
 };
 
 /// A rendered output frame: packed top-down RGBA over the output's pixel region of definition.
@@ -130,13 +130,13 @@ public:
 
     /// Call the plugin's main entry.
     OfxStatus action(const char* action, const void* handle, OfxPropertySetStruct* inArgs,
-                     OfxPropertySetStruct* outArgs);
+        OfxPropertySetStruct* outArgs);
     /// setHost, Load and Describe; the descriptor is kept.
     OfxStatus describe();
     OfxImageEffectStruct* descriptor() const { return m_descriptor.get(); }
     /// DescribeInContext on a fresh copy of the descriptor.
-    OfxStatus describeInContext(const std::string& context,
-                                std::unique_ptr<OfxImageEffectStruct>& out);
+    OfxStatus describeInContext(
+        const std::string& context, std::unique_ptr<OfxImageEffectStruct>& out);
     /// CreateInstance from a context descriptor; `inputs` maps clip names to sources (not owned).
     std::unique_ptr<OfxImageEffectStruct> createInstance(
         const OfxImageEffectStruct& contextDescriptor, const std::string& context,
@@ -148,13 +148,13 @@ public:
     /// Set a parameter value (int for boolean/integer/choice) and send InstanceChanged.
     OfxStatus setParam(OfxImageEffectStruct* instance, const std::string& name, double value);
     /// Set a string parameter and send InstanceChanged.
-    OfxStatus setParam(OfxImageEffectStruct* instance, const std::string& name,
-                       const std::string& value);
+    OfxStatus setParam(
+        OfxImageEffectStruct* instance, const std::string& name, const std::string& value);
 
     /// Render frame `time` at `scale` as a host does: RoD, RoI, frames needed, then one Render
     /// per tile (`tiles` x `tiles`, uneven split), stitched into `out`. Returns the first failure.
-    OfxStatus renderFrame(OfxImageEffectStruct* instance, double time, double scale, int tiles,
-                          Frame& out);
+    OfxStatus renderFrame(
+        OfxImageEffectStruct* instance, double time, double scale, int tiles, Frame& out);
 
     /// Ask renders to abort (the image-effect suite's abort answers this).
     std::atomic<bool> abortFlag { false };
@@ -186,8 +186,7 @@ const void* fetchSuite(OfxPropertySetHandle host, const char* name, int version)
 /// Build an image property set for `bounds` (pixel coordinates at `scale`) from a packed
 /// top-down frame covering `frameBounds`, laid out as `layout` says; the set owns its memory.
 OfxPropertySetStruct* makeImage(const std::vector<float>* frame, const OfxRectI& frameBounds,
-                                const OfxRectI& bounds, int components, double scale,
-                                const Layout& layout);
+    const OfxRectI& bounds, int components, double scale, const Layout& layout);
 /// The render target of the calling thread while a Render action runs.
 struct RenderTarget {
     OfxImageEffectStruct* instance = nullptr;

@@ -12,12 +12,13 @@
 namespace ofxtest {
 
 struct Sequence {
-    int width = 40, height = 24;    ///< full-resolution size (even)
+    int width = 40, height = 24; ///< full-resolution size (even)
     int originX = 10, originY = -6; ///< canonical origin of the region of definition (even)
     int firstFrame = 1, numFrames = 6;
     int velocityX = 2, velocityY = 1; ///< content motion per frame, pixels, x right, y down
 
-    /// Channels per role: color 4 (RGBA), albedo 4, normal 3, depth 1, motion 4 (x, y, 0, 0).
+    /// Channels per role: color 4 (RGBA), albedo 4, normal 3, depth 1, position 3, motion 4 (x, y,
+    /// 0, 0).
     static int components(const std::string& role);
     /// Packed top-down pixels of `role` at frame `time` and render scale 1 or 0.5 (2x2 box).
     std::vector<float> plane(const std::string& role, double time, double scale) const;
@@ -30,8 +31,9 @@ struct ReferenceOptions {
     std::string method;
     bool temporal = true;
     double scale = 1.0;
-    std::vector<std::string> aux; ///< bound auxiliary roles (albedo, normal, depth, motion)
-    std::string floatParam;       ///< a float parameter to override ("" = none)
+    std::vector<std::string>
+        aux; ///< bound auxiliary roles (albedo, normal, depth, position, motion)
+    std::string floatParam; ///< a float parameter to override ("" = none)
     double floatValue = 0.0;
 };
 

@@ -19,15 +19,17 @@ using namespace ofxtest;
 
 namespace {
 
-const std::vector<std::string> kAllAux = { "albedo", "normal", "depth", "motion" };
-const char* const kClipOf[] = { "Albedo", "Normal", "Depth", "Motion" };
+const std::vector<std::string> kAllAux = { "albedo", "normal", "depth", "position", "motion" };
+const char* const kClipOf[] = { "Albedo", "Normal", "Depth", "Position", "Motion" };
 
 std::vector<std::string> methodsUnderTest()
 {
     std::vector<std::string> out;
     for (const std::string& m : afn::filterTypes())
-        if (m != "identity") out.push_back(m);
-    if (out.empty()) out.push_back("identity");
+        if (m != "identity")
+            out.push_back(m);
+    if (out.empty())
+        out.push_back("identity");
     return out;
 }
 
@@ -38,53 +40,55 @@ int methodIndex(const std::string& m)
 }
 
 /// |got - want| <= 1e-5 * max(|want|, 1e-3) everywhere (relative, with a floor near zero).
-::testing::AssertionResult nearlyEqual(const std::vector<float>& got, const std::vector<float>& want)
+::testing::AssertionResult nearlyEqual(
+    const std::vector<float>& got, const std::vector<float>& want)
 {
     if (got.size() != want.size())
         return ::testing::AssertionFailure() << "size " << got.size() << " vs " << want.size();
     for (size_t i = 0; i < got.size(); ++i) {
         const double tol = 1e-5 * std::max(std::abs(double(want[i])), 1e-3);
         if (!(std::abs(double(got[i]) - want[i]) <= tol))
-            return ::testing::AssertionFailure() << "value " << i << " (pixel " << i / 4 << ", channel "
-                                                 << i % 4 << "): plugin " << got[i] << " vs C API "
-                                                 << want[i];
+            return ::testing::AssertionFailure()
+                << "value " << i << " (pixel " << i / 4 << ", channel " << i % 4 << "): plugin "
+                << got[i] << " vs C API " << want[i];
     }
     return ::testing::AssertionSuccess();
 }
 
 /// A loaded host with both context descriptors and a source per role.
 struct Session {
-    explicit Session(Layout layout = {}) : host(layout)
+    explicit Session(Layout layout = {})
+        : host(layout)
     {
         std::string error;
         loaded = host.load(AFN_OFX_BINARY, &error);
         EXPECT_TRUE(loaded) << error;
-        if (!loaded) return;
+        if (!loaded)
+            return;
         EXPECT_EQ(host.describe(), kOfxStatOK);
         EXPECT_EQ(host.describeInContext(kOfxImageEffectContextGeneral, general), kOfxStatOK);
         EXPECT_EQ(host.describeInContext(kOfxImageEffectContextFilter, filter), kOfxStatOK);
-        for (const char* role : { "color", "albedo", "normal", "depth", "motion" })
+        for (const char* role : { "color", "albedo", "normal", "depth", "position", "motion" })
             sources[role] = seq.source(role);
     }
     ~Session()
     {
-        if (loaded) EXPECT_EQ(host.unload(), kOfxStatOK);
+        if (loaded)
+            EXPECT_EQ(host.unload(), kOfxStatOK);
     }
 
     /// An instance with Source and the given auxiliary roles connected, running `method`.
-    std::unique_ptr<OfxImageEffectStruct> instance(const std::string& method,
-                                                   const std::vector<std::string>& aux,
-                                                   bool general = true)
+    std::unique_ptr<OfxImageEffectStruct> instance(
+        const std::string& method, const std::vector<std::string>& aux, bool general = true)
     {
         std::map<std::string, const ClipSource*> inputs = { { "Source", &sources["color"] } };
         for (const std::string& role : aux)
-            for (int i = 0; i < 4; ++i)
-                if (kAllAux[i] == role) inputs[kClipOf[i]] = &sources[role];
+            for (size_t i = 0; i < kAllAux.size(); ++i)
+                if (kAllAux[i] == role)
+                    inputs[kClipOf[i]] = &sources[role];
         OfxStatus s = kOfxStatFailed;
         auto inst = host.createInstance(general ? *this->general : *filter,
-                                        general ? kOfxImageEffectContextGeneral
-                                                : kOfxImageEffectContextFilter,
-                                        inputs, &s);
+            general ? kOfxImageEffectContextGeneral : kOfxImageEffectContextFilter, inputs, &s);
         EXPECT_EQ(s, kOfxStatOK);
         EXPECT_EQ(host.setParam(inst.get(), "method", methodIndex(method)), kOfxStatOK);
         if (const std::string w = testWeightsFor(method); !w.empty())
@@ -92,7 +96,8 @@ struct Session {
         return inst;
     }
 
-    std::vector<float> render(OfxImageEffectStruct* inst, double t, double scale = 1.0, int tiles = 1)
+    std::vector<float> render(
+        OfxImageEffectStruct* inst, double t, double scale = 1.0, int tiles = 1)
     {
         Frame f;
         const OfxStatus s = host.renderFrame(inst, t, scale, tiles, f);
@@ -158,7 +163,8 @@ TEST(PluginHost, LoadsDescribesAndUnloads)
     for (const std::string& m : afn::filterTypes())
         for (const AFNParamInfo& info : afn::filterTypeParams(m.c_str())) {
             const std::string n = info.name;
-            if (n == "motion.yUp" || n == "motion.scale") continue;
+            if (n == "motion.yUp" || n == "motion.scale")
+                continue;
             const OfxParamStruct* p = s.general->params.find(ofxName(*s.general, m, n));
             ASSERT_NE(p, nullptr) << m << " " << n;
             EXPECT_EQ(p->props.getInt(kOfxParamPropAnimates), 0);
@@ -183,12 +189,15 @@ TEST(PluginHost, OnlyTheCurrentMethodsParametersAreShown)
         auto inst = s.instance(m, {});
         int groups = 0;
         for (const auto& p : inst->params.params) {
-            if (p->name.rfind("group_", 0) != 0 || p->name == "group_inputs") continue;
+            if (p->name.rfind("group_", 0) != 0 || p->name == "group_inputs")
+                continue;
             ++groups;
             const std::string owner = p->name.substr(6);
-            EXPECT_EQ(p->props.getInt(kOfxParamPropSecret), owner == m ? 0 : 1) << m << " " << p->name;
+            EXPECT_EQ(p->props.getInt(kOfxParamPropSecret), owner == m ? 0 : 1)
+                << m << " " << p->name;
         }
-        if (afn::filterTypes().size() > 2) EXPECT_GT(groups, 1); // methods with own parameters
+        if (afn::filterTypes().size() > 2)
+            EXPECT_GT(groups, 1); // methods with own parameters
         EXPECT_EQ(s.host.destroyInstance(inst.get()), kOfxStatOK);
     }
 }
@@ -259,9 +268,11 @@ TEST(PluginHost, OutOfOrderRequestsMatchSequentialResults)
     // A parameter change invalidates the history: results follow the new value, and going back
     // restores the old results.
     for (const AFNParamInfo& info : afn::filterTypeParams(m.c_str())) {
-        if (info.type != AFN_PARAM_FLOAT || std::strncmp(info.name, "motion.", 7) == 0) continue;
-        const double v = info.defaultValue != info.minValue ? 0.5 * (info.defaultValue + info.minValue)
-                                                            : 0.5 * (info.defaultValue + info.maxValue);
+        if (info.type != AFN_PARAM_FLOAT || std::strncmp(info.name, "motion.", 7) == 0)
+            continue;
+        const double v = info.defaultValue != info.minValue
+            ? 0.5 * (info.defaultValue + info.minValue)
+            : 0.5 * (info.defaultValue + info.maxValue);
         const std::string name = ofxName(*s.general, m, info.name);
         ASSERT_EQ(s.host.setParam(inst.get(), name, v), kOfxStatOK);
         const auto changed = referenceFrames(s.seq, { m, true, 1.0, kAllAux, info.name, v });
@@ -287,13 +298,15 @@ TEST(PluginHost, TwoThreadsRenderInstancesAndFramesConcurrently)
     std::thread t1([&] {
         for (int k = 0; k < n; ++k) {
             gotA[k] = s.render(a.get(), first + k, 1.0, 2);
-            if (k % 2 == 0) gotShared[k] = s.render(shared.get(), first + k);
+            if (k % 2 == 0)
+                gotShared[k] = s.render(shared.get(), first + k);
         }
     });
     std::thread t2([&] {
         for (int k = n - 1; k >= 0; --k) {
             gotB[k] = s.render(b.get(), first + k);
-            if (k % 2 == 1) gotShared[k] = s.render(shared.get(), first + k, 1.0, 2);
+            if (k % 2 == 1)
+                gotShared[k] = s.render(shared.get(), first + k, 1.0, 2);
         }
     });
     t1.join();
@@ -303,7 +316,8 @@ TEST(PluginHost, TwoThreadsRenderInstancesAndFramesConcurrently)
         EXPECT_TRUE(nearlyEqual(gotB[k], ref[k])) << "instance B frame " << k;
         EXPECT_TRUE(nearlyEqual(gotShared[k], ref[k])) << "shared instance frame " << k;
     }
-    for (auto* i : { a.get(), b.get(), shared.get() }) EXPECT_EQ(s.host.destroyInstance(i), kOfxStatOK);
+    for (auto* i : { a.get(), b.get(), shared.get() })
+        EXPECT_EQ(s.host.destroyInstance(i), kOfxStatOK);
 }
 
 TEST(PluginHost, FilterContextIsSingleFrameUnlessTemporalIsOn)
@@ -330,7 +344,8 @@ TEST(PluginHost, UnconnectedOptionalClipsAreNotBound)
     const std::vector<std::string> aux = { "albedo", "normal" };
     auto inst = s.instance(m, aux);
     const auto ref = referenceFrames(s.seq, { m, true, 1.0, aux });
-    for (int t : { 2, 4 }) EXPECT_TRUE(nearlyEqual(s.render(inst.get(), t), ref[t - 1])) << t;
+    for (int t : { 2, 4 })
+        EXPECT_TRUE(nearlyEqual(s.render(inst.get(), t), ref[t - 1])) << t;
     EXPECT_TRUE(inst->clip("Motion")->framesNeeded.empty()); // not asked for
     EXPECT_EQ(s.host.destroyInstance(inst.get()), kOfxStatOK);
 }
@@ -383,8 +398,7 @@ TEST(PluginHost, BadInputIsReportedThroughTheMessageSuite)
     const std::string m = methodsUnderTest().front();
     OfxStatus st = kOfxStatFailed;
     auto inst = s.host.createInstance(*s.general, kOfxImageEffectContextGeneral,
-                                      { { "Source", &s.sources["color"] }, { "Motion", &oneChannel } },
-                                      &st);
+        { { "Source", &s.sources["color"] }, { "Motion", &oneChannel } }, &st);
     ASSERT_EQ(st, kOfxStatOK);
     ASSERT_EQ(s.host.setParam(inst.get(), "method", methodIndex(m)), kOfxStatOK);
     Frame f;

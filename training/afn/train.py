@@ -25,7 +25,7 @@ from . import color
 from .dataset import CropSampler, find_scenes, load_scene, to_tensors
 from .loss import smape
 from .model import AFN, VARIANTS, AFNConfig
-from .weights import save_model
+from .weights import load_model, save_model
 
 
 def parse_args(argv=None):
@@ -51,6 +51,11 @@ def parse_args(argv=None):
     ap.add_argument("--device", default="auto", help="auto, cpu, cuda, cuda:1, ...")
     ap.add_argument("--threads", type=int, default=0, help="CPU threads (0: PyTorch default)")
     ap.add_argument("--seed", type=int, default=0)
+    ap.add_argument("--minutes", type=float, default=0.0, help="stop after the epoch that passes "
+                    "this many minutes of this run (0: no limit; a rerun resumes and continues)")
+    ap.add_argument("--init", default="", help="start a new run from these weights (.afnw or a "
+                    "checkpoint .pt; same architecture), e.g. to fine-tune the shipped model from an "
+                    "evaluation model")
     return ap.parse_args(argv)
 
 
@@ -93,6 +98,15 @@ def validate(model, scenes, device, frames):
             smapes.append(smape(out, t["target"]).item())
     model.train()
     return (float(np.mean(psnrs)), float(np.mean(smapes))) if psnrs else (float("nan"),) * 2
+
+
+def init_weights(model, path, device):
+    """Load a state_dict from a .afnw archive or a training checkpoint into ``model``."""
+    if path.endswith(".afnw"):
+        state = load_model(path).state_dict()
+    else:
+        state = torch.load(path, map_location=device)["model"]
+    model.load_state_dict(state)  # strict: the architectures must match
 
 
 def main(argv=None):
@@ -141,11 +155,15 @@ def main(argv=None):
         sampler.rng.set_state(ck["sampler_rng"])
         torch.set_rng_state(ck["torch_rng"])
         print(f"resumed from {latest} after epoch {start}", flush=True)
+    elif args.init:
+        init_weights(model, args.init, device)
+        print(f"initialised from {args.init}", flush=True)
     log_path = os.path.join(args.out, "log.csv")
     if not os.path.exists(log_path):
         with open(log_path, "w") as f:
             f.write("epoch,train_smape,val_psnr,val_smape,seconds\n")
 
+    run_start = time.time()
     for epoch in range(start, args.epochs):
         t0 = time.time()
         losses = []
@@ -169,6 +187,9 @@ def main(argv=None):
         os.replace(tmp, latest)
         save_model(os.path.join(args.out, "model.afnw"), model.cpu())
         model.to(device)
+        if args.minutes and time.time() - run_start > args.minutes * 60.0:
+            print(f"time limit of {args.minutes} minutes reached after epoch {epoch + 1}", flush=True)
+            break
 
 
 if __name__ == "__main__":

@@ -59,3 +59,28 @@ def test_train_resume_and_export(tmp_path):
     export.main([out, "-o", str(tmp_path / "m.afnw")])
     model = load_model(str(tmp_path / "m.afnw"))
     assert model.cfg.enc == (4, 4, 4)
+
+
+def test_time_limit_and_init(tmp_path):
+    if not os.path.exists(os.path.join(SEQUENCE, "frame.0000.exr")):
+        pytest.skip("examples/sequence not present")
+    tiny = ["--data", SEQUENCE, "--steps", "1", "--batch", "2", "--crop", "32", "--max-frames", "2",
+            "--enc", "4,4,4", "--dec", "4,4", "--refine", "4", "--device", "cpu"]
+    first = str(tmp_path / "first")
+    # A limit already passed after the first epoch: exactly one epoch of the 50 asked for runs.
+    train.main(tiny + ["--out", first, "--epochs", "50", "--minutes", "1e-9"])
+    assert len(open(os.path.join(first, "log.csv")).read().splitlines()) == 2
+    # --init starts a new run from those weights (here the checkpoint; .afnw below).
+    start = load_model(os.path.join(first, "model.afnw"))
+    fresh = str(tmp_path / "fresh")
+    train.main(tiny + ["--out", fresh, "--epochs", "1", "--seed", "5", "--init",
+                       os.path.join(first, "checkpoints", "latest.pt")])
+    tuned = load_model(os.path.join(fresh, "model.afnw"))
+    a, b = start.state_dict(), tuned.state_dict()
+    assert a.keys() == b.keys()
+    # One Adam step at lr 1e-3 moves every weight by at most ~1e-3 from where it started.
+    assert max((a[k] - b[k]).abs().max().item() for k in a) < 5e-3
+    with pytest.raises(RuntimeError):  # another architecture is refused
+        train.main(tiny[:-6] + ["--enc", "8,8,8", "--dec", "4,4", "--refine", "4", "--device", "cpu",
+                                "--out", str(tmp_path / "bad"), "--epochs", "1", "--init",
+                                os.path.join(first, "model.afnw")])
