@@ -1,0 +1,387 @@
+# SPDX-License-Identifier: Apache-2.0
+"""Accuracy tables of afn against its baselines on held-out rendered scenes (paper Tables 1-4, 11).
+
+    cd training && /usr/bin/python3 -m afn.evaluate --data ../data/afn-default \\
+        --scenes moving_light,glass --weights results/eval-holdout/model.afnw \\
+        [--ablation full=a.afnw,fusion=b.afnw,1spp=c.afnw,ta=d.afnw] [--frames 0-15] \\
+        --out ../docs/afn-evaluation.md --json results.json
+
+For every scene and method (the noisy 1-spp input, ta, svgf, bmfr, afn) it runs one afntool command,
+``afntool --frames F DATA/scene/frame.####.exr [--denoise:method=M] --compare
+DATA/scene/reference.####.exr --json``: the denoised frames are scored in memory (no files are
+written; docs/metrics.md states the metrics). A sequence's value is the mean over its frames, the
+Average row the mean over scenes. A method that fails (e.g. afn without weights) is shown as "—"
+with afntool's error in a footnote. Progress goes to stderr.
+"""
+
+import argparse
+import datetime
+import glob
+import hashlib
+import json
+import math
+import os
+import shlex
+import subprocess
+import sys
+import time
+
+from .weights import WeightsFormatError, loads
+
+REPO = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+METHODS = [("noisy", "Noisy (1 spp)"), ("ta", "TA"), ("svgf", "SVGF"), ("bmfr", "BMFR"),
+           ("afn", "AFN")]
+# (afntool JSON key, table title, higher is better, format)
+METRICS = [("psnr", "PSNR (dB)", True, "{:.3f}"), ("ssim", "SSIM", True, "{:.4f}"),
+           ("rmse", "RMSE", False, "{:.4f}"), ("smape", "SMAPE", False, "{:.4f}")]
+TEMPORAL = ("tge", "Temporal-gradient error", False, "{:.5f}")
+# Ablation variants in the order of the paper's Table 11.
+VARIANTS = [("1spp", "1-spp only"), ("ta", "TA-1spp only"), ("fusion", "Fusion only"),
+            ("full", "Fusion + refinement")]
+
+
+def log(msg):
+    print(f"afn.evaluate: {msg}", file=sys.stderr, flush=True)
+
+
+def find_afntool():
+    """Newest ../build*/cli/afntool next to training/, or None."""
+    found = [p for p in glob.glob(os.path.join(REPO, "build*", "cli", "afntool"))
+             if os.path.isfile(p) and os.access(p, os.X_OK)]
+    return max(found, key=os.path.getmtime) if found else None
+
+
+def sha256(path):
+    h = hashlib.sha256()
+    with open(path, "rb") as f:
+        for block in iter(lambda: f.read(1 << 20), b""):
+            h.update(block)
+    return h.hexdigest()
+
+
+def weights_info(path):
+    """Path, sha256 and the variant written in the archive's metadata."""
+    info = {"path": path, "sha256": sha256(path)}
+    try:
+        with open(path, "rb") as f:
+            info["variant"] = loads(f.read())[1].get("variant", "full")
+    except WeightsFormatError as e:
+        info["variant"] = None
+        info["error"] = str(e)
+    return info
+
+
+def frames_found(scene_dir):
+    """Frame numbers that have both a 1-spp frame and a reference."""
+    nums = []
+    for p in glob.glob(os.path.join(scene_dir, "frame.[0-9][0-9][0-9][0-9].exr")):
+        n = int(os.path.basename(p)[6:10])
+        if os.path.exists(os.path.join(scene_dir, f"reference.{n:04d}.exr")):
+            nums.append(n)
+    return sorted(nums)
+
+
+def frame_spec(nums):
+    """afntool --frames syntax: A-B when contiguous, else a comma list."""
+    if nums == list(range(nums[0], nums[-1] + 1)):
+        return f"{nums[0]}-{nums[-1]}"
+    return ",".join(map(str, nums))
+
+
+def afntool_command(args, scene, method, weights):
+    d = os.path.join(args.data, scene)
+    cmd = [args.afntool, "--threads", str(args.threads), "--frames", args.scene_frames[scene]]
+    if weights:
+        cmd += ["--weights", weights]
+    cmd.append(os.path.join(d, "frame.####.exr"))
+    if method != "noisy":
+        cmd.append(f"--denoise:method={method}")
+    return cmd + ["--compare", os.path.join(d, "reference.####.exr"), "--json"]
+
+
+def error_text(stderr):
+    """afntool's own error line(s), else the last line of its stderr."""
+    lines = [ln.strip() for ln in stderr.splitlines() if ln.strip()]
+    errs = [ln for ln in lines if "ERROR" in ln]
+    return " ".join(errs or lines[-1:]) or "no message"
+
+
+def run_one(args, scene, method, weights=None, label=None):
+    """Metrics of one method on one scene: {'mean', 'frames', 'seconds'} or {'error'}."""
+    cmd = afntool_command(args, scene, method, weights)
+    label = label or method
+    t0 = time.time()
+    try:
+        p = subprocess.run(cmd, check=True, capture_output=True, text=True)
+    except subprocess.CalledProcessError as e:
+        msg = f"afntool exited with {e.returncode}: {error_text(e.stderr)}"
+        log(f"{scene}: {label} FAILED: {msg}")
+        return {"error": msg, "command": shlex.join(cmd)}
+    try:
+        out = json.loads(p.stdout)
+    except json.JSONDecodeError as e:
+        msg = f"afntool printed no JSON ({e}): {p.stdout[:200]!r}"
+        log(f"{scene}: {label} FAILED: {msg}")
+        return {"error": msg, "command": shlex.join(cmd)}
+    dt = time.time() - t0
+    psnr = out["mean"].get("psnr")
+    log(f"{scene}: {label:12s} {len(out['frames'])} frames, PSNR "
+        f"{'null' if psnr is None else f'{psnr:.3f}'} dB ({dt:.1f} s)")
+    return {"mean": out["mean"], "frames": out["frames"], "seconds": round(dt, 3),
+            "command": shlex.join(cmd)}
+
+
+def average(results, scenes, key):
+    """Mean over scenes of each metric (None where a scene has null); {'error'} if one failed."""
+    runs = [results[s].get(key) for s in scenes]
+    failed = [s for s, r in zip(scenes, runs) if r is None or "error" in r]
+    if failed:
+        return {"error": "no average: failed on " + ", ".join(f"`{s}`" for s in failed)}
+    avg = {}
+    for name in runs[0]["mean"]:
+        vals = [r["mean"].get(name) for r in runs]
+        avg[name] = None if any(v is None for v in vals) else sum(vals) / len(vals)
+    return avg
+
+
+def evaluate(args):
+    results = {s: {} for s in args.scenes}
+    for scene in args.scenes:
+        for method, _ in METHODS:
+            results[scene][method] = run_one(args, scene, method,
+                                             args.weights if method == "afn" else None)
+        for variant, path in args.ablation.items():
+            if args.weights and os.path.realpath(path) == os.path.realpath(args.weights):
+                results[scene]["ablation:" + variant] = results[scene]["afn"]   # same run
+            else:
+                results[scene]["ablation:" + variant] = run_one(args, scene, "afn", path,
+                                                                f"afn[{variant}]")
+    keys = [m for m, _ in METHODS] + ["ablation:" + v for v in args.ablation]
+    averages = {k: average(results, args.scenes, k) for k in keys}
+    return results, averages
+
+
+# ---- markdown -----------------------------------------------------------------------------------
+
+class Notes:
+    """GitHub-style footnotes, one per distinct error text."""
+
+    def __init__(self):
+        self.texts = []
+
+    def ref(self, text):
+        if text not in self.texts:
+            self.texts.append(text)
+        return f"[^{self.texts.index(text) + 1}]"
+
+    def lines(self):
+        return [f"[^{i + 1}]: {t}" for i, t in enumerate(self.texts)]
+
+
+def cell_value(run, name):
+    """The number shown in a table cell, or None."""
+    if run is None or "error" in run:
+        return None
+    v = run["mean"].get(name) if "mean" in run else run.get(name)
+    return None if v is None or not math.isfinite(v) else v
+
+
+def best_flags(values, fmt, higher):
+    """Bold flags: the best value at display precision (ties all bold)."""
+    shown = [None if v is None else float(fmt.format(v)) for v in values]
+    present = [v for v in shown if v is not None]
+    if not present:
+        return [False] * len(values)
+    best = max(present) if higher else min(present)
+    return [v == best for v in shown]
+
+
+def cells(runs, name, fmt, higher, notes, labels):
+    values = [cell_value(r, name) for r in runs]
+    out = []
+    for run, v, bold, label in zip(runs, values, best_flags(values, fmt, higher), labels):
+        if v is not None:
+            out.append(f"**{fmt.format(v)}**" if bold else fmt.format(v))
+        elif run is not None and "error" in run:
+            out.append("—" + notes.ref(f"{label}: {run['error']}"))
+        else:
+            out.append("—" + notes.ref("null in afntool's JSON (a NaN or infinite value) in at "
+                                       "least one frame or scene"))
+    return out
+
+
+def table(header, rows):
+    lines = ["| " + " | ".join(header) + " |", "|" + "---|" * len(header)]
+    return lines + ["| " + " | ".join(r) + " |" for r in rows]
+
+
+def metric_table(metric, results, averages, scenes, notes):
+    key, title, higher, fmt = metric
+    labels = [label for _, label in METHODS]
+    rows = []
+    for scene in scenes:
+        runs = [results[scene][m] for m, _ in METHODS]
+        rows.append([f"`{scene}`"] + cells(runs, key, fmt, higher, notes, labels))
+    avg = [averages[m] for m, _ in METHODS]
+    rows.append(["Average"] + cells(avg, key, fmt, higher, notes, labels))
+    arrow = "higher is better" if higher else "lower is better"
+    return [f"### {title}", "", f"({arrow}; best per row in bold)", ""] + \
+        table(["Scene"] + labels, rows) + [""]
+
+
+def ablation_table(results, averages, scenes, args, notes):
+    variants = [(v, label) for v, label in VARIANTS if v in args.ablation]
+    keys = ["ablation:" + v for v, _ in variants]
+    labels = [label for _, label in variants]
+    cols = []   # one column of cells per metric, then per scene PSNR
+    for key, _, higher, fmt in METRICS:
+        cols.append(cells([averages[k] for k in keys], key, fmt, higher, notes, labels))
+    for scene in scenes:
+        cols.append(cells([results[scene][k] for k in keys], "psnr", "{:.3f}", True, notes,
+                          labels))
+    header = ["Variant"] + [f"{t} (avg)" for _, t, _, _ in METRICS] + \
+        [f"PSNR `{s}`" for s in scenes]
+    rows = [[f"{label} (`{os.path.basename(args.ablation[v])}`)"] + [c[i] for c in cols]
+            for i, (v, label) in enumerate(variants)]
+    return ["### Ablation (paper Table 11): fusion and refinement", "",
+            "Averages over the held-out scenes; best per column in bold.", ""] + \
+        table(header, rows) + [""]
+
+
+def weights_line(info):
+    s = f"`{info['path']}` (sha256 `{info['sha256'][:12]}`, variant `{info['variant']}`)"
+    return s + (f" — {info['error']}" if "error" in info else "")
+
+
+def header_lines(args, meta):
+    lines = ["# afn evaluation: accuracy on held-out scenes", "",
+             f"Generated {meta['date']} by:", "", "```sh", meta["command"], "```", "",
+             f"- Data: `{args.data}` — {meta['data']}",
+             f"- Held-out scenes: {', '.join(f'`{s}`' for s in args.scenes)}",
+             "- Frames: " + ", ".join(f"`{s}` {args.scene_frames[s]}" for s in args.scenes),
+             f"- afntool: `{args.afntool}` ({meta['afntool_version']})",
+             "- AFN weights: " + (weights_line(meta["weights"]) if meta["weights"] else
+                                  "none given (the library's built-in weights, if any)")]
+    for v, info in meta["ablation"].items():
+        lines.append(f"- Ablation `{v}`: " + weights_line(info))
+        if info["variant"] is None:
+            lines.append("  - **warning**: the archive could not be read")
+        elif info["variant"] != v:
+            lines.append(f"  - **warning**: the archive says variant `{info['variant']}`, "
+                         f"not `{v}`")
+    lines += ["", "Metrics as `afntool --compare` computes them (docs/metrics.md): PSNR, SSIM and "
+              "RMSE on the tone-mapped T(x) = clip(max(x,0)^(1/2.2), 0, 1), SMAPE on linear "
+              "values (eps 1e-3). Each scene's value is the mean over its frames; Average is "
+              "the mean over scenes. TA, SVGF and BMFR use afntool's default parameters.", ""]
+    return lines
+
+
+def markdown(args, meta, results, averages):
+    notes = Notes()
+    body = []
+    for metric in METRICS:
+        body += metric_table(metric, results, averages, args.scenes, notes)
+    if any(cell_value(averages[m], "tge") is not None for m, _ in METHODS):
+        body += metric_table(TEMPORAL, results, averages, args.scenes, notes)
+    if args.ablation:
+        body += ablation_table(results, averages, args.scenes, args, notes)
+    foot = ["Notes:", ""] + notes.lines() if notes.texts else []
+    return "\n".join(header_lines(args, meta) + body + foot) + "\n"
+
+
+# ---- command line -------------------------------------------------------------------------------
+
+def parse_ablation(text):
+    out = {}
+    for item in filter(None, text.split(",")):
+        name, sep, path = item.partition("=")
+        if not sep or name not in dict(VARIANTS) or not path:
+            raise SystemExit(f"afn.evaluate: --ablation expects VARIANT=FILE with VARIANT in "
+                             f"{', '.join(v for v, _ in VARIANTS)}; got '{item}'")
+        out[name] = path
+    return out
+
+
+def check_inputs(args):
+    if not args.afntool or not os.path.isfile(args.afntool):
+        raise SystemExit("afn.evaluate: afntool not found (build it, or give --afntool PATH); "
+                         f"looked in {os.path.join(REPO, 'build*', 'cli')}")
+    for path in ([args.weights] if args.weights else []) + list(args.ablation.values()):
+        if not os.path.isfile(path):
+            raise SystemExit(f"afn.evaluate: weights file not found: {path}")
+    args.scene_frames = {}
+    for scene in args.scenes:
+        d = os.path.join(args.data, scene)
+        nums = frames_found(d)
+        if not nums:
+            raise SystemExit(f"afn.evaluate: no frame.NNNN.exr with a reference.NNNN.exr in {d}")
+        args.scene_frames[scene] = args.frames or frame_spec(nums)
+
+
+def data_summary(data):
+    path = os.path.join(data, "manifest.json")
+    if not os.path.exists(path):
+        return "no manifest.json"
+    with open(path) as f:
+        m = json.load(f)
+    size = f"{m['width']}x{m['height']}, " if "width" in m and "height" in m else ""
+    keys = ["frames", "spp", "ref_spp", "seed", "blender"]
+    return size + ", ".join(f"{k} {m[k]}" for k in keys if k in m)
+
+
+def afntool_version(afntool):
+    try:
+        p = subprocess.run([afntool, "--version"], check=True, capture_output=True, text=True)
+        return p.stdout.strip() or p.stderr.strip()
+    except (OSError, subprocess.CalledProcessError) as e:
+        return f"version unknown: {e}"
+
+
+def main(argv=None):
+    argv = sys.argv[1:] if argv is None else list(argv)
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--data", required=True, help="rendered dataset folder (docs/dataset.md)")
+    ap.add_argument("--scenes", required=True, help="comma list of held-out scenes")
+    ap.add_argument("--afntool", default=None, help="afntool binary (default: ../build*/cli)")
+    ap.add_argument("--weights", default="", help="afn weights (.afnw) that never saw the scenes")
+    ap.add_argument("--ablation", default="",
+                    help="variant weights: full=a.afnw,fusion=b.afnw,1spp=c.afnw,ta=d.afnw")
+    ap.add_argument("--frames", default="", help="frame range A-B (default: all frames found)")
+    ap.add_argument("--threads", type=int, default=0, help="afntool threads (0: all cores)")
+    ap.add_argument("--out", default="", help="markdown report (default: print to stdout)")
+    ap.add_argument("--json", default="", help="raw numbers (per frame and mean) as JSON")
+    args = ap.parse_args(argv)
+    args.scenes = [s for s in args.scenes.split(",") if s]
+    args.ablation = parse_ablation(args.ablation)
+    args.afntool = args.afntool or find_afntool()
+    check_inputs(args)
+
+    meta = {"date": datetime.datetime.now(datetime.timezone.utc).strftime("%Y-%m-%d %H:%M UTC"),
+            "command": "cd training && " + shlex.join([sys.executable, "-m", "afn.evaluate"] +
+                                                      argv),
+            "data": data_summary(args.data), "afntool_version": afntool_version(args.afntool),
+            "weights": weights_info(args.weights) if args.weights else None,
+            "ablation": {v: weights_info(p) for v, p in args.ablation.items()}}
+    log(f"{len(args.scenes)} scenes x {len(METHODS) + len(args.ablation)} runs, "
+        f"afntool {args.afntool}")
+    results, averages = evaluate(args)
+
+    text = markdown(args, meta, results, averages)
+    if args.out:
+        os.makedirs(os.path.dirname(os.path.abspath(args.out)), exist_ok=True)
+        with open(args.out, "w") as f:
+            f.write(text)
+        log(f"wrote {args.out}")
+    else:
+        sys.stdout.write(text)
+    if args.json:
+        doc = dict(meta, data_path=args.data, scenes=args.scenes, frames=args.scene_frames,
+                   afntool=args.afntool, results=results, average=averages)
+        with open(args.json, "w") as f:
+            json.dump(doc, f, indent=1, allow_nan=False, default=str)
+        log(f"wrote {args.json}")
+    return results, averages
+
+
+if __name__ == "__main__":
+    main()
