@@ -101,12 +101,27 @@ def validate(model, scenes, device, frames):
 
 
 def init_weights(model, path, device):
-    """Load a state_dict from a .afnw archive or a training checkpoint into ``model``."""
+    """Load a state_dict from a .afnw archive or a training checkpoint into ``model``: every tensor
+    the model has (same name, same shape required); tensors the source lacks (e.g. the refinement
+    when going from the "fusion" variant to "full") keep their fresh initialisation."""
     if path.endswith(".afnw"):
         state = load_model(path).state_dict()
     else:
         state = torch.load(path, map_location=device)["model"]
-    model.load_state_dict(state)  # strict: the architectures must match
+    own = model.state_dict()
+    shared = {k: v for k, v in state.items() if k in own}
+    for k, v in shared.items():
+        if v.shape != own[k].shape:
+            raise RuntimeError(f"--init {path}: {k} has shape {tuple(v.shape)}, the model "
+                               f"{tuple(own[k].shape)}")
+    if not shared:
+        raise RuntimeError(f"--init {path}: no tensor in common with this model")
+    # Another ablation variant shares the kernel-prediction tensors; the rest keeps its init.
+    model.load_state_dict(shared, strict=False)
+    fresh = sorted(set(own) - set(shared))
+    if fresh:
+        print(f"--init: {len(shared)} tensors loaded, {len(fresh)} freshly initialised: "
+              f"{', '.join(fresh)}", flush=True)
 
 
 def main(argv=None):

@@ -84,3 +84,30 @@ def test_time_limit_and_init(tmp_path):
         train.main(tiny[:-6] + ["--enc", "8,8,8", "--dec", "4,4", "--refine", "4", "--device", "cpu",
                                 "--out", str(tmp_path / "bad"), "--epochs", "1", "--init",
                                 os.path.join(first, "model.afnw")])
+
+
+def test_init_across_ablation_variants(tmp_path):
+    import torch
+    from afn.model import AFN, AFNConfig
+    small = dict(enc=(4, 4, 4), dec=(4, 4), refine=4)
+    full = AFN(AFNConfig(variant="full", **small))
+    fusion = AFN(AFNConfig(variant="fusion", **small))
+    train.init_weights(fusion, _save(full, tmp_path / "full.afnw"), "cpu")
+    for k, v in fusion.state_dict().items():        # every fusion tensor comes from the full model
+        assert torch.equal(v, full.state_dict()[k]), k
+    back = AFN(AFNConfig(variant="full", **small))
+    before = {k: v.clone() for k, v in back.state_dict().items()}
+    train.init_weights(back, _save(fusion, tmp_path / "fusion.afnw"), "cpu")
+    for k, v in back.state_dict().items():          # refinement keeps its own initialisation
+        src = fusion.state_dict().get(k)
+        assert torch.equal(v, src if src is not None else before[k]), k
+    assert any(k not in fusion.state_dict() for k in back.state_dict())
+    wide = AFN(AFNConfig(variant="full", enc=(8, 4, 4), dec=(4, 4), refine=4))
+    with pytest.raises(RuntimeError, match="shape"):
+        train.init_weights(wide, str(tmp_path / "full.afnw"), "cpu")
+
+
+def _save(model, path):
+    from afn.weights import save_model
+    save_model(str(path), model)
+    return str(path)
