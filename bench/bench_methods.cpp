@@ -1,7 +1,10 @@
 // SPDX-License-Identifier: Apache-2.0
-// ms per frame of "ta", "svgf" and "bmfr" at 1280x720 on a synthetic moving sequence with warm
-// history (colour, albedo, normal, world position, motion). Run:
+// ms per frame of "ta", "svgf", "bmfr" and (when the build embeds trained weights) the whole "afn"
+// filter at 1280x720 on a synthetic moving sequence with warm history (colour, albedo, normal,
+// world position, motion). Run:
 //   bench_methods --benchmark_repetitions=5 --benchmark_report_aggregates_only=true
+// bench_afn_vs_methods (bench/afn.cmake) links this file with bench_afn.cpp, so that AFN's stages
+// and these methods are measured in one run (AFN_BENCH_NO_MAIN leaves out this file's main).
 #include "core/filter_registry.h"
 
 #include <benchmark/benchmark.h>
@@ -88,6 +91,12 @@ void runMethod(benchmark::State& state, const char* method)
     state.SetLabel(std::string(method) + " 1280x720");
 }
 
+bool afnHasWeights()
+{
+    const afn::FilterType* t = afn::findFilterType("afn");
+    return t && t->description.find("embeds trained weights") != std::string::npos;
+}
+
 void BM_ta(benchmark::State& s)
 {
     runMethod(s, "ta");
@@ -101,10 +110,22 @@ void BM_bmfr(benchmark::State& s)
     runMethod(s, "bmfr");
 }
 
+void BM_afn(benchmark::State& s)
+{
+    if (!afnHasWeights()) {
+        s.SkipWithError("this build embeds no AFN weights");
+        return;
+    }
+    runMethod(s, "afn");
+}
+
 BENCHMARK(BM_ta)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_svgf)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_bmfr)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_afn)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 } // namespace
 
+#ifndef AFN_BENCH_NO_MAIN
 BENCHMARK_MAIN();
+#endif

@@ -99,8 +99,13 @@ FilterType afnFilterType()
     FilterType t;
     t.name = "afn";
     t.description = "Adaptive Fusion Network (Lee et al.): kernel-predicting network fusing the "
-                    "1-spp frame and its BMFR temporal accumulation; needs trained weights "
-                    "(embedded, or set with the 'weights' data parameter)";
+                    "1-spp frame and its BMFR temporal accumulation; "
+#ifdef AFN_HAS_EMBEDDED_WEIGHTS
+                    "this build embeds trained weights (the 'weights' data parameter overrides)";
+#else
+                    "needs trained weights: this build embeds none, set them with the 'weights' "
+                    "data parameter";
+#endif
     t.params = { floatParam("alphaMin", 0.2, 0.0, 1.0, "Minimum blend factor",
         "temporal accumulation of the TA-1spp input: weight of the current frame "
         "once the history is long (BMFR: 0.2)") };

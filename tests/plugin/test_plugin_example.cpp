@@ -12,6 +12,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 
 namespace fs = std::filesystem;
@@ -109,9 +110,13 @@ TEST(PluginExample, MatchesAfntoolOnTheExampleSequence)
     fs::create_directories(out);
     const std::vector<std::string> types = afn::filterTypes();
     int compared = 0;
-    for (const std::string m : { "svgf", "ta", "bmfr" }) {
+    for (const std::string m : { "afn", "svgf", "ta", "bmfr" }) {
         if (std::find(types.begin(), types.end(), m) == types.end())
             continue;
+        const char* desc = afnGetFilterTypeDescription(m.c_str());
+        if (m == "afn" && !std::strstr(desc ? desc : "", "embeds trained weights"))
+            continue; // this build ships no AFN weights: the plugin cannot run afn
+
         SCOPED_TRACE("method " + m);
         const std::string outPattern = (out / (m + ".####.exr")).string();
         const std::string cmd = std::string("'") + AFNTOOL_PATH + "' -q --frames 0-"
