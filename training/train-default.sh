@@ -1,0 +1,53 @@
+#!/usr/bin/env bash
+# The default AFN training protocol on a dataset made by training/render-dataset (docs/dataset.md),
+# sized for a 2-core CPU (a few hours in all); the same commands run on a GPU with --device cuda.
+#
+#   cd training && bash train-default.sh [DATA] [RESULTS]      (defaults ../data/afn-default, results)
+#
+# 1. eval-full:  the evaluation model (variant "full"); never sees the held-out scenes
+#                (AFN_HOLDOUT, default moving_light,glass); AFN_EVAL_MINUTES of training.
+# 2. ablation:   the four variants of the paper's Table 11 (1spp, ta, fusion, full), each started
+#                from eval-full's weights (the tensors it shares) and trained AFN_ABLATION_EPOCHS
+#                more epochs on the same scenes: an equal budget per variant.
+# 3. ship:       the shipped model, started from ablation/full and trained AFN_SHIP_MINUTES on every
+#                scene (the held-out ones included), exported to ../weights/afn.afnw.
+# 4. the tables: docs/afn-evaluation.md from the held-out scenes (ablation/full is the AFN column).
+# A finished step is skipped when rerun (RESULTS/NAME/DONE); an interrupted one resumes from its
+# checkpoint. Logs: RESULTS/NAME.log (and RESULTS/NAME/log.csv per epoch).
+set -euo pipefail
+cd "$(dirname "$0")"
+DATA=${1:-../data/afn-default}
+OUT=${2:-results}
+HOLDOUT=${AFN_HOLDOUT:-moving_light,glass}
+PY=/usr/bin/python3
+THREADS=${AFN_THREADS:-0}
+common=(--data "$DATA" --threads "$THREADS")
+mkdir -p "$OUT"
+# step NAME ARGS...: train into $OUT/NAME unless it finished before ($OUT/NAME/DONE)
+step() {
+  local name=$1; shift
+  if [ -f "$OUT/$name/DONE" ]; then echo "   $name: done before"; return; fi
+  $PY -m afn.train "${common[@]}" --out "$OUT/$name" "$@" 2>&1 | tee -a "$OUT/$name.log"
+  touch "$OUT/$name/DONE"
+}
+
+echo "== 1. eval-full (held out: $HOLDOUT)"
+step eval-full --holdout "$HOLDOUT" --minutes "${AFN_EVAL_MINUTES:-45}"
+
+echo "== 2. ablation"
+E=${AFN_ABLATION_EPOCHS:-12}
+for v in full fusion 1spp ta; do
+  step "ablation-$v" --holdout "$HOLDOUT" --variant "$v" --init "$OUT/eval-full/model.afnw" \
+      --epochs "$E"
+done
+
+echo "== 3. ship (all scenes)"
+step ship --init "$OUT/ablation-full/model.afnw" --minutes "${AFN_SHIP_MINUTES:-10}"
+$PY -m afn.export "$OUT/ship" -o ../weights/afn.afnw
+
+echo "== 4. tables"
+AFNTOOL=${AFNTOOL:-../build/cli/afntool}
+$PY -m afn.evaluate --data "$DATA" --scenes "$HOLDOUT" --afntool "$AFNTOOL" \
+    --weights "$OUT/ablation-full/model.afnw" \
+    --ablation "full=$OUT/ablation-full/model.afnw,fusion=$OUT/ablation-fusion/model.afnw,1spp=$OUT/ablation-1spp/model.afnw,ta=$OUT/ablation-ta/model.afnw" \
+    --out ../docs/afn-evaluation.md --json ../docs/afn-evaluation.json
