@@ -32,7 +32,32 @@ def tonemap(x: torch.Tensor) -> torch.Tensor:
     Returns:
         Same shape, in [0, 1]: ``clip(max(x, 0) ** (1/2.2), 0, 1)``.
     """
-    return torch.clamp(torch.clamp(x, min=0.0) ** (1.0 / GAMMA), 0.0, 1.0)
+    return _Tonemap.apply(x)
+
+
+TONEMAP_GRAD_FLOOR = 1e-4       # the derivative of x^(1/2.2) is taken at max(x, this) (see below)
+
+
+class _Tonemap(torch.autograd.Function):
+    """T(x) with the exact forward value and a bounded derivative.
+
+    The plain composition clamp -> pow -> clamp has an infinite derivative at x = 0 and turns it
+    into NaN (inf * 0) for x <= 0; the refinement input T(i) depends on the network, so one such
+    pixel poisons the whole gradient. Here dT/dx = x_f^(1/2.2 - 1) / 2.2 with x_f = max(x, 1e-4)
+    for 0 < x < 1 (at most ~68), and 0 elsewhere, the forward value is unchanged (C++ parity).
+    """
+
+    @staticmethod
+    def forward(ctx, x):
+        ctx.save_for_backward(x)
+        return torch.clamp(torch.clamp(x, min=0.0) ** (1.0 / GAMMA), 0.0, 1.0)
+
+    @staticmethod
+    def backward(ctx, grad):
+        (x,) = ctx.saved_tensors
+        xf = torch.clamp(x, min=TONEMAP_GRAD_FLOOR)
+        d = xf ** (1.0 / GAMMA - 1.0) / GAMMA
+        return grad * torch.where((x > 0) & (x < 1), d, torch.zeros_like(d))
 
 
 def demodulate(color: np.ndarray, albedo: np.ndarray) -> np.ndarray:

@@ -181,12 +181,17 @@ def main(argv=None):
     run_start = time.time()
     for epoch in range(start, args.epochs):
         t0 = time.time()
-        losses = []
+        losses, skipped = [], 0
         for _ in range(steps):
             batch = to_tensors(sampler.batch(args.batch), device)
             loss = smape(forward(model, batch), batch["target"])
             opt.zero_grad(set_to_none=True)
             loss.backward()
+            grads_ok = all(torch.isfinite(p.grad).all() for p in model.parameters()
+                           if p.grad is not None)
+            if not (torch.isfinite(loss) and grads_ok):
+                skipped += 1          # never let one bad batch poison the weights
+                continue
             opt.step()
             losses.append(loss.item())
         vp, vs = validate(model, val, device, args.val_frames)
@@ -194,7 +199,8 @@ def main(argv=None):
         with open(log_path, "a") as f:
             f.write(f"{epoch + 1},{np.mean(losses):.6f},{vp:.4f},{vs:.6f},{dt:.1f}\n")
         print(f"epoch {epoch + 1}/{args.epochs}: train SMAPE {np.mean(losses):.5f}, "
-              f"val PSNR {vp:.3f} dB, val SMAPE {vs:.5f} ({dt:.1f} s)", flush=True)
+              f"val PSNR {vp:.3f} dB, val SMAPE {vs:.5f} ({dt:.1f} s)"
+              + (f", {skipped} non-finite batches skipped" if skipped else ""), flush=True)
         tmp = latest + ".tmp"
         torch.save({"model": model.state_dict(), "optimizer": opt.state_dict(), "epoch": epoch + 1,
                     "config": cfg.to_dict(), "sampler_rng": sampler.rng.get_state(),

@@ -135,3 +135,16 @@ def test_smape_and_tonemap_hand_values():
     assert abs(float(smape(o, t)) - (2 / 4.001) / 3) < 1e-7
     x = torch.tensor([-1.0, 0.0, 2.0 ** -2.2, 4.0])
     assert torch.allclose(tonemap(x), torch.tensor([0.0, 0.0, 0.5, 1.0]))
+
+
+def test_tonemap_gradient_is_finite_and_bounded():
+    import torch
+    from afn import color
+    x = torch.tensor([-1.0, 0.0, 1e-30, 1e-6, 0.5, 1.0, 3.0], requires_grad=True)
+    y = color.tonemap(x)
+    assert torch.equal(y.detach(), torch.clamp(torch.clamp(x.detach(), min=0) ** (1 / 2.2), 0, 1))
+    y.sum().backward()
+    g = x.grad
+    assert torch.isfinite(g).all() and g.max() < 100
+    assert g[0] == 0 and g[1] == 0 and g[5] == 0 and g[6] == 0       # outside (0, 1): flat
+    assert torch.isclose(g[4], torch.tensor(0.5 ** (1 / 2.2 - 1) / 2.2))  # exact inside
