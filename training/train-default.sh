@@ -8,9 +8,10 @@
 #                (AFN_HOLDOUT, default moving_light,glass); AFN_EVAL_MINUTES of training.
 # 2. ablation:   the four variants of the paper's Table 11 (1spp, ta, fusion, full), each started
 #                from eval-full's weights (the tensors it shares) and trained AFN_ABLATION_EPOCHS
-#                more epochs on the same scenes: an equal budget per variant.
+#                more epochs on the same scenes at lr 3e-4 (a learning-rate decay step): an equal
+#                budget per variant. ablation-full is the evaluation model of the tables.
 # 3. ship:       the shipped model, started from ablation/full and trained AFN_SHIP_MINUTES on every
-#                scene (the held-out ones included), exported to ../weights/afn.afnw.
+#                scene (the held-out ones included) at lr 3e-4, exported to ../weights/afn.afnw.
 # 4. the tables: docs/afn-evaluation.md from the held-out scenes (ablation/full is the AFN column).
 # A finished step is skipped when rerun (RESULTS/NAME/DONE); an interrupted one resumes from its
 # checkpoint. Logs: RESULTS/NAME.log (and RESULTS/NAME/log.csv per epoch).
@@ -32,17 +33,17 @@ step() {
 }
 
 echo "== 1. eval-full (held out: $HOLDOUT)"
-step eval-full --holdout "$HOLDOUT" --minutes "${AFN_EVAL_MINUTES:-45}"
+step eval-full --holdout "$HOLDOUT" --minutes "${AFN_EVAL_MINUTES:-40}"
 
 echo "== 2. ablation"
-E=${AFN_ABLATION_EPOCHS:-12}
+E=${AFN_ABLATION_EPOCHS:-10}
 for v in full fusion 1spp ta; do
   step "ablation-$v" --holdout "$HOLDOUT" --variant "$v" --init "$OUT/eval-full/model.afnw" \
-      --epochs "$E"
+      --epochs "$E" --lr 3e-4
 done
 
 echo "== 3. ship (all scenes)"
-step ship --init "$OUT/ablation-full/model.afnw" --minutes "${AFN_SHIP_MINUTES:-10}"
+step ship --init "$OUT/ablation-full/model.afnw" --minutes "${AFN_SHIP_MINUTES:-10}" --lr 3e-4
 $PY -m afn.export "$OUT/ship" -o ../weights/afn.afnw
 
 echo "== 4. tables"
