@@ -36,14 +36,14 @@ echo "== 1. eval-full (held out: $HOLDOUT)"
 step eval-full --holdout "$HOLDOUT" --minutes "${AFN_EVAL_MINUTES:-40}"
 
 echo "== 2. ablation"
-E=${AFN_ABLATION_EPOCHS:-10}
+E=${AFN_ABLATION_EPOCHS:-6}
 for v in full fusion 1spp ta; do
   step "ablation-$v" --holdout "$HOLDOUT" --variant "$v" --init "$OUT/eval-full/model.afnw" \
       --epochs "$E" --lr 3e-4
 done
 
 echo "== 3. ship (all scenes)"
-step ship --init "$OUT/ablation-full/model.afnw" --minutes "${AFN_SHIP_MINUTES:-10}" --lr 3e-4
+step ship --init "$OUT/ablation-full/model.afnw" --minutes "${AFN_SHIP_MINUTES:-8}" --lr 3e-4
 $PY -m afn.export "$OUT/ship" -o ../weights/afn.afnw
 
 echo "== 4. tables"

@@ -241,7 +241,10 @@ def ablation_table(results, averages, scenes, args, notes):
                           labels))
     header = ["Variant"] + [f"{t} (avg)" for _, t, _, _ in METRICS] + \
         [f"PSNR `{s}`" for s in scenes]
-    rows = [[f"{label} (`{os.path.basename(args.ablation[v])}`)"] + [c[i] for c in cols]
+
+    def where(path):  # the results folder names the run; the file is always model.afnw
+        return os.path.basename(os.path.dirname(os.path.abspath(path)))
+    rows = [[f"{label} (`{where(args.ablation[v])}`)"] + [c[i] for c in cols]
             for i, (v, label) in enumerate(variants)]
     return ["### Ablation (paper Table 11): fusion and refinement", "",
             "Averages over the held-out scenes; best per column in bold.", ""] + \
