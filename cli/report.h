@@ -91,6 +91,8 @@ struct BenchmarkReport {
 
 /// Median of a list of times (0 for an empty list).
 double median(std::vector<double> values);
+/// Text with <, >, & and " escaped for HTML and SVG.
+std::string escapeXml(const std::string& s);
 /// CPU time of this process so far (every thread), milliseconds.
 double processCpuMs();
 

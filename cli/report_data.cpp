@@ -82,6 +82,30 @@ double median(std::vector<double> values)
     return n % 2 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
 }
 
+std::string escapeXml(const std::string& s)
+{
+    std::string o;
+    for (char c : s) {
+        switch (c) {
+        case '<':
+            o += "&lt;";
+            break;
+        case '>':
+            o += "&gt;";
+            break;
+        case '&':
+            o += "&amp;";
+            break;
+        case '"':
+            o += "&quot;";
+            break;
+        default:
+            o += c;
+        }
+    }
+    return o;
+}
+
 double processCpuMs()
 {
     timespec ts {};

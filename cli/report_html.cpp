@@ -11,30 +11,6 @@ namespace afntool {
 
 namespace {
 
-std::string esc(const std::string& s)
-{
-    std::string o;
-    for (char c : s) {
-        switch (c) {
-        case '<':
-            o += "&lt;";
-            break;
-        case '>':
-            o += "&gt;";
-            break;
-        case '&':
-            o += "&amp;";
-            break;
-        case '"':
-            o += "&quot;";
-            break;
-        default:
-            o += c;
-        }
-    }
-    return o;
-}
-
 std::string fmt(double v, const char* f)
 {
     if (std::isnan(v))
@@ -91,10 +67,10 @@ void summaryTable(std::ostringstream& h, const BenchmarkReport& r)
     h << "<table><tr><th class=l>method / setting</th><th>median ms/frame</th><th>mean ms</th>"
       << "<th>min ms</th><th>fps</th><th>median CPU ms</th>";
     for (const MetricColumn& c : cols)
-        h << "<th>" << esc(c.label) << "</th>";
+        h << "<th>" << escapeXml(c.label) << "</th>";
     h << "<th>Pareto</th></tr>\n";
     auto row = [&](const MethodResult& m, bool timed, bool pareto) {
-        h << "<tr><td class=l>" << esc(m.label) << "</td>";
+        h << "<tr><td class=l>" << escapeXml(m.label) << "</td>";
         if (timed)
             h << "<td>" << fmt(m.medianMs, "%.2f") << "</td><td>" << fmt(m.meanMs, "%.2f")
               << "</td><td>" << fmt(m.minMs, "%.2f") << "</td><td>"
@@ -119,11 +95,12 @@ void summaryTable(std::ostringstream& h, const BenchmarkReport& r)
 
 void frameTable(std::ostringstream& h, const MethodResult& m, bool timed)
 {
-    h << "<details><summary>" << esc(m.label) << ": per frame</summary><table><tr><th>frame</th>";
+    h << "<details><summary>" << escapeXml(m.label)
+      << ": per frame</summary><table><tr><th>frame</th>";
     if (timed)
         h << "<th>ms</th><th>CPU ms</th>";
     for (const MetricColumn& c : metricColumns())
-        h << "<th>" << esc(c.label) << "</th>";
+        h << "<th>" << escapeXml(c.label) << "</th>";
     h << "</tr>\n";
     for (const FrameResult& f : m.frames) {
         h << "<tr><td>" << f.frame << "</td>";
@@ -145,16 +122,16 @@ void writeIndexHtml(const std::string& dir, const BenchmarkReport& r)
     h << "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">\n"
       << "<title>afn benchmark: run time against error</title>\n"
       << kStyle << "</head><body>\n"
-      << "<h1>Run time against error</h1>\n<p>Input <code>" << esc(r.input)
-      << "</code>, references <code>" << esc(r.reference) << "</code>: " << r.width << "&times;"
-      << r.height << ", " << r.frameCount << " frame(s), each method run " << r.repeat
+      << "<h1>Run time against error</h1>\n<p>Input <code>" << escapeXml(r.input)
+      << "</code>, references <code>" << escapeXml(r.reference) << "</code>: " << r.width
+      << "&times;" << r.height << ", " << r.frameCount << " frame(s), each method run " << r.repeat
       << " time(s) over the sequence; threads: "
       << (r.threads > 0 ? std::to_string(r.threads) : "all") << " (" << r.hardwareThreads
       << " hardware threads). File I/O " << fmt(r.ioMsPerFrame, "%.1f")
       << " ms per frame (input + reference), not included in the times.</p>\n"
-      << "<p class=note>Command: <code>" << esc(r.commandLine) << "</code></p>\n";
+      << "<p class=note>Command: <code>" << escapeXml(r.commandLine) << "</code></p>\n";
     for (const std::string& w : r.warnings)
-        h << "<p class=note>Warning: " << esc(w) << "</p>\n";
+        h << "<p class=note>Warning: " << escapeXml(w) << "</p>\n";
 
     h << "<h2>Summary</h2>\n";
     summaryTable(h, r);
@@ -174,15 +151,15 @@ void writeIndexHtml(const std::string& dir, const BenchmarkReport& r)
 
     h << "<h2>Run time against error</h2>\n<p><img src=\"runtime-vs-error.svg\" alt=\"run time "
          "against "
-      << esc(metricColumn(r.errorMetric).label) << "\"></p>\n";
+      << escapeXml(metricColumn(r.errorMetric).label) << "\"></p>\n";
 
     for (const CropSet& c : r.crops) {
         h << "<h2>Frame " << c.frame << ": crop " << c.width << "&times;" << c.height << " at ("
           << c.x << ", " << c.y << ")</h2>\n<div class=crops>\n";
         for (const auto& [label, file] : c.images)
-            h << "<figure><img src=\"" << esc(file) << "\" width=\"" << 2 * c.width
-              << "\" height=\"" << 2 * c.height << "\" alt=\"" << esc(label) << "\"><figcaption>"
-              << esc(label) << "</figcaption></figure>\n";
+            h << "<figure><img src=\"" << escapeXml(file) << "\" width=\"" << 2 * c.width
+              << "\" height=\"" << 2 * c.height << "\" alt=\"" << escapeXml(label)
+              << "\"><figcaption>" << escapeXml(label) << "</figcaption></figure>\n";
         h << "</div>\n<p class=note>Display transform of the colour config's default view; shown "
              "at 2&times; (nearest neighbour).</p>\n";
     }

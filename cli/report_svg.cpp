@@ -19,30 +19,6 @@ std::string num(double v, const char* fmt = "%.1f")
     return buf;
 }
 
-std::string escapeXml(const std::string& s)
-{
-    std::string o;
-    for (char c : s) {
-        switch (c) {
-        case '<':
-            o += "&lt;";
-            break;
-        case '>':
-            o += "&gt;";
-            break;
-        case '&':
-            o += "&amp;";
-            break;
-        case '"':
-            o += "&quot;";
-            break;
-        default:
-            o += c;
-        }
-    }
-    return o;
-}
-
 /// Round step for about `n` ticks over `range` (1, 2 or 5 times a power of ten).
 double niceStep(double range, int n)
 {
