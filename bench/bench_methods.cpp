@@ -91,12 +91,6 @@ void runMethod(benchmark::State& state, const char* method)
     state.SetLabel(std::string(method) + " 1280x720");
 }
 
-bool afnHasWeights()
-{
-    const afn::FilterType* t = afn::findFilterType("afn");
-    return t && t->description.find("embeds trained weights") != std::string::npos;
-}
-
 void BM_ta(benchmark::State& s)
 {
     runMethod(s, "ta");
@@ -112,7 +106,7 @@ void BM_bmfr(benchmark::State& s)
 
 void BM_afn(benchmark::State& s)
 {
-    if (!afnHasWeights()) {
+    if (!afn::afnHasEmbeddedWeights()) {
         s.SkipWithError("this build embeds no AFN weights");
         return;
     }

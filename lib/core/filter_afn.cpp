@@ -94,6 +94,15 @@ private:
 
 } // namespace
 
+bool afnHasEmbeddedWeights()
+{
+#ifdef AFN_HAS_EMBEDDED_WEIGHTS
+    return true;
+#else
+    return false;
+#endif
+}
+
 FilterType afnFilterType()
 {
     FilterType t;

@@ -38,4 +38,8 @@ FilterType svgfFilterType();
 FilterType bmfrFilterType();
 FilterType afnFilterType();
 
+/// True when this build embeds trained AFN weights (weights/afn.afnw at configure time), so the
+/// "afn" filter runs without weights being set.
+bool afnHasEmbeddedWeights();
+
 } // namespace afn
