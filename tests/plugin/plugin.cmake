@@ -14,6 +14,12 @@ afn_add_gtest(test_plugin_host
 target_compile_definitions(test_plugin_host PRIVATE AFN_OFX_BINARY="$<TARGET_FILE:afn_ofx>")
 add_dependencies(test_plugin_host afn_ofx)
 
+afn_add_gtest(test_plugin_param_names SOURCES plugin/test_plugin_param_names.cpp
+  LIBS afn_ofx_test_host)
+target_compile_definitions(test_plugin_param_names PRIVATE AFN_OFX_BINARY="$<TARGET_FILE:afn_ofx>"
+  AFN_OFX_PARAMS_GOLDEN="${CMAKE_CURRENT_SOURCE_DIR}/plugin/ofx_params.golden")
+add_dependencies(test_plugin_param_names afn_ofx)
+
 # The example sequence through the plugin against afntool (reads EXRs with afn_io; the plugin
 # itself never links it).
 if(AFN_BUILD_CLI)
