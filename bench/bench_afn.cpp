@@ -3,8 +3,8 @@
 // map, encoder-decoder), filtering + fusion (heads, softmax, 7x7 filters, Eq. 3), refinement, and
 // the whole forward pass. Random weights of the shipped architecture: timings do not depend on the
 // values. Run: afnBenchmarkAfn [--benchmark_filter=...]; report the medians.
-#include "core/afn_network.h"
-#include "core/afn_random_weights.h"
+#include "methods/afn/network.h"
+#include "methods/afn/random_weights.h"
 
 #include <benchmark/benchmark.h>
 #include <tbb/global_control.h>
@@ -17,8 +17,8 @@ namespace {
 
 struct Setup {
     afn::Image c1, cta, albedo, normal, depth, out;
-    afn::AfnNetwork net;
-    afn::AfnInputs in;
+    afn::afnet::Network net;
+    afn::afnet::Inputs in;
 
     Setup(int w, int h)
     {
@@ -34,7 +34,7 @@ struct Setup {
         fill(albedo, 3, 1.0f);
         fill(normal, 3, 1.0f);
         fill(depth, 1, 1.0f);
-        net.load(afn::afnRandomWeights(afn::AfnArchitecture {}));
+        net.load(afn::afnet::randomWeights(afn::afnet::Architecture {}));
         in = { &c1, &cta, &albedo, &normal, &depth };
         net.run(in, out); // allocate every buffer once
     }

@@ -5,7 +5,7 @@
 //   bench_methods --benchmark_repetitions=5 --benchmark_report_aggregates_only=true
 // bench_afn_vs_methods (bench/afn.cmake) links this file with bench_afn.cpp, so that AFN's stages
 // and these methods are measured in one run (AFN_BENCH_NO_MAIN leaves out this file's main).
-#include "core/filter_registry.h"
+#include "filter/registry.h"
 
 #include <benchmark/benchmark.h>
 
@@ -106,7 +106,7 @@ void BM_bmfr(benchmark::State& s)
 
 void BM_afn(benchmark::State& s)
 {
-    if (!afn::afnHasEmbeddedWeights()) {
+    if (!afn::afnet::hasEmbeddedWeights()) {
         s.SkipWithError("this build embeds no AFN weights");
         return;
     }

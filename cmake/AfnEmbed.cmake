@@ -39,5 +39,9 @@ function(afn_embed_file target input symbol)
     COMMAND ${CMAKE_COMMAND} -DINPUT=${input} -DOUTPUT=${out} -DSYMBOL=${symbol} -P ${AFN_EMBED_SCRIPT}
     DEPENDS ${input} ${AFN_EMBED_SCRIPT}
     COMMENT "Embedding ${input} as ${symbol}")
-  target_sources(${target} PRIVATE ${out})
+  # An object library of the current directory (a custom command's output is visible only there),
+  # whose object file becomes part of the target.
+  add_library(${symbol}_object OBJECT ${out})
+  set_target_properties(${symbol}_object PROPERTIES POSITION_INDEPENDENT_CODE ON)
+  target_link_libraries(${target} PRIVATE ${symbol}_object)
 endfunction()

@@ -3,9 +3,9 @@
 // catch into the device's error state (or this thread's slot when there is no device).
 #include "afn/afn.h"
 
-#include "../core/device.h"
-#include "../core/exception.h"
-#include "../core/filter_registry.h"
+#include "base/device.h"
+#include "base/exception.h"
+#include "filter/registry.h"
 #include "api_common.h"
 
 #include <atomic>

@@ -5,8 +5,8 @@
 
 #include "afn/afn.h"
 
-#include "../core/device.h"
-#include "../core/exception.h"
+#include "base/device.h"
+#include "base/exception.h"
 
 #include <atomic>
 #include <cstdint>

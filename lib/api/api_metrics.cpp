@@ -2,7 +2,7 @@
 // C ABI of the image-quality metrics: argument checks, then lib/core/metrics on the device's threads.
 #include "afn/afn.h"
 
-#include "../core/metrics.h"
+#include "metrics/metrics.h"
 #include "api_common.h"
 
 #include <string>
@@ -45,8 +45,8 @@ AFN_API bool afnComputeMetrics(AFNDevice d, const float* test, const float* refe
     if (!out) throwInvalidArgument("metrics: null output");
     const afn::ImageView t = packedView(test, "test", width, height, pixelFloatStride);
     const afn::ImageView r = packedView(reference, "reference", width, height, pixelFloatStride);
-    afn::FrameMetrics m;
-    d->device.run([&] { m = afn::computeFrameMetrics(t, r); });
+    afn::metrics::FrameMetrics m;
+    d->device.run([&] { m = afn::metrics::computeFrameMetrics(t, r); });
     out->psnr = m.psnr;
     out->ssim = m.ssim;
     out->rmse = m.rmse;
@@ -76,8 +76,8 @@ AFN_API bool afnComputeTemporalMetrics(AFNDevice d, const float* testPrev, const
     const afn::ImageView t = packedView(test, "test", width, height, s);
     const afn::ImageView rp = packedView(referencePrev, "previous reference", width, height, s);
     const afn::ImageView r = packedView(reference, "reference", width, height, s);
-    afn::TemporalMetrics m;
-    d->device.run([&] { m = afn::computeTemporalMetrics(tp, t, rp, r); });
+    afn::metrics::TemporalMetrics m;
+    d->device.run([&] { m = afn::metrics::computeTemporalMetrics(tp, t, rp, r); });
     out->gradientError = m.gradientError;
     out->gradientPsnr = m.gradientPsnr;
     out->nonFinite = m.nonFinite;

@@ -2,8 +2,8 @@
 // Helpers for the AFN tests: build .afnw archives in memory, load the committed parity files.
 #pragma once
 
-#include "core/afn_weights.h"
-#include "core/image.h"
+#include "nn/weights.h"
+#include "base/image.h"
 
 #include <cstdint>
 #include <cstring>
@@ -65,23 +65,23 @@ inline std::vector<unsigned char> buildArchive(
     return b;
 }
 
-inline afn::WeightsArchive parseArchive(
+inline afn::nn::WeightsArchive parseArchive(
     const std::vector<NamedTensor>& ts, const std::string& meta = "")
 {
     const auto b = buildArchive(ts, meta);
-    return afn::WeightsArchive::parse(b.data(), b.size(), "in-memory");
+    return afn::nn::WeightsArchive::parse(b.data(), b.size(), "in-memory");
 }
 
-inline afn::WeightsArchive loadFile(const std::string& path)
+inline afn::nn::WeightsArchive loadFile(const std::string& path)
 {
     std::ifstream f(path, std::ios::binary);
     const std::vector<char> bytes(
         (std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
-    return afn::WeightsArchive::parse(bytes.data(), bytes.size(), path);
+    return afn::nn::WeightsArchive::parse(bytes.data(), bytes.size(), path);
 }
 
 /// An (H, W, C) tensor of an archive as an image.
-inline afn::Image toImage(const afn::WeightTensor& t)
+inline afn::Image toImage(const afn::nn::WeightTensor& t)
 {
     afn::Image img(
         static_cast<int>(t.dims[1]), static_cast<int>(t.dims[0]), static_cast<int>(t.dims[2]));

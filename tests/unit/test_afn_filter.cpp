@@ -2,9 +2,9 @@
 // The "afn" filter type: refuses to run without weights, takes weights as data (rejecting corrupt
 // ones without losing the previous), denoises a small sequence; feature scaling hand cases.
 #include "afn_test_util.h"
-#include "core/afn_features.h"
-#include "core/exception.h"
-#include "core/filter_registry.h"
+#include "methods/afn/features.h"
+#include "base/exception.h"
+#include "filter/registry.h"
 
 #include <gtest/gtest.h>
 
@@ -81,7 +81,7 @@ TEST(AfnFeatures, NormalAndDepthScaling)
     n(0, 0, 0) = -1.0f;
     n(0, 0, 1) = 1.0f;
     n(1, 0, 2) = NAN;
-    afn::afnNormalToUnitRange(n, 2, 1, n01);
+    afn::afnet::normalToUnitRange(n, 2, 1, n01);
     EXPECT_EQ(n01(0, 0, 0), 0.0f);
     EXPECT_EQ(n01(0, 0, 1), 1.0f);
     EXPECT_EQ(n01(0, 0, 2), 0.5f);
@@ -91,12 +91,12 @@ TEST(AfnFeatures, NormalAndDepthScaling)
     z(1, 0, 0) = 4.0f;
     z(2, 0, 0) = 6.0f;
     z(3, 0, 0) = 1e10f; // sky
-    afn::afnDepthToUnitRange(z, 4, 1, z01);
+    afn::afnet::depthToUnitRange(z, 4, 1, z01);
     EXPECT_EQ(z01(0, 0, 0), 0.0f);
     EXPECT_EQ(z01(1, 0, 0), 0.5f);
     EXPECT_EQ(z01(2, 0, 0), 1.0f);
     EXPECT_EQ(z01(3, 0, 0), 1.0f);
-    afn::afnDepthToUnitRange(afn::Image(), 3, 2, z01);
+    afn::afnet::depthToUnitRange(afn::Image(), 3, 2, z01);
     EXPECT_EQ(z01.width(), 3);
     EXPECT_EQ(z01(2, 1, 0), 0.0f);
 }

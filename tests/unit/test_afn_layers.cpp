@@ -2,10 +2,10 @@
 // AFN building blocks against naive references and hand cases: conv (with the implicit nearest
 // upsampling input), pooling, softmax, the 7x7 kernel apply, and Eq. 3 through the fused pass.
 #include "afn_test_util.h"
-#include "core/afn_conv.h"
-#include "core/afn_fusion.h"
-#include "core/afn_network.h"
-#include "core/exception.h"
+#include "nn/conv.h"
+#include "methods/afn/fusion.h"
+#include "methods/afn/network.h"
+#include "base/exception.h"
 
 #include <gtest/gtest.h>
 
@@ -43,7 +43,7 @@ TEST(AfnLayers, ConvMatchesNaiveReferenceWithUpsampledInput)
 {
     const int cu = 3, cs = 2, co = 5, w = 6, h = 4;
     const auto wt = randomVec(co * (cu + cs) * 9, 1), bias = randomVec(co, 2);
-    afn::AfnConv conv;
+    afn::nn::Conv conv;
     conv.load(afntest::parseArchive(
                   { { "c.weight", { co, cu + cs, 3, 3 }, wt }, { "c.bias", { co }, bias } }),
         "c", cu + cs);
@@ -73,7 +73,7 @@ TEST(AfnLayers, ConvRejectsInconsistentShapes)
     const auto a = afntest::parseArchive({ { "c.weight", { 4, 2, 3, 3 }, randomVec(72, 1) },
         { "c.bias", { 3 }, randomVec(3, 2) }, { "d.weight", { 4, 2, 5, 5 }, randomVec(200, 1) },
         { "d.bias", { 4 }, randomVec(4, 2) } });
-    afn::AfnConv conv;
+    afn::nn::Conv conv;
     EXPECT_THROW(conv.load(a, "c", 2), afn::Exception); // bias size
     EXPECT_THROW(conv.load(a, "d", 2), afn::Exception); // 5x5
     EXPECT_THROW(conv.load(a, "e", 2), afn::Exception); // missing
@@ -87,16 +87,16 @@ TEST(AfnLayers, Down2AndSoftmax)
     in(0, 1, 0) = 3;
     in(1, 1, 0) = 6;
     Image out;
-    afn::afnDown2(in, out);
+    afn::nn::down2(in, out);
     EXPECT_EQ(out(0, 0, 0), 3.0f);
     float v[49];
     for (int j = 0; j < 49; ++j)
         v[j] = j == 10 ? 1e30f : -1e30f;
-    afn::afnSoftmax(v, 49);
+    afn::afnet::softmax(v, 49);
     EXPECT_EQ(v[10], 1.0f);
     EXPECT_EQ(v[0], 0.0f);
     float u[3] = { 0.0f, std::log(2.0f), std::log(5.0f) }; // 1 : 2 : 5
-    afn::afnSoftmax(u, 3);
+    afn::afnet::softmax(u, 3);
     EXPECT_NEAR(u[0], 1.0 / 8, 1e-7);
     EXPECT_NEAR(u[2], 5.0 / 8, 1e-7);
 }
@@ -106,17 +106,17 @@ TEST(AfnLayers, KernelApplyIdentityShiftAndBorder)
     const Image img = randomImage(9, 8, 3, 5);
     float k[49] = {}, rgb[3];
     k[24] = 1.0f; // centre
-    afn::afnApplyKernel(img, 4, 4, k, rgb);
+    afn::afnet::applyKernel(img, 4, 4, k, rgb);
     EXPECT_EQ(rgb[1], img(4, 4, 1));
     k[24] = 0.0f;
     k[3 * 7 + 4] = 1.0f; // dx = +1
-    afn::afnApplyKernel(img, 8, 3, k, rgb); // right border: reads outside -> 0
+    afn::afnet::applyKernel(img, 8, 3, k, rgb); // right border: reads outside -> 0
     EXPECT_EQ(rgb[0], 0.0f);
-    afn::afnApplyKernel(img, 0, 0, k, rgb);
+    afn::afnet::applyKernel(img, 0, 0, k, rgb);
     EXPECT_EQ(rgb[2], img(1, 0, 2));
     for (float& f : k)
         f = 1.0f / 49; // box at the corner: 16 of 49 taps inside, no renormalisation
-    afn::afnApplyKernel(img, 0, 0, k, rgb);
+    afn::afnet::applyKernel(img, 0, 0, k, rgb);
     double s = 0;
     for (int y = 0; y < 4; ++y)
         for (int x = 0; x < 4; ++x)
@@ -139,7 +139,7 @@ TEST(AfnLayers, FusionEq3HandCase)
             { "h1.bias", { 49 }, b1 },
             { "ht.weight", { 50, cd + 13, 1, 1 }, std::vector<float>(50 * 15, 0.0f) },
             { "ht.bias", { 50 }, bt } });
-    afn::AfnConv h1, ht;
+    afn::nn::Conv h1, ht;
     h1.load(a, "h1", cd, 49);
     ht.load(a, "ht", cd + 13, 50);
     const Image d1 = randomImage(2, 1, cd, 6), x = randomImage(4, 2, 13, 7);
@@ -152,9 +152,9 @@ TEST(AfnLayers, FusionEq3HandCase)
                 c1(2 * bx + (q & 1), q >> 1, c) = 5.0f * (1 + bx + c); // D(c1) = 5 (1 + bx + c)
             }
     Image c1h, fused, dta, alpha, d1h;
-    afn::afnDown2(c1, c1h);
-    afn::AfnFusionInputs in { &d1, &x, &ta, &c1h, &h1, &ht };
-    afn::afnFilterAndFuse(in, { &fused, &dta, &alpha, &d1h });
+    afn::nn::down2(c1, c1h);
+    afn::afnet::FusionInputs in { &d1, &x, &ta, &c1h, &h1, &ht };
+    afn::afnet::filterAndFuse(in, { &fused, &dta, &alpha, &d1h });
     for (int bx = 0; bx < 2; ++bx)
         for (int q = 0; q < 4; ++q)
             for (int c = 0; c < 3; ++c) {
@@ -166,7 +166,7 @@ TEST(AfnLayers, FusionEq3HandCase)
 
 TEST(AfnLayers, ToneMap)
 {
-    EXPECT_EQ(afn::afnToneMap(-1.0f), 0.0f);
-    EXPECT_EQ(afn::afnToneMap(7.0f), 1.0f);
-    EXPECT_NEAR(afn::afnToneMap(std::pow(0.5f, 2.2f)), 0.5f, 1e-6);
+    EXPECT_EQ(afn::afnet::toneMap(-1.0f), 0.0f);
+    EXPECT_EQ(afn::afnet::toneMap(7.0f), 1.0f);
+    EXPECT_NEAR(afn::afnet::toneMap(std::pow(0.5f, 2.2f)), 0.5f, 1e-6);
 }

@@ -4,8 +4,8 @@
 // A 37x21 frame (padding rule covered), random-initialised narrow weights. The tolerance is float
 // rounding: the two sides sum in different orders and use different exp/pow implementations.
 #include "afn_test_util.h"
-#include "core/afn_network.h"
-#include "core/exception.h"
+#include "methods/afn/network.h"
+#include "base/exception.h"
 
 #include <gtest/gtest.h>
 
@@ -19,7 +19,7 @@ struct Err {
     double maxAbs = 0, maxRel = 0;
 };
 
-Err compare(const afn::Image& got, const afn::WeightTensor& want, const char* what)
+Err compare(const afn::Image& got, const afn::nn::WeightTensor& want, const char* what)
 {
     Err e;
     EXPECT_EQ(got.height(), want.dims[0]) << what;
@@ -36,19 +36,19 @@ Err compare(const afn::Image& got, const afn::WeightTensor& want, const char* wh
     return e;
 }
 
-void checkVariant(const std::string& variant, afn::AfnVariant expect)
+void checkVariant(const std::string& variant, afn::afnet::Variant expect)
 {
     const std::string dir = std::string(AFN_TEST_DATA) + "/afn_parity/";
     const auto weights = afntest::loadFile(dir + "weights_" + variant + ".afnw");
     const auto c = afntest::loadFile(dir + "case_" + variant + ".afnw");
-    afn::AfnNetwork net;
+    afn::afnet::Network net;
     net.load(weights);
     EXPECT_EQ(net.variant(), expect);
     const afn::Image c1 = afntest::toImage(c.tensor("c1")), cta = afntest::toImage(c.tensor("cta"));
     const afn::Image alb = afntest::toImage(c.tensor("albedo"));
     const afn::Image nrm = afntest::toImage(c.tensor("normal01"));
     const afn::Image dep = afntest::toImage(c.tensor("depth01"));
-    afn::AfnInputs in { &c1, &cta, &alb, &nrm, &dep };
+    afn::afnet::Inputs in { &c1, &cta, &alb, &nrm, &dep };
     afn::Image o;
     net.run(in, o);
     std::printf("parity %s (%dx%d):\n", variant.c_str(), o.width(), o.height());
@@ -70,19 +70,19 @@ void checkVariant(const std::string& variant, afn::AfnVariant expect)
 
 TEST(AfnParity, FullModelMatchesPyTorch)
 {
-    checkVariant("full", afn::AfnVariant::Full);
+    checkVariant("full", afn::afnet::Variant::Full);
 }
 
 TEST(AfnParity, FusionModelMatchesPyTorch)
 {
-    checkVariant("fusion", afn::AfnVariant::Fusion);
+    checkVariant("fusion", afn::afnet::Variant::Fusion);
 }
 
 TEST(AfnParity, RejectsWeightsOfAnotherShape)
 {
     const std::string dir = std::string(AFN_TEST_DATA) + "/afn_parity/";
     const auto c = afntest::loadFile(dir + "case_full.afnw"); // has no enc1.weight
-    afn::AfnNetwork net;
+    afn::afnet::Network net;
     try {
         net.load(c);
         FAIL() << "expected an exception";

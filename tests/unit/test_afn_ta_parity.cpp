@@ -4,9 +4,9 @@
 // (tests/data/afn_parity/ta_case.afnw: sub-pixel motion, off-screen taps, position and normal
 // rejections). Both compute in float32 in the same order, so they must agree exactly.
 #include "afn_test_util.h"
-#include "core/frame.h"
-#include "core/reproject.h"
-#include "core/temporal_accumulation.h"
+#include "filter/frame.h"
+#include "stages/reproject.h"
+#include "stages/temporal_accumulation.h"
 
 #include <gtest/gtest.h>
 

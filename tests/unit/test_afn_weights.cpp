@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: Apache-2.0
 // The .afnw reader: a hand-built archive, and rejection of every kind of corruption.
 #include "afn_test_util.h"
-#include "core/afn_weights.h"
-#include "core/exception.h"
+#include "nn/weights.h"
+#include "base/exception.h"
 
 #include <gtest/gtest.h>
 
@@ -51,7 +51,7 @@ Bytes handArchive()
 std::string parseError(const Bytes& b)
 {
     try {
-        afn::WeightsArchive::parse(b.data(), b.size(), "test.afnw");
+        afn::nn::WeightsArchive::parse(b.data(), b.size(), "test.afnw");
     } catch (const afn::Exception& e) {
         return e.what();
     }
@@ -64,7 +64,7 @@ TEST(AfnWeights, ParsesHandBuiltArchive)
 {
     const Bytes b = handArchive();
     ASSERT_EQ(b.size(), 56u);
-    const auto a = afn::WeightsArchive::parse(b.data(), b.size(), "hand");
+    const auto a = afn::nn::WeightsArchive::parse(b.data(), b.size(), "hand");
     EXPECT_EQ(a.meta("k"), "v");
     EXPECT_EQ(a.meta("missing", "x"), "x");
     const auto& t = a.tensor("a");
@@ -123,7 +123,7 @@ TEST(AfnWeights, EmbeddedBytesEqualTheFile)
         (std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
     ASSERT_EQ(afnTestEmbedded_size, bytes.size());
     EXPECT_EQ(std::memcmp(afnTestEmbedded, bytes.data(), bytes.size()), 0);
-    const auto a = afn::WeightsArchive::parse(afnTestEmbedded, afnTestEmbedded_size, "embedded");
+    const auto a = afn::nn::WeightsArchive::parse(afnTestEmbedded, afnTestEmbedded_size, "embedded");
     EXPECT_EQ(a.tensors().size(), fromFile.tensors().size());
     EXPECT_EQ(a.meta("variant"), "fusion");
 }

@@ -3,7 +3,7 @@
 // (NaN, Inf, negative, zero albedo) never reaches the output, outputs are bit-identical with 1 and
 // 2 threads, and svgf/bmfr (and ta) reduce the error of a noisy synthetic sequence. Plus BMFR's fit
 // of an exactly representable block.
-#include "core/bmfr.h"
+#include "methods/bmfr/denoiser.h"
 #include "test_methods_util.h"
 
 #include <gtest/gtest.h>
@@ -203,11 +203,11 @@ TEST(MethodsFilters, BmfrRegressionReproducesAnExactlyRepresentableBlock)
     f.color = makeImage(64, 64, 3, [](int x, int y, int c) {
         return 0.5f + 0.01f * x - 0.004f * y + 0.0001f * x * x + 0.1f * c;
     });
-    afn::BmfrSettings s;
+    afn::bmfr::Settings s;
     s.noise = 0.0f;
     Image out;
     for (int frame = 0; frame < 3; ++frame) {
-        afn::bmfrRegression(f, f.color, s, frame, out);
+        afn::bmfr::regression(f, f.color, s, frame, out);
         for (int y = 0; y < 64; ++y)
             for (int x = 0; x < 64; ++x)
                 for (int c = 0; c < 3; ++c)

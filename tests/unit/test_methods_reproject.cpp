@@ -2,8 +2,8 @@
 // Reprojection (lib/core/reproject): whole and fractional translations via motion vectors and via
 // world positions + cameras reproject the previous image onto the current one; acceptance tests
 // (position, normal, depth) reset disoccluded pixels.
-#include "core/reproject.h"
-#include "core/temporal_accumulation.h"
+#include "stages/reproject.h"
+#include "stages/temporal_accumulation.h"
 #include "test_methods_util.h"
 
 #include <gtest/gtest.h>

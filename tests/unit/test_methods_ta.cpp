@@ -2,9 +2,9 @@
 // Demodulation and temporal accumulation ("ta"): the alpha schedule and lag of TA after a step
 // change of the light (static camera), exact round trips for zero albedo, clamping of absurd
 // values.
-#include "core/demodulate.h"
-#include "core/exception.h"
-#include "core/temporal_accumulation.h"
+#include "stages/demodulate.h"
+#include "base/exception.h"
+#include "stages/temporal_accumulation.h"
 #include "test_methods_util.h"
 
 #include <gtest/gtest.h>

@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: Apache-2.0
 // Metrics of lib/core/metrics: hand-computed values on tiny images, a naive SSIM written from the
 // formula, thread-count determinism, and SSIM/PSNR against scikit-image (skipped if not installed).
-#include "core/exception.h"
-#include "core/metrics.h"
+#include "base/exception.h"
+#include "metrics/metrics.h"
 
 #include <gtest/gtest.h>
 #include <tbb/task_arena.h>
@@ -77,25 +77,25 @@ double naiveSsim(const Image& a, const Image& b, int win = 7)
 
 TEST(Metrics, ToneMap)
 {
-    EXPECT_EQ(afn::evalToneMap(-1.0), 0.0);
-    EXPECT_EQ(afn::evalToneMap(0.0), 0.0);
-    EXPECT_EQ(afn::evalToneMap(1.0), 1.0);
-    EXPECT_EQ(afn::evalToneMap(4.0), 1.0);
-    EXPECT_DOUBLE_EQ(afn::evalToneMap(0.25), std::pow(0.25, 1.0 / 2.2));
-    EXPECT_TRUE(std::isnan(afn::evalToneMap(std::nan(""))));
+    EXPECT_EQ(afn::metrics::evalToneMap(-1.0), 0.0);
+    EXPECT_EQ(afn::metrics::evalToneMap(0.0), 0.0);
+    EXPECT_EQ(afn::metrics::evalToneMap(1.0), 1.0);
+    EXPECT_EQ(afn::metrics::evalToneMap(4.0), 1.0);
+    EXPECT_DOUBLE_EQ(afn::metrics::evalToneMap(0.25), std::pow(0.25, 1.0 / 2.2));
+    EXPECT_TRUE(std::isnan(afn::metrics::evalToneMap(std::nan(""))));
 }
 
 TEST(Metrics, PsnrFromMse)
 {
-    EXPECT_DOUBLE_EQ(afn::psnrFromMse(0.01), 20.0);
-    EXPECT_DOUBLE_EQ(afn::psnrFromMse(1.0), 0.0);
-    EXPECT_EQ(afn::psnrFromMse(0.0), kInf);
+    EXPECT_DOUBLE_EQ(afn::metrics::psnrFromMse(0.01), 20.0);
+    EXPECT_DOUBLE_EQ(afn::metrics::psnrFromMse(1.0), 0.0);
+    EXPECT_EQ(afn::metrics::psnrFromMse(0.0), kInf);
 }
 
 TEST(Metrics, IdenticalImages)
 {
     const Image a = noiseImage(9, 8, 4, 7, -0.2f, 3.0f);
-    const afn::FrameMetrics m = afn::computeFrameMetrics(a.view(), a.view());
+    const afn::metrics::FrameMetrics m = afn::metrics::computeFrameMetrics(a.view(), a.view());
     EXPECT_EQ(m.psnr, kInf);
     EXPECT_EQ(m.psnr8, kInf);
     EXPECT_EQ(m.rmse, 0.0);
@@ -112,7 +112,7 @@ TEST(Metrics, OneWrongValueOn2x2)
     // Reference black; the test differs in one of 2x2x3 = 12 values: 4.0 (T = 1).
     Image ref(2, 2, 3, 0.0f), test(2, 2, 3, 0.0f);
     test(1, 0, 2) = 4.0f;
-    const afn::FrameMetrics m = afn::computeFrameMetrics(test.view(), ref.view());
+    const afn::metrics::FrameMetrics m = afn::metrics::computeFrameMetrics(test.view(), ref.view());
     EXPECT_NEAR(m.psnr, 10.0 * std::log10(12.0), 1e-12); // MSE on T = 1/12
     EXPECT_NEAR(m.rmse, std::sqrt(1.0 / 12.0), 1e-12);
     EXPECT_NEAR(m.rmseLinear, std::sqrt(16.0 / 12.0), 1e-12);
@@ -128,13 +128,13 @@ TEST(Metrics, SmapeOfKnownPairs)
     const float o[3] = { 1.0f, -2.0f, 0.0f }, t[3] = { 3.0f, 2.0f, 0.0f };
     for (int c = 0; c < 3; ++c) test(0, 0, c) = o[c], ref(0, 0, c) = t[c];
     const double expected = (2.0 / 4.001 + 4.0 / 4.001 + 0.0) / 3.0;
-    EXPECT_NEAR(afn::computeFrameMetrics(test.view(), ref.view()).smape, expected, 1e-12);
+    EXPECT_NEAR(afn::metrics::computeFrameMetrics(test.view(), ref.view()).smape, expected, 1e-12);
 }
 
 TEST(Metrics, NegativeValuesClampInToneMappedMetrics)
 {
     Image ref(3, 3, 3, 0.0f), test(3, 3, 3, -1.0f);
-    const afn::FrameMetrics m = afn::computeFrameMetrics(test.view(), ref.view());
+    const afn::metrics::FrameMetrics m = afn::metrics::computeFrameMetrics(test.view(), ref.view());
     EXPECT_EQ(m.rmse, 0.0);
     EXPECT_EQ(m.psnr, kInf);
     EXPECT_NEAR(m.rmseLinear, 1.0, 1e-12);
@@ -146,7 +146,7 @@ TEST(Metrics, NonFiniteIsCountedAndMakesTheFrameNaN)
     test(3, 4, 1) = std::numeric_limits<float>::quiet_NaN();
     test(5, 5, 0) = std::numeric_limits<float>::infinity();
     ref(0, 0, 2) = -std::numeric_limits<float>::infinity();
-    const afn::FrameMetrics m = afn::computeFrameMetrics(test.view(), ref.view());
+    const afn::metrics::FrameMetrics m = afn::metrics::computeFrameMetrics(test.view(), ref.view());
     EXPECT_EQ(m.nonFiniteTest, 2);
     EXPECT_EQ(m.nonFiniteReference, 1);
     for (double v : { m.psnr, m.ssim, m.rmse, m.smape, m.rmseLinear, m.smapeTonemapped, m.psnr8,
@@ -158,7 +158,7 @@ TEST(Metrics, SsimOfTwoConstantsByHand)
 {
     // Constant planes: variances 0, so SSIM = (2ab + C1) / (a^2 + b^2 + C1) with C1 = 1e-4.
     Image white(8, 8, 3, 1.0f), black(8, 8, 3, 0.0f);
-    const afn::FrameMetrics m = afn::computeFrameMetrics(white.view(), black.view());
+    const afn::metrics::FrameMetrics m = afn::metrics::computeFrameMetrics(white.view(), black.view());
     EXPECT_NEAR(m.ssim, 1e-4 / 1.0001, 1e-15);
     EXPECT_NEAR(m.ssim8, 1e-4 / 1.0001, 1e-15);
 }
@@ -169,45 +169,45 @@ TEST(Metrics, SsimMatchesNaiveFormula)
     const Image b = noiseImage(23, 17, 3, 2, -0.1f, 1.5f);
     Image c = a; // a slightly perturbed copy: SSIM near 1
     for (std::size_t i = 0; i < c.size(); i += 5) c.data()[i] *= 1.1f;
-    EXPECT_NEAR(afn::computeFrameMetrics(a.view(), b.view()).ssim, naiveSsim(a, b), 1e-10);
-    EXPECT_NEAR(afn::computeFrameMetrics(c.view(), a.view()).ssim, naiveSsim(c, a), 1e-10);
+    EXPECT_NEAR(afn::metrics::computeFrameMetrics(a.view(), b.view()).ssim, naiveSsim(a, b), 1e-10);
+    EXPECT_NEAR(afn::metrics::computeFrameMetrics(c.view(), a.view()).ssim, naiveSsim(c, a), 1e-10);
 }
 
 TEST(Metrics, SmallImagesShrinkTheWindow)
 {
     const Image a = noiseImage(5, 4, 3, 3, 0.0f, 1.0f);
     const Image b = noiseImage(5, 4, 3, 4, 0.0f, 1.0f);
-    EXPECT_NEAR(afn::computeFrameMetrics(a.view(), b.view()).ssim, naiveSsim(a, b, 3), 1e-10);
+    EXPECT_NEAR(afn::metrics::computeFrameMetrics(a.view(), b.view()).ssim, naiveSsim(a, b, 3), 1e-10);
     const Image p = noiseImage(1, 1, 3, 5, 0.0f, 1.0f);
-    EXPECT_NEAR(afn::computeFrameMetrics(p.view(), p.view()).ssim, 1.0, 1e-12);
+    EXPECT_NEAR(afn::metrics::computeFrameMetrics(p.view(), p.view()).ssim, 1.0, 1e-12);
 }
 
 TEST(Metrics, RejectsBadInputs)
 {
     Image a(4, 4, 3), b(5, 4, 3), g(4, 4, 1);
-    EXPECT_THROW(afn::computeFrameMetrics(a.view(), b.view()), afn::Exception);
-    EXPECT_THROW(afn::computeFrameMetrics(g.view(), g.view()), afn::Exception);
-    EXPECT_THROW(afn::computeFrameMetrics(afn::ImageView(), a.view()), afn::Exception);
-    EXPECT_THROW(afn::computeTemporalMetrics(a.view(), a.view(), a.view(), b.view()), afn::Exception);
+    EXPECT_THROW(afn::metrics::computeFrameMetrics(a.view(), b.view()), afn::Exception);
+    EXPECT_THROW(afn::metrics::computeFrameMetrics(g.view(), g.view()), afn::Exception);
+    EXPECT_THROW(afn::metrics::computeFrameMetrics(afn::ImageView(), a.view()), afn::Exception);
+    EXPECT_THROW(afn::metrics::computeTemporalMetrics(a.view(), a.view(), a.view(), b.view()), afn::Exception);
 }
 
 TEST(Metrics, DeterministicAcrossThreadCounts)
 {
     const Image a = noiseImage(97, 131, 3, 11, -0.5f, 4.0f);
     const Image b = noiseImage(97, 131, 3, 12, -0.5f, 4.0f);
-    afn::FrameMetrics m[3];
-    afn::TemporalMetrics t[3];
+    afn::metrics::FrameMetrics m[3];
+    afn::metrics::TemporalMetrics t[3];
     const int threads[3] = { 1, 2, 3 };
     for (int i = 0; i < 3; ++i) {
         tbb::task_arena arena(threads[i]);
         arena.execute([&] {
-            m[i] = afn::computeFrameMetrics(a.view(), b.view());
-            t[i] = afn::computeTemporalMetrics(b.view(), a.view(), a.view(), b.view());
+            m[i] = afn::metrics::computeFrameMetrics(a.view(), b.view());
+            t[i] = afn::metrics::computeTemporalMetrics(b.view(), a.view(), a.view(), b.view());
         });
     }
     for (int i = 1; i < 3; ++i) {
-        EXPECT_EQ(std::memcmp(&m[0], &m[i], sizeof(afn::FrameMetrics)), 0);
-        EXPECT_EQ(std::memcmp(&t[0], &t[i], sizeof(afn::TemporalMetrics)), 0);
+        EXPECT_EQ(std::memcmp(&m[0], &m[i], sizeof(afn::metrics::FrameMetrics)), 0);
+        EXPECT_EQ(std::memcmp(&t[0], &t[i], sizeof(afn::metrics::TemporalMetrics)), 0);
     }
 }
 
@@ -216,17 +216,17 @@ TEST(Metrics, TemporalGradientByHand)
     // The reference is static; the test changes one of 12 values from 0 to 4 (T: 0 -> 1).
     Image ref(2, 2, 3, 0.25f), prev(2, 2, 3, 0.0f), cur(2, 2, 3, 0.0f);
     cur(0, 1, 1) = 4.0f;
-    afn::TemporalMetrics m = afn::computeTemporalMetrics(prev.view(), cur.view(), ref.view(), ref.view());
+    afn::metrics::TemporalMetrics m = afn::metrics::computeTemporalMetrics(prev.view(), cur.view(), ref.view(), ref.view());
     EXPECT_NEAR(m.gradientError, 1.0 / 12.0, 1e-12);
     EXPECT_NEAR(m.gradientPsnr, 10.0 * std::log10(12.0), 1e-12);
     // A test that changes exactly as the reference does: no temporal error, whatever its bias.
     Image refPrev(2, 2, 3, 0.0f), refCur(2, 2, 3, 0.0f);
     refCur(0, 1, 1) = 4.0f;
-    m = afn::computeTemporalMetrics(prev.view(), cur.view(), refPrev.view(), refCur.view());
+    m = afn::metrics::computeTemporalMetrics(prev.view(), cur.view(), refPrev.view(), refCur.view());
     EXPECT_EQ(m.gradientError, 0.0);
     EXPECT_EQ(m.gradientPsnr, kInf);
     cur(1, 1, 0) = std::numeric_limits<float>::quiet_NaN();
-    m = afn::computeTemporalMetrics(prev.view(), cur.view(), refPrev.view(), refCur.view());
+    m = afn::metrics::computeTemporalMetrics(prev.view(), cur.view(), refPrev.view(), refCur.view());
     EXPECT_EQ(m.nonFinite, 1);
     EXPECT_TRUE(std::isnan(m.gradientError));
 }
@@ -274,7 +274,7 @@ TEST(Metrics, MatchesScikitImage)
     ASSERT_EQ(std::system(("/usr/bin/python3 " + script).c_str()), 0);
     double ssimRef = 0, psnrRef = 0, ssim8Ref = 0, psnr8Ref = 0;
     std::ifstream(out) >> ssimRef >> psnrRef >> ssim8Ref >> psnr8Ref;
-    const afn::FrameMetrics m = afn::computeFrameMetrics(b.view(), a.view());
+    const afn::metrics::FrameMetrics m = afn::metrics::computeFrameMetrics(b.view(), a.view());
     EXPECT_GT(ssimRef, 0.3); // the case is neither trivial nor hopeless
     EXPECT_LT(ssimRef, 0.99);
     EXPECT_NEAR(m.ssim, ssimRef, 1e-7);

@@ -1,0 +1,177 @@
+// SPDX-License-Identifier: Apache-2.0
+#include "filter/filter.h"
+
+#include "base/exception.h"
+#include "base/parallel.h"
+
+#include <algorithm>
+#include <sstream>
+
+namespace afn {
+
+const std::vector<std::string>& inputImageNames()
+{
+    static const std::vector<std::string> names = { "color",    "albedo", "normal", "depth",
+                                                    "position", "motion", "alpha" };
+    return names;
+}
+
+static bool isInputName(const std::string& n)
+{
+    const auto& v = inputImageNames();
+    return std::find(v.begin(), v.end(), n) != v.end();
+}
+
+static std::string sizeText(int w, int h) { return std::to_string(w) + "x" + std::to_string(h); }
+
+ImageView ImageBinding::view() const
+{
+    ImageView v;
+    v.base = static_cast<const std::byte*>(ptr) + byteOffset;
+    v.width = width;
+    v.height = height;
+    v.channels = channels();
+    v.pixelStride = pixelStride;
+    v.rowStride = rowStride;
+    return v;
+}
+
+void Filter::setImage(const std::string& name, const ImageBinding& b)
+{
+    if (name != "output" && !isInputName(name))
+        throwInvalidArgument("unknown image '" + name + "' (inputs: color, albedo, normal, depth, "
+                             "position, motion, alpha; output: output)");
+    if (b.ptr == nullptr) throwInvalidArgument("image '" + name + "': null pointer");
+    if (b.format < AFN_FORMAT_FLOAT || b.format > AFN_FORMAT_FLOAT4)
+        throwInvalidArgument("image '" + name + "': unsupported format " + std::to_string(b.format));
+    if (b.width <= 0 || b.height <= 0)
+        throwInvalidArgument("image '" + name + "': zero size " + sizeText(b.width, b.height));
+    if (std::abs(b.pixelStride) < static_cast<std::ptrdiff_t>(b.channels() * sizeof(float)))
+        throwInvalidArgument("image '" + name + "': pixel stride smaller than a pixel");
+    m_images[name] = b;
+    m_committed = false;
+}
+
+void Filter::unsetImage(const std::string& name)
+{
+    m_images.erase(name);
+    m_committed = false;
+}
+
+void Filter::setFloats(const std::string& name, const std::vector<float>& values)
+{
+    if (name == "viewProjection") {
+        if (values.size() != 16) throwInvalidArgument("viewProjection needs 16 floats");
+        std::copy(values.begin(), values.end(), m_camera.viewProjection.begin());
+        m_camera.valid = true;
+    } else if (name == "pixelOffset") {
+        if (values.size() != 2) throwInvalidArgument("pixelOffset needs 2 floats");
+        m_camera.pixelOffset = { values[0], values[1] };
+    } else {
+        throwInvalidArgument("unknown array parameter '" + name + "'");
+    }
+}
+
+void Filter::setData(const std::string& name, const void*, std::size_t)
+{
+    throwInvalidArgument("this filter takes no data parameter '" + name + "'");
+}
+
+void Filter::validateBindings() const
+{
+    auto color = m_images.find("color");
+    if (color == m_images.end()) throwInvalidOperation("no 'color' image set");
+    const int w = color->second.width, h = color->second.height;
+    for (const auto& [name, b] : m_images) {
+        if (b.width != w || b.height != h)
+            throwInvalidArgument(name + " size " + sizeText(b.width, b.height) +
+                                 " does not match color " + sizeText(w, h));
+    }
+    auto need = [&](const char* n, int minCh) {
+        auto it = m_images.find(n);
+        if (it != m_images.end() && it->second.channels() < minCh)
+            throwInvalidArgument(std::string("image '") + n + "' needs at least " +
+                                 std::to_string(minCh) + " channels");
+    };
+    need("color", 3);
+    need("albedo", 3);
+    need("normal", 3);
+    need("position", 3);
+    need("motion", 2);
+    need("output", 3);
+    if (m_images.find("output") == m_images.end()) throwInvalidOperation("no 'output' image set");
+}
+
+void Filter::commit()
+{
+    validateBindings();
+    configure();
+    m_committed = true;
+}
+
+void Filter::reset()
+{
+    m_frameIndex = 0;
+    m_prevCamera = Camera {};
+    m_prevInputs.clear();
+    resetHistory();
+}
+
+void Filter::reportProgress(double fraction) const
+{
+    if (m_progress && !m_progress(std::clamp(fraction, 0.0, 1.0)))
+        throw Exception(AFN_ERROR_CANCELLED, "execution cancelled by the progress callback");
+}
+
+void Filter::execute()
+{
+    if (!m_committed) throwInvalidOperation("filter has uncommitted changes; call commit first");
+    const ImageBinding& color = m_images.at("color");
+    std::string inputs;
+    for (const auto& [name, b] : m_images)
+        if (name != "output") inputs += name + ":" + std::to_string(b.channels()) + " ";
+    if (m_frameIndex > 0) {
+        if (color.width != m_prevWidth || color.height != m_prevHeight)
+            throwInvalidArgument("frame size " + sizeText(color.width, color.height) +
+                                 " differs from the previous frame's " +
+                                 sizeText(m_prevWidth, m_prevHeight) + " (reset the filter at a cut)");
+        if (inputs != m_prevInputs)
+            throwInvalidArgument("frame inputs (" + inputs + ") differ from the previous frame's (" +
+                                 m_prevInputs + ")");
+    }
+    reportProgress(0.0);
+    m_stats = InputStats {};
+    gatherFrame(m_images, m_params, m_frame, m_stats);
+    m_frame.camera = m_camera;
+    m_frame.prevCamera = m_frameIndex > 0 ? m_prevCamera : Camera {};
+    m_frame.frameIndex = m_frameIndex;
+    m_output.resize(m_frame.width, m_frame.height, 3);
+    denoise(m_frame, m_output);
+    writeOutput(m_output);
+    reportProgress(1.0);
+    m_prevWidth = color.width;
+    m_prevHeight = color.height;
+    m_prevInputs = inputs;
+    m_prevCamera = m_camera;
+    ++m_frameIndex;
+}
+
+void Filter::writeOutput(const Image& radiance) const
+{
+    const ImageBinding& out = m_images.at("output");
+    const ImageView dst = out.view();
+    const bool hasAlpha = !m_frame.alpha.empty();
+    parallelRows(dst.height, [&](int y0, int y1) {
+        for (int y = y0; y < y1; ++y)
+            for (int x = 0; x < dst.width; ++x) {
+                float* o = dst.atMutable(x, y);
+                const float* r = radiance.at(x, y);
+                o[0] = r[0];
+                o[1] = r[1];
+                o[2] = r[2];
+                if (dst.channels == 4) o[3] = hasAlpha ? m_frame.alpha(x, y, 0) : 1.0f;
+            }
+    });
+}
+
+} // namespace afn

@@ -1,0 +1,90 @@
+// SPDX-License-Identifier: Apache-2.0
+// Base of every denoising method. It owns the image bindings and parameters, validates them at
+// commit, converts the bound buffers into a canonical Frame once per execute (frame_gather.cpp),
+// calls the method, and writes the method's radiance into the bound output.
+#pragma once
+
+#include "filter/frame.h"
+#include "base/params.h"
+
+#include <functional>
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace afn {
+
+/// A caller's image buffer as given to afnSetFilterImage (strides in bytes, already resolved).
+struct ImageBinding {
+    void* ptr = nullptr;
+    AFNFormat format = AFN_FORMAT_UNDEFINED;
+    int width = 0;
+    int height = 0;
+    std::size_t byteOffset = 0;
+    std::ptrdiff_t pixelStride = 0;
+    std::ptrdiff_t rowStride = 0;
+    int channels() const { return static_cast<int>(format); }
+    ImageView view() const;
+};
+
+/// Names of the bindable images.
+const std::vector<std::string>& inputImageNames();
+
+class Filter {
+public:
+    virtual ~Filter() = default;
+
+    void setImage(const std::string& name, const ImageBinding& binding);
+    void unsetImage(const std::string& name);
+    ParamSet& params() { return m_params; }
+    const ParamSet& params() const { return m_params; }
+    void setFloats(const std::string& name, const std::vector<float>& values);
+    virtual void setData(const std::string& name, const void* data, std::size_t size);
+    void setProgressMonitor(std::function<bool(double)> fn) { m_progress = std::move(fn); }
+
+    void markDirty() { m_committed = false; }
+    void commit();
+    void execute();
+    void reset();
+
+    int frameIndex() const { return m_frameIndex; }
+    const InputStats& lastStats() const { return m_stats; }
+    int width() const { return m_frame.width; }
+    int height() const { return m_frame.height; }
+
+protected:
+    explicit Filter(const std::vector<ParamDesc>* table) : m_params(table) {}
+
+    /// Read the method's settings from params(); called at commit. Throw on invalid combinations.
+    virtual void configure() {}
+    /// Denoise one canonical frame into `out` (3 channels, frame size, preallocated).
+    virtual void denoise(const Frame& in, Image& out) = 0;
+    /// Drop temporal history.
+    virtual void resetHistory() {}
+    /// Report progress in [0, 1]; throws Cancelled when the callback asks to stop.
+    void reportProgress(double fraction) const;
+
+private:
+    void validateBindings() const;
+    void writeOutput(const Image& radiance) const;
+
+    ParamSet m_params;
+    std::map<std::string, ImageBinding> m_images;
+    std::function<bool(double)> m_progress;
+    Camera m_camera;     ///< set for the next frame
+    Camera m_prevCamera; ///< camera of the last executed frame
+    bool m_committed = false;
+    int m_frameIndex = 0;
+    int m_prevWidth = 0, m_prevHeight = 0;
+    std::string m_prevInputs; ///< which inputs the previous frame had (history consistency)
+    Frame m_frame;            ///< reused across frames: allocated once per resolution
+    Image m_output;
+    InputStats m_stats;
+};
+
+/// Convert the bound images into a canonical frame (see frame.h), counting sanitised values.
+void gatherFrame(const std::map<std::string, ImageBinding>& images, const ParamSet& params,
+                 Frame& frame, InputStats& stats);
+
+} // namespace afn

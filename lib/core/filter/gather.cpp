@@ -1,0 +1,155 @@
+// SPDX-License-Identifier: Apache-2.0
+// Conversion of caller buffers into the canonical Frame (conventions in frame.h).
+//
+// Sanitising rule (documented in the README, counted in InputStats):
+//   - NaN or +-Inf in any input is replaced by 0.
+//   - Negative colour is clamped to 0 (radiance cannot be negative; renderers' negative lobes and
+//     filter ringing would otherwise feed the history).
+//   - Albedo is clamped to [0, 1]; normals are renormalised (a zero normal stays zero and then never
+//     matches history).
+#include "filter/filter.h"
+
+#include "base/exception.h"
+#include "base/parallel.h"
+
+#include <atomic>
+#include <cmath>
+
+namespace afn {
+
+namespace {
+
+struct Counters {
+    std::atomic<std::int64_t> nonFinite { 0 };
+    std::atomic<std::int64_t> negative { 0 };
+};
+
+/// Copy `channels` channels of a binding into `dst`, replacing non-finite values by 0.
+/// `perPixel(float* px)` then converts one pixel in place.
+template <typename PerPixel>
+void gather(const ImageBinding& b, int channels, Image& dst, Counters& counts, PerPixel&& perPixel)
+{
+    const ImageView src = b.view();
+    dst.resize(src.width, src.height, channels);
+    parallelRows(src.height, [&](int y0, int y1) {
+        std::int64_t bad = 0;
+        for (int y = y0; y < y1; ++y)
+            for (int x = 0; x < src.width; ++x) {
+                const float* s = src.at(x, y);
+                float* d = dst.at(x, y);
+                for (int c = 0; c < channels; ++c) {
+                    const float v = c < src.channels ? s[c] : 0.0f;
+                    if (std::isfinite(v)) {
+                        d[c] = v;
+                    } else {
+                        d[c] = 0.0f;
+                        ++bad;
+                    }
+                }
+                perPixel(d);
+            }
+        counts.nonFinite += bad;
+    });
+}
+
+const ImageBinding* find(const std::map<std::string, ImageBinding>& m, const char* name)
+{
+    auto it = m.find(name);
+    return it == m.end() ? nullptr : &it->second;
+}
+
+} // namespace
+
+void gatherFrame(const std::map<std::string, ImageBinding>& images, const ParamSet& params,
+                 Frame& f, InputStats& stats)
+{
+    Counters counts;
+    const ImageBinding* color = find(images, "color");
+    if (!color) throwInvalidOperation("no 'color' image set");
+    f.width = color->width;
+    f.height = color->height;
+
+    std::atomic<std::int64_t> negative { 0 };
+    gather(*color, 3, f.color, counts, [&](float* p) {
+        for (int c = 0; c < 3; ++c)
+            if (p[c] < 0.0f) {
+                p[c] = 0.0f;
+                ++negative; // rare; contention is not a concern
+            }
+    });
+
+    if (const ImageBinding* b = find(images, "albedo"))
+        gather(*b, 3, f.albedo, counts, [](float* p) {
+            for (int c = 0; c < 3; ++c) p[c] = std::fmin(std::fmax(p[c], 0.0f), 1.0f);
+        });
+    else
+        f.albedo = Image();
+
+    const std::string& nspace = params.getString("normal.space");
+    const float zSign = nspace == "camera-toward-viewer" ? -1.0f : 1.0f;
+    f.normalSpace = nspace == "world" ? NormalSpace::World : NormalSpace::Camera;
+    if (const ImageBinding* b = find(images, "normal"))
+        gather(*b, 3, f.normal, counts, [zSign](float* p) {
+            p[2] *= zSign;
+            const float len = std::sqrt(p[0] * p[0] + p[1] * p[1] + p[2] * p[2]);
+            const float inv = len > 1e-12f ? 1.0f / len : 0.0f;
+            for (int c = 0; c < 3; ++c) p[c] *= inv;
+        });
+    else
+        f.normal = Image();
+
+    f.depthKind = params.getString("depth.kind") == "radial" ? DepthKind::Radial : DepthKind::Planar;
+    if (const ImageBinding* b = find(images, "depth"))
+        gather(*b, 1, f.depth, counts, [](float*) {});
+    else
+        f.depth = Image();
+
+    if (const ImageBinding* b = find(images, "position"))
+        gather(*b, 3, f.position, counts, [](float*) {});
+    else
+        f.position = Image();
+
+    if (const ImageBinding* b = find(images, "motion")) {
+        // To canonical: pixels, y down, pointing to the previous frame.
+        float sx = params.getFloat("motion.scale"), sy = sx;
+        const std::string& units = params.getString("motion.units");
+        if (units == "ndc") {
+            sx *= 0.5f * f.width;
+            sy *= 0.5f * f.height;
+        } else if (units == "uv") {
+            sx *= f.width;
+            sy *= f.height;
+        }
+        if (params.getBool("motion.yUp")) sy = -sy;
+        if (params.getString("motion.direction") == "to-next") {
+            // Constant-velocity assumption: the offset to the previous frame is minus the offset to
+            // the next one.
+            sx = -sx;
+            sy = -sy;
+        }
+        gather(*b, 2, f.motion, counts, [sx, sy](float* p) {
+            p[0] *= sx;
+            p[1] *= sy;
+        });
+    } else {
+        f.motion = Image();
+    }
+
+    if (const ImageBinding* b = find(images, "alpha")) {
+        // A FLOAT4 alpha binding (e.g. an RGBA beauty) carries alpha in its 4th channel.
+        ImageBinding a = *b;
+        if (a.channels() == 4) {
+            a.byteOffset += 3 * sizeof(float);
+            a.format = AFN_FORMAT_FLOAT;
+        }
+        gather(a, 1, f.alpha, counts, [](float*) {});
+    } else {
+        f.alpha = Image();
+    }
+
+    f.colorDemodulated = params.getBool("color.demodulated");
+    stats.nonFinite = counts.nonFinite;
+    stats.negative = negative;
+}
+
+} // namespace afn

@@ -1,0 +1,49 @@
+// SPDX-License-Identifier: Apache-2.0
+// AFN filtering and fusion (Lee et al., Eq. 2 and 3) as one fused pass per 2x2 pixel block:
+// the 1x1 kernel heads, the softmax over 49 taps, the 7x7 filtering of the HDR images and the
+// fusion run per pixel, so neither the kernel maps nor the unfolded 49-channel image stack is
+// ever stored.
+//   K_1spp = softmax(head1(d1))               at half resolution, applied to D(r_1spp)
+//   [K_TA, a] = headTA(concat(U(d1), x))      at full resolution, applied to r_TA; alpha =
+//   sigmoid(a) i = d_TA - alpha * U(D(d_TA)) + alpha * U(d_1spp)
+// Tap j = (dy + 3) * 7 + (dx + 3) reads the image at (x + dx, y + dy); taps outside the image
+// read 0 and the kernel is not renormalised (PyTorch F.unfold with zero padding).
+#pragma once
+
+#include "nn/conv.h"
+#include "base/image.h"
+
+namespace afn::afnet {
+
+/// Kernel size k of the AFN kernels (7x7 = 49 taps).
+constexpr int kKernelSize = 7;
+constexpr int kKernelTaps = kKernelSize * kKernelSize;
+
+/// Inputs of the fused pass; every full-resolution image has the same even size.
+struct FusionInputs {
+    const Image* d1 = nullptr; ///< half-res decoder features
+    const Image* x = nullptr; ///< full-res network input (13 ch)
+    const Image* colorTa = nullptr; ///< full-res TA colour, demodulated HDR (3 ch)
+    const Image* color1Half = nullptr; ///< D(1-spp colour), half res (3 ch)
+    const nn::Conv* head1 = nullptr; ///< 1x1, d1 -> 49
+    const nn::Conv* headTa = nullptr; ///< 1x1, d1 + 13 -> 50
+};
+
+/// Outputs (resized here): fused image i, d_TA, alpha (full res), d_1spp (half res).
+struct FusionOutputs {
+    Image* fused = nullptr;
+    Image* filteredTa = nullptr;
+    Image* alpha = nullptr;
+    Image* filtered1Half = nullptr;
+};
+
+/// Run heads, softmax, filtering and fusion.
+void filterAndFuse(const FusionInputs& in, const FusionOutputs& out);
+
+/// Softmax over `n` logits in place, with the maximum subtracted first.
+void softmax(float* v, int n);
+
+/// Apply normalised 7x7 kernel `k` (49 weights) at (x, y) of a 3-channel image; writes rgb.
+void applyKernel(const Image& img, int x, int y, const float* k, float* rgb);
+
+} // namespace afn::afnet

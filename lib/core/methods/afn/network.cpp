@@ -1,0 +1,189 @@
+// SPDX-License-Identifier: Apache-2.0
+// The AFN inference graph (see afn_network.h).
+#include "methods/afn/network.h"
+
+#include "methods/afn/fusion.h"
+#include "base/exception.h"
+#include "base/parallel.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace afn::afnet {
+
+namespace {
+
+constexpr int kInputChannels = 13; // T(1spp) 3, T(TA) 3, albedo 3, normal01 3, depth01 1
+constexpr int kRefineChannels = 10; // T(i) 3, albedo 3, normal01 3, depth01 1
+constexpr int kPadMultiple = 8;
+
+int padded(int n)
+{
+    return (n + kPadMultiple - 1) / kPadMultiple * kPadMultiple;
+}
+
+} // namespace
+
+float toneMap(float x)
+{
+    return std::min(std::max(std::pow(std::max(x, 0.0f), 1.0f / 2.2f), 0.0f), 1.0f);
+}
+
+void Network::load(const nn::WeightsArchive& a)
+{
+    m_loaded = false;
+    const std::string v = a.meta("variant", "full");
+    if (v == "full")
+        m_variant = Variant::Full;
+    else if (v == "fusion")
+        m_variant = Variant::Fusion;
+    else if (v == "1spp")
+        m_variant = Variant::OneSpp;
+    else if (v == "ta")
+        m_variant = Variant::Ta;
+    else
+        throwInvalidArgument(
+            "invalid or corrupted weights (" + a.source() + "): unknown variant '" + v + "'");
+    // Widths follow from the tensor shapes; each layer checks its input against its producer.
+    m_enc1.load(a, "enc1", kInputChannels);
+    m_enc2.load(a, "enc2", m_enc1.outChannels());
+    m_enc3.load(a, "enc3", m_enc2.outChannels());
+    m_dec2.load(a, "dec2", m_enc3.outChannels() + m_enc2.outChannels());
+    m_dec1.load(a, "dec1", m_dec2.outChannels() + m_enc1.outChannels());
+    m_head1.load(a, "head1", m_dec1.outChannels(), kKernelTaps);
+    m_headTa.load(a, "headTA", m_dec1.outChannels() + kInputChannels, kKernelTaps + 1);
+    for (const nn::Conv* c : { &m_enc1, &m_enc2, &m_enc3, &m_dec2, &m_dec1 })
+        if (c->kernelSize() != 3)
+            throwInvalidArgument("invalid or corrupted weights (" + a.source()
+                + "): encoder/decoder layers must be 3x3");
+    if (m_head1.kernelSize() != 1 || m_headTa.kernelSize() != 1)
+        throwInvalidArgument(
+            "invalid or corrupted weights (" + a.source() + "): heads must be 1x1");
+    if (m_variant == Variant::Full) {
+        m_ref1.load(a, "ref1", kRefineChannels);
+        m_ref2.load(a, "ref2", m_ref1.outChannels());
+        m_ref3.load(a, "ref3", m_ref2.outChannels(), 3);
+    }
+    m_loaded = true;
+}
+
+void Network::prepare(const Inputs& in)
+{
+    if (!m_loaded)
+        throwInvalidOperation("AFN: no weights loaded");
+    const Image* c1 = in.color1;
+    const Image* cta = in.colorTa;
+    if (m_variant == Variant::OneSpp)
+        cta = c1;
+    if (m_variant == Variant::Ta)
+        c1 = cta;
+    const int w = c1->width(), h = c1->height();
+    const Image* all[] = { c1, cta, in.albedo, in.normal01, in.depth01 };
+    const int chans[] = { 3, 3, 3, 3, 1 };
+    for (int k = 0; k < 5; ++k)
+        if (!all[k] || all[k]->width() != w || all[k]->height() != h
+            || all[k]->channels() != chans[k])
+            throwInvalidArgument(
+                "AFN: input " + std::to_string(k) + " missing or of the wrong shape");
+    m_width = w;
+    m_height = h;
+    const int wp = padded(w), hp = padded(h);
+    m_x.resize(wp, hp, kInputChannels);
+    m_colorTa.resize(wp, hp, 3);
+    m_color1.resize(wp, hp, 3);
+    parallelRows(hp, [&](int y0, int y1) {
+        for (int y = y0; y < y1; ++y)
+            for (int x = 0; x < wp; ++x) {
+                const int sx = std::min(x, w - 1), sy = std::min(y, h - 1); // edge replication
+                const float* a = c1->at(sx, sy);
+                const float* b = cta->at(sx, sy);
+                float* o = m_x.at(x, y);
+                for (int c = 0; c < 3; ++c) {
+                    o[c] = toneMap(a[c]);
+                    o[3 + c] = toneMap(b[c]);
+                    o[6 + c] = in.albedo->at(sx, sy)[c];
+                    o[9 + c] = in.normal01->at(sx, sy)[c];
+                    m_color1(x, y, c) = a[c];
+                    m_colorTa(x, y, c) = b[c];
+                }
+                o[12] = in.depth01->at(sx, sy)[0];
+            }
+    });
+    nn::down2(m_color1, m_color1Half);
+}
+
+void Network::predict()
+{
+    nn::down2(m_x, m_xHalf);
+    m_enc1.run(nullptr, m_xHalf, m_e1, true);
+    nn::down2(m_e1, m_e1Pool);
+    m_enc2.run(nullptr, m_e1Pool, m_e2, true);
+    nn::down2(m_e2, m_e2Pool);
+    m_enc3.run(nullptr, m_e2Pool, m_e3, true);
+    m_dec2.run(&m_e3, m_e2, m_d2, true);
+    m_dec1.run(&m_d2, m_e1, m_d1, true);
+}
+
+void Network::filterAndFuse()
+{
+    FusionInputs in;
+    in.d1 = &m_d1;
+    in.x = &m_x;
+    in.colorTa = &m_colorTa;
+    in.color1Half = &m_color1Half;
+    in.head1 = &m_head1;
+    in.headTa = &m_headTa;
+    FusionOutputs out;
+    out.fused = &m_fused;
+    out.filteredTa = &m_dTa;
+    out.alpha = &m_alpha;
+    out.filtered1Half = &m_d1Half;
+    afnet::filterAndFuse(in, out);
+}
+
+void Network::refine()
+{
+    const int wp = m_fused.width(), hp = m_fused.height();
+    m_out.resize(wp, hp, 3);
+    if (m_variant != Variant::Full) {
+        std::copy(m_fused.data(), m_fused.data() + m_fused.size(), m_out.data());
+        return;
+    }
+    m_refIn.resize(wp, hp, kRefineChannels);
+    parallelRows(hp, [&](int y0, int y1) {
+        for (int y = y0; y < y1; ++y)
+            for (int x = 0; x < wp; ++x) {
+                const float* i = m_fused.at(x, y);
+                const float* f = m_x.at(x, y);
+                float* o = m_refIn.at(x, y);
+                for (int c = 0; c < 3; ++c)
+                    o[c] = toneMap(i[c]);
+                for (int c = 0; c < 7; ++c)
+                    o[3 + c] = f[6 + c]; // albedo, normal01, depth01
+            }
+    });
+    m_ref1.run(nullptr, m_refIn, m_r1, true);
+    m_ref2.run(nullptr, m_r1, m_r2, true);
+    m_ref3.run(nullptr, m_r2, m_r3, false);
+    const std::size_t n = m_out.size();
+    for (std::size_t k = 0; k < n; ++k)
+        m_out.data()[k] = m_fused.data()[k] + m_r3.data()[k];
+}
+
+void Network::crop(Image& out) const
+{
+    out.resize(m_width, m_height, 3);
+    for (int y = 0; y < m_height; ++y)
+        std::copy(m_out.at(0, y), m_out.at(0, y) + 3 * m_width, out.at(0, y));
+}
+
+void Network::run(const Inputs& in, Image& out)
+{
+    prepare(in);
+    predict();
+    filterAndFuse();
+    refine();
+    crop(out);
+}
+
+} // namespace afn::afnet

@@ -1,0 +1,70 @@
+// SPDX-License-Identifier: Apache-2.0
+// The AFN inference graph (training/afn/model.py is the definition; same tensor names):
+//   x = [T(r_1spp), T(r_TA), albedo, normal01, depth01]            13 ch, full res (padded)
+//   e1 = relu(enc1(D x)), e2 = relu(enc2(D e1)), e3 = relu(enc3(D e2))
+//   d2 = relu(dec2([U e3, e2])), d1 = relu(dec1([U d2, e1]))          half-res-start U-Net
+//   filtering + fusion (afn_fusion.h) -> i
+//   o = i + ref3(relu(ref2(relu(ref1([T(i), albedo, normal01, depth01])))))   variant "full" only
+// with T(x) = clip(max(x, 0)^(1/2.2), 0, 1), D = 2x2 average pooling, U = nearest 2x upsampling.
+// Odd sizes: every input is padded at the right/bottom to a multiple of 8 by edge replication,
+// the graph runs on the padded frame and the output is cropped (same rule as PyTorch).
+// Buffers are allocated once per resolution and reused.
+#pragma once
+
+#include "nn/conv.h"
+#include "nn/weights.h"
+#include "base/image.h"
+
+#include <string>
+
+namespace afn::afnet {
+
+/// Ablation variants (paper Table 11); see training/afn/model.py.
+enum class Variant { Full, Fusion, OneSpp, Ta };
+
+/// Network inputs, all W x H with the channel counts noted.
+struct Inputs {
+    const Image* color1 = nullptr; ///< 3 ch, 1-spp colour, albedo-demodulated linear HDR, >= 0
+    const Image* colorTa = nullptr; ///< 3 ch, TA-1spp colour, demodulated linear HDR, >= 0
+    const Image* albedo = nullptr; ///< 3 ch, [0, 1]
+    const Image* normal01 = nullptr; ///< 3 ch, shading normal * 0.5 + 0.5, [0, 1]
+    const Image* depth01 = nullptr; ///< 1 ch, per-frame min-max depth, [0, 1]
+};
+
+/// Tone map of the network inputs: clip(max(x, 0)^(1/2.2), 0, 1).
+float toneMap(float x);
+
+class Network {
+public:
+    /// Build the graph from an archive; throws "invalid or corrupted weights" on any mismatch.
+    void load(const nn::WeightsArchive& weights);
+    bool loaded() const { return m_loaded; }
+    Variant variant() const { return m_variant; }
+
+    /// Whole forward pass: `out` = o (3 ch, demodulated, W x H, not clamped).
+    void run(const Inputs& in, Image& out);
+
+    // The stages, callable one by one (benchmark): prepare + predict = kernel prediction.
+    void prepare(const Inputs& in); ///< pad, tone map, build x and D(r_1spp)
+    void predict(); ///< encoder-decoder up to d1
+    void filterAndFuse(); ///< heads, softmax, filtering, fusion
+    void refine(); ///< refinement (copy of i when the variant has none)
+    void crop(Image& out) const; ///< o cropped to the input size
+
+    /// Intermediates at the padded size (tests): fused i, d_TA, alpha; d_1spp at half size.
+    const Image& fused() const { return m_fused; }
+    const Image& filteredTa() const { return m_dTa; }
+    const Image& alpha() const { return m_alpha; }
+    const Image& filtered1Half() const { return m_d1Half; }
+
+private:
+    bool m_loaded = false;
+    Variant m_variant = Variant::Full;
+    nn::Conv m_enc1, m_enc2, m_enc3, m_dec2, m_dec1, m_head1, m_headTa, m_ref1, m_ref2, m_ref3;
+    int m_width = 0, m_height = 0;
+    // Buffers, reused across frames of one size.
+    Image m_x, m_colorTa, m_color1, m_color1Half, m_xHalf, m_e1, m_e1Pool, m_e2, m_e2Pool, m_e3;
+    Image m_d2, m_d1, m_fused, m_dTa, m_alpha, m_d1Half, m_refIn, m_r1, m_r2, m_r3, m_out;
+};
+
+} // namespace afn::afnet

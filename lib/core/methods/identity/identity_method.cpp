@@ -1,0 +1,31 @@
+// SPDX-License-Identifier: Apache-2.0
+// "identity": no denoising. The output is the sanitised input colour (NaN/Inf -> 0, negatives -> 0),
+// which makes it the reference for I/O round trips and the plugin's pass-through.
+#include "filter/registry.h"
+
+namespace afn::identity {
+
+namespace {
+
+class IdentityFilter final : public Filter {
+public:
+    explicit IdentityFilter(const std::vector<ParamDesc>* table) : Filter(table) {}
+
+private:
+    void denoise(const Frame& in, Image& out) override { out = in.color; }
+};
+
+} // namespace
+
+FilterType filterType()
+{
+    FilterType t;
+    t.name = "identity";
+    t.description = "no denoising: the sanitised noisy colour (for I/O checks and comparisons)";
+    t.create = [](const std::vector<ParamDesc>* table) {
+        return std::unique_ptr<Filter>(new IdentityFilter(table));
+    };
+    return t;
+}
+
+} // namespace afn::identity

@@ -1,0 +1,53 @@
+// SPDX-License-Identifier: Apache-2.0
+// Spatiotemporal variance-guided filtering (Schied et al., HPG 2017) on demodulated irradiance.
+// Per frame:
+//   1. reprojection with SVGF's 3x3 box fallback (reproject.h acceptance tests);
+//   2. temporal integration of colour and luminance moments (l, l^2) with
+//      alpha = max(alpha, 1/len), alphaMoments = max(momentsAlpha, 1/len) (Falcor's cumulative
+//      start; the paper's fixed 0.2 is reached after 5 frames); len = history length, 1 on
+//      disocclusion;
+//   3. variance = max(0, m2 - m1^2); while len < varianceHistory a 7x7 cross-bilateral estimate of
+//      moments and colour replaces it (phiL = sigmaL, not variance-scaled), boosted by 4/len
+//      (Falcor);
+//   4. à-trous: 5x5 B3-spline taps h = (1/16, 1/4, 3/8, 1/4, 1/16), step 2^i, weights of
+//      svgf_guide.h with phiL = sigmaL * sqrt(g3x3(var)) + 1e-10; variance filtered with squared
+//      weights; the output of iteration feedbackTap is the next frame's colour history.
+// Filtered values are written as c_p + sum(w (c_q - c_p)) / sum(w), identical in exact arithmetic
+// to sum(w c_q) / sum(w), so a constant image stays bit-exactly constant.
+#pragma once
+
+#include "stages/reproject.h"
+#include "methods/svgf/guide.h"
+
+namespace afn::svgf {
+
+class Denoiser {
+public:
+    void setSettings(const Settings& s, const ReprojectSettings& r);
+    void reset();
+    /// Filter demodulated `irradiance` (3 ch) of frame `f` into `filtered` (3 ch, demodulated).
+    void process(const Frame& f, const Image& irradiance, Image& filtered);
+
+    /// History length of the last frame (1 ch).
+    const Image& historyLength() const { return m_len; }
+
+private:
+    void integrate(const Image& irradiance);
+    void estimateVariance();
+    void atrous(const Image& in, Image& out, int step) const;
+
+    Settings m_settings;
+    Reprojector m_reproject;
+    Guide m_guide;
+    bool m_hasHistory = false;
+    Image m_color, m_moments, m_len; ///< this frame: integrated colour, moments, length
+    Image m_prevColor, m_prevMoments, m_prevLen; ///< history
+    Image m_cv, m_cvTmp; ///< colour + variance (4 ch) ping-pong
+};
+
+/// Descriptor table of the svgf parameters (without the reprojection ones).
+std::vector<ParamDesc> svgfParams();
+/// Read svgfParams() from a parameter set.
+Settings readSvgfSettings(const ParamSet& params);
+
+} // namespace afn::svgf

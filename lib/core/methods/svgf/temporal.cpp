@@ -1,0 +1,153 @@
+// SPDX-License-Identifier: Apache-2.0
+// SVGF temporal integration, spatial variance estimate and per-frame driver (see svgf.h).
+#include "methods/svgf/denoiser.h"
+
+#include "base/parallel.h"
+
+#include <algorithm>
+#include <utility>
+
+namespace afn::svgf {
+
+void Denoiser::setSettings(const Settings& s, const ReprojectSettings& r)
+{
+    m_settings = s;
+    ReprojectSettings rs = r;
+    rs.boxFallback = true;
+    m_reproject.setSettings(rs);
+}
+
+void Denoiser::reset()
+{
+    m_reproject.reset();
+    m_hasHistory = false;
+}
+
+void Denoiser::integrate(const Image& irr)
+{
+    const int w = irr.width(), h = irr.height();
+    std::swap(m_color, m_prevColor);
+    std::swap(m_moments, m_prevMoments);
+    std::swap(m_len, m_prevLen);
+    m_color.resize(w, h, 3);
+    m_moments.resize(w, h, 2);
+    m_len.resize(w, h, 1);
+    const bool history = m_hasHistory && m_reproject.hasHistory() && m_prevColor.width() == w
+        && m_prevColor.height() == h;
+    parallelRows(h, [&](int y0, int y1) {
+        for (int y = y0; y < y1; ++y)
+            for (int x = 0; x < w; ++x) {
+                const float* c = irr.at(x, y);
+                const float l = luminance(c);
+                const float m[2] = { l, l * l };
+                float pc[3], pm[2], plen = 0.0f, ws = 0.0f;
+                if (history) {
+                    const PixelTaps& t = m_reproject.taps(x, y);
+                    ws = gatherHistory<3>(t, m_prevColor, pc);
+                    gatherHistory<2>(t, m_prevMoments, pm);
+                    gatherHistory<1>(t, m_prevLen, &plen);
+                }
+                float* oc = m_color.at(x, y);
+                float* om = m_moments.at(x, y);
+                if (ws > 0.0f) {
+                    const float len = std::min(plen + 1.0f, 255.0f);
+                    const float a = std::max(m_settings.alpha, 1.0f / len);
+                    const float am = std::max(m_settings.momentsAlpha, 1.0f / len);
+                    for (int k = 0; k < 3; ++k)
+                        oc[k] = pc[k] + a * (c[k] - pc[k]);
+                    for (int k = 0; k < 2; ++k)
+                        om[k] = pm[k] + am * (m[k] - pm[k]);
+                    m_len(x, y, 0) = len;
+                } else {
+                    for (int k = 0; k < 3; ++k)
+                        oc[k] = c[k];
+                    om[0] = m[0];
+                    om[1] = m[1];
+                    m_len(x, y, 0) = 1.0f;
+                }
+            }
+    });
+    m_hasHistory = true;
+}
+
+void Denoiser::estimateVariance()
+{
+    const int w = m_color.width(), h = m_color.height();
+    m_cv.resize(w, h, 4);
+    const float phiL = m_settings.sigmaL;
+    parallelRows(h, [&](int y0, int y1) {
+        for (int y = y0; y < y1; ++y)
+            for (int x = 0; x < w; ++x) {
+                const float* c = m_color.at(x, y);
+                const float* m = m_moments.at(x, y);
+                const float len = m_len(x, y, 0);
+                float* o = m_cv.at(x, y);
+                if (len >= static_cast<float>(m_settings.varianceHistory)) {
+                    o[0] = c[0];
+                    o[1] = c[1];
+                    o[2] = c[2];
+                    o[3] = std::max(0.0f, m[1] - m[0] * m[0]);
+                    continue;
+                }
+                // 7x7 cross-bilateral estimate (radius 3), delta form around the centre.
+                const float lp = luminance(c);
+                float ws = 0.0f, dc[3] = { 0, 0, 0 }, dm[2] = { 0, 0 };
+                for (int dy = -3; dy <= 3; ++dy)
+                    for (int dx = -3; dx <= 3; ++dx) {
+                        const int qx = x + dx, qy = y + dy;
+                        if (qx < 0 || qy < 0 || qx >= w || qy >= h)
+                            continue;
+                        const float* cq = m_color.at(qx, qy);
+                        const float* mq = m_moments.at(qx, qy);
+                        const float e = m_guide.depthTerm(x, y, qx, qy, dx, dy)
+                            + std::fabs(lp - luminance(cq)) / (phiL + 1e-10f);
+                        const float wq = std::exp(-e) * m_guide.normalFactor(x, y, qx, qy);
+                        ws += wq;
+                        for (int k = 0; k < 3; ++k)
+                            dc[k] += wq * (cq[k] - c[k]);
+                        for (int k = 0; k < 2; ++k)
+                            dm[k] += wq * (mq[k] - m[k]);
+                    }
+                const float inv = ws > 0.0f ? 1.0f / ws : 0.0f;
+                for (int k = 0; k < 3; ++k)
+                    o[k] = c[k] + dc[k] * inv;
+                const float m0 = m[0] + dm[0] * inv, m1 = m[1] + dm[1] * inv;
+                o[3] = std::max(0.0f, m1 - m0 * m0) * (4.0f / len);
+            }
+    });
+}
+
+void Denoiser::process(const Frame& f, const Image& irr, Image& filtered)
+{
+    if (f.frameIndex == 0)
+        reset();
+    m_reproject.compute(f);
+    m_guide.build(f, m_settings);
+    integrate(irr);
+    estimateVariance();
+    m_reproject.storeGeometry(f);
+    // m_color is the feedback slot (it becomes the history in the next integrate()): it keeps the
+    // unfiltered integrated colour unless iteration feedbackTap overwrites it.
+    for (int i = 0; i < m_settings.iterations; ++i) {
+        atrous(m_cv, m_cvTmp, 1 << i);
+        std::swap(m_cv, m_cvTmp);
+        if (i == m_settings.feedbackTap) {
+            const int w = m_cv.width(), h = m_cv.height();
+            parallelRows(h, [&](int y0, int y1) {
+                for (int y = y0; y < y1; ++y)
+                    for (int x = 0; x < w; ++x)
+                        for (int k = 0; k < 3; ++k)
+                            m_color(x, y, k) = m_cv(x, y, k);
+            });
+        }
+    }
+    filtered.resize(f.width, f.height, 3);
+    parallelRows(f.height, [&](int y0, int y1) {
+        for (int y = y0; y < y1; ++y)
+            for (int x = 0; x < f.width; ++x)
+                for (int k = 0; k < 3; ++k)
+                    filtered(x, y, k) = m_cv(x, y, k);
+    });
+}
+
+} // namespace afn::svgf

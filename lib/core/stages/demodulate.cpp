@@ -1,0 +1,64 @@
+// SPDX-License-Identifier: Apache-2.0
+// Albedo demodulation and remodulation (see demodulate.h for the convention).
+#include "stages/demodulate.h"
+
+#include "base/parallel.h"
+
+#include <algorithm>
+
+namespace afn {
+
+namespace {
+
+/// Divisor/multiplier for one albedo value.
+inline float albedoFactor(float albedo, bool plain)
+{
+    return plain ? albedo : std::max(albedo, kAlbedoEpsilon);
+}
+
+/// Clamp to [0, kMaxIrradiance]; NaN becomes 0 (the gather already sanitised, this is a backstop).
+inline float clampIrradiance(float v)
+{
+    return v > 0.0f ? std::min(v, kMaxIrradiance) : 0.0f;
+}
+
+} // namespace
+
+void demodulate(const Frame& frame, Image& irradiance)
+{
+    irradiance.resize(frame.width, frame.height, 3);
+    const bool divide = frame.hasAlbedo() && !frame.colorDemodulated;
+    parallelRows(frame.height, [&](int y0, int y1) {
+        for (int y = y0; y < y1; ++y)
+            for (int x = 0; x < frame.width; ++x) {
+                const float* c = frame.color.at(x, y);
+                float* o = irradiance.at(x, y);
+                for (int k = 0; k < 3; ++k) {
+                    const float d
+                        = divide ? c[k] / albedoFactor(frame.albedo(x, y, k), false) : c[k];
+                    o[k] = clampIrradiance(d);
+                }
+            }
+    });
+}
+
+void remodulate(const Frame& frame, const Image& irradiance, Image& radiance)
+{
+    if (&radiance != &irradiance)
+        radiance.resize(frame.width, frame.height, 3);
+    const bool hasAlbedo = frame.hasAlbedo();
+    const bool plain = frame.colorDemodulated;
+    parallelRows(frame.height, [&](int y0, int y1) {
+        for (int y = y0; y < y1; ++y)
+            for (int x = 0; x < frame.width; ++x) {
+                const float* i = irradiance.at(x, y);
+                float* o = radiance.at(x, y);
+                for (int k = 0; k < 3; ++k) {
+                    const float a = hasAlbedo ? albedoFactor(frame.albedo(x, y, k), plain) : 1.0f;
+                    o[k] = clampIrradiance(i[k]) * a;
+                }
+            }
+    });
+}
+
+} // namespace afn

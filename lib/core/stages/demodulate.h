@@ -1,0 +1,31 @@
+// SPDX-License-Identifier: Apache-2.0
+// Albedo demodulation before filtering and remodulation after it (shared by ta, svgf and bmfr).
+//
+// Convention (chosen here; the paper follows Chaitanya et al. without giving an epsilon):
+//   irradiance = colour / max(albedo, kAlbedoEpsilon)      per channel
+//   radiance   = filtered * max(albedo, kAlbedoEpsilon)    per channel
+// kAlbedoEpsilon is a power of two (2^-10 ~ 0.001, Falcor's 0.001 rounded), so for zero or tiny
+// albedo the division and the multiplication are both exact: such pixels round-trip bit-exactly and
+// never blow up. When the colour is already irradiance (Frame::colorDemodulated, BMFR dataset), the
+// colour is used as is and remodulated by the plain albedo, exactly as BMFR does (albedo * result).
+// Without an albedo input the factor is 1. Irradiance is clamped to [0, kMaxIrradiance] so that
+// squares (SVGF moments, BMFR regression) stay finite in float.
+#pragma once
+
+#include "filter/frame.h"
+
+namespace afn {
+
+/// Floor of the albedo divisor (2^-10).
+constexpr float kAlbedoEpsilon = 1.0f / 1024.0f;
+/// Largest irradiance value kept (squares stay below FLT_MAX).
+constexpr float kMaxIrradiance = 1e15f;
+
+/// Write the frame's demodulated colour (3 channels, frame size) into `irradiance`.
+void demodulate(const Frame& frame, Image& irradiance);
+
+/// Write `irradiance` (3 channels) times the frame's albedo factor into `radiance` (3 channels).
+/// `radiance` may be the same image as `irradiance`.
+void remodulate(const Frame& frame, const Image& irradiance, Image& radiance);
+
+} // namespace afn

@@ -1,0 +1,133 @@
+// SPDX-License-Identifier: Apache-2.0
+// Reprojection of the previous frame onto the current one, with BMFR's per-tap acceptance.
+//
+// Each pixel's position in the previous frame comes from, in this order of preference:
+//   1. motion vectors (Frame::motion, pixels, prev = (x + mx, y + my) in pixel-index space);
+//   2. world position + the previous camera (BMFR convention): c = [p, 1] * M_{i-1},
+//      uv = (c.xy / c.w + 1) / 2, pix = uv * (W, H) - (off.x, 1 - off.y) with off = the CURRENT
+//      frame's pixel offset (BMFR: matrix index i-1, offset index i); c.w <= 0 means no history;
+//   3. neither: a static camera is assumed (prev = (x, y)).
+// The four bilinear taps around pix (x0 = floor(pix.x), y0 = floor(pix.y), weights from the
+// fraction) are accepted one by one (all tests must pass; a test whose buffers are missing is
+// skipped):
+//   - the tap lies inside the image;
+//   - position: |p_prev(tap) - p|^2 < (positionLimit * footprint(p))^2, or the positions are equal.
+//     footprint = the world-space size of the current pixel, estimated as max over the two axes of
+//     the smaller distance to the left/right (top/bottom) neighbour's position. A scene scaled 10x
+//     has 10x larger footprints, so the limit is scene-relative. (BMFR uses absolute per-scene
+//     limits, e.g. sponza 0.04 units, which is about 4 footprints at 720p; positionLimitSquared > 0
+//     selects that absolute test, |p_prev(tap) - p|^2 < positionLimitSquared, to reproduce BMFR.)
+//   - depth (only when there is no position): |z_prev(tap) - z| < depthLimit * z (relative), or
+//   equal;
+//   - normal: |n_prev(tap) - n|^2 < normalLimitSquared (BMFR: squared distance of the normals,
+//     sponza 0.25); a zero normal never matches.
+// With only colour and motion, every in-image tap is accepted. Weights of accepted taps are later
+// renormalised (gatherHistory). Optional SVGF fallback: when no bilinear tap with weight > 0 is
+// accepted, the 3x3 box around the nearest previous pixel is tested with equal weights.
+#pragma once
+
+#include "filter/frame.h"
+#include "base/params.h"
+
+#include <cstdint>
+#include <vector>
+
+namespace afn {
+
+/// Acceptance thresholds (scene-relative, see the file comment).
+struct ReprojectSettings {
+    /// [0; 1000] position limit in current-pixel footprints (default 4: about BMFR's sponza limit).
+    float positionLimit = 4.0f;
+    /// [0; 1e6] if > 0: BMFR's absolute limit on the squared position distance (scene units^2,
+    /// camera_matrices.h position_limit_squared, sponza 0.0016), replacing positionLimit.
+    float positionLimitSquared = 0.0f;
+    /// [0; 4] limit on the squared distance of unit normals (BMFR sponza 0.25 = 29 degrees).
+    float normalLimitSquared = 0.25f;
+    /// [0; 10] relative depth limit |dz| / z, used only without positions (default 0.1).
+    float depthLimit = 0.1f;
+    /// try a 3x3 box when no bilinear tap survives (SVGF); BMFR and ta do not.
+    bool boxFallback = false;
+};
+
+/// The taps of one pixel into the previous frame.
+struct PixelTaps {
+    std::int32_t x0 = 0; ///< bilinear: top-left tap column; box: centre column
+    std::int32_t y0 = 0; ///< bilinear: top-left tap row; box: centre row
+    float fx = 0.0f; ///< fractional column of the previous position (bilinear)
+    float fy = 0.0f; ///< fractional row of the previous position (bilinear)
+    float w[4] = {}; ///< bilinear weights of the accepted taps (0 if rejected)
+    std::uint16_t mask = 0; ///< accepted taps: bits 0-3 bilinear (TL, TR, BL, BR); box bits 0-8
+    std::uint8_t box = 0; ///< 1: 3x3 box fallback with equal weights
+    std::uint8_t onScreen = 0; ///< 1: the previous position was computed (TAA may sample it)
+};
+
+/// Parameters shared by every method that reprojects (appended to its descriptor table).
+std::vector<ParamDesc> reprojectParams();
+/// Read reprojectParams() from a parameter set.
+ReprojectSettings readReprojectSettings(const ParamSet& params);
+
+/// Computes per-pixel taps of each frame against the previous frame's geometry.
+class Reprojector {
+public:
+    void setSettings(const ReprojectSettings& s) { m_settings = s; }
+    const ReprojectSettings& settings() const { return m_settings; }
+
+    /// Compute the taps of `frame`; all taps are rejected when there is no previous frame.
+    void compute(const Frame& frame);
+    /// Keep the frame's geometry for the next compute().
+    void storeGeometry(const Frame& frame);
+    void reset();
+
+    bool hasHistory() const { return m_hasPrev; }
+    const PixelTaps& taps(int x, int y) const
+    {
+        return m_taps[static_cast<std::size_t>(y) * m_width + x];
+    }
+    int width() const { return m_width; }
+    int height() const { return m_height; }
+
+private:
+    void previousPosition(const Frame& f, int x, int y, float& px, float& py, bool& ok) const;
+    bool accept(const Frame& f, int x, int y, int tx, int ty, float footprint) const;
+    float footprint(const Frame& f, int x, int y) const;
+
+    ReprojectSettings m_settings;
+    std::vector<PixelTaps> m_taps;
+    int m_width = 0, m_height = 0;
+    bool m_hasPrev = false;
+    Image m_prevPosition, m_prevNormal, m_prevDepth;
+};
+
+/// Renormalised history: out[c] = sum(w_k * prev(tap_k)[c]) / sum(w_k) over the accepted taps of
+/// `t` for the first C channels of `prev`. Returns sum(w_k); 0 means no history (out = 0).
+template <int C> inline float gatherHistory(const PixelTaps& t, const Image& prev, float* out)
+{
+    for (int c = 0; c < C; ++c)
+        out[c] = 0.0f;
+    float ws = 0.0f;
+    if (!t.box) {
+        for (int k = 0; k < 4; ++k) {
+            if (!(t.mask & (1u << k)) || !(t.w[k] > 0.0f))
+                continue;
+            const float* v = prev.at(t.x0 + (k & 1), t.y0 + (k >> 1));
+            for (int c = 0; c < C; ++c)
+                out[c] += t.w[k] * v[c];
+            ws += t.w[k];
+        }
+    } else {
+        for (int k = 0; k < 9; ++k) {
+            if (!(t.mask & (1u << k)))
+                continue;
+            const float* v = prev.at(t.x0 + k % 3 - 1, t.y0 + k / 3 - 1);
+            for (int c = 0; c < C; ++c)
+                out[c] += v[c];
+            ws += 1.0f;
+        }
+    }
+    if (ws > 0.0f)
+        for (int c = 0; c < C; ++c)
+            out[c] /= ws;
+    return ws;
+}
+
+} // namespace afn

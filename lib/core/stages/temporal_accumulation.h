@@ -1,0 +1,41 @@
+// SPDX-License-Identifier: Apache-2.0
+// Temporal accumulation exactly as BMFR (bmfr.cl accumulate_noisy_data), per pixel:
+//   prev, spp_s = renormalised reprojected history (accepted bilinear taps, reproject.h)
+//   if sum(w) > 0: alpha = max(1 / (spp_s + 1), alphaMin), spp = min(spp_s + 1, 255)
+//   else:          alpha = 1, spp = 1                       (disocclusion: history reset)
+//   acc = prev + alpha * (colour - prev)
+// The blend is written as a lerp from the history (BMFR: alpha*c + (1-alpha)*prev; identical in
+// exact arithmetic) so that an unchanged value stays bit-exactly unchanged. spp is kept as a float
+// capped at 255 (BMFR stores a uchar; the cap has no effect once alpha = alphaMin). Inputs are
+// finite and non-negative (demodulate.h), so the history never holds NaN/Inf.
+#pragma once
+
+#include "stages/reproject.h"
+
+namespace afn {
+
+/// Running per-pixel accumulation of demodulated colour.
+class TemporalAccumulator {
+public:
+    /// [0; 1] minimum blend factor (BMFR: 0.2).
+    void setAlphaMin(float a) { m_alphaMin = a; }
+
+    /// Blend `irradiance` (3 ch) into the history reprojected by `taps`.
+    void accumulate(const Reprojector& taps, const Image& irradiance);
+    void reset();
+
+    /// Accumulated colour of the last frame (3 ch).
+    const Image& color() const { return m_color; }
+    /// History length of the last frame (1 ch; 1 = reset this frame).
+    const Image& historyLength() const { return m_spp; }
+
+private:
+    float m_alphaMin = 0.2f;
+    bool m_hasHistory = false;
+    Image m_color, m_spp, m_prevColor, m_prevSpp;
+};
+
+/// Largest history length kept (BMFR's uchar).
+constexpr float kMaxHistoryLength = 255.0f;
+
+} // namespace afn
