@@ -106,7 +106,7 @@ void BM_bmfr(benchmark::State& s)
 
 void BM_afn(benchmark::State& s)
 {
-    if (!afn::afnet::hasEmbeddedWeights()) {
+    if (!afn::findFilterType("afn")->ready) {
         s.SkipWithError("this build embeds no AFN weights");
         return;
     }

@@ -1,9 +1,6 @@
 // SPDX-License-Identifier: Apache-2.0
 #include "ops.h"
 
-#include <fstream>
-#include <iterator>
-
 #include "cli_error.h"
 #include "progress.h"
 
@@ -36,14 +33,10 @@ SequenceDenoiser::SequenceDenoiser(const Options& opts, const Action& action)
         m_params.erase(w);
     }
     if (!weights.empty()) {
-        std::ifstream in(weights, std::ios::binary);
-        if (!in)
+        std::vector<char> data;
+        if (!afn::readFile(weights, data))
             throw CliError("cannot read the weights file", weights);
-        const std::vector<char> data(
-            (std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-        if (in.bad())
-            throw CliError("cannot read the weights file", weights);
-        m_filter.setData("weights", data.data(), data.size()); // the library copies them
+        m_filter.setData(AFN_DATA_WEIGHTS, data.data(), data.size()); // the library copies them
         check("--weights (" + weights + ")", "");
     }
 }
@@ -80,22 +73,18 @@ void SequenceDenoiser::process(LoadedFrame& frame, Progress* progress)
     const int w = color.width, h = color.height;
 
     // Conventions of this file's AOVs, then the user's explicit parameters (which win).
-    const afn::io::SpaceTag& tag = img.mapping.tag;
-    m_filter.set("normal.space", tag.normalSpace);
-    m_filter.set("depth.kind", tag.depthKind);
-    m_filter.set("motion.direction", tag.motionDirection);
-    m_filter.set("motion.yUp", tag.motionYUp);
-    m_filter.set("motion.units", tag.motionUnits);
-    m_filter.set("color.demodulated", tag.colorDemodulated);
+    for (const auto& [name, value] : img.mapping.tag.parameters())
+        m_filter.set(name.c_str(), value);
     for (const auto& [key, value] : m_params)
         m_filter.set(key.c_str(), value);
     check("--denoise", frame.ref.path);
 
     // The working-space beauty is the colour input; other roles as read.
-    m_filter.setImage("color", frame.beauty.data(), afn::Format::Float3, w, h);
-    const std::pair<Role, const char*> roles[] = { { Role::Albedo, "albedo" },
-        { Role::Normal, "normal" }, { Role::Depth, "depth" }, { Role::Position, "position" },
-        { Role::Motion, "motion" }, { Role::Alpha, "alpha" } };
+    m_filter.setImage(AFN_IMAGE_COLOR, frame.beauty.data(), afn::Format::Float3, w, h);
+    const std::pair<Role, const char*> roles[] = { { Role::Albedo, AFN_IMAGE_ALBEDO },
+        { Role::Normal, AFN_IMAGE_NORMAL }, { Role::Depth, AFN_IMAGE_DEPTH },
+        { Role::Position, AFN_IMAGE_POSITION }, { Role::Motion, AFN_IMAGE_MOTION },
+        { Role::Alpha, AFN_IMAGE_ALPHA } };
     for (const auto& [role, name] : roles) {
         auto it = img.roles.find(role);
         if (it == img.roles.end()) {
@@ -107,18 +96,18 @@ void SequenceDenoiser::process(LoadedFrame& frame, Progress* progress)
             r.components * sizeof(float), 0);
     }
     if (img.camera) {
-        m_filter.setFloats("viewProjection", img.camera->viewProjection, 16);
-        m_filter.setFloats("pixelOffset", img.camera->pixelOffset, 2);
+        m_filter.setFloats(AFN_ARRAY_VIEW_PROJECTION, img.camera->viewProjection, 16);
+        m_filter.setFloats(AFN_ARRAY_PIXEL_OFFSET, img.camera->pixelOffset, 2);
     }
     m_output.assign(static_cast<std::size_t>(w) * h * 3, 0.0f);
-    m_filter.setImage("output", m_output.data(), afn::Format::Float3, w, h);
+    m_filter.setImage(AFN_IMAGE_OUTPUT, m_output.data(), afn::Format::Float3, w, h);
     m_filter.commit();
     check("--denoise", frame.ref.path);
     m_filter.execute();
     check("--denoise", frame.ref.path);
 
-    const int nonFinite = m_filter.get<int>("stats.nonFinite");
-    const int negative = m_filter.get<int>("stats.negative");
+    const int nonFinite = m_filter.get<int>(AFN_STAT_NON_FINITE);
+    const int negative = m_filter.get<int>(AFN_STAT_NEGATIVE);
     if (nonFinite > 0)
         warn(std::to_string(nonFinite) + " NaN/Inf input values replaced by 0 (" + frame.ref.path
                 + ")",

@@ -91,11 +91,10 @@ void printText(const FileReport& r)
                         lf == r.mapping.lookedFor.end() ? "-" : join(lf->second).c_str());
         }
     }
-    const afn::io::SpaceTag& t = r.mapping.tag;
-    std::printf("  conventions: normal.space=%s depth.kind=%s motion.direction=%s motion.yUp=%d "
-                "motion.units=%s color.demodulated=%d\n",
-                t.normalSpace.c_str(), t.depthKind.c_str(), t.motionDirection.c_str(),
-                t.motionYUp ? 1 : 0, t.motionUnits.c_str(), t.colorDemodulated ? 1 : 0);
+    std::printf("  conventions:");
+    for (const auto& [name, value] : r.mapping.tag.parameters())
+        std::printf(" %s=%s", name.c_str(), value.c_str());
+    std::printf("\n");
 }
 
 void writeJson(JsonWriter& j, const FileReport& r)
@@ -132,9 +131,14 @@ void writeJson(JsonWriter& j, const FileReport& r)
     for (const auto& [role, looked] : r.mapping.lookedFor) j.key(afn::io::roleName(role)).value(looked);
     j.endObject();
     const afn::io::SpaceTag& t = r.mapping.tag;
-    j.key("conventions").beginObject().field("normal.space", t.normalSpace).field("depth.kind", t.depthKind)
-        .field("motion.direction", t.motionDirection).field("motion.yUp", t.motionYUp)
-        .field("motion.units", t.motionUnits).field("color.demodulated", t.colorDemodulated).endObject();
+    j.key("conventions").beginObject();
+    for (const auto& [name, value] : t.parameters()) {
+        if (value == "true" || value == "false")
+            j.field(name, value == "true");
+        else
+            j.field(name, value);
+    }
+    j.endObject();
     j.key("stats").beginObject();
     for (const auto& [role, s] : r.stats) {
         j.key(afn::io::roleName(role)).beginObject().field("min", s.min).field("max", s.max)

@@ -11,7 +11,7 @@ int main(int argc, char** argv)
     enum { W = 64, H = 36, FRAMES = 4 };
     static float color[W * H * 3], albedo[W * H * 3], output[W * H * 3];
 
-    AFNDevice device = afnNewDevice();
+    AFNDevice device = afnNewDevice(AFN_DEVICE_TYPE_DEFAULT);
     afnCommitDevice(device);
     AFNFilter filter = afnNewFilter(device, method);
     const char* message = NULL;

@@ -19,8 +19,9 @@ struct ClipRole {
     const char* clip;
     const char* role;
 };
-const ClipRole kAuxClips[] = { { "Albedo", "albedo" }, { "Normal", "normal" }, { "Depth", "depth" },
-    { "Position", "position" }, { "Motion", "motion" } };
+const ClipRole kAuxClips[] = { { "Albedo", AFN_IMAGE_ALBEDO }, { "Normal", AFN_IMAGE_NORMAL },
+    { "Depth", AFN_IMAGE_DEPTH }, { "Position", AFN_IMAGE_POSITION },
+    { "Motion", AFN_IMAGE_MOTION } };
 constexpr int kNumAux = sizeof(kAuxClips) / sizeof(kAuxClips[0]);
 
 /// Per-instance state; render calls of one instance are serialised by `mutex`, so the effect is
@@ -157,7 +158,7 @@ double firstFrame(const Instance& inst)
 std::vector<std::pair<const char*, InputClip>> inputClips(const Instance& inst)
 {
     std::vector<std::pair<const char*, InputClip>> out;
-    out.push_back({ kOfxImageEffectSimpleSourceClipName, { "color", inst.source } });
+    out.push_back({ kOfxImageEffectSimpleSourceClipName, { AFN_IMAGE_COLOR, inst.source } });
     for (int i = 0; i < kNumAux; ++i)
         if (connected(inst.aux[i]))
             out.push_back({ kAuxClips[i].clip, { kAuxClips[i].role, inst.aux[i] } });

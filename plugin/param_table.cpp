@@ -16,11 +16,12 @@ namespace afnofx {
 namespace {
 
 // Parameters the plugin sets itself from what the host tells it: OFX rows run bottom-up, so the
-// y-up pixel vectors of the Motion clip (OFX and Blender convention) are "motion.yUp"; pixel
-// vectors shrink with the render scale, which becomes "motion.scale".
+// y-up pixel vectors of the Motion clip (OFX and Blender convention) set the motion y-up
+// convention; pixel vectors shrink with the render scale, which becomes the motion scale.
 bool setByPlugin(const char* name)
 {
-    return std::strcmp(name, "motion.yUp") == 0 || std::strcmp(name, "motion.scale") == 0;
+    return std::strcmp(name, AFN_CONVENTION_MOTION_Y_UP) == 0
+        || std::strcmp(name, AFN_CONVENTION_MOTION_SCALE) == 0;
 }
 
 // Methods in order of preference for the default (the issue asks for AFN once it exists, then
@@ -50,21 +51,6 @@ std::vector<std::string> splitChoices(const char* choices)
     return out;
 }
 
-// True when the method commits with every input bound and nothing else set: a learned method
-// without built-in weights fails here and must not be the default.
-bool runsOutOfTheBox(const char* method)
-{
-    afn::DeviceRef device = afn::newDevice();
-    device.commit();
-    afn::FilterRef f = device.newFilter(method);
-    std::vector<float> px(8 * 8 * 4, 0.5f);
-    for (const char* role : { "color", "albedo", "normal", "depth", "motion" })
-        f.setImage(role, px.data(), afn::Format::Float4, 8, 8);
-    f.setImage("output", px.data(), afn::Format::Float4, 8, 8);
-    f.commit();
-    return device.getError() == afn::Error::None;
-}
-
 ParamCatalog buildCatalog()
 {
     ParamCatalog c;
@@ -72,7 +58,7 @@ ParamCatalog buildCatalog()
     c.defaultMethod = 0;
     for (const char* p : kPreferred) {
         auto it = std::find(c.methods.begin(), c.methods.end(), p);
-        if (it != c.methods.end() && runsOutOfTheBox(p)) {
+        if (it != c.methods.end() && afn::isFilterTypeReady(p)) {
             c.defaultMethod = static_cast<int>(it - c.methods.begin());
             break;
         }

@@ -6,7 +6,6 @@
 
 #include <cmath>
 #include <cstring>
-#include <fstream>
 #include <iterator>
 #include <memory>
 #include <sstream>
@@ -130,12 +129,10 @@ const std::vector<float>& SequenceRunner::frame(double time, const Settings& set
 void SequenceRunner::loadWeights(const Settings& settings)
 {
     if (settings.weightsPath.empty()) return;
-    std::ifstream in(settings.weightsPath, std::ios::binary);
-    if (!in)
+    std::vector<char> bytes;
+    if (!afn::readFile(settings.weightsPath, bytes))
         throw OfxError(kOfxStatFailed, "cannot read the weights file '" + settings.weightsPath + "'");
-    const std::vector<char> bytes((std::istreambuf_iterator<char>(in)),
-                                  std::istreambuf_iterator<char>());
-    m_filter.setData("weights", bytes.data(), bytes.size());
+    m_filter.setData(AFN_DATA_WEIGHTS, bytes.data(), bytes.size());
     checkError(("weights file '" + settings.weightsPath + "'").c_str());
 }
 
@@ -156,34 +153,35 @@ void SequenceRunner::runFrame(double time, const Settings& settings, const Frame
         if (!img.valid()) throw OfxError(kOfxStatFailed, "no image from the " + where.str());
         const StridedView v = viewWindow(img, req.window, m_scratch[i]);
         const std::string role = in.role;
-        int need = role == "depth" ? 1 : role == "motion" ? 2 : 3;
+        int need = role == AFN_IMAGE_DEPTH ? 1 : role == AFN_IMAGE_MOTION ? 2 : 3;
         if (v.components < need)
             throw OfxError(kOfxStatErrImageFormat, "the " + where.str() + " has " +
                                std::to_string(v.components) + " components, needs " +
                                std::to_string(need));
         afnSetFilterImage(f, in.role, v.ptr, static_cast<AFNFormat>(need), w, h, 0, v.pixelStride,
                           v.rowStride);
-        if (role == "color") {
+        if (role == AFN_IMAGE_COLOR) {
             if (v.components == 4)
-                afnSetFilterImage(f, "alpha", static_cast<char*>(v.ptr) + 3 * sizeof(float),
+                afnSetFilterImage(f, AFN_IMAGE_ALPHA, static_cast<char*>(v.ptr) + 3 * sizeof(float),
                                   AFN_FORMAT_FLOAT, w, h, 0, v.pixelStride, v.rowStride);
             else
-                afnUnsetFilterImage(f, "alpha");
+                afnUnsetFilterImage(f, AFN_IMAGE_ALPHA);
         }
     }
     out.resize(size_t(w) * h * 4);
-    afnSetFilterImage(f, "output", out.data(), AFN_FORMAT_FLOAT4, w, h, 0, 0, 0);
+    afnSetFilterImage(f, AFN_IMAGE_OUTPUT, out.data(), AFN_FORMAT_FLOAT4, w, h, 0, 0, 0);
     applySettings(settings, f);
-    if (methodHasParam(settings.method, "motion.yUp")) afnSetFilterBool(f, "motion.yUp", true);
-    if (methodHasParam(settings.method, "motion.scale"))
-        afnSetFilterFloat(f, "motion.scale", static_cast<float>(req.renderScale));
+    if (methodHasParam(settings.method, AFN_CONVENTION_MOTION_Y_UP))
+        afnSetFilterBool(f, AFN_CONVENTION_MOTION_Y_UP, true);
+    if (methodHasParam(settings.method, AFN_CONVENTION_MOTION_SCALE))
+        afnSetFilterFloat(f, AFN_CONVENTION_MOTION_SCALE, static_cast<float>(req.renderScale));
     checkError("setting the afn inputs");
     afnCommitFilter(f);
     checkError("afn commit");
     afnExecuteFilter(f);
     for (const InputClip& in : req.inputs) afnUnsetFilterImage(f, in.role);
-    afnUnsetFilterImage(f, "alpha");
-    afnUnsetFilterImage(f, "output");
+    afnUnsetFilterImage(f, AFN_IMAGE_ALPHA);
+    afnUnsetFilterImage(f, AFN_IMAGE_OUTPUT);
     checkError("afn execute");
 }
 

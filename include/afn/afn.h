@@ -10,6 +10,21 @@
 //   images as OpenFX hosts hand them). Row 0 is the top row of the image as the caller sees it.
 // - Filters are stateful only through their temporal history: afnExecuteFilter() processes one
 //   frame and advances the history; afnResetFilter() drops it (scene cut, seek).
+//
+// Threads:
+// - Every function may be called from any thread. Calls on one filter are serialised by the
+//   library (a second caller waits); calls on different filters run concurrently, also when the
+//   filters share a device.
+// - afnSetDeviceInt() and afnCommitDevice() wait until the device's running executes have
+//   finished, then apply; executes started later use the new settings. A device whose parameters
+//   changed is uncommitted: afnNewFilter() and afnExecuteFilter() fail on it until it is committed.
+// - Callbacks run on the thread of the call that triggers them: the error callback on the failing
+//   call's thread, the progress callback on the executing thread (never concurrently for one
+//   filter). A callback must not call back into afn with the same filter.
+//
+// ABI: handles are opaque; enum values are spaced by meaning and never reused; parameter, image
+// and statistic names are the stable interface (the AFN_* name constants below). AFNParamInfo only
+// grows at its end. AFN_VERSION_MAJOR changes when a binary built against an older header breaks.
 #ifndef AFN_AFN_H
 #define AFN_AFN_H
 
@@ -57,6 +72,47 @@ typedef enum AFNFormat {
     AFN_FORMAT_FLOAT4 = 4, ///< 4 x float32 (the 4th channel is ignored on inputs except "alpha")
 } AFNFormat;
 
+/// Device types. The CUDA device exists only in builds with CUDA (afnNewDevice fails with
+/// AFN_ERROR_UNSUPPORTED otherwise, and when no GPU is present).
+typedef enum AFNDeviceType {
+    AFN_DEVICE_TYPE_DEFAULT = 0, ///< the CPU (the reference device; results do not depend on it)
+    AFN_DEVICE_TYPE_CPU = 1,     ///< the CPU, on a oneTBB thread arena
+    AFN_DEVICE_TYPE_CUDA = 3,    ///< an NVIDIA GPU (reserved until a build provides it)
+} AFNDeviceType;
+
+// ---- Names ------------------------------------------------------------------------------------
+// The names a filter knows, as constants (the strings are the interface; both spellings work).
+
+/// Input images (afnSetFilterImage).
+#define AFN_IMAGE_COLOR "color"       ///< noisy beauty, linear RGB (required)
+#define AFN_IMAGE_ALBEDO "albedo"     ///< albedo, [0, 1]
+#define AFN_IMAGE_NORMAL "normal"     ///< shading normal (space: AFN_CONVENTION_NORMAL_SPACE)
+#define AFN_IMAGE_DEPTH "depth"       ///< linear depth (kind: AFN_CONVENTION_DEPTH_KIND)
+#define AFN_IMAGE_POSITION "position" ///< world position
+#define AFN_IMAGE_MOTION "motion"     ///< motion vectors (AFN_CONVENTION_MOTION_*)
+#define AFN_IMAGE_ALPHA "alpha"       ///< coverage, passed through to a FLOAT4 output
+/// Output image.
+#define AFN_IMAGE_OUTPUT "output"
+/// Parameters every filter has: the conventions of the bound inputs.
+#define AFN_CONVENTION_NORMAL_SPACE "normal.space"
+#define AFN_CONVENTION_DEPTH_KIND "depth.kind"
+#define AFN_CONVENTION_MOTION_DIRECTION "motion.direction"
+#define AFN_CONVENTION_MOTION_Y_UP "motion.yUp"
+#define AFN_CONVENTION_MOTION_UNITS "motion.units"
+#define AFN_CONVENTION_MOTION_SCALE "motion.scale"
+#define AFN_CONVENTION_COLOR_DEMODULATED "color.demodulated"
+/// Array parameters (afnSetFilterFloats).
+#define AFN_ARRAY_VIEW_PROJECTION "viewProjection"
+#define AFN_ARRAY_PIXEL_OFFSET "pixelOffset"
+/// Data parameters (afnSetFilterData).
+#define AFN_DATA_WEIGHTS "weights"
+/// Read-only values of a filter (afnGetFilterInt).
+#define AFN_STAT_NON_FINITE "stats.nonFinite"
+#define AFN_STAT_NEGATIVE "stats.negative"
+#define AFN_STAT_FRAME_INDEX "frameIndex"
+#define AFN_STAT_WIDTH "width"
+#define AFN_STAT_HEIGHT "height"
+
 /// Types of filter parameters, as reported by afnGetFilterTypeParam().
 typedef enum AFNParamType {
     AFN_PARAM_BOOL = 1,
@@ -88,15 +144,16 @@ typedef bool (*AFNProgressMonitorFunction)(void* userPtr, double progress);
 
 // ---- Device -------------------------------------------------------------------------------------
 
-/// Create a CPU device (reference count 1). Returns NULL on failure.
-AFN_API AFNDevice afnNewDevice(void);
+/// Create a device of the given type (reference count 1). Returns NULL on failure (error in this
+/// thread's slot: AFN_ERROR_UNSUPPORTED when the build or the machine has no such device).
+AFN_API AFNDevice afnNewDevice(AFNDeviceType type);
 /// Add a reference to the device.
 AFN_API void afnRetainDevice(AFNDevice device);
 /// Drop a reference; the device is destroyed when the last reference goes.
 AFN_API void afnReleaseDevice(AFNDevice device);
-/// Set an integer parameter: "numThreads" (0 = all cores, default), "verbose" (0..3).
+/// Set an integer parameter: "numThreads" (0 = all cores, default). Uncommits the device.
 AFN_API void afnSetDeviceInt(AFNDevice device, const char* name, int value);
-/// Get an integer parameter: "numThreads", "verbose", "version" (AFN_VERSION of the library).
+/// Get an integer parameter: "numThreads", "type" (AFNDeviceType), "version" (AFN_VERSION).
 AFN_API int afnGetDeviceInt(AFNDevice device, const char* name);
 /// Register an error callback (NULL to remove).
 AFN_API void afnSetDeviceErrorFunction(AFNDevice device, AFNErrorFunction func, void* userPtr);
@@ -114,6 +171,10 @@ AFN_API int afnGetNumFilterTypes(void);
 AFN_API const char* afnGetFilterTypeName(int index);
 /// One-line description of a filter type, NULL if unknown.
 AFN_API const char* afnGetFilterTypeDescription(const char* type);
+/// True when filters of this type run as created: the method needs no data, or this build embeds
+/// its trained weights. False for a learned method without built-in weights (set them with
+/// afnSetFilterData(filter, AFN_DATA_WEIGHTS, ...)) and for unknown types.
+AFN_API bool afnIsFilterTypeReady(const char* type);
 /// Number of parameters of a filter type (common input-convention parameters included), -1 if unknown.
 AFN_API int afnGetFilterTypeNumParams(const char* type);
 /// Fill *info with the index-th parameter of a type; false if out of range. Strings are static.

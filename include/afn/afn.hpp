@@ -5,6 +5,8 @@
 
 #include "afn/afn.h"
 
+#include <fstream>
+#include <iterator>
 #include <string>
 #include <utility>
 #include <vector>
@@ -20,6 +22,13 @@ enum class Error {
     OutOfMemory = AFN_ERROR_OUT_OF_MEMORY,
     Unsupported = AFN_ERROR_UNSUPPORTED,
     Cancelled = AFN_ERROR_CANCELLED,
+};
+
+/// Device types as an enum class.
+enum class DeviceType {
+    Default = AFN_DEVICE_TYPE_DEFAULT,
+    CPU = AFN_DEVICE_TYPE_CPU,
+    CUDA = AFN_DEVICE_TYPE_CUDA,
 };
 
 /// Pixel formats as an enum class.
@@ -144,8 +153,25 @@ private:
     AFNDevice m_handle = nullptr;
 };
 
-/// Create a CPU device.
-inline DeviceRef newDevice() { return DeviceRef(afnNewDevice()); }
+/// Create a device (NULL handle on failure: read the error with afnGetDeviceError(NULL, ...)).
+inline DeviceRef newDevice(DeviceType type = DeviceType::Default)
+{
+    return DeviceRef(afnNewDevice(static_cast<AFNDeviceType>(type)));
+}
+
+/// True when filters of this type run as created (see afnIsFilterTypeReady).
+inline bool isFilterTypeReady(const char* type) { return afnIsFilterTypeReady(type); }
+
+/// Read a whole file (a weights archive for AFN_DATA_WEIGHTS) into `bytes`; false if it cannot be
+/// read. The library never reads files itself; this helper runs in the caller's code.
+inline bool readFile(const std::string& path, std::vector<char>& bytes)
+{
+    std::ifstream in(path, std::ios::binary);
+    if (!in)
+        return false;
+    bytes.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+    return !in.bad();
+}
 
 /// Names of every filter type of this build.
 inline std::vector<std::string> filterTypes()

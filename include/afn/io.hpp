@@ -5,10 +5,13 @@
 // here terminates the process.
 #pragma once
 
+#include "afn/afn.h"
+
 #include <map>
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace afn::io {
@@ -50,6 +53,9 @@ struct SpaceTag {
     bool motionYUp = false;                      ///< y grows upward (Blender)
     std::string motionUnits = "pixels";          ///< pixels | ndc | uv
     bool colorDemodulated = false;               ///< colour already divided by albedo (BMFR data)
+
+    /// The conventions as (filter parameter name, value) pairs, to be set on a filter in a loop.
+    std::vector<std::pair<std::string, std::string>> parameters() const;
 };
 
 /// Where one role lives in a file.

@@ -28,21 +28,19 @@ struct AFNFilterImpl {
     std::unique_ptr<afn::Filter> filter;
     std::mutex mutex; ///< one call at a time per filter
     std::string stringResult;
-    AFNProgressMonitorFunction progressFn = nullptr;
-    void* progressUser = nullptr;
 };
 
 namespace {
 
 AFNFilterImpl* checkFilter(AFNFilter f)
 {
-    if (!f || f->magic != kFilterMagic) throw afn::Exception(AFN_ERROR_INVALID_ARGUMENT, "invalid filter handle");
+    if (!f || f->magic != kFilterMagic) afn::throwInvalidArgument("invalid filter handle");
     return f;
 }
 
 std::string checkName(const char* name)
 {
-    if (!name) throw afn::Exception(AFN_ERROR_INVALID_ARGUMENT, "null name");
+    if (!name) afn::throwInvalidArgument("null name");
     return name;
 }
 
@@ -57,10 +55,10 @@ extern "C" {
 
 // ---- Device -------------------------------------------------------------------------------------
 
-AFN_API AFNDevice afnNewDevice(void)
+AFN_API AFNDevice afnNewDevice(AFNDeviceType type)
 {
     AFN_TRY
-    return new AFNDeviceImpl();
+    return new AFNDeviceImpl(type);
     AFN_CATCH(nullptr)
     return nullptr;
 }
@@ -139,6 +137,12 @@ AFN_API const char* afnGetFilterTypeDescription(const char* type)
     return t ? t->description.c_str() : nullptr;
 }
 
+AFN_API bool afnIsFilterTypeReady(const char* type)
+{
+    const afn::FilterType* t = type ? afn::findFilterType(type) : nullptr;
+    return t && t->ready;
+}
+
 AFN_API int afnGetFilterTypeNumParams(const char* type)
 {
     const afn::FilterType* t = type ? afn::findFilterType(type) : nullptr;
@@ -169,7 +173,7 @@ AFN_API AFNFilter afnNewFilter(AFNDevice d, const char* type)
     AFN_TRY
     checkDevice(d);
     if (!d->device.committed())
-        throw afn::Exception(AFN_ERROR_INVALID_OPERATION, "device is not committed");
+        afn::throwInvalidOperation("device is not committed");
     auto impl = std::make_unique<AFNFilterImpl>();
     impl->filter = afn::createFilter(checkName(type));
     impl->device = d;
@@ -206,7 +210,7 @@ AFN_API void afnSetFilterImage(AFNFilter f, const char* name, void* ptr, AFNForm
     checkFilter(f);
     std::lock_guard<std::mutex> lock(f->mutex);
     if (width > (1u << 16) || height > (1u << 16))
-        throw afn::Exception(AFN_ERROR_INVALID_ARGUMENT, "image larger than 65536 pixels on a side");
+        afn::throwInvalidArgument("image larger than 65536 pixels on a side");
     afn::ImageBinding b;
     b.ptr = ptr;
     b.format = format;
@@ -250,7 +254,7 @@ AFN_API void afnSetFilterString(AFNFilter f, const char* name, const char* value
     AFN_TRY
     checkFilter(f);
     std::lock_guard<std::mutex> lock(f->mutex);
-    if (!value) throw afn::Exception(AFN_ERROR_INVALID_ARGUMENT, "null string value");
+    if (!value) afn::throwInvalidArgument("null string value");
     f->filter->params().setString(checkName(name), value);
     f->filter->markDirty();
     AFN_CATCH(deviceOf(f))
@@ -261,7 +265,7 @@ AFN_API void afnSetFilterFloats(AFNFilter f, const char* name, const float* valu
     AFN_TRY
     checkFilter(f);
     std::lock_guard<std::mutex> lock(f->mutex);
-    if (!values && count) throw afn::Exception(AFN_ERROR_INVALID_ARGUMENT, "null values");
+    if (!values && count) afn::throwInvalidArgument("null values");
     f->filter->setFloats(checkName(name), std::vector<float>(values, values + count));
     AFN_CATCH(deviceOf(f))
 }
@@ -271,7 +275,7 @@ AFN_API void afnSetFilterData(AFNFilter f, const char* name, const void* data, s
     AFN_TRY
     checkFilter(f);
     std::lock_guard<std::mutex> lock(f->mutex);
-    if (!data && byteSize) throw afn::Exception(AFN_ERROR_INVALID_ARGUMENT, "null data");
+    if (!data && byteSize) afn::throwInvalidArgument("null data");
     f->filter->setData(checkName(name), data, byteSize);
     f->filter->markDirty();
     AFN_CATCH(deviceOf(f))

@@ -28,6 +28,7 @@ inline thread_local ThreadError t_error;
 } // namespace afn::api
 
 struct AFNDeviceImpl {
+    explicit AFNDeviceImpl(AFNDeviceType type) : device(type) {}
     std::uint32_t magic = afn::api::kDeviceMagic;
     std::atomic<int> refs { 1 };
     afn::Device device;
@@ -50,7 +51,7 @@ inline void recordError(AFNDeviceImpl* d, AFNError code, const std::string& msg)
 inline AFNDeviceImpl* checkDevice(AFNDevice d)
 {
     if (!d || d->magic != kDeviceMagic)
-        throw afn::Exception(AFN_ERROR_INVALID_ARGUMENT, "invalid device handle");
+        afn::throwInvalidArgument("invalid device handle");
     return d;
 }
 

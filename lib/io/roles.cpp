@@ -114,29 +114,38 @@ void parseOverride(const std::string& text, MappingOverrides& overrides)
     overrides.channels[*role] = names;
 }
 
+std::vector<std::pair<std::string, std::string>> SpaceTag::parameters() const
+{
+    return { { AFN_CONVENTION_NORMAL_SPACE, normalSpace }, { AFN_CONVENTION_DEPTH_KIND, depthKind },
+        { AFN_CONVENTION_MOTION_DIRECTION, motionDirection },
+        { AFN_CONVENTION_MOTION_Y_UP, motionYUp ? "true" : "false" },
+        { AFN_CONVENTION_MOTION_UNITS, motionUnits },
+        { AFN_CONVENTION_COLOR_DEMODULATED, colorDemodulated ? "true" : "false" } };
+}
+
 namespace detail {
 
 bool applyTag(SpaceTag& tag, const std::string& key, const std::string& value)
 {
-    if (key == "normal.space") {
+    if (key == AFN_CONVENTION_NORMAL_SPACE) {
         if (value != "world" && value != "camera" && value != "camera-toward-viewer")
             return false;
         tag.normalSpace = value;
-    } else if (key == "depth.kind") {
+    } else if (key == AFN_CONVENTION_DEPTH_KIND) {
         if (value != "planar" && value != "radial")
             return false;
         tag.depthKind = value;
-    } else if (key == "motion.direction") {
+    } else if (key == AFN_CONVENTION_MOTION_DIRECTION) {
         if (value != "to-previous" && value != "to-next")
             return false;
         tag.motionDirection = value;
-    } else if (key == "motion.yUp") {
+    } else if (key == AFN_CONVENTION_MOTION_Y_UP) {
         return parseBool(value, tag.motionYUp);
-    } else if (key == "motion.units") {
+    } else if (key == AFN_CONVENTION_MOTION_UNITS) {
         if (value != "pixels" && value != "ndc" && value != "uv")
             return false;
         tag.motionUnits = value;
-    } else if (key == "color.demodulated") {
+    } else if (key == AFN_CONVENTION_COLOR_DEMODULATED) {
         return parseBool(value, tag.colorDemodulated);
     } else {
         return false;

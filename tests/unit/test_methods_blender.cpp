@@ -90,7 +90,7 @@ TEST(MethodsBlender, EveryMethodClearlyBeatsTheNoisyInput)
         noisyMean += psnr(frames[k].color, refs[k]) / kFrames;
     std::printf("%-6s mean %6.2f dB (noisy 1 spp input)\n", "input", noisyMean);
     std::vector<std::string> methods = { "ta", "svgf", "bmfr" };
-    if (afn::afnet::hasEmbeddedWeights())
+    if (afn::findFilterType("afn")->ready)
         methods.push_back("afn"); // the shipped model (its training never saw this scene)
     std::map<std::string, double> means;
     for (const std::string& m : methods) {

@@ -8,40 +8,59 @@
 
 namespace afn {
 
-Device::Device() = default;
+Device::Device(AFNDeviceType type)
+    : m_type(type == AFN_DEVICE_TYPE_DEFAULT ? AFN_DEVICE_TYPE_CPU : type)
+{
+    if (m_type == AFN_DEVICE_TYPE_CUDA)
+        throw Exception(AFN_ERROR_UNSUPPORTED, "this build of afn has no CUDA device");
+    if (m_type != AFN_DEVICE_TYPE_CPU)
+        throwInvalidArgument("unknown device type " + std::to_string(static_cast<int>(type)));
+}
+
 Device::~Device() = default;
 
 void Device::setInt(const std::string& name, int value)
 {
-    if (name == "numThreads") {
-        if (value < 0) throwInvalidArgument("numThreads must be >= 0 (0 = all cores)");
-        m_numThreads = value;
-    } else if (name == "verbose") {
-        m_verbose = value;
-    } else {
-        throwInvalidArgument("unknown device parameter '" + name + "'");
-    }
+    std::unique_lock<std::shared_mutex> lock(m_stateMutex);
+    if (name != "numThreads")
+        throwInvalidArgument("unknown or read-only device parameter '" + name + "'");
+    if (value < 0)
+        throwInvalidArgument("numThreads must be >= 0 (0 = all cores)");
+    m_numThreads = value;
     m_committed = false;
 }
 
 int Device::getInt(const std::string& name) const
 {
-    if (name == "numThreads") return m_numThreads;
-    if (name == "verbose") return m_verbose;
-    if (name == "version") return AFN_VERSION;
+    std::shared_lock<std::shared_mutex> lock(m_stateMutex);
+    if (name == "numThreads")
+        return m_numThreads;
+    if (name == "type")
+        return static_cast<int>(m_type);
+    if (name == "version")
+        return AFN_VERSION;
     throwInvalidArgument("unknown device parameter '" + name + "'");
 }
 
 void Device::commit()
 {
+    std::unique_lock<std::shared_mutex> lock(m_stateMutex);
     const int n = m_numThreads > 0 ? m_numThreads : tbb::info::default_concurrency();
     m_arena = std::make_unique<tbb::task_arena>(n);
     m_committed = true;
 }
 
+bool Device::committed() const
+{
+    std::shared_lock<std::shared_mutex> lock(m_stateMutex);
+    return m_committed;
+}
+
 void Device::runImpl(const std::function<void()>& fn)
 {
-    if (!m_committed) throwInvalidOperation("device is not committed; call afnCommitDevice first");
+    std::shared_lock<std::shared_mutex> lock(m_stateMutex);
+    if (!m_committed)
+        throwInvalidOperation("device is not committed; call afnCommitDevice first");
     m_arena->execute(fn);
 }
 

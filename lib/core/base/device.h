@@ -1,5 +1,8 @@
 // SPDX-License-Identifier: Apache-2.0
-// The CPU device: thread count (a oneTBB arena) and the error state the C API reports.
+// A device: its type, its thread count (a oneTBB arena) and the error state the C API reports.
+// Concurrency (afn.h states the contract): executes hold the device's lock shared, so filters run
+// concurrently; setInt() and commit() hold it exclusively, so the arena is never replaced while a
+// filter runs on it.
 #pragma once
 
 #include "afn/afn.h"
@@ -9,21 +12,24 @@
 #include <functional>
 #include <memory>
 #include <mutex>
+#include <shared_mutex>
 #include <string>
 
 namespace afn {
 
 class Device {
 public:
-    Device();
+    /// Throws Unsupported for a type this build or machine cannot provide.
+    explicit Device(AFNDeviceType type);
     ~Device();
 
+    AFNDeviceType type() const { return m_type; }
     void setInt(const std::string& name, int value);
     int getInt(const std::string& name) const;
     void commit();
-    bool committed() const { return m_committed; }
+    bool committed() const;
 
-    /// Run fn inside this device's thread arena.
+    /// Run fn inside this device's thread arena (throws InvalidOperation when uncommitted).
     template <typename Fn> void run(Fn&& fn);
 
     void setError(AFNError code, const std::string& message);
@@ -33,8 +39,9 @@ public:
 private:
     void runImpl(const std::function<void()>& fn);
 
+    AFNDeviceType m_type;
+    mutable std::shared_mutex m_stateMutex; ///< shared: executes; exclusive: settings and commit
     int m_numThreads = 0;
-    int m_verbose = 0;
     bool m_committed = false;
     std::unique_ptr<tbb::task_arena> m_arena;
 
@@ -46,6 +53,9 @@ private:
     void* m_errorUser = nullptr;
 };
 
-template <typename Fn> void Device::run(Fn&& fn) { runImpl(std::function<void()>(std::forward<Fn>(fn))); }
+template <typename Fn> void Device::run(Fn&& fn)
+{
+    runImpl(std::function<void()>(std::forward<Fn>(fn)));
+}
 
 } // namespace afn

@@ -16,6 +16,7 @@ struct FilterType {
     std::string name;
     std::string description;
     std::vector<ParamDesc> params; ///< full table: method parameters, then the common ones
+    bool ready = true; ///< runs as created: needs no data, or the build embeds its weights
     std::function<std::unique_ptr<Filter>(const std::vector<ParamDesc>* table)> create;
 };
 
@@ -40,6 +41,5 @@ namespace afnet { FilterType filterType(); }
 
 /// True when this build embeds trained AFN weights (weights/afn.afnw at configure time), so the
 /// "afn" filter runs without weights being set.
-namespace afnet { bool hasEmbeddedWeights(); }
 
 } // namespace afn

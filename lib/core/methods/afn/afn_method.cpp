@@ -94,15 +94,6 @@ private:
 
 } // namespace
 
-bool hasEmbeddedWeights()
-{
-#ifdef AFN_HAS_EMBEDDED_WEIGHTS
-    return true;
-#else
-    return false;
-#endif
-}
-
 FilterType filterType()
 {
     FilterType t;
@@ -114,6 +105,11 @@ FilterType filterType()
 #else
                     "needs trained weights: this build embeds none, set them with the 'weights' "
                     "data parameter";
+#endif
+#ifdef AFN_HAS_EMBEDDED_WEIGHTS
+    t.ready = true;
+#else
+    t.ready = false;
 #endif
     t.params = { floatParam("alphaMin", 0.2, 0.0, 1.0, "Minimum blend factor",
         "temporal accumulation of the TA-1spp input: weight of the current frame "
