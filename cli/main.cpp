@@ -29,6 +29,10 @@ int run(const Options& opts)
         std::fputs(helpText().c_str(), stdout);
         return 0;
     }
+    if (opts.methods) {
+        std::fputs(methodsText().c_str(), stdout);
+        return 0;
+    }
     if (opts.version) {
         std::printf("afntool %d.%d.%d\n", AFN_VERSION_MAJOR, AFN_VERSION_MINOR, AFN_VERSION_PATCH);
         return 0;

@@ -66,6 +66,8 @@ Options parseCommandLine(int argc, const char* const* argv)
         const std::string flag = splitModifiers(raw, mods);
         if (flag == "-h" || flag == "--help") {
             o.help = true;
+        } else if (flag == "--methods") {
+            o.methods = true;
         } else if (flag == "--version") {
             o.version = true;
         } else if (flag == "--frames") {
@@ -145,6 +147,17 @@ static std::string paramLine(const AFNParamInfo& p)
     return os.str();
 }
 
+std::string methodsText()
+{
+    std::ostringstream os;
+    for (const std::string& type : afn::filterTypes()) {
+        const char* desc = afnGetFilterTypeDescription(type.c_str());
+        os << type << (afn::isFilterTypeReady(type.c_str()) ? " ready " : " needs-weights ")
+           << (desc ? desc : "") << "\n";
+    }
+    return os.str();
+}
+
 std::string helpText()
 {
     std::ostringstream os;
@@ -171,6 +184,7 @@ std::string helpText()
           "input's)\n"
        << "  --keep-aovs             copy every other input layer into -o outputs\n"
        << "  --json                  machine-readable --info\n"
+       << "  --methods               list the methods, each 'ready' or 'needs-weights'\n"
        << "  -q, --quiet             no progress bar and no warnings\n\n"
        << "Actions:\n"
        << "  --info                  layers, channels, windows, role mapping, per-role statistics\n"
@@ -194,7 +208,9 @@ std::string helpText()
        << "Denoising methods and their parameters (name=default (type range)):\n";
     for (const std::string& type : afn::filterTypes()) {
         const char* desc = afnGetFilterTypeDescription(type.c_str());
-        os << "  " << type << ": " << (desc ? desc : "") << "\n";
+        os << "  " << type << ": " << (desc ? desc : "")
+           << (afn::isFilterTypeReady(type.c_str()) ? "" : " [needs weights: --weights FILE]")
+           << "\n";
         for (const AFNParamInfo& p : afn::filterTypeParams(type.c_str())) {
             const std::string name = p.name;
             // Input conventions are set from the role mapping; list them once below.

@@ -35,6 +35,7 @@ struct Options {
     std::string report; ///< --report DIR (with --benchmark): report folder
     bool quiet = false; ///< --quiet: no progress, no warnings
     bool help = false;
+    bool methods = false; ///< --methods: one line per method with its readiness
     bool version = false;
     std::vector<Action> actions;
 };
@@ -44,6 +45,8 @@ Options parseCommandLine(int argc, const char* const* argv);
 
 /// Full help text, listing every denoising method and its parameters with defaults.
 std::string helpText();
+/// The --methods listing: "NAME ready|needs-weights DESCRIPTION" per line.
+std::string methodsText();
 
 /// Split "--name:key=value:key2=value2" into the name and its modifiers.
 std::string splitModifiers(const std::string& arg, std::map<std::string, std::string>& mods);

@@ -10,7 +10,7 @@ T=build/cli/afntool
 SEQ=examples/sequence
 # AFN when the build embeds trained weights (weights/afn.afnw), else SVGF.
 METHOD=svgf
-if [[ "$($T --help)" == *"this build embeds trained weights"* ]]; then METHOD=afn; fi
+if [[ $'\n'"$($T --methods)" == *$'\n'"afn ready "* ]]; then METHOD=afn; fi
 $T --info $SEQ/frame.0000.exr
 echo "== denoising frames 0-7 with '$METHOD' and comparing with the references"
 $T --frames 0-7 $SEQ/frame.####.exr --denoise:method=$METHOD -o out/demo/denoised.####.exr \

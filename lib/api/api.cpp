@@ -175,7 +175,7 @@ AFN_API AFNFilter afnNewFilter(AFNDevice d, const char* type)
     if (!d->device.committed())
         afn::throwInvalidOperation("device is not committed");
     auto impl = std::make_unique<AFNFilterImpl>();
-    impl->filter = afn::createFilter(checkName(type));
+    impl->filter = afn::createFilter(checkName(type), d->device);
     impl->device = d;
     d->refs++;
     return impl.release();

@@ -1,5 +1,5 @@
 # SPDX-License-Identifier: Apache-2.0
 # End-to-end tests of afntool: run the real binary, check exit codes, messages and written files.
-afn_add_gtest(test_afntool SOURCES integration/test_afntool.cpp integration/cli_runner.cpp LIBS afn_io)
+afn_add_gtest(test_afntool SOURCES integration/test_afntool.cpp integration/cli_runner.cpp LIBS afn afn_io)
 target_compile_definitions(test_afntool PRIVATE AFNTOOL_PATH="$<TARGET_FILE:afntool>")
 add_dependencies(test_afntool afntool)

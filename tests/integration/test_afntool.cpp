@@ -3,6 +3,7 @@
 // previews, and every error path (clear message, non-zero exit, nothing half-written).
 #include "cli_runner.h"
 
+#include "afn/afn.hpp"
 #include "afn/io.hpp"
 
 #include <gtest/gtest.h>
@@ -46,6 +47,16 @@ TEST(Afntool, HelpListsMethodsAndParameters)
     EXPECT_NE(r.out.find("identity"), std::string::npos);
     EXPECT_NE(r.out.find("normal.space=world"), std::string::npos);
     EXPECT_NE(r.out.find("--denoise:method=NAME"), std::string::npos);
+}
+
+TEST(Afntool, MethodsListsEveryMethodWithItsReadiness)
+{
+    const CliResult r = runAfntool({ "--methods" });
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    for (const std::string& m : afn::filterTypes()) {
+        const std::string line = "\n" + m + (afn::isFilterTypeReady(m.c_str()) ? " ready " : " needs-weights ");
+        EXPECT_NE(("\n" + r.out).find(line), std::string::npos) << m << "\n" << r.out;
+    }
 }
 
 TEST(Afntool, InfoJsonMapsBlenderRoles)

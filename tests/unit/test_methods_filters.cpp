@@ -4,6 +4,7 @@
 // 2 threads, and svgf/bmfr (and ta) reduce the error of a noisy synthetic sequence. Plus BMFR's fit
 // of an exactly representable block.
 #include "methods/bmfr/denoiser.h"
+#include "methods/svgf/settings.h"
 #include "test_methods_util.h"
 
 #include <gtest/gtest.h>
@@ -217,17 +218,22 @@ TEST(MethodsFilters, BmfrRegressionReproducesAnExactlyRepresentableBlock)
 
 TEST(MethodsFilters, SvgfParametersHavePaperDefaults)
 {
+    // The defaults a new filter holds, read back through the binding the filter uses at commit.
     auto f = afn::createFilter("svgf");
-    EXPECT_EQ(f->params().getInt("iterations"), 5);
-    EXPECT_EQ(f->params().getFloat("sigmaL"), 4.0f);
-    EXPECT_EQ(f->params().getFloat("sigmaN"), 128.0f);
-    EXPECT_EQ(f->params().getFloat("sigmaZ"), 1.0f);
-    EXPECT_EQ(f->params().getFloat("alpha"), 0.2f);
-    EXPECT_EQ(f->params().getFloat("momentsAlpha"), 0.2f);
-    EXPECT_EQ(f->params().getInt("feedbackTap"), 0);
+    const afn::svgf::Settings s = afn::svgf::settingsBinding().read(f->params());
+    EXPECT_EQ(s.iterations, 5);
+    EXPECT_EQ(s.sigmaL, 4.0f);
+    EXPECT_EQ(s.sigmaN, 128.0f);
+    EXPECT_EQ(s.sigmaZ, 1.0f);
+    EXPECT_EQ(s.alpha, 0.2f);
+    EXPECT_EQ(s.momentsAlpha, 0.2f);
+    EXPECT_EQ(s.feedbackTap, 0);
+    EXPECT_EQ(f->params().getNumber("sigmaL"), 4.0);
     auto g = afn::createFilter("bmfr");
-    EXPECT_EQ(g->params().getInt("blockSize"), 32);
-    EXPECT_EQ(g->params().getFloat("secondAlphaMin"), 0.1f);
+    const afn::bmfr::Settings b = afn::bmfr::settingsBinding().read(g->params());
+    EXPECT_EQ(b.blockSize, 32);
+    EXPECT_EQ(b.secondAlphaMin, 0.1f);
+    EXPECT_EQ(g->params().getNumber("secondAlphaMin"), 0.1); // described as 0.1, not 0.1f
 }
 
 } // namespace

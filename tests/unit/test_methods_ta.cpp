@@ -149,8 +149,8 @@ TEST(MethodsTa, ParametersAreDescribed)
         }
     EXPECT_TRUE(found);
     auto f = afn::createFilter("ta");
-    EXPECT_EQ(f->params().getFloat("positionLimit"), 4.0f);
-    EXPECT_EQ(f->params().getFloat("normalLimitSquared"), 0.25f);
+    EXPECT_EQ(f->params().getNumber("positionLimit"), 4.0f);
+    EXPECT_EQ(f->params().getNumber("normalLimitSquared"), 0.25f);
 }
 
 TEST(MethodsTa, FrameSizeChangeMidSequenceThrows)

@@ -8,41 +8,6 @@
 
 namespace afn {
 
-ParamDesc boolParam(std::string name, bool def, std::string label, std::string help)
-{
-    return { std::move(name), AFN_PARAM_BOOL, def ? 1.0 : 0.0, 0.0, 1.0, "", "", std::move(label),
-             std::move(help) };
-}
-
-ParamDesc intParam(std::string name, int def, int lo, int hi, std::string label, std::string help)
-{
-    return { std::move(name), AFN_PARAM_INT, double(def), double(lo), double(hi), "", "",
-             std::move(label), std::move(help) };
-}
-
-ParamDesc floatParam(std::string name, double def, double lo, double hi, std::string label,
-                     std::string help)
-{
-    return { std::move(name), AFN_PARAM_FLOAT, def, lo, hi, "", "", std::move(label), std::move(help) };
-}
-
-ParamDesc choiceParam(std::string name, std::string def, std::string choices, std::string label,
-                      std::string help)
-{
-    return { std::move(name), AFN_PARAM_STRING, 0.0, 0.0, 0.0, std::move(def), std::move(choices),
-             std::move(label), std::move(help) };
-}
-
-std::vector<std::string> splitChoices(const std::string& choices)
-{
-    std::vector<std::string> out;
-    std::stringstream ss(choices);
-    std::string item;
-    while (std::getline(ss, item, '|'))
-        if (!item.empty()) out.push_back(item);
-    return out;
-}
-
 static const std::vector<ParamDesc> kEmptyTable;
 
 ParamSet::ParamSet(const std::vector<ParamDesc>* table) : m_table(table ? table : &kEmptyTable)
@@ -100,7 +65,7 @@ void ParamSet::setString(const std::string& name, const std::string& value)
             throwInvalidArgument("parameter '" + name + "' expects a number, got '" + value + "'");
         return setNumber(name, v, d.type == AFN_PARAM_FLOAT ? AFN_PARAM_FLOAT : AFN_PARAM_INT);
     }
-    for (const std::string& c : splitChoices(d.choices))
+    for (const std::string& c : d.choiceList)
         if (c == value) {
             m_strings[name] = value;
             return;

@@ -3,6 +3,7 @@
 
 #include "base/exception.h"
 #include "base/parallel.h"
+#include "stages/demodulate.h"
 
 #include <algorithm>
 #include <sstream>
@@ -11,8 +12,8 @@ namespace afn {
 
 const std::vector<std::string>& inputImageNames()
 {
-    static const std::vector<std::string> names = { "color",    "albedo", "normal", "depth",
-                                                    "position", "motion", "alpha" };
+    static const std::vector<std::string> names = { AFN_IMAGE_COLOR, AFN_IMAGE_ALBEDO,
+        AFN_IMAGE_NORMAL, AFN_IMAGE_DEPTH, AFN_IMAGE_POSITION, AFN_IMAGE_MOTION, AFN_IMAGE_ALPHA };
     return names;
 }
 
@@ -23,6 +24,12 @@ static bool isInputName(const std::string& n)
 }
 
 static std::string sizeText(int w, int h) { return std::to_string(w) + "x" + std::to_string(h); }
+
+Filter::Filter(const std::vector<ParamDesc>* table, StageNeeds stages)
+    : m_params(table)
+    , m_stages(stages)
+{
+}
 
 ImageView ImageBinding::view() const
 {
@@ -38,7 +45,7 @@ ImageView ImageBinding::view() const
 
 void Filter::setImage(const std::string& name, const ImageBinding& b)
 {
-    if (name != "output" && !isInputName(name))
+    if (name != AFN_IMAGE_OUTPUT && !isInputName(name))
         throwInvalidArgument("unknown image '" + name + "' (inputs: color, albedo, normal, depth, "
                              "position, motion, alpha; output: output)");
     if (b.ptr == nullptr) throwInvalidArgument("image '" + name + "': null pointer");
@@ -60,11 +67,11 @@ void Filter::unsetImage(const std::string& name)
 
 void Filter::setFloats(const std::string& name, const std::vector<float>& values)
 {
-    if (name == "viewProjection") {
+    if (name == AFN_ARRAY_VIEW_PROJECTION) {
         if (values.size() != 16) throwInvalidArgument("viewProjection needs 16 floats");
         std::copy(values.begin(), values.end(), m_camera.viewProjection.begin());
         m_camera.valid = true;
-    } else if (name == "pixelOffset") {
+    } else if (name == AFN_ARRAY_PIXEL_OFFSET) {
         if (values.size() != 2) throwInvalidArgument("pixelOffset needs 2 floats");
         m_camera.pixelOffset = { values[0], values[1] };
     } else {
@@ -79,7 +86,7 @@ void Filter::setData(const std::string& name, const void*, std::size_t)
 
 void Filter::validateBindings() const
 {
-    auto color = m_images.find("color");
+    auto color = m_images.find(AFN_IMAGE_COLOR);
     if (color == m_images.end()) throwInvalidOperation("no 'color' image set");
     const int w = color->second.width, h = color->second.height;
     for (const auto& [name, b] : m_images) {
@@ -93,18 +100,26 @@ void Filter::validateBindings() const
             throwInvalidArgument(std::string("image '") + n + "' needs at least " +
                                  std::to_string(minCh) + " channels");
     };
-    need("color", 3);
-    need("albedo", 3);
-    need("normal", 3);
-    need("position", 3);
-    need("motion", 2);
-    need("output", 3);
-    if (m_images.find("output") == m_images.end()) throwInvalidOperation("no 'output' image set");
+    need(AFN_IMAGE_COLOR, 3);
+    need(AFN_IMAGE_ALBEDO, 3);
+    need(AFN_IMAGE_NORMAL, 3);
+    need(AFN_IMAGE_POSITION, 3);
+    need(AFN_IMAGE_MOTION, 2);
+    need(AFN_IMAGE_OUTPUT, 3);
+    if (m_images.find(AFN_IMAGE_OUTPUT) == m_images.end()) throwInvalidOperation("no 'output' image set");
 }
 
 void Filter::commit()
 {
     validateBindings();
+    m_conventions = conventionsBinding().read(m_params);
+    if (m_stages.reproject != StageNeeds::Reproject::None) {
+        ReprojectSettings r = reprojectBinding().read(m_params);
+        r.boxFallback = m_stages.reproject == StageNeeds::Reproject::BilinearWithBoxFallback;
+        m_reprojector.setSettings(r);
+    }
+    if (m_stages.accumulate)
+        m_accumulator.setSettings(accumulationBinding().read(m_params));
     configure();
     m_committed = true;
 }
@@ -114,7 +129,24 @@ void Filter::reset()
     m_frameIndex = 0;
     m_prevCamera = Camera {};
     m_prevInputs.clear();
-    resetHistory();
+}
+
+void Filter::runStages()
+{
+    if (m_frame.frameIndex == 0) {
+        m_reprojector.reset();
+        m_accumulator.reset();
+        resetHistory();
+    }
+    if (m_stages.demodulate)
+        demodulate(m_frame, m_irradiance);
+    const bool reproject = m_stages.reproject != StageNeeds::Reproject::None;
+    if (reproject)
+        m_reprojector.compute(m_frame);
+    if (m_stages.accumulate)
+        m_accumulator.accumulate(m_reprojector, m_irradiance);
+    if (reproject)
+        m_reprojector.storeGeometry(m_frame);
 }
 
 void Filter::reportProgress(double fraction) const
@@ -126,10 +158,10 @@ void Filter::reportProgress(double fraction) const
 void Filter::execute()
 {
     if (!m_committed) throwInvalidOperation("filter has uncommitted changes; call commit first");
-    const ImageBinding& color = m_images.at("color");
+    const ImageBinding& color = m_images.at(AFN_IMAGE_COLOR);
     std::string inputs;
     for (const auto& [name, b] : m_images)
-        if (name != "output") inputs += name + ":" + std::to_string(b.channels()) + " ";
+        if (name != AFN_IMAGE_OUTPUT) inputs += name + ":" + std::to_string(b.channels()) + " ";
     if (m_frameIndex > 0) {
         if (color.width != m_prevWidth || color.height != m_prevHeight)
             throwInvalidArgument("frame size " + sizeText(color.width, color.height) +
@@ -141,10 +173,11 @@ void Filter::execute()
     }
     reportProgress(0.0);
     m_stats = InputStats {};
-    gatherFrame(m_images, m_params, m_frame, m_stats);
+    gatherFrame(m_images, m_conventions, m_frame, m_stats);
     m_frame.camera = m_camera;
     m_frame.prevCamera = m_frameIndex > 0 ? m_prevCamera : Camera {};
     m_frame.frameIndex = m_frameIndex;
+    runStages();
     m_output.resize(m_frame.width, m_frame.height, 3);
     denoise(m_frame, m_output);
     writeOutput(m_output);
@@ -158,7 +191,7 @@ void Filter::execute()
 
 void Filter::writeOutput(const Image& radiance) const
 {
-    const ImageBinding& out = m_images.at("output");
+    const ImageBinding& out = m_images.at(AFN_IMAGE_OUTPUT);
     const ImageView dst = out.view();
     const bool hasAlpha = !m_frame.alpha.empty();
     parallelRows(dst.height, [&](int y0, int y1) {

@@ -1,11 +1,17 @@
 // SPDX-License-Identifier: Apache-2.0
 // Base of every denoising method. It owns the image bindings and parameters, validates them at
-// commit, converts the bound buffers into a canonical Frame once per execute (frame_gather.cpp),
-// calls the method, and writes the method's radiance into the bound output.
+// commit, converts the bound buffers into a canonical Frame once per execute (filter/gather.cpp),
+// runs the shared stages the method asks for, calls the method, and writes the method's radiance
+// into the bound output. It also owns the temporal history's life: the first frame after creation
+// or a reset starts every stage and the method from an empty history.
+//
+// Per execute:  gather -> [demodulate] -> [reproject] -> [accumulate] -> denoise() -> output
 #pragma once
 
+#include "filter/conventions.h"
 #include "filter/frame.h"
 #include "base/params.h"
+#include "stages/temporal_accumulation.h"
 
 #include <functional>
 #include <map>
@@ -28,8 +34,19 @@ struct ImageBinding {
     ImageView view() const;
 };
 
-/// Names of the bindable images.
+/// Names of the bindable input images (AFN_IMAGE_* except the output).
 const std::vector<std::string>& inputImageNames();
+
+/// The shared stages a method composes; the Filter base runs them before denoise().
+struct StageNeeds {
+    /// Reprojection of the previous frame's geometry onto this one.
+    enum class Reproject { None, Bilinear, BilinearWithBoxFallback };
+
+    bool demodulate = false;            ///< irradiance(): colour / albedo (stages/demodulate.h)
+    Reproject reproject = Reproject::None; ///< reprojector(): per-pixel history taps
+    bool accumulate = false;            ///< accumulator(): BMFR temporal accumulation (needs
+                                        ///< demodulate and a reprojection)
+};
 
 class Filter {
 public:
@@ -54,22 +71,31 @@ public:
     int height() const { return m_frame.height; }
 
 protected:
-    explicit Filter(const std::vector<ParamDesc>* table) : m_params(table) {}
+    Filter(const std::vector<ParamDesc>* table, StageNeeds stages);
 
     /// Read the method's settings from params(); called at commit. Throw on invalid combinations.
     virtual void configure() {}
-    /// Denoise one canonical frame into `out` (3 channels, frame size, preallocated).
+    /// Denoise one canonical frame into `out` (3 channels, frame size, preallocated). The stages
+    /// the method asked for have run on this frame.
     virtual void denoise(const Frame& in, Image& out) = 0;
-    /// Drop temporal history.
+    /// Drop the method's own temporal history (the stages' is dropped by the base).
     virtual void resetHistory() {}
     /// Report progress in [0, 1]; throws Cancelled when the callback asks to stop.
     void reportProgress(double fraction) const;
 
+    /// Results of the shared stages for the current frame.
+    const Image& irradiance() const { return m_irradiance; }
+    const Reprojector& reprojector() const { return m_reprojector; }
+    const TemporalAccumulator& accumulator() const { return m_accumulator; }
+
 private:
     void validateBindings() const;
+    void runStages();
     void writeOutput(const Image& radiance) const;
 
     ParamSet m_params;
+    StageNeeds m_stages;
+    InputConventions m_conventions;
     std::map<std::string, ImageBinding> m_images;
     std::function<bool(double)> m_progress;
     Camera m_camera;     ///< set for the next frame
@@ -81,10 +107,13 @@ private:
     Frame m_frame;            ///< reused across frames: allocated once per resolution
     Image m_output;
     InputStats m_stats;
+    Image m_irradiance;
+    Reprojector m_reprojector;
+    TemporalAccumulator m_accumulator;
 };
 
 /// Convert the bound images into a canonical frame (see frame.h), counting sanitised values.
-void gatherFrame(const std::map<std::string, ImageBinding>& images, const ParamSet& params,
-                 Frame& frame, InputStats& stats);
+void gatherFrame(const std::map<std::string, ImageBinding>& images,
+    const InputConventions& conventions, Frame& frame, InputStats& stats);
 
 } // namespace afn

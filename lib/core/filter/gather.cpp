@@ -60,11 +60,11 @@ const ImageBinding* find(const std::map<std::string, ImageBinding>& m, const cha
 
 } // namespace
 
-void gatherFrame(const std::map<std::string, ImageBinding>& images, const ParamSet& params,
-                 Frame& f, InputStats& stats)
+void gatherFrame(const std::map<std::string, ImageBinding>& images,
+    const InputConventions& conventions, Frame& f, InputStats& stats)
 {
     Counters counts;
-    const ImageBinding* color = find(images, "color");
+    const ImageBinding* color = find(images, AFN_IMAGE_COLOR);
     if (!color) throwInvalidOperation("no 'color' image set");
     f.width = color->width;
     f.height = color->height;
@@ -78,17 +78,18 @@ void gatherFrame(const std::map<std::string, ImageBinding>& images, const ParamS
             }
     });
 
-    if (const ImageBinding* b = find(images, "albedo"))
+    if (const ImageBinding* b = find(images, AFN_IMAGE_ALBEDO))
         gather(*b, 3, f.albedo, counts, [](float* p) {
             for (int c = 0; c < 3; ++c) p[c] = std::fmin(std::fmax(p[c], 0.0f), 1.0f);
         });
     else
         f.albedo = Image();
 
-    const std::string& nspace = params.getString("normal.space");
-    const float zSign = nspace == "camera-toward-viewer" ? -1.0f : 1.0f;
-    f.normalSpace = nspace == "world" ? NormalSpace::World : NormalSpace::Camera;
-    if (const ImageBinding* b = find(images, "normal"))
+    using Normals = InputConventions::Normals;
+    const float zSign = conventions.normalSpace == Normals::CameraTowardViewer ? -1.0f : 1.0f;
+    f.normalSpace
+        = conventions.normalSpace == Normals::World ? NormalSpace::World : NormalSpace::Camera;
+    if (const ImageBinding* b = find(images, AFN_IMAGE_NORMAL))
         gather(*b, 3, f.normal, counts, [zSign](float* p) {
             p[2] *= zSign;
             const float len = std::sqrt(p[0] * p[0] + p[1] * p[1] + p[2] * p[2]);
@@ -98,30 +99,31 @@ void gatherFrame(const std::map<std::string, ImageBinding>& images, const ParamS
     else
         f.normal = Image();
 
-    f.depthKind = params.getString("depth.kind") == "radial" ? DepthKind::Radial : DepthKind::Planar;
-    if (const ImageBinding* b = find(images, "depth"))
+    f.depthKind = conventions.depthKind;
+    if (const ImageBinding* b = find(images, AFN_IMAGE_DEPTH))
         gather(*b, 1, f.depth, counts, [](float*) {});
     else
         f.depth = Image();
 
-    if (const ImageBinding* b = find(images, "position"))
+    if (const ImageBinding* b = find(images, AFN_IMAGE_POSITION))
         gather(*b, 3, f.position, counts, [](float*) {});
     else
         f.position = Image();
 
-    if (const ImageBinding* b = find(images, "motion")) {
+    if (const ImageBinding* b = find(images, AFN_IMAGE_MOTION)) {
         // To canonical: pixels, y down, pointing to the previous frame.
-        float sx = params.getFloat("motion.scale"), sy = sx;
-        const std::string& units = params.getString("motion.units");
-        if (units == "ndc") {
+        using Units = InputConventions::MotionUnits;
+        float sx = conventions.motionScale, sy = sx;
+        if (conventions.motionUnits == Units::Ndc) {
             sx *= 0.5f * f.width;
             sy *= 0.5f * f.height;
-        } else if (units == "uv") {
+        } else if (conventions.motionUnits == Units::Uv) {
             sx *= f.width;
             sy *= f.height;
         }
-        if (params.getBool("motion.yUp")) sy = -sy;
-        if (params.getString("motion.direction") == "to-next") {
+        if (conventions.motionYUp)
+            sy = -sy;
+        if (conventions.motionDirection == InputConventions::MotionDirection::ToNext) {
             // Constant-velocity assumption: the offset to the previous frame is minus the offset to
             // the next one.
             sx = -sx;
@@ -135,7 +137,7 @@ void gatherFrame(const std::map<std::string, ImageBinding>& images, const ParamS
         f.motion = Image();
     }
 
-    if (const ImageBinding* b = find(images, "alpha")) {
+    if (const ImageBinding* b = find(images, AFN_IMAGE_ALPHA)) {
         // A FLOAT4 alpha binding (e.g. an RGBA beauty) carries alpha in its 4th channel.
         ImageBinding a = *b;
         if (a.channels() == 4) {
@@ -147,7 +149,7 @@ void gatherFrame(const std::map<std::string, ImageBinding>& images, const ParamS
         f.alpha = Image();
     }
 
-    f.colorDemodulated = params.getBool("color.demodulated");
+    f.colorDemodulated = conventions.colorDemodulated;
     stats.nonFinite = counts.nonFinite;
     stats.negative = negative;
 }

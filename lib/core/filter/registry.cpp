@@ -3,36 +3,35 @@
 
 #include "base/exception.h"
 
-namespace afn {
+#include <algorithm>
 
-std::vector<ParamDesc> commonParams()
-{
-    return {
-        choiceParam("normal.space", "world", "world|camera|camera-toward-viewer", "Normal space",
-                    "space of the normal input: world, camera (+Z into the scene, Blender's "
-                    "Denoising Normal) or camera-toward-viewer (+Z toward the viewer, V-Ray)"),
-        choiceParam("depth.kind", "planar", "planar|radial", "Depth kind",
-                    "planar camera-z depth or radial ray distance"),
-        choiceParam("motion.direction", "to-previous", "to-previous|to-next", "Motion direction",
-                    "motion vectors point to where the surface was (to-previous) or will be "
-                    "(to-next; negated under a constant-velocity assumption)"),
-        boolParam("motion.yUp", false, "Motion y up",
-                  "motion y grows upward (Blender's Vector pass); false = y grows with the row"),
-        choiceParam("motion.units", "pixels", "pixels|ndc|uv", "Motion units",
-                    "pixels of the input resolution, NDC ([-1,1] across the frame) or UV ([0,1])"),
-        floatParam("motion.scale", 1.0, 0.0, 1000.0, "Motion scale",
-                   "factor applied to the motion vectors (a host's render scale)"),
-        boolParam("color.demodulated", false, "Colour demodulated",
-                  "the colour input is already divided by albedo (BMFR dataset)"),
-    };
-}
+namespace afn {
 
 namespace {
 
-FilterType withCommon(FilterType t)
+void append(std::vector<ParamDesc>& to, std::vector<ParamDesc> from)
 {
-    for (ParamDesc& d : commonParams()) t.params.push_back(std::move(d));
+    for (ParamDesc& d : from)
+        to.push_back(std::move(d));
+}
+
+/// The full parameter table of a method (order documented at FilterType::params).
+FilterType registered(FilterType t)
+{
+    std::vector<ParamDesc> table;
+    if (t.stages.accumulate)
+        append(table, accumulationBinding().descriptors());
+    append(table, std::move(t.params));
+    if (t.stages.reproject != StageNeeds::Reproject::None)
+        append(table, reprojectBinding().descriptors());
+    append(table, conventionsBinding().descriptors());
+    t.params = std::move(table);
     return t;
+}
+
+std::string deviceName(AFNDeviceType type)
+{
+    return type == AFN_DEVICE_TYPE_CUDA ? "cuda" : "cpu";
 }
 
 } // namespace
@@ -40,11 +39,11 @@ FilterType withCommon(FilterType t)
 const std::vector<FilterType>& filterTypes()
 {
     static const std::vector<FilterType> types = {
-        withCommon(identity::filterType()),
-        withCommon(ta::filterType()),
-        withCommon(svgf::filterType()),
-        withCommon(bmfr::filterType()),
-        withCommon(afnet::filterType()), // needs weights (embedded or set as data)
+        registered(identity::filterType()),
+        registered(ta::filterType()),
+        registered(svgf::filterType()),
+        registered(bmfr::filterType()),
+        registered(afnet::filterType()),
     };
     return types;
 }
@@ -52,19 +51,30 @@ const std::vector<FilterType>& filterTypes()
 const FilterType* findFilterType(const std::string& name)
 {
     for (const FilterType& t : filterTypes())
-        if (t.name == name) return &t;
+        if (t.name == name)
+            return &t;
     return nullptr;
 }
 
-std::unique_ptr<Filter> createFilter(const std::string& name)
+std::unique_ptr<Filter> createFilter(const std::string& name, const Device& device)
 {
     const FilterType* t = findFilterType(name);
     if (!t) {
         std::string known;
-        for (const FilterType& k : filterTypes()) known += (known.empty() ? "" : ", ") + k.name;
+        for (const FilterType& k : filterTypes())
+            known += (known.empty() ? "" : ", ") + k.name;
         throwInvalidArgument("unknown filter type '" + name + "' (known: " + known + ")");
     }
-    return t->create(&t->params);
+    if (std::find(t->devices.begin(), t->devices.end(), device.type()) == t->devices.end())
+        throw Exception(AFN_ERROR_UNSUPPORTED,
+            "method '" + name + "' does not run on the " + deviceName(device.type()) + " device");
+    return t->create(*t, device);
+}
+
+std::unique_ptr<Filter> createFilter(const std::string& name)
+{
+    static const Device cpu(AFN_DEVICE_TYPE_CPU);
+    return createFilter(name, cpu);
 }
 
 } // namespace afn

@@ -1,8 +1,11 @@
 // SPDX-License-Identifier: Apache-2.0
-// The table of filter types. Each method contributes one FilterType (name, description, its own
-// parameters, factory); the registry appends the common input-convention parameters.
+// The table of filter types: the one place that names the methods. Each method contributes one
+// FilterType (methods/<name>/): its name, description, own parameters, the shared stages it
+// composes and a factory. The registry completes the parameter table from the stages and the input
+// conventions, and creates filters on a device.
 #pragma once
 
+#include "base/device.h"
 #include "filter/filter.h"
 
 #include <functional>
@@ -12,16 +15,27 @@
 
 namespace afn {
 
+struct FilterType;
+/// Creates a filter of a type on a device (the type outlives the filter).
+using FilterFactory = std::function<std::unique_ptr<Filter>(const FilterType&, const Device&)>;
+
 struct FilterType {
     std::string name;
     std::string description;
-    std::vector<ParamDesc> params; ///< full table: method parameters, then the common ones
+    /// The method's own parameters; after registration the full table: accumulation (when the
+    /// stages accumulate), the method's own, reprojection (when they reproject), conventions.
+    std::vector<ParamDesc> params;
+    StageNeeds stages;
     bool ready = true; ///< runs as created: needs no data, or the build embeds its weights
-    std::function<std::unique_ptr<Filter>(const std::vector<ParamDesc>* table)> create;
+    std::vector<AFNDeviceType> devices { AFN_DEVICE_TYPE_CPU }; ///< devices it runs on
+    FilterFactory create;
 };
 
-/// Parameters every filter has: conventions of the bound inputs.
-std::vector<ParamDesc> commonParams();
+/// A factory for a method class F constructed as F(const FilterType&).
+template <typename F> FilterFactory factoryOf()
+{
+    return [](const FilterType& t, const Device&) { return std::make_unique<F>(t); };
+}
 
 /// Every filter type of this build, in a stable order.
 const std::vector<FilterType>& filterTypes();
@@ -29,17 +43,17 @@ const std::vector<FilterType>& filterTypes();
 /// The type with that name, or nullptr.
 const FilterType* findFilterType(const std::string& name);
 
-/// Create a filter; throws InvalidArgument naming the known types if the name is unknown.
+/// Create a filter on a device; throws InvalidArgument naming the known types if the name is
+/// unknown, Unsupported if the method does not run on the device.
+std::unique_ptr<Filter> createFilter(const std::string& name, const Device& device);
+/// Create a filter for the CPU (tests and benchmarks of the core).
 std::unique_ptr<Filter> createFilter(const std::string& name);
 
-// Per-method descriptions (defined in methods/<name>/): method parameters and factory only.
+// Per-method descriptions (defined in methods/<name>/).
 namespace identity { FilterType filterType(); }
 namespace ta { FilterType filterType(); }
 namespace svgf { FilterType filterType(); }
 namespace bmfr { FilterType filterType(); }
 namespace afnet { FilterType filterType(); }
-
-/// True when this build embeds trained AFN weights (weights/afn.afnw at configure time), so the
-/// "afn" filter runs without weights being set.
 
 } // namespace afn

@@ -9,33 +9,26 @@
 
 namespace afn {
 
-std::vector<ParamDesc> reprojectParams()
+const ParamBinding<ReprojectSettings>& reprojectBinding()
 {
-    return {
-        floatParam("positionLimit", 4.0, 0.0, 1000.0, "Position limit",
-            "history tap accepted if its world position is closer than this many pixel "
-            "footprints (world size of the current pixel; scene-relative). BMFR's absolute "
-            "sponza limit 0.04 is about 4 footprints at 720p"),
-        floatParam("positionLimitSquared", 0.0, 0.0, 1e6, "Absolute position limit (squared)",
-            "if > 0, BMFR's absolute test |p_prev - p|^2 < this (scene units squared, from "
-            "camera_matrices.h: sponza 0.0016, classroom 0.01) replaces positionLimit"),
-        floatParam("normalLimitSquared", 0.25, 0.0, 4.0, "Normal limit (squared)",
-            "history tap accepted if the squared distance of the unit normals is below this "
-            "(BMFR sponza 0.25, about 29 degrees; unitless)"),
-        floatParam("depthLimit", 0.1, 0.0, 10.0, "Depth limit",
-            "without positions: history tap accepted if |z_prev - z| < depthLimit * z "
-            "(relative, unitless)"),
-    };
-}
-
-ReprojectSettings readReprojectSettings(const ParamSet& params)
-{
-    ReprojectSettings s;
-    s.positionLimit = params.getFloat("positionLimit");
-    s.positionLimitSquared = params.getFloat("positionLimitSquared");
-    s.normalLimitSquared = params.getFloat("normalLimitSquared");
-    s.depthLimit = params.getFloat("depthLimit");
-    return s;
+    using R = ReprojectSettings;
+    static const ParamBinding<R> binding
+        = ParamBinding<R>()
+              .add(&R::positionLimit, "positionLimit", 0.0, 1000.0, "Position limit",
+                  "history tap accepted if its world position is closer than this many pixel "
+                  "footprints (world size of the current pixel; scene-relative). BMFR's absolute "
+                  "sponza limit 0.04 is about 4 footprints at 720p")
+              .add(&R::positionLimitSquared, "positionLimitSquared", 0.0, 1e6,
+                  "Absolute position limit (squared)",
+                  "if > 0, BMFR's absolute test |p_prev - p|^2 < this (scene units squared, from "
+                  "camera_matrices.h: sponza 0.0016, classroom 0.01) replaces positionLimit")
+              .add(&R::normalLimitSquared, "normalLimitSquared", 0.0, 4.0, "Normal limit (squared)",
+                  "history tap accepted if the squared distance of the unit normals is below this "
+                  "(BMFR sponza 0.25, about 29 degrees; unitless)")
+              .add(&R::depthLimit, "depthLimit", 0.0, 10.0, "Depth limit",
+                  "without positions: history tap accepted if |z_prev - z| < depthLimit * z "
+                  "(relative, unitless)");
+    return binding;
 }
 
 namespace {
@@ -56,6 +49,7 @@ inline bool isZero3(const float* v)
 void Reprojector::reset()
 {
     m_hasPrev = false;
+    m_tapsHaveHistory = false;
     m_prevPosition = Image();
     m_prevNormal = Image();
     m_prevDepth = Image();
@@ -153,6 +147,7 @@ void Reprojector::compute(const Frame& f)
     m_width = f.width;
     m_height = f.height;
     m_taps.assign(static_cast<std::size_t>(m_width) * m_height, PixelTaps {});
+    m_tapsHaveHistory = m_hasPrev;
     if (!m_hasPrev)
         return;
     // History geometry of another size cannot be used (the base rejects size changes anyway).

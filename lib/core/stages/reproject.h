@@ -61,10 +61,9 @@ struct PixelTaps {
     std::uint8_t onScreen = 0; ///< 1: the previous position was computed (TAA may sample it)
 };
 
-/// Parameters shared by every method that reprojects (appended to its descriptor table).
-std::vector<ParamDesc> reprojectParams();
-/// Read reprojectParams() from a parameter set.
-ReprojectSettings readReprojectSettings(const ParamSet& params);
+/// Descriptors of the acceptance thresholds (in the table of every method that reprojects;
+/// boxFallback is chosen by the method, not by a parameter).
+const ParamBinding<ReprojectSettings>& reprojectBinding();
 
 /// Computes per-pixel taps of each frame against the previous frame's geometry.
 class Reprojector {
@@ -78,7 +77,8 @@ public:
     void storeGeometry(const Frame& frame);
     void reset();
 
-    bool hasHistory() const { return m_hasPrev; }
+    /// True when the last compute() had a previous frame (its taps may point into it).
+    bool hasHistory() const { return m_tapsHaveHistory; }
     const PixelTaps& taps(int x, int y) const
     {
         return m_taps[static_cast<std::size_t>(y) * m_width + x];
@@ -94,7 +94,8 @@ private:
     ReprojectSettings m_settings;
     std::vector<PixelTaps> m_taps;
     int m_width = 0, m_height = 0;
-    bool m_hasPrev = false;
+    bool m_hasPrev = false;          ///< geometry of a previous frame is stored
+    bool m_tapsHaveHistory = false;  ///< the current taps were computed against it
     Image m_prevPosition, m_prevNormal, m_prevDepth;
 };
 

@@ -9,6 +9,16 @@
 
 namespace afn {
 
+const ParamBinding<AccumulationSettings>& accumulationBinding()
+{
+    static const ParamBinding<AccumulationSettings> binding
+        = ParamBinding<AccumulationSettings>().add(&AccumulationSettings::alphaMin, "alphaMin", 0.0,
+            1.0, "Minimum blend factor",
+            "temporal accumulation: weight of the current frame once the history is long "
+            "(BMFR BLEND_ALPHA 0.2)");
+    return binding;
+}
+
 void TemporalAccumulator::reset()
 {
     m_hasHistory = false;

@@ -14,11 +14,18 @@
 
 namespace afn {
 
+/// Settings of the accumulation.
+struct AccumulationSettings {
+    float alphaMin = 0.2f; ///< minimum blend factor (BMFR BLEND_ALPHA)
+};
+
+/// Descriptors of AccumulationSettings (in the table of every method that accumulates).
+const ParamBinding<AccumulationSettings>& accumulationBinding();
+
 /// Running per-pixel accumulation of demodulated colour.
 class TemporalAccumulator {
 public:
-    /// [0; 1] minimum blend factor (BMFR: 0.2).
-    void setAlphaMin(float a) { m_alphaMin = a; }
+    void setSettings(const AccumulationSettings& s) { m_alphaMin = s.alphaMin; }
 
     /// Blend `irradiance` (3 ch) into the history reprojected by `taps`.
     void accumulate(const Reprojector& taps, const Image& irradiance);

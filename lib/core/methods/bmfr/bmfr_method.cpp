@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: Apache-2.0
-// "bmfr": blockwise multi-order feature regression (bmfr.h) on albedo-demodulated colour.
-#include "methods/bmfr/denoiser.h"
-#include "stages/demodulate.h"
+// "bmfr": blockwise multi-order feature regression (methods/bmfr/denoiser.h) on the shared
+// stages' temporal accumulation of albedo-demodulated colour.
 #include "filter/registry.h"
+#include "methods/bmfr/denoiser.h"
 
 namespace afn::bmfr {
 
@@ -10,25 +10,20 @@ namespace {
 
 class BmfrFilter final : public Filter {
 public:
-    explicit BmfrFilter(const std::vector<ParamDesc>* table)
-        : Filter(table)
+    explicit BmfrFilter(const FilterType& t)
+        : Filter(&t.params, t.stages)
     {
     }
 
 private:
-    void configure() override
-    {
-        m_bmfr.setSettings(readBmfrSettings(params()), readReprojectSettings(params()));
-    }
+    void configure() override { m_bmfr.setSettings(settingsBinding().read(params())); }
     void resetHistory() override { m_bmfr.reset(); }
     void denoise(const Frame& in, Image& out) override
     {
-        demodulate(in, m_irradiance);
-        m_bmfr.process(in, m_irradiance, out);
+        m_bmfr.process(in, reprojector(), accumulator(), out);
     }
 
     Denoiser m_bmfr;
-    Image m_irradiance;
 };
 
 } // namespace
@@ -39,12 +34,9 @@ FilterType filterType()
     t.name = "bmfr";
     t.description = "blockwise multi-order feature regression (Koskela et al. 2019) with BMFR's "
                     "accumulations and TAA";
-    t.params = bmfrParams();
-    for (ParamDesc& d : reprojectParams())
-        t.params.push_back(std::move(d));
-    t.create = [](const std::vector<ParamDesc>* table) {
-        return std::unique_ptr<Filter>(new BmfrFilter(table));
-    };
+    t.params = settingsBinding().descriptors();
+    t.stages = { true, StageNeeds::Reproject::Bilinear, true };
+    t.create = factoryOf<BmfrFilter>();
     return t;
 }
 

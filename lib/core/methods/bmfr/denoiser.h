@@ -1,29 +1,32 @@
 // SPDX-License-Identifier: Apache-2.0
 // Blockwise multi-order feature regression (Koskela et al., TOG 2019; official OpenCL bmfr.cl).
 // Per frame, on demodulated irradiance:
-//   1. BMFR temporal accumulation (temporal_accumulation.h);
-//   2. regression of the accumulated colour in square blocks (bmfr_regression.cpp): features
+//   1. BMFR temporal accumulation (the shared stage, stages/temporal_accumulation.h);
+//   2. regression of the accumulated colour in square blocks (regression.cpp): features
 //      1, n.xyz, p.xyz, p.xyz^2 (no cross terms); without positions the screen coordinates (and the
 //      depth when present) take the place of p; without normals those are dropped. The block grid
 //      shifts every frame by one of 16 offsets; one Householder QR per block fits all channels;
 //   3. second accumulation of the regression output with the same taps and
 //      alpha = max(1/len, secondAlphaMin) (len = TA history length after this frame);
-//   4. remodulation by albedo, then TAA (bmfr_taa.cpp) on the linear radiance.
+//   4. remodulation by albedo, then TAA (taa.cpp) on the linear radiance.
 #pragma once
 
 #include "stages/temporal_accumulation.h"
 
 namespace afn::bmfr {
 
-/// BMFR parameters (official values as defaults).
+/// BMFR parameters (official values as defaults; ranges and help in settingsBinding()). The
+/// first accumulation's alphaMin is the shared stage's (AccumulationSettings).
 struct Settings {
-    float alphaMin = 0.2f; ///< [0; 1] TA minimum blend factor (BLEND_ALPHA 0.2)
-    float secondAlphaMin = 0.1f; ///< [0; 1] second accumulation minimum (SECOND_BLEND_ALPHA 0.1)
-    int blockSize = 32; ///< [8; 64] block edge in pixels (BMFR supports only 32)
-    float noise = 0.01f; ///< [0; 1] uniform feature noise amplitude (NOISE_AMOUNT 1e-2)
-    bool taa = true; ///< apply the final TAA step
-    float taaAlpha = 0.2f; ///< [0; 1] TAA weight of the current frame (BMFR 0.2)
+    float secondAlphaMin = 0.1f; ///< second accumulation minimum (SECOND_BLEND_ALPHA 0.1)
+    int blockSize = 32;          ///< block edge in pixels (BMFR supports only 32)
+    float noise = 0.01f;         ///< uniform feature noise amplitude (NOISE_AMOUNT 1e-2)
+    bool taa = true;             ///< apply the final TAA step
+    float taaAlpha = 0.2f;       ///< TAA weight of the current frame (BMFR 0.2)
 };
+
+/// The descriptors of Settings (the method's own parameters).
+const ParamBinding<Settings>& settingsBinding();
 
 /// Fit the blockwise regression of `noisy` (3 ch, demodulated) over the frame's features and write
 /// the per-pixel fitted values (>= 0) into `filtered`. `blockFrame` selects the block offset.
@@ -38,23 +41,16 @@ void taa(
 
 class Denoiser {
 public:
-    void setSettings(const Settings& s, const ReprojectSettings& r);
+    void setSettings(const Settings& s) { m_settings = s; }
     void reset();
-    /// Denoise demodulated `irradiance` of frame `f` into remodulated radiance `out` (3 ch).
-    void process(const Frame& f, const Image& irradiance, Image& out);
-
-    const TemporalAccumulator& accumulator() const { return m_ta; }
+    /// Denoise frame `f` into remodulated radiance `out` (3 ch), from the shared stages' results:
+    /// the taps of this frame and the temporal accumulation of its demodulated colour.
+    void process(const Frame& f, const Reprojector& taps, const TemporalAccumulator& ta, Image& out);
 
 private:
     Settings m_settings;
-    Reprojector m_reproject;
-    TemporalAccumulator m_ta;
     bool m_hasHistory = false;
     Image m_regressed, m_filtered, m_prevFiltered, m_radiance, m_prevOutput;
 };
-
-/// Descriptor table of the bmfr parameters (without the reprojection ones).
-std::vector<ParamDesc> bmfrParams();
-Settings readBmfrSettings(const ParamSet& params);
 
 } // namespace afn::bmfr

@@ -9,7 +9,10 @@ namespace {
 
 class IdentityFilter final : public Filter {
 public:
-    explicit IdentityFilter(const std::vector<ParamDesc>* table) : Filter(table) {}
+    explicit IdentityFilter(const FilterType& t)
+        : Filter(&t.params, t.stages)
+    {
+    }
 
 private:
     void denoise(const Frame& in, Image& out) override { out = in.color; }
@@ -22,9 +25,7 @@ FilterType filterType()
     FilterType t;
     t.name = "identity";
     t.description = "no denoising: the sanitised noisy colour (for I/O checks and comparisons)";
-    t.create = [](const std::vector<ParamDesc>* table) {
-        return std::unique_ptr<Filter>(new IdentityFilter(table));
-    };
+    t.create = factoryOf<IdentityFilter>();
     return t;
 }
 

@@ -76,43 +76,31 @@ void Denoiser::atrous(const Image& in, Image& out, int step) const
     });
 }
 
-std::vector<ParamDesc> svgfParams()
+const ParamBinding<Settings>& settingsBinding()
 {
-    return {
-        intParam("iterations", 5, 0, 10, "À-trous iterations",
-            "number of 5x5 à-trous passes with step 2^i (paper 5, Falcor 4)"),
-        intParam("feedbackTap", 0, -1, 9, "Feedback iteration",
-            "iteration whose output becomes the colour history (0 = first, as the paper; "
-            "-1 or >= iterations = unfiltered integrated colour; Falcor 1)"),
-        floatParam("sigmaL", 4.0, 0.0, 1000.0, "Luminance sigma",
-            "luminance edge-stopping, in standard deviations of the local luminance "
-            "(paper 4, Falcor 10)"),
-        floatParam("sigmaN", 128.0, 0.0, 1024.0, "Normal exponent",
-            "exponent of max(0, n.n') (paper and Falcor 128)"),
-        floatParam("sigmaZ", 1.0, 0.0, 1000.0, "Depth sigma",
-            "depth edge-stopping relative to the depth gradient (paper 1)"),
-        floatParam("alpha", 0.2, 0.0, 1.0, "Colour blend factor",
-            "minimum weight of the current frame in the colour history (paper 0.2, "
-            "Falcor 0.05)"),
-        floatParam("momentsAlpha", 0.2, 0.0, 1.0, "Moments blend factor",
-            "minimum weight of the current frame in the moments history (paper 0.2)"),
-        intParam("varianceHistory", 4, 1, 255, "Spatial variance below",
-            "history length (frames) below which variance is estimated over 7x7 (paper 4)"),
-    };
-}
-
-Settings readSvgfSettings(const ParamSet& p)
-{
-    Settings s;
-    s.iterations = p.getInt("iterations");
-    s.feedbackTap = p.getInt("feedbackTap");
-    s.sigmaL = p.getFloat("sigmaL");
-    s.sigmaN = p.getFloat("sigmaN");
-    s.sigmaZ = p.getFloat("sigmaZ");
-    s.alpha = p.getFloat("alpha");
-    s.momentsAlpha = p.getFloat("momentsAlpha");
-    s.varianceHistory = p.getInt("varianceHistory");
-    return s;
+    using S = Settings;
+    static const ParamBinding<S> binding
+        = ParamBinding<S>()
+              .add(&S::iterations, "iterations", 0, 10, "À-trous iterations",
+                  "number of 5x5 à-trous passes with step 2^i (paper 5, Falcor 4)")
+              .add(&S::feedbackTap, "feedbackTap", -1, 9, "Feedback iteration",
+                  "iteration whose output becomes the colour history (0 = first, as the paper; "
+                  "-1 or >= iterations = unfiltered integrated colour; Falcor 1)")
+              .add(&S::sigmaL, "sigmaL", 0.0, 1000.0, "Luminance sigma",
+                  "luminance edge-stopping, in standard deviations of the local luminance "
+                  "(paper 4, Falcor 10)")
+              .add(&S::sigmaN, "sigmaN", 0.0, 1024.0, "Normal exponent",
+                  "exponent of max(0, n.n') (paper and Falcor 128)")
+              .add(&S::sigmaZ, "sigmaZ", 0.0, 1000.0, "Depth sigma",
+                  "depth edge-stopping relative to the depth gradient (paper 1)")
+              .add(&S::alpha, "alpha", 0.0, 1.0, "Colour blend factor",
+                  "minimum weight of the current frame in the colour history (paper 0.2, "
+                  "Falcor 0.05)")
+              .add(&S::momentsAlpha, "momentsAlpha", 0.0, 1.0, "Moments blend factor",
+                  "minimum weight of the current frame in the moments history (paper 0.2)")
+              .add(&S::varianceHistory, "varianceHistory", 1, 255, "Spatial variance below",
+                  "history length (frames) below which variance is estimated over 7x7 (paper 4)");
+    return binding;
 }
 
 } // namespace afn::svgf

@@ -23,31 +23,27 @@ namespace afn::svgf {
 
 class Denoiser {
 public:
-    void setSettings(const Settings& s, const ReprojectSettings& r);
+    void setSettings(const Settings& s) { m_settings = s; }
     void reset();
-    /// Filter demodulated `irradiance` (3 ch) of frame `f` into `filtered` (3 ch, demodulated).
-    void process(const Frame& f, const Image& irradiance, Image& filtered);
+    /// Filter demodulated `irradiance` (3 ch) of frame `f`, reprojected by `taps` (bilinear with
+    /// SVGF's box fallback), into `filtered` (3 ch, demodulated).
+    void process(const Frame& f, const Image& irradiance, const Reprojector& taps,
+        Image& filtered);
 
     /// History length of the last frame (1 ch).
     const Image& historyLength() const { return m_len; }
 
 private:
-    void integrate(const Image& irradiance);
+    void integrate(const Image& irradiance, const Reprojector& taps);
     void estimateVariance();
     void atrous(const Image& in, Image& out, int step) const;
 
     Settings m_settings;
-    Reprojector m_reproject;
     Guide m_guide;
     bool m_hasHistory = false;
     Image m_color, m_moments, m_len; ///< this frame: integrated colour, moments, length
     Image m_prevColor, m_prevMoments, m_prevLen; ///< history
     Image m_cv, m_cvTmp; ///< colour + variance (4 ch) ping-pong
 };
-
-/// Descriptor table of the svgf parameters (without the reprojection ones).
-std::vector<ParamDesc> svgfParams();
-/// Read svgfParams() from a parameter set.
-Settings readSvgfSettings(const ParamSet& params);
 
 } // namespace afn::svgf

@@ -9,24 +9,11 @@
 #pragma once
 
 #include "filter/frame.h"
+#include "methods/svgf/settings.h"
 
 #include <cmath>
 
 namespace afn::svgf {
-
-/// SVGF parameters (paper values as defaults; Falcor's in brackets).
-struct Settings {
-    int iterations = 5; ///< [0; 10] à-trous iterations (Falcor 4)
-    int feedbackTap = 0; ///< [-1; 9] iteration whose output becomes the colour history
-                         ///< (0 = first; -1 or >= iterations: unfiltered; Falcor 1)
-    float sigmaL = 4.0f; ///< [0; 1000] luminance edge-stopping (Falcor PhiColor 10)
-    float sigmaN = 128.0f; ///< [0; 1024] normal exponent
-    float sigmaZ = 1.0f; ///< [0; 1000] depth edge-stopping
-    float alpha = 0.2f; ///< [0; 1] colour blend factor (Falcor 0.05)
-    float momentsAlpha = 0.2f; ///< [0; 1] moments blend factor
-    int varianceHistory = 4; ///< [1; 255] below this history length, variance is estimated
-                             ///< spatially over 7x7
-};
 
 /// Per-frame guide buffers for the edge-stopping functions.
 struct Guide {

@@ -1,8 +1,9 @@
 // SPDX-License-Identifier: Apache-2.0
-// "svgf": spatiotemporal variance-guided filtering (svgf.h) on albedo-demodulated colour.
-#include "stages/demodulate.h"
+// "svgf": spatiotemporal variance-guided filtering (methods/svgf/denoiser.h) on albedo-demodulated
+// colour, reprojected by the shared stage with SVGF's box fallback.
 #include "filter/registry.h"
 #include "methods/svgf/denoiser.h"
+#include "stages/demodulate.h"
 
 namespace afn::svgf {
 
@@ -10,26 +11,22 @@ namespace {
 
 class SvgfFilter final : public Filter {
 public:
-    explicit SvgfFilter(const std::vector<ParamDesc>* table)
-        : Filter(table)
+    explicit SvgfFilter(const FilterType& t)
+        : Filter(&t.params, t.stages)
     {
     }
 
 private:
-    void configure() override
-    {
-        m_svgf.setSettings(readSvgfSettings(params()), readReprojectSettings(params()));
-    }
+    void configure() override { m_svgf.setSettings(settingsBinding().read(params())); }
     void resetHistory() override { m_svgf.reset(); }
     void denoise(const Frame& in, Image& out) override
     {
-        demodulate(in, m_irradiance);
-        m_svgf.process(in, m_irradiance, m_filtered);
+        m_svgf.process(in, irradiance(), reprojector(), m_filtered);
         remodulate(in, m_filtered, out);
     }
 
     Denoiser m_svgf;
-    Image m_irradiance, m_filtered;
+    Image m_filtered;
 };
 
 } // namespace
@@ -40,12 +37,9 @@ FilterType filterType()
     t.name = "svgf";
     t.description
         = "spatiotemporal variance-guided filtering (Schied et al. 2017), paper parameters";
-    t.params = svgfParams();
-    for (ParamDesc& d : reprojectParams())
-        t.params.push_back(std::move(d));
-    t.create = [](const std::vector<ParamDesc>* table) {
-        return std::unique_ptr<Filter>(new SvgfFilter(table));
-    };
+    t.params = settingsBinding().descriptors();
+    t.stages = { true, StageNeeds::Reproject::BilinearWithBoxFallback, false };
+    t.create = factoryOf<SvgfFilter>();
     return t;
 }
 

@@ -9,21 +9,12 @@
 
 namespace afn::svgf {
 
-void Denoiser::setSettings(const Settings& s, const ReprojectSettings& r)
-{
-    m_settings = s;
-    ReprojectSettings rs = r;
-    rs.boxFallback = true;
-    m_reproject.setSettings(rs);
-}
-
 void Denoiser::reset()
 {
-    m_reproject.reset();
     m_hasHistory = false;
 }
 
-void Denoiser::integrate(const Image& irr)
+void Denoiser::integrate(const Image& irr, const Reprojector& taps)
 {
     const int w = irr.width(), h = irr.height();
     std::swap(m_color, m_prevColor);
@@ -32,7 +23,7 @@ void Denoiser::integrate(const Image& irr)
     m_color.resize(w, h, 3);
     m_moments.resize(w, h, 2);
     m_len.resize(w, h, 1);
-    const bool history = m_hasHistory && m_reproject.hasHistory() && m_prevColor.width() == w
+    const bool history = m_hasHistory && taps.hasHistory() && m_prevColor.width() == w
         && m_prevColor.height() == h;
     parallelRows(h, [&](int y0, int y1) {
         for (int y = y0; y < y1; ++y)
@@ -42,7 +33,7 @@ void Denoiser::integrate(const Image& irr)
                 const float m[2] = { l, l * l };
                 float pc[3], pm[2], plen = 0.0f, ws = 0.0f;
                 if (history) {
-                    const PixelTaps& t = m_reproject.taps(x, y);
+                    const PixelTaps& t = taps.taps(x, y);
                     ws = gatherHistory<3>(t, m_prevColor, pc);
                     gatherHistory<2>(t, m_prevMoments, pm);
                     gatherHistory<1>(t, m_prevLen, &plen);
@@ -117,15 +108,11 @@ void Denoiser::estimateVariance()
     });
 }
 
-void Denoiser::process(const Frame& f, const Image& irr, Image& filtered)
+void Denoiser::process(const Frame& f, const Image& irr, const Reprojector& taps, Image& filtered)
 {
-    if (f.frameIndex == 0)
-        reset();
-    m_reproject.compute(f);
     m_guide.build(f, m_settings);
-    integrate(irr);
+    integrate(irr, taps);
     estimateVariance();
-    m_reproject.storeGeometry(f);
     // m_color is the feedback slot (it becomes the history in the next integrate()): it keeps the
     // unfiltered integrated colour unless iteration feedbackTap overwrites it.
     for (int i = 0; i < m_settings.iterations; ++i) {
