@@ -2,14 +2,11 @@
 // Direct convolutions of the AFN engine (see afn_conv.h).
 #include "nn/conv.h"
 
-#include "cpu/simd.h"
+#include "cpu/conv_kernel.h"
 #include "base/exception.h"
 #include "base/parallel.h"
 
 #include <algorithm>
-
-// Vector helpers are always inlined within one target clone: the AVX ABI note does not apply.
-#pragma GCC diagnostic ignored "-Wpsabi"
 
 namespace afn::nn {
 
@@ -62,87 +59,6 @@ void Conv::load(
                     = w.data[(static_cast<std::size_t>(co) * in + ci) * k * k + t];
 }
 
-namespace {
-
-typedef cpu::V8 V8;
-typedef cpu::V8u V8u;
-constexpr int kLanes = 8;
-constexpr int kPixels = 4; // output pixels per micro-kernel call (register blocking)
-
-const float* zeros()
-{
-    static const float z[kMaxChannels] = {};
-    return z;
-}
-
-} // namespace
-
-namespace {
-
-struct ConvArgs {
-    const Image* up;
-    const Image* same;
-    Image* out;
-    const float* wp; ///< [ky][kx][ci][cp]
-    const float* bp; ///< [cp]
-    int in, k, cp, outC, nu, ns;
-    bool relu;
-};
-
-// Rows [y0, y1) of one convolution: 4 output pixels x 8 output channels per micro-kernel step.
-// Compiled twice (ifunc dispatch at load time): for x86-64-v3 (AVX2 + FMA) and the baseline.
-// Results may differ in the last bit between the two (FMA contraction); parity holds for both.
-__attribute__((target_clones("arch=x86-64-v3", "default"))) void convRows(
-    const ConvArgs& a, int y0, int y1)
-{
-    const int w = a.same->width(), h = a.same->height(), r = a.k / 2, cp = a.cp;
-    for (int y = y0; y < y1; ++y)
-        for (int x = 0; x < w; x += kPixels) {
-            const int np = std::min(kPixels, w - x);
-            for (int cb = 0; cb < cp; cb += kLanes) {
-                V8 acc[kPixels];
-                const V8 bias = *reinterpret_cast<const V8u*>(a.bp + cb);
-                for (int p = 0; p < kPixels; ++p)
-                    acc[p] = bias;
-                for (int ky = 0; ky < a.k; ++ky) {
-                    const int yy = y + ky - r;
-                    if (yy < 0 || yy >= h)
-                        continue;
-                    for (int kx = 0; kx < a.k; ++kx) {
-                        const float* wt
-                            = a.wp + static_cast<std::size_t>(ky * a.k + kx) * a.in * cp + cb;
-                        const float* pu[kPixels];
-                        const float* ps[kPixels];
-                        for (int p = 0; p < kPixels; ++p) {
-                            const int xx = x + p + kx - r;
-                            const bool in = p < np && xx >= 0 && xx < w;
-                            pu[p] = in && a.nu ? a.up->at(xx >> 1, yy >> 1) : zeros();
-                            ps[p] = in ? a.same->at(xx, yy) : zeros();
-                        }
-                        for (int ci = 0; ci < a.nu; ++ci, wt += cp) {
-                            const V8 wv = *reinterpret_cast<const V8u*>(wt);
-                            for (int p = 0; p < kPixels; ++p)
-                                acc[p] += pu[p][ci] * wv;
-                        }
-                        for (int ci = 0; ci < a.ns; ++ci, wt += cp) {
-                            const V8 wv = *reinterpret_cast<const V8u*>(wt);
-                            for (int p = 0; p < kPixels; ++p)
-                                acc[p] += ps[p][ci] * wv;
-                        }
-                    }
-                }
-                const int nc = std::min(kLanes, a.outC - cb);
-                for (int p = 0; p < np; ++p) {
-                    float* dst = a.out->at(x + p, y) + cb;
-                    for (int o = 0; o < nc; ++o)
-                        dst[o] = a.relu ? std::max(acc[p][o], 0.0f) : acc[p][o];
-                }
-            }
-        }
-}
-
-} // namespace
-
 void Conv::run(const Image* up, const Image& same, Image& out, bool relu) const
 {
     const int w = same.width(), h = same.height();
@@ -151,9 +67,9 @@ void Conv::run(const Image* up, const Image& same, Image& out, bool relu) const
         throwInvalidOperation("AFN conv: input has " + std::to_string(nu + ns) + " channels, layer "
             + "expects " + std::to_string(m_in));
     out.resize(w, h, m_out);
-    const ConvArgs args { up, &same, &out, m_wp.data(), m_bp.data(), m_in, m_k, m_outPadded, m_out,
-        nu, ns, relu };
-    parallelRows(h, [&](int y0, int y1) { convRows(args, y0, y1); });
+    const cpu::ConvArgs args { up, &same, &out, m_wp.data(), m_bp.data(), m_in, m_k, m_outPadded,
+        m_out, nu, ns, relu };
+    parallelRows(h, [&](int y0, int y1) { cpu::convRows(args, y0, y1); });
 }
 
 void down2(const Image& in, Image& out)

@@ -1,9 +1,12 @@
 // SPDX-License-Identifier: Apache-2.0
-// Fused heads + softmax + 7x7 filtering + fusion of AFN (see afn_fusion.h).
+// The CPU implementation of AFN's fused heads + softmax + 7x7 filtering + fusion
+// (methods/afn/fusion.h), its row kernel cloned per instruction set (cpu/target.h). The scalar
+// helpers stay in this file so that they inline into each clone.
 #include "methods/afn/fusion.h"
 
-#include "cpu/simd.h"
 #include "base/parallel.h"
+#include "cpu/simd.h"
+#include "cpu/target.h"
 
 #include <algorithm>
 #include <cmath>
@@ -107,8 +110,8 @@ inline __attribute__((always_inline)) void softmax49(float* l)
         l[j] *= inv;
 }
 
-// Rows [y0, y1) of half-resolution blocks; compiled for x86-64-v3 and the baseline (ifunc).
-__attribute__((target_clones("arch=x86-64-v3", "default"))) void fuseRows(
+// Rows [y0, y1) of half-resolution blocks.
+AFN_CPU_CLONES void fuseRows(
     const FusionInputs& in, const FusionOutputs& out, int y0, int y1)
 {
     const Image& d1 = *in.d1;
