@@ -30,22 +30,37 @@ void metricsCase(benchmark::State& state, bool temporal)
     AFNMetrics m {};
     AFNTemporalMetrics t {};
     for (auto _ : state) {
-        const bool ok = temporal
-                            ? afn::computeTemporalMetrics(device, a.data(), b.data(), b.data(), a.data(), w, h, 3, t)
-                            : afn::computeMetrics(device, a.data(), b.data(), w, h, 3, m);
-        if (!ok) state.SkipWithError("metrics failed");
+        const bool ok = temporal ? afn::computeTemporalMetrics(
+                            device, a.data(), b.data(), b.data(), a.data(), w, h, 3, t)
+                                 : afn::computeMetrics(device, a.data(), b.data(), w, h, 3, m);
+        if (!ok)
+            state.SkipWithError("metrics failed");
         benchmark::DoNotOptimize(m);
         benchmark::DoNotOptimize(t);
     }
-    state.counters["Mpix/s"] =
-        benchmark::Counter(static_cast<double>(w) * h * state.iterations() / 1e6, benchmark::Counter::kIsRate);
+    state.counters["Mpix/s"] = benchmark::Counter(
+        static_cast<double>(w) * h * state.iterations() / 1e6, benchmark::Counter::kIsRate);
 }
 
-void BM_Metrics(benchmark::State& s) { metricsCase(s, false); }
-void BM_TemporalMetrics(benchmark::State& s) { metricsCase(s, true); }
+void BM_Metrics(benchmark::State& s)
+{
+    metricsCase(s, false);
+}
+void BM_TemporalMetrics(benchmark::State& s)
+{
+    metricsCase(s, true);
+}
 
 } // namespace
 
-BENCHMARK(BM_Metrics)->Name("metrics.frame")->Args({ 1280, 720 })->Args({ 1920, 1080 })->Unit(benchmark::kMillisecond);
-BENCHMARK(BM_TemporalMetrics)->Name("metrics.temporal")->Args({ 1280, 720 })->Args({ 1920, 1080 })->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_Metrics)
+    ->Name("metrics.frame")
+    ->Args({ 1280, 720 })
+    ->Args({ 1920, 1080 })
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_TemporalMetrics)
+    ->Name("metrics.temporal")
+    ->Args({ 1280, 720 })
+    ->Args({ 1920, 1080 })
+    ->Unit(benchmark::kMillisecond);
 BENCHMARK_MAIN();

@@ -10,7 +10,8 @@ namespace afntool {
 class CliError : public std::runtime_error {
 public:
     CliError(const std::string& what, std::string file = {})
-        : std::runtime_error(what), m_file(std::move(file))
+        : std::runtime_error(what)
+        , m_file(std::move(file))
     {
     }
     const std::string& file() const { return m_file; }

@@ -25,7 +25,7 @@ std::vector<FrameRef> resolveFrames(const Options& opts);
 
 /// Output path for a frame: patterns expanded; several frames need a pattern.
 std::string outputPath(const std::string& pattern, const FrameRef& ref, std::size_t frameCount,
-                       const std::string& flag);
+    const std::string& flag);
 
 struct LoadedFrame {
     FrameRef ref;
@@ -39,7 +39,10 @@ struct LoadedFrame {
 /// Shared state of a run: options and the lazily loaded colour config.
 class RunContext {
 public:
-    explicit RunContext(const Options& opts) : m_opts(opts) {}
+    explicit RunContext(const Options& opts)
+        : m_opts(opts)
+    {
+    }
     const Options& options() const { return m_opts; }
     afn::color::ColorManager& color();
 

@@ -33,7 +33,8 @@ public:
     JsonWriter& value(int v) { return raw(std::to_string(v)); }
     JsonWriter& value(double v)
     {
-        if (!std::isfinite(v)) return raw("null");
+        if (!std::isfinite(v))
+            return raw("null");
         char buf[64];
         std::snprintf(buf, sizeof buf, "%.9g", v);
         return raw(buf);
@@ -41,21 +42,35 @@ public:
     JsonWriter& value(const std::vector<std::string>& list)
     {
         beginArray();
-        for (const auto& s : list) value(s);
+        for (const auto& s : list)
+            value(s);
         return endArray();
     }
-    template <typename T> JsonWriter& field(const std::string& k, const T& v) { return key(k).value(v); }
+    template <typename T> JsonWriter& field(const std::string& k, const T& v)
+    {
+        return key(k).value(v);
+    }
 
     static std::string quote(const std::string& s)
     {
         std::string o = "\"";
         for (unsigned char c : s) {
             switch (c) {
-            case '"': o += "\\\""; break;
-            case '\\': o += "\\\\"; break;
-            case '\n': o += "\\n"; break;
-            case '\t': o += "\\t"; break;
-            case '\r': o += "\\r"; break;
+            case '"':
+                o += "\\\"";
+                break;
+            case '\\':
+                o += "\\\\";
+                break;
+            case '\n':
+                o += "\\n";
+                break;
+            case '\t':
+                o += "\\t";
+                break;
+            case '\r':
+                o += "\\r";
+                break;
             default:
                 if (c < 0x20) {
                     char buf[8];
@@ -96,7 +111,8 @@ private:
             return;
         }
         if (!m_first.empty()) {
-            if (!m_first.back()) m_out << ", ";
+            if (!m_first.back())
+                m_out << ", ";
             m_first.back() = false;
         }
     }

@@ -17,9 +17,11 @@ namespace {
 
 bool needsAllChannels(const Options& opts)
 {
-    if (opts.keepAovs) return true;
+    if (opts.keepAovs)
+        return true;
     for (const Action& a : opts.actions)
-        if (a.name == "contact-sheet") return true;
+        if (a.name == "contact-sheet")
+            return true;
     return false;
 }
 
@@ -38,33 +40,39 @@ int run(const Options& opts)
         return 0;
     }
     for (const Action& a : opts.actions)
-        if (a.name == "benchmark") return runBenchmark(opts, a);
+        if (a.name == "benchmark")
+            return runBenchmark(opts, a);
     const std::vector<FrameRef> frames = resolveFrames(opts);
     RunContext ctx(opts);
 
     bool infoOnly = !opts.actions.empty();
-    for (const Action& a : opts.actions) infoOnly = infoOnly && a.name == "info";
+    for (const Action& a : opts.actions)
+        infoOnly = infoOnly && a.name == "info";
     if (infoOnly) {
         runInfo(ctx, frames);
         return 0;
     }
-    if (opts.actions.empty()) throw CliError("nothing to do: give an action (--info, --denoise, -o, ...)");
+    if (opts.actions.empty())
+        throw CliError("nothing to do: give an action (--info, --denoise, -o, ...)");
     if (opts.inputs.size() != 1)
         throw CliError("processing takes exactly one input (file, pattern or dataset folder)");
 
     std::vector<std::string> inputPaths;
-    for (const FrameRef& f : frames) inputPaths.push_back(f.path);
+    for (const FrameRef& f : frames)
+        inputPaths.push_back(f.path);
 
     std::unique_ptr<SequenceDenoiser> denoiser;
     for (const Action& a : opts.actions)
         if (a.name == "denoise") {
-            if (denoiser) throw CliError("--denoise given twice");
+            if (denoiser)
+                throw CliError("--denoise given twice");
             denoiser = std::make_unique<SequenceDenoiser>(opts, a);
         }
     std::unique_ptr<SequenceComparer> comparer;
     for (const Action& a : opts.actions)
         if (a.name == "compare") {
-            if (comparer) throw CliError("--compare given twice");
+            if (comparer)
+                throw CliError("--compare given twice");
             comparer = std::make_unique<SequenceComparer>(ctx, a);
         }
 
@@ -73,7 +81,8 @@ int run(const Options& opts)
     for (std::size_t i = 0; i < frames.size(); ++i) {
         progress.update(static_cast<int>(i), frames[i].path);
         LoadedFrame frame = loadFrame(ctx, frames[i], keepAll);
-        for (const std::string& w : frame.images.mapping.warnings) warn(w + " (" + frames[i].path + ")", opts.quiet, &progress);
+        for (const std::string& w : frame.images.mapping.warnings)
+            warn(w + " (" + frames[i].path + ")", opts.quiet, &progress);
         for (const Action& a : opts.actions) {
             if (a.name == "info") {
                 runInfo(ctx, { frames[i] });
@@ -82,8 +91,8 @@ int run(const Options& opts)
             } else if (a.name == "compare") {
                 comparer->process(frame, &progress);
             } else {
-                const std::string out = outputPath(a.arg, frames[i], frames.size(),
-                                                   a.name == "output" ? "-o" : "--" + a.name);
+                const std::string out = outputPath(
+                    a.arg, frames[i], frames.size(), a.name == "output" ? "-o" : "--" + a.name);
                 if (a.name == "output")
                     writeOutput(ctx, frame, out, inputPaths);
                 else if (a.name == "preview")
@@ -95,7 +104,8 @@ int run(const Options& opts)
     }
     progress.update(static_cast<int>(frames.size()), "done");
     progress.clear();
-    if (comparer) comparer->finish();
+    if (comparer)
+        comparer->finish();
     return 0;
 }
 

@@ -81,10 +81,10 @@ void SequenceDenoiser::process(LoadedFrame& frame, Progress* progress)
 
     // The working-space beauty is the colour input; other roles as read.
     m_filter.setImage(AFN_IMAGE_COLOR, frame.beauty.data(), afn::Format::Float3, w, h);
-    const std::pair<Role, const char*> roles[] = { { Role::Albedo, AFN_IMAGE_ALBEDO },
-        { Role::Normal, AFN_IMAGE_NORMAL }, { Role::Depth, AFN_IMAGE_DEPTH },
-        { Role::Position, AFN_IMAGE_POSITION }, { Role::Motion, AFN_IMAGE_MOTION },
-        { Role::Alpha, AFN_IMAGE_ALPHA } };
+    const std::pair<Role, const char*> roles[]
+        = { { Role::Albedo, AFN_IMAGE_ALBEDO }, { Role::Normal, AFN_IMAGE_NORMAL },
+              { Role::Depth, AFN_IMAGE_DEPTH }, { Role::Position, AFN_IMAGE_POSITION },
+              { Role::Motion, AFN_IMAGE_MOTION }, { Role::Alpha, AFN_IMAGE_ALPHA } };
     for (const auto& [role, name] : roles) {
         auto it = img.roles.find(role);
         if (it == img.roles.end()) {

@@ -16,7 +16,8 @@ using afn::io::Role;
 std::string join(const std::vector<std::string>& v, const char* sep = ", ")
 {
     std::string out;
-    for (std::size_t i = 0; i < v.size(); ++i) out += (i ? sep : "") + v[i];
+    for (std::size_t i = 0; i < v.size(); ++i)
+        out += (i ? sep : "") + v[i];
     return out;
 }
 
@@ -44,7 +45,8 @@ FileReport collect(const Options& opts, const FrameRef& ref)
         ro.required = {};
         const afn::io::FrameImages fi = afn::io::readFrame(ref.path, ro);
         r.mapping = fi.mapping;
-        for (const auto& [role, image] : fi.roles) r.stats[role] = afn::io::computeStats(image);
+        for (const auto& [role, image] : fi.roles)
+            r.stats[role] = afn::io::computeStats(image);
         if (ref.path.find("#bmfr:") == std::string::npos) {
             r.info = afn::io::inspect(ref.path);
         } else {
@@ -64,12 +66,12 @@ void printText(const FileReport& r)
     for (std::size_t s = 0; s < r.info.subimages.size(); ++s) {
         const afn::io::SubimageInfo& si = r.info.subimages[s];
         std::printf("  subimage %zu%s%s: data window %s, display window %s, compression %s\n", s,
-                    si.name.empty() ? "" : " ", si.name.c_str(), boxText(si.dataWindow).c_str(),
-                    boxText(si.displayWindow).c_str(), si.compression.c_str());
+            si.name.empty() ? "" : " ", si.name.c_str(), boxText(si.dataWindow).c_str(),
+            boxText(si.displayWindow).c_str(), si.compression.c_str());
         std::printf("    %zu channels:", si.channels.size());
         for (std::size_t c = 0; c < si.channels.size(); ++c)
             std::printf("%s %s (%s)", c ? "," : "", si.channels[c].c_str(),
-                        c < si.types.size() ? si.types[c].c_str() : "?");
+                c < si.types.size() ? si.types[c].c_str() : "?");
         std::printf("\n");
     }
     std::printf("  roles:\n");
@@ -78,17 +80,17 @@ void printText(const FileReport& r)
         const afn::io::RoleChannels* rc = r.mapping.find(role);
         if (rc) {
             std::printf("    %-9s %s  [%s]\n", afn::io::roleName(role), join(rc->channels).c_str(),
-                        rc->source.c_str());
+                rc->source.c_str());
             auto st = r.stats.find(role);
             if (st != r.stats.end())
                 std::printf("              min %.6g  max %.6g  mean %.6g  NaN %lld  Inf %lld  "
                             "negative %lld\n",
-                            st->second.min, st->second.max, st->second.mean, st->second.nan,
-                            st->second.inf, st->second.negative);
+                    st->second.min, st->second.max, st->second.mean, st->second.nan, st->second.inf,
+                    st->second.negative);
         } else {
             auto lf = r.mapping.lookedFor.find(role);
             std::printf("    %-9s (not found; looked for %s)\n", afn::io::roleName(role),
-                        lf == r.mapping.lookedFor.end() ? "-" : join(lf->second).c_str());
+                lf == r.mapping.lookedFor.end() ? "-" : join(lf->second).c_str());
         }
     }
     std::printf("  conventions:");
@@ -108,16 +110,27 @@ void writeJson(JsonWriter& j, const FileReport& r)
     j.field("height", first ? first->dataWindow.height : 0);
     std::vector<std::string> all;
     for (const auto& si : r.info.subimages)
-        for (const auto& c : si.channels) all.push_back(si.name.empty() || r.info.subimages.size() == 1 ? c : si.name + "." + c);
+        for (const auto& c : si.channels)
+            all.push_back(si.name.empty() || r.info.subimages.size() == 1 ? c : si.name + "." + c);
     j.key("channels").value(all);
     j.key("subimages").beginArray();
     for (const auto& si : r.info.subimages) {
         j.beginObject();
         j.field("name", si.name);
-        j.key("dataWindow").beginObject().field("x", si.dataWindow.x).field("y", si.dataWindow.y)
-            .field("width", si.dataWindow.width).field("height", si.dataWindow.height).endObject();
-        j.key("displayWindow").beginObject().field("x", si.displayWindow.x).field("y", si.displayWindow.y)
-            .field("width", si.displayWindow.width).field("height", si.displayWindow.height).endObject();
+        j.key("dataWindow")
+            .beginObject()
+            .field("x", si.dataWindow.x)
+            .field("y", si.dataWindow.y)
+            .field("width", si.dataWindow.width)
+            .field("height", si.dataWindow.height)
+            .endObject();
+        j.key("displayWindow")
+            .beginObject()
+            .field("x", si.displayWindow.x)
+            .field("y", si.displayWindow.y)
+            .field("width", si.displayWindow.width)
+            .field("height", si.displayWindow.height)
+            .endObject();
         j.key("channels").value(si.channels);
         j.key("types").value(si.types);
         j.field("compression", si.compression);
@@ -125,10 +138,12 @@ void writeJson(JsonWriter& j, const FileReport& r)
     }
     j.endArray();
     j.key("roles").beginObject();
-    for (const auto& rc : r.mapping.roles) j.key(afn::io::roleName(rc.role)).value(rc.channels);
+    for (const auto& rc : r.mapping.roles)
+        j.key(afn::io::roleName(rc.role)).value(rc.channels);
     j.endObject();
     j.key("missingRoles").beginObject();
-    for (const auto& [role, looked] : r.mapping.lookedFor) j.key(afn::io::roleName(role)).value(looked);
+    for (const auto& [role, looked] : r.mapping.lookedFor)
+        j.key(afn::io::roleName(role)).value(looked);
     j.endObject();
     const afn::io::SpaceTag& t = r.mapping.tag;
     j.key("conventions").beginObject();
@@ -141,9 +156,16 @@ void writeJson(JsonWriter& j, const FileReport& r)
     j.endObject();
     j.key("stats").beginObject();
     for (const auto& [role, s] : r.stats) {
-        j.key(afn::io::roleName(role)).beginObject().field("min", s.min).field("max", s.max)
-            .field("mean", s.mean).field("nan", s.nan).field("inf", s.inf).field("negative", s.negative)
-            .field("count", s.count).endObject();
+        j.key(afn::io::roleName(role))
+            .beginObject()
+            .field("min", s.min)
+            .field("max", s.max)
+            .field("mean", s.mean)
+            .field("nan", s.nan)
+            .field("inf", s.inf)
+            .field("negative", s.negative)
+            .field("count", s.count)
+            .endObject();
     }
     j.endObject();
     j.endObject();
@@ -155,9 +177,11 @@ void runInfo(RunContext& ctx, const std::vector<FrameRef>& frames)
 {
     const Options& opts = ctx.options();
     std::vector<FileReport> reports;
-    for (const FrameRef& ref : frames) reports.push_back(collect(opts, ref));
+    for (const FrameRef& ref : frames)
+        reports.push_back(collect(opts, ref));
     if (!opts.json) {
-        for (const FileReport& r : reports) printText(r);
+        for (const FileReport& r : reports)
+            printText(r);
         return;
     }
     JsonWriter j;
@@ -165,7 +189,8 @@ void runInfo(RunContext& ctx, const std::vector<FrameRef>& frames)
         writeJson(j, reports[0]);
     } else {
         j.beginArray();
-        for (const FileReport& r : reports) writeJson(j, r);
+        for (const FileReport& r : reports)
+            writeJson(j, r);
         j.endArray();
     }
     std::printf("%s\n", j.str().c_str());

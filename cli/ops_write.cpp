@@ -13,8 +13,8 @@ namespace {
 using afn::io::Role;
 
 void writeChecked(const std::string& path, int w, int h, const std::vector<std::string>& channels,
-                  const std::vector<float>& pixels, const afn::io::WriteOptions& wo,
-                  const std::vector<std::string>& types = {})
+    const std::vector<float>& pixels, const afn::io::WriteOptions& wo,
+    const std::vector<std::string>& types = {})
 {
     try {
         afn::io::writeImageAtomic(path, w, h, channels, pixels.data(), wo, types);
@@ -25,30 +25,35 @@ void writeChecked(const std::string& path, int w, int h, const std::vector<std::
 
 /// Channel names (as in LayeredImage) that roles of the frame were read from (all roles, or only
 /// the beauty's: colour and alpha).
-std::set<std::string> roleChannelNames(const afn::io::FrameImages& img, const afn::io::LayeredImage& all,
-                                       bool beautyOnly)
+std::set<std::string> roleChannelNames(
+    const afn::io::FrameImages& img, const afn::io::LayeredImage& all, bool beautyOnly)
 {
     std::set<std::string> used;
     for (const afn::io::RoleChannels& rc : img.mapping.roles) {
-        if (beautyOnly && rc.role != Role::Color && rc.role != Role::Alpha) continue;
+        if (beautyOnly && rc.role != Role::Color && rc.role != Role::Alpha)
+            continue;
         for (const std::string& ch : rc.channels) {
             used.insert(ch);
             // Multi-part files name channels "<part>.<name>" in the layered image.
             for (const std::string& name : all.channels)
-                if (name.size() > ch.size() && name.compare(name.size() - ch.size(), ch.size(), ch) == 0 &&
-                    name[name.size() - ch.size() - 1] == '.' && rc.subimage > 0)
+                if (name.size() > ch.size()
+                    && name.compare(name.size() - ch.size(), ch.size(), ch) == 0
+                    && name[name.size() - ch.size() - 1] == '.' && rc.subimage > 0)
                     used.insert(name);
         }
     }
     return used;
 }
 
-int componentsOf(const afn::io::RoleImage& r) { return r.components; }
+int componentsOf(const afn::io::RoleImage& r)
+{
+    return r.components;
+}
 
 } // namespace
 
 void writeOutput(RunContext& ctx, const LoadedFrame& frame, const std::string& path,
-                 const std::vector<std::string>& inputs)
+    const std::vector<std::string>& inputs)
 {
     const Options& opts = ctx.options();
     const afn::io::RoleImage& color = frame.images.roles.at(Role::Color);
@@ -66,7 +71,8 @@ void writeOutput(RunContext& ctx, const LoadedFrame& frame, const std::string& p
     }
 
     std::vector<std::string> channels = { "R", "G", "B" };
-    if (hasAlpha) channels.push_back("A");
+    if (hasAlpha)
+        channels.push_back("A");
     const std::string beautyType = opts.dataType.empty() ? frame.beautyType : opts.dataType;
     std::vector<std::string> types(channels.size(), beautyType);
 
@@ -76,7 +82,8 @@ void writeOutput(RunContext& ctx, const LoadedFrame& frame, const std::string& p
         const std::set<std::string> used = roleChannelNames(frame.images, *all, true);
         for (std::size_t c = 0; c < all->channels.size(); ++c) {
             const std::string& name = all->channels[c];
-            if (used.count(name) || name == "R" || name == "G" || name == "B" || name == "A") continue;
+            if (used.count(name) || name == "R" || name == "G" || name == "B" || name == "A")
+                continue;
             extra.push_back(static_cast<int>(c));
             channels.push_back(name);
             types.push_back(opts.dataType.empty() ? all->types[c] : opts.dataType);
@@ -91,21 +98,24 @@ void writeOutput(RunContext& ctx, const LoadedFrame& frame, const std::string& p
         p[1] = rgb[i * 3 + 1];
         p[2] = rgb[i * 3 + 2];
         std::size_t k = 3;
-        if (hasAlpha) p[k++] = alpha->second.pixels[i * componentsOf(alpha->second)];
-        for (int c : extra) p[k++] = all->pixels[i * all->channels.size() + c];
+        if (hasAlpha)
+            p[k++] = alpha->second.pixels[i * componentsOf(alpha->second)];
+        for (int c : extra)
+            p[k++] = all->pixels[i * all->channels.size() + c];
     }
 
     afn::io::WriteOptions wo;
     wo.dataType = beautyType;
     wo.compression = opts.compression.empty() ? frame.compression : opts.compression;
-    if (all) wo.attributes = all->attributes;
+    if (all)
+        wo.attributes = all->attributes;
     wo.attributes["oiio:ColorSpace"] = outSpace;
     wo.inputs = inputs;
     writeChecked(path, w, h, channels, pixels, wo, types);
 }
 
 void writePreview(RunContext& ctx, const LoadedFrame& frame, const Action& action,
-                  const std::string& path, const std::vector<std::string>& inputs)
+    const std::string& path, const std::vector<std::string>& inputs)
 {
     const afn::io::RoleImage& color = frame.images.roles.at(Role::Color);
     std::vector<float> rgb = frame.beauty;
@@ -114,7 +124,8 @@ void writePreview(RunContext& ctx, const LoadedFrame& frame, const Action& actio
         return it == action.mods.end() ? std::string() : it->second;
     };
     try {
-        ctx.color().toDisplay(rgb.data(), color.width, color.height, 3, {}, get("display"), get("view"));
+        ctx.color().toDisplay(
+            rgb.data(), color.width, color.height, 3, {}, get("display"), get("view"));
     } catch (const afn::color::ColorError& e) {
         throw CliError(std::string("--preview: ") + e.what(), path);
     }
@@ -124,7 +135,7 @@ void writePreview(RunContext& ctx, const LoadedFrame& frame, const Action& actio
 }
 
 void writeContactSheet(RunContext& ctx, const LoadedFrame& frame, const Action& action,
-                       const std::string& path, const std::vector<std::string>& inputs)
+    const std::string& path, const std::vector<std::string>& inputs)
 {
     afn::color::ColorManager& cm = ctx.color();
     auto get = [&](const char* k, const std::string& def) {
@@ -135,17 +146,20 @@ void writeContactSheet(RunContext& ctx, const LoadedFrame& frame, const Action& 
     std::vector<afn::color::Tile> tiles;
     try {
         const afn::io::RoleImage& color = frame.images.roles.at(Role::Color);
-        tiles.push_back(afn::color::makeTile(cm, "color", "color (beauty)", color.width, color.height,
-                                             3, frame.beauty.data(), display, view));
+        tiles.push_back(afn::color::makeTile(cm, "color", "color (beauty)", color.width,
+            color.height, 3, frame.beauty.data(), display, view));
         for (const afn::io::RoleChannels& rc : frame.images.mapping.roles) {
-            if (rc.role == Role::Color) continue;
+            if (rc.role == Role::Color)
+                continue;
             auto it = frame.images.roles.find(rc.role);
-            if (it == frame.images.roles.end()) continue;
+            if (it == frame.images.roles.end())
+                continue;
             const afn::io::RoleImage& r = it->second;
             std::string label = afn::io::roleName(rc.role);
-            if (!rc.channels.empty()) label += ": " + rc.channels.front().substr(0, rc.channels.front().rfind('.'));
+            if (!rc.channels.empty())
+                label += ": " + rc.channels.front().substr(0, rc.channels.front().rfind('.'));
             tiles.push_back(afn::color::makeTile(cm, afn::io::roleName(rc.role), label, r.width,
-                                                 r.height, r.components, r.pixels.data(), display, view));
+                r.height, r.components, r.pixels.data(), display, view));
         }
         // Every other layer of the file (up to its first 3 channels).
         if (frame.images.all) {
@@ -155,10 +169,13 @@ void writeContactSheet(RunContext& ctx, const LoadedFrame& frame, const Action& 
             std::vector<std::string> order;
             for (std::size_t c = 0; c < all.channels.size(); ++c) {
                 const std::string& name = all.channels[c];
-                if (used.count(name)) continue;
+                if (used.count(name))
+                    continue;
                 const std::size_t dot = name.rfind('.');
-                const std::string layer = dot == std::string::npos ? "(top level)" : name.substr(0, dot);
-                if (!layers.count(layer)) order.push_back(layer);
+                const std::string layer
+                    = dot == std::string::npos ? "(top level)" : name.substr(0, dot);
+                if (!layers.count(layer))
+                    order.push_back(layer);
                 layers[layer].push_back(static_cast<int>(c));
             }
             const std::size_t npx = static_cast<std::size_t>(all.width) * all.height;
@@ -167,11 +184,12 @@ void writeContactSheet(RunContext& ctx, const LoadedFrame& frame, const Action& 
                 const int comps = idx.size() >= 3 ? 3 : 1;
                 std::vector<float> px(npx * comps);
                 for (std::size_t i = 0; i < npx; ++i)
-                    for (int c = 0; c < comps; ++c) px[i * comps + c] = all.pixels[i * all.channels.size() + idx[c]];
+                    for (int c = 0; c < comps; ++c)
+                        px[i * comps + c] = all.pixels[i * all.channels.size() + idx[c]];
                 const std::string& first = all.channels[idx[0]];
                 const bool rgbLike = comps == 3 && first.size() >= 1 && first.back() == 'R';
                 tiles.push_back(afn::color::makeTile(cm, rgbLike ? "albedo" : "position", layer,
-                                                     all.width, all.height, comps, px.data(), display, view));
+                    all.width, all.height, comps, px.data(), display, view));
             }
         }
     } catch (const afn::color::ColorError& e) {
@@ -183,7 +201,8 @@ void writeContactSheet(RunContext& ctx, const LoadedFrame& frame, const Action& 
     } catch (const std::exception&) {
         throw CliError("--contact-sheet:columns expects an integer");
     }
-    if (columns < 1) throw CliError("--contact-sheet:columns must be >= 1");
+    if (columns < 1)
+        throw CliError("--contact-sheet:columns must be >= 1");
     // Tiles at most 480x270 (downscaled with a box filter) so a 4K frame's sheet stays viewable.
     int maxTile = 480;
     try {
@@ -191,8 +210,10 @@ void writeContactSheet(RunContext& ctx, const LoadedFrame& frame, const Action& 
     } catch (const std::exception&) {
         throw CliError("--contact-sheet:tilesize expects an integer");
     }
-    if (maxTile < 16) throw CliError("--contact-sheet:tilesize must be >= 16");
-    for (afn::color::Tile& t : tiles) t = afn::color::fitTile(t, maxTile, maxTile * 9 / 16);
+    if (maxTile < 16)
+        throw CliError("--contact-sheet:tilesize must be >= 16");
+    for (afn::color::Tile& t : tiles)
+        t = afn::color::fitTile(t, maxTile, maxTile * 9 / 16);
     int w = 0, h = 0;
     const std::vector<float> sheet = afn::color::layoutContactSheet(tiles, columns, w, h);
     afn::io::WriteOptions wo;

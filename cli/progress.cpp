@@ -6,16 +6,22 @@
 
 namespace afntool {
 
-Progress::Progress(int total, bool quiet) : m_total(total), m_enabled(!quiet && isatty(2)) {}
+Progress::Progress(int total, bool quiet)
+    : m_total(total)
+    , m_enabled(!quiet && isatty(2))
+{
+}
 
 Progress::~Progress()
 {
-    if (m_drawn) std::fprintf(stderr, "\n");
+    if (m_drawn)
+        std::fprintf(stderr, "\n");
 }
 
 void Progress::update(int done, const std::string& label)
 {
-    if (!m_enabled) return;
+    if (!m_enabled)
+        return;
     const int width = 30;
     const int filled = m_total > 0 ? done * width / m_total : width;
     std::string bar(static_cast<std::size_t>(filled), '#');
@@ -35,8 +41,10 @@ void Progress::clear()
 
 void warn(const std::string& message, bool quiet, Progress* progress)
 {
-    if (quiet) return;
-    if (progress) progress->clear();
+    if (quiet)
+        return;
+    if (progress)
+        progress->clear();
     std::fprintf(stderr, "afntool WARNING: %s\n", message.c_str());
 }
 

@@ -19,6 +19,6 @@ constexpr unsigned int kDenoiseVersionMinor = 0;
 /// Handle one OFX action of the effect; kOfxStatReplyDefault for actions it leaves to the host.
 /// Throws OfxError (and std::exception) for failures; Main.cpp reports them.
 OfxStatus denoiseAction(const std::string& action, OfxImageEffectHandle effect,
-                        OfxPropertySetHandle inArgs, OfxPropertySetHandle outArgs);
+    OfxPropertySetHandle inArgs, OfxPropertySetHandle outArgs);
 
 } // namespace afnofx

@@ -7,10 +7,13 @@
 
 namespace {
 
-void setHost(OfxHost* host) { afnofx::suites().host = host; }
+void setHost(OfxHost* host)
+{
+    afnofx::suites().host = host;
+}
 
 OfxStatus mainEntry(const char* action, const void* handle, OfxPropertySetHandle inArgs,
-                    OfxPropertySetHandle outArgs)
+    OfxPropertySetHandle outArgs)
 {
     auto* effect = static_cast<OfxImageEffectHandle>(const_cast<void*>(handle));
     try {
@@ -28,17 +31,19 @@ OfxStatus mainEntry(const char* action, const void* handle, OfxPropertySetHandle
     }
 }
 
-OfxPlugin g_denoise = { kOfxImageEffectPluginApi,       kOfxImageEffectPluginApiVersion,
-                        afnofx::kDenoiseIdentifier,     afnofx::kDenoiseVersionMajor,
-                        afnofx::kDenoiseVersionMinor,   setHost,
-                        mainEntry };
+OfxPlugin g_denoise
+    = { kOfxImageEffectPluginApi, kOfxImageEffectPluginApiVersion, afnofx::kDenoiseIdentifier,
+          afnofx::kDenoiseVersionMajor, afnofx::kDenoiseVersionMinor, setHost, mainEntry };
 
 } // namespace
 
 extern "C" {
 
 /// Number of plugins in this binary (one: org.afn.Denoise).
-__attribute__((visibility("default"))) int OfxGetNumberOfPlugins(void) { return 1; }
+__attribute__((visibility("default"))) int OfxGetNumberOfPlugins(void)
+{
+    return 1;
+}
 
 /// The nth plugin, NULL when out of range.
 __attribute__((visibility("default"))) OfxPlugin* OfxGetPlugin(int nth)

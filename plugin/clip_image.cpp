@@ -19,7 +19,7 @@ ClipImage::ClipImage(OfxImageClipHandle clip, double time, const OfxRectD* regio
     m_data = static_cast<char*>(p.getPointer(kOfxImagePropData));
     m_rowBytes = p.getInt(kOfxImagePropRowBytes);
     m_bounds = { p.getInt(kOfxImagePropBounds, 0), p.getInt(kOfxImagePropBounds, 1),
-                 p.getInt(kOfxImagePropBounds, 2), p.getInt(kOfxImagePropBounds, 3) };
+        p.getInt(kOfxImagePropBounds, 2), p.getInt(kOfxImagePropBounds, 3) };
     const std::string depth = p.getString(kOfxImageEffectPropPixelDepth);
     if (depth != kOfxBitDepthFloat)
         throw OfxError(kOfxStatErrImageFormat, "image depth " + depth + " is not float");
@@ -34,19 +34,20 @@ ClipImage::ClipImage(OfxImageClipHandle clip, double time, const OfxRectD* regio
 
 ClipImage::~ClipImage()
 {
-    if (m_handle) suites().effect->clipReleaseImage(m_handle);
+    if (m_handle)
+        suites().effect->clipReleaseImage(m_handle);
 }
 
 float* ClipImage::pixel(int x, int y) const
 {
-    return reinterpret_cast<float*>(m_data + std::ptrdiff_t(y - m_bounds.y1) * m_rowBytes +
-                                    std::ptrdiff_t(x - m_bounds.x1) * m_components * 4);
+    return reinterpret_cast<float*>(m_data + std::ptrdiff_t(y - m_bounds.y1) * m_rowBytes
+        + std::ptrdiff_t(x - m_bounds.x1) * m_components * 4);
 }
 
 static bool covers(const OfxRectI& outer, const OfxRectI& inner)
 {
-    return outer.x1 <= inner.x1 && outer.y1 <= inner.y1 && outer.x2 >= inner.x2 &&
-        outer.y2 >= inner.y2;
+    return outer.x1 <= inner.x1 && outer.y1 <= inner.y1 && outer.x2 >= inner.x2
+        && outer.y2 >= inner.y2;
 }
 
 StridedView viewWindow(const ClipImage& image, const OfxRectI& window, std::vector<float>& scratch)
@@ -68,7 +69,8 @@ StridedView viewWindow(const ClipImage& image, const OfxRectI& window, std::vect
     const OfxRectI& b = image.bounds();
     const int x0 = std::max(window.x1, b.x1), x1 = std::min(window.x2, b.x2);
     for (int y = std::max(window.y1, b.y1); y < std::min(window.y2, b.y2); ++y) {
-        if (x0 >= x1) break;
+        if (x0 >= x1)
+            break;
         float* row = scratch.data() + (size_t(window.y2 - 1 - y) * w + (x0 - window.x1)) * c;
         std::memcpy(row, image.pixel(x0, y), size_t(x1 - x0) * c * sizeof(float));
     }
@@ -95,7 +97,8 @@ void writeRows(const TileJob& j, int yBegin, int yEnd)
         float* out = j.dst->pixel(j.rw.x1, y);
         for (int x = j.rw.x1; x < j.rw.x2; ++x, out += c) {
             if (rowInside && x >= j.fw.x1 && x < j.fw.x2) {
-                const float* src = j.frame + (size_t(j.fw.y2 - 1 - y) * fwWidth + (x - j.fw.x1)) * 4;
+                const float* src
+                    = j.frame + (size_t(j.fw.y2 - 1 - y) * fwWidth + (x - j.fw.x1)) * 4;
                 if (c == 1)
                     out[0] = src[3];
                 else
@@ -111,24 +114,26 @@ void writeSlice(unsigned int index, unsigned int count, void* arg)
 {
     const TileJob& j = *static_cast<const TileJob*>(arg);
     const int h = j.rw.y2 - j.rw.y1;
-    writeRows(j, j.rw.y1 + int(h * size_t(index) / count), j.rw.y1 + int(h * size_t(index + 1) / count));
+    writeRows(
+        j, j.rw.y1 + int(h * size_t(index) / count), j.rw.y1 + int(h * size_t(index + 1) / count));
 }
 
 } // namespace
 
 void writeTile(const ClipImage& dst, const OfxRectI& renderWindow, const float* frameRgba,
-               const OfxRectI& frame)
+    const OfxRectI& frame)
 {
     TileJob job { &dst, renderWindow, frameRgba, frame };
     const OfxRectI& b = dst.bounds();
     job.rw = { std::max(renderWindow.x1, b.x1), std::max(renderWindow.y1, b.y1),
-               std::min(renderWindow.x2, b.x2), std::min(renderWindow.y2, b.y2) };
-    if (job.rw.x1 >= job.rw.x2 || job.rw.y1 >= job.rw.y2) return;
+        std::min(renderWindow.x2, b.x2), std::min(renderWindow.y2, b.y2) };
+    if (job.rw.x1 >= job.rw.x2 || job.rw.y1 >= job.rw.y2)
+        return;
     unsigned int cpus = 1;
     const OfxMultiThreadSuiteV1* mt = suites().thread;
-    if (mt && mt->multiThreadNumCPUs(&cpus) == kOfxStatOK && cpus > 1 &&
-        mt->multiThread(writeSlice, std::min(cpus, unsigned(job.rw.y2 - job.rw.y1)), &job) ==
-            kOfxStatOK)
+    if (mt && mt->multiThreadNumCPUs(&cpus) == kOfxStatOK && cpus > 1
+        && mt->multiThread(writeSlice, std::min(cpus, unsigned(job.rw.y2 - job.rw.y1)), &job)
+            == kOfxStatOK)
         return;
     writeRows(job, job.rw.y1, job.rw.y2);
 }

@@ -38,8 +38,8 @@ private:
 /// A window of an image described top-down for the library (row 0 = top row of the window).
 struct StridedView {
     void* ptr = nullptr;
-    size_t pixelStride = 0;   ///< bytes
-    ptrdiff_t rowStride = 0;  ///< bytes; negative host row bytes come out positive and vice versa
+    size_t pixelStride = 0; ///< bytes
+    ptrdiff_t rowStride = 0; ///< bytes; negative host row bytes come out positive and vice versa
     int components = 0;
 };
 
@@ -50,6 +50,6 @@ StridedView viewWindow(const ClipImage& image, const OfxRectI& window, std::vect
 /// Write the pixels of `dst`'s `renderWindow` from a packed top-down RGBA frame covering `frame`
 /// (zeros outside it). Rows are split across the host's threads when it offers them.
 void writeTile(const ClipImage& dst, const OfxRectI& renderWindow, const float* frameRgba,
-               const OfxRectI& frame);
+    const OfxRectI& frame);
 
 } // namespace afnofx

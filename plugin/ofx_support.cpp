@@ -12,7 +12,8 @@ Suites& suites()
 bool fetchSuites()
 {
     Suites& s = suites();
-    if (!s.host || !s.host->fetchSuite) return false;
+    if (!s.host || !s.host->fetchSuite)
+        return false;
     auto fetch = [&](const char* name, int version) {
         return s.host->fetchSuite(s.host->host, name, version);
     };
@@ -29,10 +30,13 @@ void check(OfxStatus status, const std::string& what)
 {
     if (status != kOfxStatOK)
         throw OfxError(status == kOfxStatErrMemory ? kOfxStatErrMemory : kOfxStatFailed,
-                       what + " failed (OFX status " + std::to_string(status) + ")");
+            what + " failed (OFX status " + std::to_string(status) + ")");
 }
 
-static std::string propText(const char* name) { return std::string("property ") + name; }
+static std::string propText(const char* name)
+{
+    return std::string("property ") + name;
+}
 
 int Props::getInt(const char* name, int index) const
 {
@@ -102,15 +106,20 @@ void Props::setPointer(const char* name, void* value, int index)
 
 void Props::setDoubles(const char* name, const std::vector<double>& values)
 {
-    for (size_t i = 0; i < values.size(); ++i) set(name, values[i], static_cast<int>(i));
+    for (size_t i = 0; i < values.size(); ++i)
+        set(name, values[i], static_cast<int>(i));
 }
 
 void Props::setStrings(const char* name, const std::vector<std::string>& values)
 {
-    for (size_t i = 0; i < values.size(); ++i) set(name, values[i], static_cast<int>(i));
+    for (size_t i = 0; i < values.size(); ++i)
+        set(name, values[i], static_cast<int>(i));
 }
 
-void Props::trySet(const char* name, int value) { suites().prop->propSetInt(m_handle, name, 0, value); }
+void Props::trySet(const char* name, int value)
+{
+    suites().prop->propSetInt(m_handle, name, 0, value);
+}
 
 void postError(void* handle, const std::string& message)
 {

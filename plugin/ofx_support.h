@@ -18,9 +18,9 @@ struct Suites {
     const OfxPropertySuiteV1* prop = nullptr;
     const OfxImageEffectSuiteV1* effect = nullptr;
     const OfxParameterSuiteV1* param = nullptr;
-    const OfxMemorySuiteV1* memory = nullptr;           ///< optional
-    const OfxMultiThreadSuiteV1* thread = nullptr;      ///< optional
-    const OfxMessageSuiteV1* message = nullptr;         ///< optional
+    const OfxMemorySuiteV1* memory = nullptr; ///< optional
+    const OfxMultiThreadSuiteV1* thread = nullptr; ///< optional
+    const OfxMessageSuiteV1* message = nullptr; ///< optional
 };
 
 /// The suites (valid between Load and Unload).
@@ -31,7 +31,9 @@ bool fetchSuites();
 /// An error that becomes the given OFX status at the action boundary.
 class OfxError : public std::runtime_error {
 public:
-    OfxError(OfxStatus status, const std::string& what) : std::runtime_error(what), m_status(status)
+    OfxError(OfxStatus status, const std::string& what)
+        : std::runtime_error(what)
+        , m_status(status)
     {
     }
     OfxStatus status() const { return m_status; }
@@ -46,7 +48,10 @@ void check(OfxStatus status, const std::string& what);
 /// Typed view of a property set; every accessor throws OfxError naming the property on failure.
 class Props {
 public:
-    explicit Props(OfxPropertySetHandle handle) : m_handle(handle) {}
+    explicit Props(OfxPropertySetHandle handle)
+        : m_handle(handle)
+    {
+    }
     OfxPropertySetHandle handle() const { return m_handle; }
 
     int getInt(const char* name, int index = 0) const;

@@ -30,9 +30,9 @@ const char* const kPreferred[] = { "afn", "svgf", "ta", "bmfr" };
 
 bool sameInfo(const AFNParamInfo& a, const AFNParamInfo& b)
 {
-    return a.type == b.type && a.defaultValue == b.defaultValue && a.minValue == b.minValue &&
-        a.maxValue == b.maxValue && std::strcmp(a.defaultString, b.defaultString) == 0 &&
-        std::strcmp(a.choices, b.choices) == 0;
+    return a.type == b.type && a.defaultValue == b.defaultValue && a.minValue == b.minValue
+        && a.maxValue == b.maxValue && std::strcmp(a.defaultString, b.defaultString) == 0
+        && std::strcmp(a.choices, b.choices) == 0;
 }
 
 std::string ofxSafe(std::string s)
@@ -47,14 +47,16 @@ std::vector<std::string> splitChoices(const char* choices)
     std::stringstream ss(choices);
     std::string item;
     while (std::getline(ss, item, '|'))
-        if (!item.empty()) out.push_back(item);
+        if (!item.empty())
+            out.push_back(item);
     return out;
 }
 
 ParamCatalog buildCatalog()
 {
     ParamCatalog c;
-    for (int i = 0, n = afnGetNumFilterTypes(); i < n; ++i) c.methods.push_back(afnGetFilterTypeName(i));
+    for (int i = 0, n = afnGetNumFilterTypes(); i < n; ++i)
+        c.methods.push_back(afnGetFilterTypeName(i));
     c.defaultMethod = 0;
     for (const char* p : kPreferred) {
         auto it = std::find(c.methods.begin(), c.methods.end(), p);
@@ -77,10 +79,10 @@ ParamCatalog buildCatalog()
     // any other one belongs to its method and is prefixed with the method's name.
     auto sharedByAll = [&](const AFNParamInfo& info) {
         for (const auto& t : tables) {
-            auto it = std::find_if(t.begin(), t.end(), [&](const AFNParamInfo& o) {
-                return std::strcmp(o.name, info.name) == 0;
-            });
-            if (it == t.end() || !sameInfo(*it, info)) return false;
+            auto it = std::find_if(t.begin(), t.end(),
+                [&](const AFNParamInfo& o) { return std::strcmp(o.name, info.name) == 0; });
+            if (it == t.end() || !sameInfo(*it, info))
+                return false;
         }
         return true;
     };
@@ -91,14 +93,16 @@ ParamCatalog buildCatalog()
         }
     if (!tables.empty())
         for (const AFNParamInfo& info : tables[0])
-            if (sharedByAll(info)) c.params.push_back({ ofxSafe(info.name), "", info });
+            if (sharedByAll(info))
+                c.params.push_back({ ofxSafe(info.name), "", info });
     return c;
 }
 
 OfxPropertySetHandle define(OfxParamSetHandle set, const char* type, const std::string& name)
 {
     OfxPropertySetHandle props = nullptr;
-    check(suites().param->paramDefine(set, type, name.c_str(), &props), "defining parameter " + name);
+    check(
+        suites().param->paramDefine(set, type, name.c_str(), &props), "defining parameter " + name);
     return props;
 }
 
@@ -125,15 +129,17 @@ void defineParams(OfxImageEffectHandle descriptor, bool temporalDefault)
 
     Props temporal(define(set, kOfxParamTypeBoolean, kParamTemporal));
     temporal.set(kOfxPropLabel, "Temporal");
-    temporal.set(kOfxParamPropHint, "use the history of every frame from the clip's first frame "
-                                    "(off: each frame is denoised on its own)");
+    temporal.set(kOfxParamPropHint,
+        "use the history of every frame from the clip's first frame "
+        "(off: each frame is denoised on its own)");
     temporal.set(kOfxParamPropDefault, temporalDefault ? 1 : 0);
     temporal.set(kOfxParamPropAnimates, 0);
 
     Props weights(define(set, kOfxParamTypeString, kParamWeights));
     weights.set(kOfxPropLabel, "Weights file");
-    weights.set(kOfxParamPropHint, "trained weights archive (.afnw) for learned methods such as "
-                                   "afn; empty = the weights built into the library, if any");
+    weights.set(kOfxParamPropHint,
+        "trained weights archive (.afnw) for learned methods such as "
+        "afn; empty = the weights built into the library, if any");
     weights.set(kOfxParamPropStringMode, kOfxParamStringIsFilePath);
     weights.set(kOfxParamPropStringFilePathExists, 1);
     weights.set(kOfxParamPropDefault, "");
@@ -185,7 +191,8 @@ void defineParams(OfxImageEffectHandle descriptor, bool temporalDefault)
 static OfxParamHandle paramHandle(OfxParamSetHandle set, const std::string& name)
 {
     OfxParamHandle h = nullptr;
-    check(suites().param->paramGetHandle(set, name.c_str(), &h, nullptr), "finding parameter " + name);
+    check(suites().param->paramGetHandle(set, name.c_str(), &h, nullptr),
+        "finding parameter " + name);
     return h;
 }
 
@@ -211,7 +218,8 @@ void showCurrentMethod(OfxImageEffectHandle instance)
     };
     std::string group;
     for (const ParamSpec& p : c.params) {
-        if (p.method.empty()) continue;
+        if (p.method.empty())
+            continue;
         const bool secret = p.method != current;
         if (p.method != group) {
             group = p.method;
@@ -234,17 +242,18 @@ Settings readSettings(OfxImageEffectHandle instance)
     s.temporal = getIntValue(set, kParamTemporal) != 0;
     char* path = nullptr;
     check(suites().param->paramGetValue(paramHandle(set, kParamWeights), &path),
-          "reading parameter weights");
+        "reading parameter weights");
     s.weightsPath = path ? path : "";
-    struct stat st {};
+    struct stat st { };
     if (!s.weightsPath.empty() && ::stat(s.weightsPath.c_str(), &st) == 0)
         s.weightsStamp = std::to_string(st.st_size) + "@" + std::to_string(st.st_mtime);
     for (const ParamSpec& p : c.params) {
-        if (!p.method.empty() && p.method != s.method) continue;
+        if (!p.method.empty() && p.method != s.method)
+            continue;
         Settings::Value v { &p, 0.0, {} };
         if (p.info.type == AFN_PARAM_FLOAT) {
             check(suites().param->paramGetValue(paramHandle(set, p.ofxName), &v.number),
-                  "reading parameter " + p.ofxName);
+                "reading parameter " + p.ofxName);
         } else if (p.info.type == AFN_PARAM_STRING) {
             const std::vector<std::string> options = splitChoices(p.info.choices);
             const int index = getIntValue(set, p.ofxName);
@@ -264,7 +273,8 @@ std::string Settings::key() const
     std::ostringstream os;
     os.precision(17);
     os << method << ';' << temporal << ';' << weightsPath << ';' << weightsStamp;
-    for (const Value& v : values) os << ';' << v.spec->ofxName << '=' << v.number << v.choice;
+    for (const Value& v : values)
+        os << ';' << v.spec->ofxName << '=' << v.number << v.choice;
     return os.str();
 }
 
@@ -273,10 +283,18 @@ void applySettings(const Settings& settings, AFNFilter filter)
     for (const Settings::Value& v : settings.values) {
         const char* name = v.spec->info.name;
         switch (v.spec->info.type) {
-        case AFN_PARAM_BOOL: afnSetFilterBool(filter, name, v.number != 0.0); break;
-        case AFN_PARAM_INT: afnSetFilterInt(filter, name, static_cast<int>(v.number)); break;
-        case AFN_PARAM_FLOAT: afnSetFilterFloat(filter, name, static_cast<float>(v.number)); break;
-        case AFN_PARAM_STRING: afnSetFilterString(filter, name, v.choice.c_str()); break;
+        case AFN_PARAM_BOOL:
+            afnSetFilterBool(filter, name, v.number != 0.0);
+            break;
+        case AFN_PARAM_INT:
+            afnSetFilterInt(filter, name, static_cast<int>(v.number));
+            break;
+        case AFN_PARAM_FLOAT:
+            afnSetFilterFloat(filter, name, static_cast<float>(v.number));
+            break;
+        case AFN_PARAM_STRING:
+            afnSetFilterString(filter, name, v.choice.c_str());
+            break;
         }
     }
 }

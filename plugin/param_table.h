@@ -22,14 +22,14 @@ constexpr const char* kParamWeights = "weights";
 /// One OFX parameter mirroring one library parameter.
 struct ParamSpec {
     std::string ofxName; ///< "<method>_<name>" for a method's own parameter, "<name>" if shared
-    std::string method;  ///< owning method, "" when every method has it identically
-    AFNParamInfo info;   ///< the library's description (name, type, default, range, help)
+    std::string method; ///< owning method, "" when every method has it identically
+    AFNParamInfo info; ///< the library's description (name, type, default, range, help)
 };
 
 /// Every method of the library and the OFX parameters derived from its table.
 struct ParamCatalog {
     std::vector<std::string> methods; ///< afnGetFilterTypeName order (the choice's option order)
-    int defaultMethod = 0;            ///< index into methods
+    int defaultMethod = 0; ///< index into methods
     std::vector<ParamSpec> params;
 };
 
@@ -48,11 +48,11 @@ void showCurrentMethod(OfxImageEffectHandle instance);
 struct Settings {
     std::string method;
     bool temporal = true;
-    std::string weightsPath;  ///< "" = none
+    std::string weightsPath; ///< "" = none
     std::string weightsStamp; ///< size and modification time of the file (reload on change)
     struct Value {
         const ParamSpec* spec;
-        double number;      ///< bool/int/float value
+        double number; ///< bool/int/float value
         std::string choice; ///< string value
     };
     std::vector<Value> values;

@@ -20,7 +20,8 @@ bool methodHasParam(const std::string& method, const char* name)
 {
     AFNParamInfo info {};
     for (int i = 0; afnGetFilterTypeParam(method.c_str(), i, &info); ++i)
-        if (std::strcmp(info.name, name) == 0) return true;
+        if (std::strcmp(info.name, name) == 0)
+            return true;
     return false;
 }
 
@@ -35,7 +36,8 @@ std::string stateKey(const Settings& s, const FrameRequest& r)
     os.precision(17);
     os << s.key() << '|' << r.window.x1 << ',' << r.window.y1 << ',' << r.window.x2 << ','
        << r.window.y2 << '|' << r.renderScale << '|' << r.firstFrame << '|';
-    for (const InputClip& c : r.inputs) os << c.role << ',';
+    for (const InputClip& c : r.inputs)
+        os << c.role << ',';
     return os.str();
 }
 
@@ -51,8 +53,10 @@ void SequenceRunner::checkError(const char* what)
 {
     std::string msg;
     const afn::Error e = m_device.getError(&msg);
-    if (e == afn::Error::Cancelled) throw Aborted {};
-    if (e != afn::Error::None) throw OfxError(kOfxStatFailed, std::string(what) + ": " + msg);
+    if (e == afn::Error::Cancelled)
+        throw Aborted {};
+    if (e != afn::Error::None)
+        throw OfxError(kOfxStatFailed, std::string(what) + ": " + msg);
 }
 
 std::vector<float>& SequenceRunner::storeSlot(const std::string& key, double time)
@@ -73,12 +77,13 @@ std::vector<float>& SequenceRunner::storeSlot(const std::string& key, double tim
     return m_results.back().rgba;
 }
 
-const std::vector<float>& SequenceRunner::frame(double time, const Settings& settings,
-                                                const FrameRequest& req)
+const std::vector<float>& SequenceRunner::frame(
+    double time, const Settings& settings, const FrameRequest& req)
 {
     const std::string key = stateKey(settings, req);
     for (const Result& r : m_results)
-        if (r.key == key && r.time == time) return r.rgba;
+        if (r.key == key && r.time == time)
+            return r.rgba;
 
     if (!m_device) {
         m_device = afn::newDevice();
@@ -104,14 +109,16 @@ const std::vector<float>& SequenceRunner::frame(double time, const Settings& set
     if (settings.temporal) {
         const bool continues = m_hasState && m_stateKey == key && m_stateTime == time - 1.0;
         backSteps = continues ? 0 : std::max(0, int(std::floor(time - req.firstFrame + 1e-9)));
-        if (!continues) m_filter.reset();
+        if (!continues)
+            m_filter.reset();
     } else {
         m_filter.reset();
     }
     m_hasState = false;
     for (int n = backSteps; n >= 0; --n) {
         const double t = time - n;
-        if (n > 0 && suites().effect->abort(req.instance)) throw Aborted {};
+        if (n > 0 && suites().effect->abort(req.instance))
+            throw Aborted {};
         std::vector<float>& out = storeSlot(key, t);
         try {
             runFrame(t, settings, req, out);
@@ -128,16 +135,18 @@ const std::vector<float>& SequenceRunner::frame(double time, const Settings& set
 
 void SequenceRunner::loadWeights(const Settings& settings)
 {
-    if (settings.weightsPath.empty()) return;
+    if (settings.weightsPath.empty())
+        return;
     std::vector<char> bytes;
     if (!afn::readFile(settings.weightsPath, bytes))
-        throw OfxError(kOfxStatFailed, "cannot read the weights file '" + settings.weightsPath + "'");
+        throw OfxError(
+            kOfxStatFailed, "cannot read the weights file '" + settings.weightsPath + "'");
     m_filter.setData(AFN_DATA_WEIGHTS, bytes.data(), bytes.size());
     checkError(("weights file '" + settings.weightsPath + "'").c_str());
 }
 
-void SequenceRunner::runFrame(double time, const Settings& settings, const FrameRequest& req,
-                              std::vector<float>& out)
+void SequenceRunner::runFrame(
+    double time, const Settings& settings, const FrameRequest& req, std::vector<float>& out)
 {
     const int w = req.window.x2 - req.window.x1, h = req.window.y2 - req.window.y1;
     AFNFilter f = m_filter.getHandle();
@@ -150,20 +159,21 @@ void SequenceRunner::runFrame(double time, const Settings& settings, const Frame
         const ClipImage& img = *images.back();
         std::ostringstream where;
         where << "clip for '" << in.role << "' at time " << time;
-        if (!img.valid()) throw OfxError(kOfxStatFailed, "no image from the " + where.str());
+        if (!img.valid())
+            throw OfxError(kOfxStatFailed, "no image from the " + where.str());
         const StridedView v = viewWindow(img, req.window, m_scratch[i]);
         const std::string role = in.role;
         int need = role == AFN_IMAGE_DEPTH ? 1 : role == AFN_IMAGE_MOTION ? 2 : 3;
         if (v.components < need)
-            throw OfxError(kOfxStatErrImageFormat, "the " + where.str() + " has " +
-                               std::to_string(v.components) + " components, needs " +
-                               std::to_string(need));
-        afnSetFilterImage(f, in.role, v.ptr, static_cast<AFNFormat>(need), w, h, 0, v.pixelStride,
-                          v.rowStride);
+            throw OfxError(kOfxStatErrImageFormat,
+                "the " + where.str() + " has " + std::to_string(v.components)
+                    + " components, needs " + std::to_string(need));
+        afnSetFilterImage(
+            f, in.role, v.ptr, static_cast<AFNFormat>(need), w, h, 0, v.pixelStride, v.rowStride);
         if (role == AFN_IMAGE_COLOR) {
             if (v.components == 4)
                 afnSetFilterImage(f, AFN_IMAGE_ALPHA, static_cast<char*>(v.ptr) + 3 * sizeof(float),
-                                  AFN_FORMAT_FLOAT, w, h, 0, v.pixelStride, v.rowStride);
+                    AFN_FORMAT_FLOAT, w, h, 0, v.pixelStride, v.rowStride);
             else
                 afnUnsetFilterImage(f, AFN_IMAGE_ALPHA);
         }
@@ -179,7 +189,8 @@ void SequenceRunner::runFrame(double time, const Settings& settings, const Frame
     afnCommitFilter(f);
     checkError("afn commit");
     afnExecuteFilter(f);
-    for (const InputClip& in : req.inputs) afnUnsetFilterImage(f, in.role);
+    for (const InputClip& in : req.inputs)
+        afnUnsetFilterImage(f, in.role);
     afnUnsetFilterImage(f, AFN_IMAGE_ALPHA);
     afnUnsetFilterImage(f, AFN_IMAGE_OUTPUT);
     checkError("afn execute");

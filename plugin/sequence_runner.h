@@ -15,22 +15,22 @@ namespace afnofx {
 
 /// Input clip roles, in the library's image names.
 struct InputClip {
-    const char* role;         ///< "color", "albedo", "normal", "depth", "position" or "motion"
-    OfxImageClipHandle clip;  ///< a connected clip
+    const char* role; ///< "color", "albedo", "normal", "depth", "position" or "motion"
+    OfxImageClipHandle clip; ///< a connected clip
 };
 
 /// What one render asks for, apart from the time.
 struct FrameRequest {
     OfxImageEffectHandle instance = nullptr; ///< for abort checks
-    std::vector<InputClip> inputs;           ///< connected clips; "color" first
-    OfxRectI window {};                      ///< processed pixels (the Source RoD at render scale)
-    OfxRectD windowCanonical {};             ///< the same in canonical coordinates (clipGetImage)
-    double renderScale = 1.0;                ///< x render scale (pixel vectors scale with it)
-    double firstFrame = 0.0;                 ///< first frame of the Source clip
+    std::vector<InputClip> inputs; ///< connected clips; "color" first
+    OfxRectI window {}; ///< processed pixels (the Source RoD at render scale)
+    OfxRectD windowCanonical {}; ///< the same in canonical coordinates (clipGetImage)
+    double renderScale = 1.0; ///< x render scale (pixel vectors scale with it)
+    double firstFrame = 0.0; ///< first frame of the Source clip
 };
 
 /// Thrown when the host asked to abort.
-struct Aborted {};
+struct Aborted { };
 
 /// One afn filter advanced frame by frame plus the outputs of recent frames. Not thread-safe:
 /// the instance serialises calls with its mutex.
@@ -43,8 +43,8 @@ public:
     void clear();
 
 private:
-    void runFrame(double time, const Settings& settings, const FrameRequest& req,
-                  std::vector<float>& out);
+    void runFrame(
+        double time, const Settings& settings, const FrameRequest& req, std::vector<float>& out);
     std::vector<float>& storeSlot(const std::string& key, double time);
     void checkError(const char* what);
     void loadWeights(const Settings& settings);
@@ -53,7 +53,7 @@ private:
     afn::FilterRef m_filter;
     std::string m_filterMethod;
     std::string m_filterWeights; ///< path and stamp of the weights set on the filter
-    std::string m_stateKey;   ///< key of the frames the filter's history was built from
+    std::string m_stateKey; ///< key of the frames the filter's history was built from
     double m_stateTime = 0.0; ///< last frame the filter executed
     bool m_hasState = false;
     struct Result {

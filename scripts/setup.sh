@@ -3,7 +3,7 @@
 set -euo pipefail
 pkgs=(cmake g++ make pkg-config libopenimageio-dev openimageio-tools libopencolorio-dev
       opencolorio-tools libopenexr-dev libimath-dev libtbb-dev libdnnl-dev libgtest-dev libgmock-dev
-      libbenchmark-dev python3-numpy python3-openimageio python3-pytest python3-skimage)
+      libbenchmark-dev clang-format python3-numpy python3-openimageio python3-pytest python3-skimage)
 for arg in "$@"; do
   case "$arg" in
     --blender) pkgs+=(blender) ;;

@@ -54,19 +54,19 @@ extern "C" {
 
 /// Error codes. Values are spaced by meaning and never reused.
 typedef enum AFNError {
-    AFN_ERROR_NONE = 0,              ///< no error
-    AFN_ERROR_UNKNOWN = 1,           ///< unexpected failure inside the library
-    AFN_ERROR_INVALID_ARGUMENT = 2,  ///< bad handle, name, value or image description
+    AFN_ERROR_NONE = 0, ///< no error
+    AFN_ERROR_UNKNOWN = 1, ///< unexpected failure inside the library
+    AFN_ERROR_INVALID_ARGUMENT = 2, ///< bad handle, name, value or image description
     AFN_ERROR_INVALID_OPERATION = 3, ///< call not allowed in the current state (e.g. uncommitted)
-    AFN_ERROR_OUT_OF_MEMORY = 4,     ///< an allocation failed
-    AFN_ERROR_UNSUPPORTED = 5,       ///< a valid request this build or device cannot serve
-    AFN_ERROR_CANCELLED = 6,         ///< the progress callback asked to stop
+    AFN_ERROR_OUT_OF_MEMORY = 4, ///< an allocation failed
+    AFN_ERROR_UNSUPPORTED = 5, ///< a valid request this build or device cannot serve
+    AFN_ERROR_CANCELLED = 6, ///< the progress callback asked to stop
 } AFNError;
 
 /// Pixel formats of image buffers. Half formats are reserved (257+).
 typedef enum AFNFormat {
     AFN_FORMAT_UNDEFINED = 0,
-    AFN_FORMAT_FLOAT = 1,  ///< 1 x float32
+    AFN_FORMAT_FLOAT = 1, ///< 1 x float32
     AFN_FORMAT_FLOAT2 = 2, ///< 2 x float32
     AFN_FORMAT_FLOAT3 = 3, ///< 3 x float32
     AFN_FORMAT_FLOAT4 = 4, ///< 4 x float32 (the 4th channel is ignored on inputs except "alpha")
@@ -76,21 +76,21 @@ typedef enum AFNFormat {
 /// AFN_ERROR_UNSUPPORTED otherwise, and when no GPU is present).
 typedef enum AFNDeviceType {
     AFN_DEVICE_TYPE_DEFAULT = 0, ///< the CPU (the reference device; results do not depend on it)
-    AFN_DEVICE_TYPE_CPU = 1,     ///< the CPU, on a oneTBB thread arena
-    AFN_DEVICE_TYPE_CUDA = 3,    ///< an NVIDIA GPU (reserved until a build provides it)
+    AFN_DEVICE_TYPE_CPU = 1, ///< the CPU, on a oneTBB thread arena
+    AFN_DEVICE_TYPE_CUDA = 3, ///< an NVIDIA GPU (reserved until a build provides it)
 } AFNDeviceType;
 
 // ---- Names ------------------------------------------------------------------------------------
 // The names a filter knows, as constants (the strings are the interface; both spellings work).
 
 /// Input images (afnSetFilterImage).
-#define AFN_IMAGE_COLOR "color"       ///< noisy beauty, linear RGB (required)
-#define AFN_IMAGE_ALBEDO "albedo"     ///< albedo, [0, 1]
-#define AFN_IMAGE_NORMAL "normal"     ///< shading normal (space: AFN_CONVENTION_NORMAL_SPACE)
-#define AFN_IMAGE_DEPTH "depth"       ///< linear depth (kind: AFN_CONVENTION_DEPTH_KIND)
+#define AFN_IMAGE_COLOR "color" ///< noisy beauty, linear RGB (required)
+#define AFN_IMAGE_ALBEDO "albedo" ///< albedo, [0, 1]
+#define AFN_IMAGE_NORMAL "normal" ///< shading normal (space: AFN_CONVENTION_NORMAL_SPACE)
+#define AFN_IMAGE_DEPTH "depth" ///< linear depth (kind: AFN_CONVENTION_DEPTH_KIND)
 #define AFN_IMAGE_POSITION "position" ///< world position
-#define AFN_IMAGE_MOTION "motion"     ///< motion vectors (AFN_CONVENTION_MOTION_*)
-#define AFN_IMAGE_ALPHA "alpha"       ///< coverage, passed through to a FLOAT4 output
+#define AFN_IMAGE_MOTION "motion" ///< motion vectors (AFN_CONVENTION_MOTION_*)
+#define AFN_IMAGE_ALPHA "alpha" ///< coverage, passed through to a FLOAT4 output
 /// Output image.
 #define AFN_IMAGE_OUTPUT "output"
 /// Parameters every filter has: the conventions of the bound inputs.
@@ -123,15 +123,15 @@ typedef enum AFNParamType {
 
 /// Description of one filter parameter (name, type, default, range, help).
 typedef struct AFNParamInfo {
-    const char* name;          ///< name used with afnSetFilter*()
-    AFNParamType type;         ///< value type
-    double defaultValue;       ///< default for bool/int/float parameters
-    double minValue;           ///< smallest accepted value (bool/int/float)
-    double maxValue;           ///< largest accepted value (bool/int/float)
+    const char* name; ///< name used with afnSetFilter*()
+    AFNParamType type; ///< value type
+    double defaultValue; ///< default for bool/int/float parameters
+    double minValue; ///< smallest accepted value (bool/int/float)
+    double maxValue; ///< largest accepted value (bool/int/float)
     const char* defaultString; ///< default for string parameters, else ""
-    const char* choices;       ///< '|'-separated accepted strings, else ""
-    const char* label;         ///< short human label
-    const char* help;          ///< one-line description with units and source of the default
+    const char* choices; ///< '|'-separated accepted strings, else ""
+    const char* label; ///< short human label
+    const char* help; ///< one-line description with units and source of the default
 } AFNParamInfo;
 
 typedef struct AFNDeviceImpl* AFNDevice;
@@ -175,7 +175,8 @@ AFN_API const char* afnGetFilterTypeDescription(const char* type);
 /// its trained weights. False for a learned method without built-in weights (set them with
 /// afnSetFilterData(filter, AFN_DATA_WEIGHTS, ...)) and for unknown types.
 AFN_API bool afnIsFilterTypeReady(const char* type);
-/// Number of parameters of a filter type (common input-convention parameters included), -1 if unknown.
+/// Number of parameters of a filter type (common input-convention parameters included), -1 if
+/// unknown.
 AFN_API int afnGetFilterTypeNumParams(const char* type);
 /// Fill *info with the index-th parameter of a type; false if out of range. Strings are static.
 AFN_API bool afnGetFilterTypeParam(const char* type, int index, AFNParamInfo* info);
@@ -194,8 +195,8 @@ AFN_API void afnReleaseFilter(AFNFilter filter);
 /// "alpha" or set to 1). Strides in bytes; 0 = packed. The buffer must stay valid until it is
 /// unset or replaced; the filter never keeps pointers into it across afnExecuteFilter() calls.
 AFN_API void afnSetFilterImage(AFNFilter filter, const char* name, void* ptr, AFNFormat format,
-                               size_t width, size_t height, size_t byteOffset,
-                               size_t pixelByteStride, ptrdiff_t rowByteStride);
+    size_t width, size_t height, size_t byteOffset, size_t pixelByteStride,
+    ptrdiff_t rowByteStride);
 /// Unbind an image.
 AFN_API void afnUnsetFilterImage(AFNFilter filter, const char* name);
 
@@ -206,10 +207,11 @@ AFN_API void afnSetFilterFloat(AFNFilter filter, const char* name, float value);
 AFN_API void afnSetFilterString(AFNFilter filter, const char* name, const char* value);
 /// Set an array parameter: "viewProjection" (16 floats, row-vector convention clip = [p,1]·M, the
 /// current frame's camera, as in the BMFR dataset's camera_matrices.h), "pixelOffset" (2 floats).
-AFN_API void afnSetFilterFloats(AFNFilter filter, const char* name, const float* values,
-                                size_t count);
+AFN_API void afnSetFilterFloats(
+    AFNFilter filter, const char* name, const float* values, size_t count);
 /// Set an opaque data blob: "weights" (a weights archive; the library copies it).
-AFN_API void afnSetFilterData(AFNFilter filter, const char* name, const void* data, size_t byteSize);
+AFN_API void afnSetFilterData(
+    AFNFilter filter, const char* name, const void* data, size_t byteSize);
 
 /// Read a parameter or a statistic of the last execute: "stats.nonFinite" (input values replaced
 /// because NaN/Inf), "stats.negative" (negative colour values clamped), "frameIndex" (frames since
@@ -221,8 +223,8 @@ AFN_API float afnGetFilterFloat(AFNFilter filter, const char* name);
 AFN_API const char* afnGetFilterString(AFNFilter filter, const char* name);
 
 /// Register a progress callback (NULL to remove).
-AFN_API void afnSetFilterProgressMonitorFunction(AFNFilter filter, AFNProgressMonitorFunction func,
-                                                 void* userPtr);
+AFN_API void afnSetFilterProgressMonitorFunction(
+    AFNFilter filter, AFNProgressMonitorFunction func, void* userPtr);
 /// Validate the bound images and parameters; errors name the offending input.
 AFN_API void afnCommitFilter(AFNFilter filter);
 /// Denoise one frame: read the inputs, write "output", advance the temporal history.
@@ -240,39 +242,37 @@ AFN_API void afnResetFilter(AFNFilter filter);
 
 /// Metrics of one test image against its reference.
 typedef struct AFNMetrics {
-    double psnr;              ///< dB, 10 log10(1 / MSE) on T(x); +inf for identical images
-    double ssim;              ///< [-1, 1] on T(x); 1 for identical images
-    double rmse;              ///< [0, 1], sqrt(MSE) on T(x)
-    double smape;             ///< [0, 1], AFN Eq. 5 on linear values, eps = 1e-3
-    double rmseLinear;        ///< >= 0, sqrt(MSE) on linear values
-    double smapeTonemapped;   ///< [0, 1], AFN Eq. 5 on T(x), eps = 1e-3
-    double psnr8;             ///< PSNR on T(x) quantised to 8 bits (round(255 T) / 255), as on PNGs
-    double ssim8;             ///< SSIM on T(x) quantised to 8 bits
-    double rmse8;             ///< RMSE on T(x) quantised to 8 bits
-    int64_t nonFiniteTest;      ///< NaN/Inf values found in the test image (first 3 channels)
+    double psnr; ///< dB, 10 log10(1 / MSE) on T(x); +inf for identical images
+    double ssim; ///< [-1, 1] on T(x); 1 for identical images
+    double rmse; ///< [0, 1], sqrt(MSE) on T(x)
+    double smape; ///< [0, 1], AFN Eq. 5 on linear values, eps = 1e-3
+    double rmseLinear; ///< >= 0, sqrt(MSE) on linear values
+    double smapeTonemapped; ///< [0, 1], AFN Eq. 5 on T(x), eps = 1e-3
+    double psnr8; ///< PSNR on T(x) quantised to 8 bits (round(255 T) / 255), as on PNGs
+    double ssim8; ///< SSIM on T(x) quantised to 8 bits
+    double rmse8; ///< RMSE on T(x) quantised to 8 bits
+    int64_t nonFiniteTest; ///< NaN/Inf values found in the test image (first 3 channels)
     int64_t nonFiniteReference; ///< NaN/Inf values found in the reference image
 } AFNMetrics;
 
-/// Temporal stability of frame t given frame t-1: with e = (T(o_t) - T(o_t-1)) - (T(r_t) - T(r_t-1))
-/// per value (o: test, r: reference), the mean |e| and the PSNR of e (R = 1).
+/// Temporal stability of frame t given frame t-1: with e = (T(o_t) - T(o_t-1)) - (T(r_t) -
+/// T(r_t-1)) per value (o: test, r: reference), the mean |e| and the PSNR of e (R = 1).
 typedef struct AFNTemporalMetrics {
     double gradientError; ///< >= 0, mean |e| (0 = the test flickers exactly as the reference)
-    double gradientPsnr;  ///< dB, 10 log10(1 / mean e^2); +inf when e == 0 everywhere
-    int64_t nonFinite;    ///< NaN/Inf values in the four images; makes both fields NaN
+    double gradientPsnr; ///< dB, 10 log10(1 / mean e^2); +inf when e == 0 everywhere
+    int64_t nonFinite; ///< NaN/Inf values in the four images; makes both fields NaN
 } AFNTemporalMetrics;
 
 /// Compute the metrics of `test` against `reference` on the device's threads. Returns false (and
 /// records an error on the device) for a bad device, NULL pointers, zero size or a stride < 3.
 /// Results do not depend on the device's thread count.
 AFN_API bool afnComputeMetrics(AFNDevice device, const float* test, const float* reference,
-                               size_t width, size_t height, size_t pixelFloatStride,
-                               AFNMetrics* out);
+    size_t width, size_t height, size_t pixelFloatStride, AFNMetrics* out);
 /// Compute the temporal-gradient error of (testPrev, test) against (referencePrev, reference).
 /// Same image layout and error rules as afnComputeMetrics.
 AFN_API bool afnComputeTemporalMetrics(AFNDevice device, const float* testPrev, const float* test,
-                                       const float* referencePrev, const float* reference,
-                                       size_t width, size_t height, size_t pixelFloatStride,
-                                       AFNTemporalMetrics* out);
+    const float* referencePrev, const float* reference, size_t width, size_t height,
+    size_t pixelFloatStride, AFNTemporalMetrics* out);
 
 #ifdef __cplusplus
 }

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: Apache-2.0
-// afn header-only C++ wrapper: reference-counted handles over the C API. It never throws on its own;
-// errors are read with DeviceRef::getError(), exactly as with the C API.
+// afn header-only C++ wrapper: reference-counted handles over the C API. It never throws on its
+// own; errors are read with DeviceRef::getError(), exactly as with the C API.
 #pragma once
 
 #include "afn/afn.h"
@@ -44,13 +44,26 @@ enum class Format {
 class FilterRef {
 public:
     FilterRef() = default;
-    explicit FilterRef(AFNFilter handle) : m_handle(handle) {}
-    FilterRef(const FilterRef& o) : m_handle(o.m_handle) { if (m_handle) afnRetainFilter(m_handle); }
-    FilterRef(FilterRef&& o) noexcept : m_handle(std::exchange(o.m_handle, nullptr)) {}
+    explicit FilterRef(AFNFilter handle)
+        : m_handle(handle)
+    {
+    }
+    FilterRef(const FilterRef& o)
+        : m_handle(o.m_handle)
+    {
+        if (m_handle)
+            afnRetainFilter(m_handle);
+    }
+    FilterRef(FilterRef&& o) noexcept
+        : m_handle(std::exchange(o.m_handle, nullptr))
+    {
+    }
     FilterRef& operator=(const FilterRef& o)
     {
-        if (o.m_handle) afnRetainFilter(o.m_handle);
-        if (m_handle) afnReleaseFilter(m_handle);
+        if (o.m_handle)
+            afnRetainFilter(o.m_handle);
+        if (m_handle)
+            afnReleaseFilter(m_handle);
         m_handle = o.m_handle;
         return *this;
     }
@@ -59,28 +72,44 @@ public:
         std::swap(m_handle, o.m_handle);
         return *this;
     }
-    ~FilterRef() { if (m_handle) afnReleaseFilter(m_handle); }
+    ~FilterRef()
+    {
+        if (m_handle)
+            afnReleaseFilter(m_handle);
+    }
 
     AFNFilter getHandle() const { return m_handle; }
     explicit operator bool() const { return m_handle != nullptr; }
 
     /// Bind a strided float image (strides in bytes, 0 = packed; row stride may be negative).
     void setImage(const char* name, void* ptr, Format format, size_t width, size_t height,
-                  size_t byteOffset = 0, size_t pixelByteStride = 0, ptrdiff_t rowByteStride = 0)
+        size_t byteOffset = 0, size_t pixelByteStride = 0, ptrdiff_t rowByteStride = 0)
     {
         afnSetFilterImage(m_handle, name, ptr, static_cast<AFNFormat>(format), width, height,
-                          byteOffset, pixelByteStride, rowByteStride);
+            byteOffset, pixelByteStride, rowByteStride);
     }
     void unsetImage(const char* name) { afnUnsetFilterImage(m_handle, name); }
 
     void set(const char* name, bool v) { afnSetFilterBool(m_handle, name, v); }
     void set(const char* name, int v) { afnSetFilterInt(m_handle, name, v); }
     void set(const char* name, float v) { afnSetFilterFloat(m_handle, name, v); }
-    void set(const char* name, double v) { afnSetFilterFloat(m_handle, name, static_cast<float>(v)); }
+    void set(const char* name, double v)
+    {
+        afnSetFilterFloat(m_handle, name, static_cast<float>(v));
+    }
     void set(const char* name, const char* v) { afnSetFilterString(m_handle, name, v); }
-    void set(const char* name, const std::string& v) { afnSetFilterString(m_handle, name, v.c_str()); }
-    void setFloats(const char* name, const float* v, size_t n) { afnSetFilterFloats(m_handle, name, v, n); }
-    void setData(const char* name, const void* p, size_t n) { afnSetFilterData(m_handle, name, p, n); }
+    void set(const char* name, const std::string& v)
+    {
+        afnSetFilterString(m_handle, name, v.c_str());
+    }
+    void setFloats(const char* name, const float* v, size_t n)
+    {
+        afnSetFilterFloats(m_handle, name, v, n);
+    }
+    void setData(const char* name, const void* p, size_t n)
+    {
+        afnSetFilterData(m_handle, name, p, n);
+    }
 
     /// Typed getter: get<int>("stats.nonFinite"), get<std::string>("normal.space").
     template <typename T> T get(const char* name) const;
@@ -97,9 +126,18 @@ private:
     AFNFilter m_handle = nullptr;
 };
 
-template <> inline bool FilterRef::get<bool>(const char* n) const { return afnGetFilterBool(m_handle, n); }
-template <> inline int FilterRef::get<int>(const char* n) const { return afnGetFilterInt(m_handle, n); }
-template <> inline float FilterRef::get<float>(const char* n) const { return afnGetFilterFloat(m_handle, n); }
+template <> inline bool FilterRef::get<bool>(const char* n) const
+{
+    return afnGetFilterBool(m_handle, n);
+}
+template <> inline int FilterRef::get<int>(const char* n) const
+{
+    return afnGetFilterInt(m_handle, n);
+}
+template <> inline float FilterRef::get<float>(const char* n) const
+{
+    return afnGetFilterFloat(m_handle, n);
+}
 template <> inline std::string FilterRef::get<std::string>(const char* n) const
 {
     const char* s = afnGetFilterString(m_handle, n);
@@ -110,13 +148,26 @@ template <> inline std::string FilterRef::get<std::string>(const char* n) const
 class DeviceRef {
 public:
     DeviceRef() = default;
-    explicit DeviceRef(AFNDevice handle) : m_handle(handle) {}
-    DeviceRef(const DeviceRef& o) : m_handle(o.m_handle) { if (m_handle) afnRetainDevice(m_handle); }
-    DeviceRef(DeviceRef&& o) noexcept : m_handle(std::exchange(o.m_handle, nullptr)) {}
+    explicit DeviceRef(AFNDevice handle)
+        : m_handle(handle)
+    {
+    }
+    DeviceRef(const DeviceRef& o)
+        : m_handle(o.m_handle)
+    {
+        if (m_handle)
+            afnRetainDevice(m_handle);
+    }
+    DeviceRef(DeviceRef&& o) noexcept
+        : m_handle(std::exchange(o.m_handle, nullptr))
+    {
+    }
     DeviceRef& operator=(const DeviceRef& o)
     {
-        if (o.m_handle) afnRetainDevice(o.m_handle);
-        if (m_handle) afnReleaseDevice(m_handle);
+        if (o.m_handle)
+            afnRetainDevice(o.m_handle);
+        if (m_handle)
+            afnReleaseDevice(m_handle);
         m_handle = o.m_handle;
         return *this;
     }
@@ -125,7 +176,11 @@ public:
         std::swap(m_handle, o.m_handle);
         return *this;
     }
-    ~DeviceRef() { if (m_handle) afnReleaseDevice(m_handle); }
+    ~DeviceRef()
+    {
+        if (m_handle)
+            afnReleaseDevice(m_handle);
+    }
 
     AFNDevice getHandle() const { return m_handle; }
     explicit operator bool() const { return m_handle != nullptr; }
@@ -143,7 +198,8 @@ public:
     {
         const char* msg = nullptr;
         const Error e = static_cast<Error>(afnGetDeviceError(m_handle, &msg));
-        if (message) *message = msg ? msg : "";
+        if (message)
+            *message = msg ? msg : "";
         return e;
     }
 
@@ -160,7 +216,10 @@ inline DeviceRef newDevice(DeviceType type = DeviceType::Default)
 }
 
 /// True when filters of this type run as created (see afnIsFilterTypeReady).
-inline bool isFilterTypeReady(const char* type) { return afnIsFilterTypeReady(type); }
+inline bool isFilterTypeReady(const char* type)
+{
+    return afnIsFilterTypeReady(type);
+}
 
 /// Read a whole file (a weights archive for AFN_DATA_WEIGHTS) into `bytes`; false if it cannot be
 /// read. The library never reads files itself; this helper runs in the caller's code.
@@ -177,7 +236,8 @@ inline bool readFile(const std::string& path, std::vector<char>& bytes)
 inline std::vector<std::string> filterTypes()
 {
     std::vector<std::string> out;
-    for (int i = 0, n = afnGetNumFilterTypes(); i < n; ++i) out.emplace_back(afnGetFilterTypeName(i));
+    for (int i = 0, n = afnGetNumFilterTypes(); i < n; ++i)
+        out.emplace_back(afnGetFilterTypeName(i));
     return out;
 }
 
@@ -188,30 +248,30 @@ inline std::vector<AFNParamInfo> filterTypeParams(const char* type)
     const int n = afnGetFilterTypeNumParams(type);
     for (int i = 0; i < n; ++i) {
         AFNParamInfo info {};
-        if (afnGetFilterTypeParam(type, i, &info)) out.push_back(info);
+        if (afnGetFilterTypeParam(type, i, &info))
+            out.push_back(info);
     }
     return out;
 }
 
-// ---- Image-quality metrics (conventions: afn.h and docs/metrics.md) ------------------------------
+// ---- Image-quality metrics (conventions: afn.h and docs/metrics.md) ----------------------------
 
 /// Metrics of `test` against `reference` (packed rows of width * pixelFloatStride floats).
 /// Returns false on error (read it with device.getError()); `out` is then unchanged.
 inline bool computeMetrics(const DeviceRef& device, const float* test, const float* reference,
-                           size_t width, size_t height, size_t pixelFloatStride, AFNMetrics& out)
+    size_t width, size_t height, size_t pixelFloatStride, AFNMetrics& out)
 {
-    return afnComputeMetrics(device.getHandle(), test, reference, width, height, pixelFloatStride,
-                             &out);
+    return afnComputeMetrics(
+        device.getHandle(), test, reference, width, height, pixelFloatStride, &out);
 }
 
 /// Temporal-gradient error of (testPrev, test) against (referencePrev, reference).
 inline bool computeTemporalMetrics(const DeviceRef& device, const float* testPrev,
-                                   const float* test, const float* referencePrev,
-                                   const float* reference, size_t width, size_t height,
-                                   size_t pixelFloatStride, AFNTemporalMetrics& out)
+    const float* test, const float* referencePrev, const float* reference, size_t width,
+    size_t height, size_t pixelFloatStride, AFNTemporalMetrics& out)
 {
     return afnComputeTemporalMetrics(device.getHandle(), testPrev, test, referencePrev, reference,
-                                     width, height, pixelFloatStride, &out);
+        width, height, pixelFloatStride, &out);
 }
 
 } // namespace afn

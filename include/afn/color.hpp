@@ -47,12 +47,12 @@ public:
     /// Convert the first 3 channels of each pixel in place, from one colour space to another.
     /// `stride` = floats per pixel (>= 3); other channels are left untouched.
     void convert(float* pixels, int width, int height, int stride, const std::string& from,
-                 const std::string& to) const;
+        const std::string& to) const;
     /// Convert to the working space (no-op when `from` is it or empty).
     void toWorking(float* pixels, int width, int height, int stride, const std::string& from) const;
     /// Apply a display/view transform ("" = config defaults) from `from` ("" = working space).
     void toDisplay(float* pixels, int width, int height, int stride, const std::string& from,
-                   const std::string& display = {}, const std::string& view = {}) const;
+        const std::string& display = {}, const std::string& view = {}) const;
 
 private:
     struct Impl;
@@ -70,8 +70,8 @@ struct Tile {
 /// normals as n*0.5+0.5, depth and position normalised by their finite range, motion as a
 /// direction/magnitude colour code. `kind` is a role name ("color", "albedo", "normal", ...).
 Tile makeTile(const ColorManager& cm, const std::string& kind, const std::string& label, int width,
-              int height, int components, const float* pixels, const std::string& display = {},
-              const std::string& view = {});
+    int height, int components, const float* pixels, const std::string& display = {},
+    const std::string& view = {});
 
 /// Arrange tiles in a grid with their labels drawn above them (built-in bitmap font), on a dark
 /// background; returns an RGB image of outWidth x outHeight in [0, 1].
@@ -80,12 +80,12 @@ Tile makeTile(const ColorManager& cm, const std::string& kind, const std::string
 /// So outWidth = kSheetGap + columns * (cellW + kSheetGap) and
 /// outHeight = kSheetGap + rows * (kSheetLabelBand + cellH + kSheetGap). Throws ColorError on no
 /// tiles or a tile whose rgb size does not match width*height*3.
-std::vector<float> layoutContactSheet(const std::vector<Tile>& tiles, int columns, int& outWidth,
-                                      int& outHeight);
+std::vector<float> layoutContactSheet(
+    const std::vector<Tile>& tiles, int columns, int& outWidth, int& outHeight);
 
-constexpr int kSheetGap = 6;            ///< pixels between and around contact-sheet cells
-constexpr int kSheetLabelScale = 2;     ///< label glyphs (5x7 font pixels) drawn at this scale
-constexpr int kSheetLabelBand = 22;     ///< pixels of label band above each tile (7*2 + 8)
+constexpr int kSheetGap = 6; ///< pixels between and around contact-sheet cells
+constexpr int kSheetLabelScale = 2; ///< label glyphs (5x7 font pixels) drawn at this scale
+constexpr int kSheetLabelBand = 22; ///< pixels of label band above each tile (7*2 + 8)
 constexpr float kSheetBackground = 0.1f; ///< contact-sheet background grey (display-referred)
 
 /// Box-filter a tile down so that it fits in maxWidth x maxHeight, keeping its aspect ratio;

@@ -20,7 +20,8 @@ namespace afn::io {
 class IoError : public std::runtime_error {
 public:
     IoError(const std::string& message, std::string file = {})
-        : std::runtime_error(message), m_file(std::move(file))
+        : std::runtime_error(message)
+        , m_file(std::move(file))
     {
     }
     const std::string& file() const { return m_file; }
@@ -47,12 +48,12 @@ int roleComponents(Role role);
 /// Conventions of a role's values, named exactly as the filter parameters of libafn
 /// ("normal.space", "depth.kind", "motion.direction", "motion.yUp", "motion.units").
 struct SpaceTag {
-    std::string normalSpace = "world";           ///< world | camera | camera-toward-viewer
-    std::string depthKind = "planar";            ///< planar | radial
+    std::string normalSpace = "world"; ///< world | camera | camera-toward-viewer
+    std::string depthKind = "planar"; ///< planar | radial
     std::string motionDirection = "to-previous"; ///< to-previous | to-next
-    bool motionYUp = false;                      ///< y grows upward (Blender)
-    std::string motionUnits = "pixels";          ///< pixels | ndc | uv
-    bool colorDemodulated = false;               ///< colour already divided by albedo (BMFR data)
+    bool motionYUp = false; ///< y grows upward (Blender)
+    std::string motionUnits = "pixels"; ///< pixels | ndc | uv
+    bool colorDemodulated = false; ///< colour already divided by albedo (BMFR data)
 
     /// The conventions as (filter parameter name, value) pairs, to be set on a filter in a loop.
     std::vector<std::pair<std::string, std::string>> parameters() const;
@@ -61,17 +62,18 @@ struct SpaceTag {
 /// Where one role lives in a file.
 struct RoleChannels {
     Role role = Role::Color;
-    int subimage = 0;                  ///< part (subimage) index
+    int subimage = 0; ///< part (subimage) index
     std::vector<std::string> channels; ///< full channel names, in component order (R,G,B / X,Y,Z)
-    std::vector<int> indices;          ///< channel indices within the subimage
-    std::string source;                ///< e.g. "Blender Cycles 'Denoising Albedo'" or "--aov override"
+    std::vector<int> indices; ///< channel indices within the subimage
+    std::string source; ///< e.g. "Blender Cycles 'Denoising Albedo'" or "--aov override"
 };
 
 /// The role mapping of one file.
 struct RoleMapping {
-    std::string renderer = "generic"; ///< blender | arnold | renderman | vray | redshift | karma | bmfr | generic
-    std::vector<RoleChannels> roles;  ///< roles found, in Role order
-    SpaceTag tag;                     ///< conventions of normal, depth and motion as found
+    std::string renderer
+        = "generic"; ///< blender | arnold | renderman | vray | redshift | karma | bmfr | generic
+    std::vector<RoleChannels> roles; ///< roles found, in Role order
+    SpaceTag tag; ///< conventions of normal, depth and motion as found
     /// For every role not found: the channel names that were looked for (for error messages).
     std::map<Role, std::vector<std::string>> lookedFor;
     /// Things the user should know (e.g. "Vector pass is all zero: motion blur was on").
@@ -80,8 +82,9 @@ struct RoleMapping {
     const RoleChannels* find(Role role) const;
 };
 
-/// A user override: role -> comma-separated channel names, e.g. "albedo=diffuse.R,diffuse.G,diffuse.B"
-/// or a layer prefix "albedo=diffuse". Space-tag overrides use the filter parameter names
+/// A user override: role -> comma-separated channel names, e.g.
+/// "albedo=diffuse.R,diffuse.G,diffuse.B" or a layer prefix "albedo=diffuse". Space-tag overrides
+/// use the filter parameter names
 /// ("normal.space=camera").
 struct MappingOverrides {
     std::map<Role, std::vector<std::string>> channels;
@@ -98,17 +101,17 @@ struct Box {
 };
 
 struct SubimageInfo {
-    std::string name;                  ///< part name ("" for single-part files)
+    std::string name; ///< part name ("" for single-part files)
     Box dataWindow;
     Box displayWindow;
     std::vector<std::string> channels; ///< names as stored
-    std::vector<std::string> types;    ///< per channel: "half", "float", "uint"
+    std::vector<std::string> types; ///< per channel: "half", "float", "uint"
     std::string compression;
 };
 
 struct FileInfo {
     std::string path;
-    std::string format;                           ///< "openexr", "png", ...
+    std::string format; ///< "openexr", "png", ...
     std::vector<SubimageInfo> subimages;
     std::map<std::string, std::string> attributes; ///< header attributes of subimage 0, as text
 };
@@ -139,9 +142,9 @@ RoleStats computeStats(const RoleImage& image);
 struct LayeredImage {
     int width = 0, height = 0;
     Box dataWindow, displayWindow;
-    std::vector<std::string> channels;  ///< names; parts of multi-part files as "<part>.<name>"
-    std::vector<std::string> types;     ///< per channel: "half" | "float" | "uint"
-    std::vector<float> pixels;          ///< interleaved, channels.size() per pixel
+    std::vector<std::string> channels; ///< names; parts of multi-part files as "<part>.<name>"
+    std::vector<std::string> types; ///< per channel: "half" | "float" | "uint"
+    std::vector<float> pixels; ///< interleaved, channels.size() per pixel
     std::map<std::string, std::string> attributes; ///< header attributes worth keeping (Frame, ...)
     std::string compression;
 };
@@ -166,7 +169,7 @@ struct FrameImages {
 
 struct ReadOptions {
     MappingOverrides overrides;
-    bool keepAll = false;              ///< also read every channel (for --keep-aovs)
+    bool keepAll = false; ///< also read every channel (for --keep-aovs)
     std::vector<Role> required = { Role::Color }; ///< missing -> IoError naming what was looked for
 };
 
@@ -183,14 +186,15 @@ bool hasFramePattern(const std::string& pattern);
 /// Substitute a frame number ("shot.####.exr", 7 -> "shot.0007.exr"; negative frames keep '-').
 std::string expandFramePattern(const std::string& pattern, int frame);
 /// Expand for every frame and check each file exists; throws IoError naming the first missing.
-std::vector<std::string> expandSequence(const std::string& pattern, const std::vector<int>& frames,
-                                        bool mustExist = true);
+std::vector<std::string> expandSequence(
+    const std::string& pattern, const std::vector<int>& frames, bool mustExist = true);
 
 // ---- BMFR dataset layout ------------------------------------------------------------------------
 
 /// True if `dir` (or dir/inputs) holds color{N}.exr + camera_matrices.h.
 bool isBmfrDataset(const std::string& dir);
-/// The per-frame pseudo path for frame N of a BMFR scene folder ("<dir>#bmfr:N"), readable by readFrame.
+/// The per-frame pseudo path for frame N of a BMFR scene folder ("<dir>#bmfr:N"), readable by
+/// readFrame.
 std::string bmfrFramePath(const std::string& dir, int frame);
 /// Parse camera_matrices.h (named arrays, not a number regex): all frames.
 std::vector<FrameCamera> parseCameraMatrices(const std::string& headerPath);
@@ -198,8 +202,8 @@ std::vector<FrameCamera> parseCameraMatrices(const std::string& headerPath);
 // ---- Writing ------------------------------------------------------------------------------------
 
 struct WriteOptions {
-    std::string dataType = "half";  ///< "half" | "float" (EXR); PNG is always 8-bit
-    std::string compression;        ///< "" = zip (or the input's, when the caller passes it)
+    std::string dataType = "half"; ///< "half" | "float" (EXR); PNG is always 8-bit
+    std::string compression; ///< "" = zip (or the input's, when the caller passes it)
     std::map<std::string, std::string> attributes; ///< extra header attributes
     std::vector<std::string> inputs; ///< paths that must never be overwritten (refuse if equal)
 };
@@ -208,8 +212,8 @@ struct WriteOptions {
 /// from the extension (.exr, .png, .tif, ...). `types` may give a per-channel "half"/"float" (empty
 /// = options.dataType). Throws IoError; on failure nothing is left at `path` or beside it.
 void writeImageAtomic(const std::string& path, int width, int height,
-                      const std::vector<std::string>& channels, const float* pixels,
-                      const WriteOptions& options = {}, const std::vector<std::string>& types = {});
+    const std::vector<std::string>& channels, const float* pixels, const WriteOptions& options = {},
+    const std::vector<std::string>& types = {});
 
 /// True if two paths name the same existing file (or the same path when they do not exist yet).
 bool samePath(const std::string& a, const std::string& b);

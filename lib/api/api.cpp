@@ -3,10 +3,10 @@
 // catch into the device's error state (or this thread's slot when there is no device).
 #include "afn/afn.h"
 
+#include "api_common.h"
 #include "base/device.h"
 #include "base/exception.h"
 #include "filter/registry.h"
-#include "api_common.h"
 
 #include <atomic>
 #include <cstring>
@@ -34,13 +34,15 @@ namespace {
 
 AFNFilterImpl* checkFilter(AFNFilter f)
 {
-    if (!f || f->magic != kFilterMagic) afn::throwInvalidArgument("invalid filter handle");
+    if (!f || f->magic != kFilterMagic)
+        afn::throwInvalidArgument("invalid filter handle");
     return f;
 }
 
 std::string checkName(const char* name)
 {
-    if (!name) afn::throwInvalidArgument("null name");
+    if (!name)
+        afn::throwInvalidArgument("null name");
     return name;
 }
 
@@ -111,23 +113,29 @@ AFN_API void afnCommitDevice(AFNDevice d)
 
 AFN_API AFNError afnGetDeviceError(AFNDevice d, const char** outMessage)
 {
-    if (d && d->magic == kDeviceMagic) return d->device.takeError(outMessage);
+    if (d && d->magic == kDeviceMagic)
+        return d->device.takeError(outMessage);
     const AFNError code = t_error.code;
     t_error.returned = t_error.message;
     t_error.code = AFN_ERROR_NONE;
     t_error.message.clear();
-    if (outMessage) *outMessage = code == AFN_ERROR_NONE ? nullptr : t_error.returned.c_str();
+    if (outMessage)
+        *outMessage = code == AFN_ERROR_NONE ? nullptr : t_error.returned.c_str();
     return code;
 }
 
 // ---- Filter types -------------------------------------------------------------------------------
 
-AFN_API int afnGetNumFilterTypes(void) { return static_cast<int>(afn::filterTypes().size()); }
+AFN_API int afnGetNumFilterTypes(void)
+{
+    return static_cast<int>(afn::filterTypes().size());
+}
 
 AFN_API const char* afnGetFilterTypeName(int index)
 {
     const auto& types = afn::filterTypes();
-    if (index < 0 || index >= static_cast<int>(types.size())) return nullptr;
+    if (index < 0 || index >= static_cast<int>(types.size()))
+        return nullptr;
     return types[index].name.c_str();
 }
 
@@ -152,7 +160,8 @@ AFN_API int afnGetFilterTypeNumParams(const char* type)
 AFN_API bool afnGetFilterTypeParam(const char* type, int index, AFNParamInfo* info)
 {
     const afn::FilterType* t = type ? afn::findFilterType(type) : nullptr;
-    if (!t || !info || index < 0 || index >= static_cast<int>(t->params.size())) return false;
+    if (!t || !info || index < 0 || index >= static_cast<int>(t->params.size()))
+        return false;
     const afn::ParamDesc& d = t->params[index];
     info->name = d.name.c_str();
     info->type = d.type;
@@ -203,8 +212,7 @@ AFN_API void afnReleaseFilter(AFNFilter f)
 }
 
 AFN_API void afnSetFilterImage(AFNFilter f, const char* name, void* ptr, AFNFormat format,
-                               size_t width, size_t height, size_t byteOffset,
-                               size_t pixelByteStride, ptrdiff_t rowByteStride)
+    size_t width, size_t height, size_t byteOffset, size_t pixelByteStride, ptrdiff_t rowByteStride)
 {
     AFN_TRY
     checkFilter(f);
@@ -220,7 +228,8 @@ AFN_API void afnSetFilterImage(AFNFilter f, const char* name, void* ptr, AFNForm
     const std::size_t ch = (format >= AFN_FORMAT_FLOAT && format <= AFN_FORMAT_FLOAT4) ? format : 1;
     b.pixelStride = pixelByteStride ? static_cast<std::ptrdiff_t>(pixelByteStride)
                                     : static_cast<std::ptrdiff_t>(ch * sizeof(float));
-    b.rowStride = rowByteStride ? rowByteStride : b.pixelStride * static_cast<std::ptrdiff_t>(width);
+    b.rowStride
+        = rowByteStride ? rowByteStride : b.pixelStride * static_cast<std::ptrdiff_t>(width);
     f->filter->setImage(checkName(name), b);
     AFN_CATCH(deviceOf(f))
 }
@@ -254,7 +263,8 @@ AFN_API void afnSetFilterString(AFNFilter f, const char* name, const char* value
     AFN_TRY
     checkFilter(f);
     std::lock_guard<std::mutex> lock(f->mutex);
-    if (!value) afn::throwInvalidArgument("null string value");
+    if (!value)
+        afn::throwInvalidArgument("null string value");
     f->filter->params().setString(checkName(name), value);
     f->filter->markDirty();
     AFN_CATCH(deviceOf(f))
@@ -265,7 +275,8 @@ AFN_API void afnSetFilterFloats(AFNFilter f, const char* name, const float* valu
     AFN_TRY
     checkFilter(f);
     std::lock_guard<std::mutex> lock(f->mutex);
-    if (!values && count) afn::throwInvalidArgument("null values");
+    if (!values && count)
+        afn::throwInvalidArgument("null values");
     f->filter->setFloats(checkName(name), std::vector<float>(values, values + count));
     AFN_CATCH(deviceOf(f))
 }
@@ -275,7 +286,8 @@ AFN_API void afnSetFilterData(AFNFilter f, const char* name, const void* data, s
     AFN_TRY
     checkFilter(f);
     std::lock_guard<std::mutex> lock(f->mutex);
-    if (!data && byteSize) afn::throwInvalidArgument("null data");
+    if (!data && byteSize)
+        afn::throwInvalidArgument("null data");
     f->filter->setData(checkName(name), data, byteSize);
     f->filter->markDirty();
     AFN_CATCH(deviceOf(f))
@@ -284,11 +296,16 @@ AFN_API void afnSetFilterData(AFNFilter f, const char* name, const void* data, s
 static double filterNumber(AFNFilterImpl* f, const std::string& name)
 {
     afn::Filter& flt = *f->filter;
-    if (name == "stats.nonFinite") return static_cast<double>(flt.lastStats().nonFinite);
-    if (name == "stats.negative") return static_cast<double>(flt.lastStats().negative);
-    if (name == "frameIndex") return flt.frameIndex();
-    if (name == "width") return flt.width();
-    if (name == "height") return flt.height();
+    if (name == "stats.nonFinite")
+        return static_cast<double>(flt.lastStats().nonFinite);
+    if (name == "stats.negative")
+        return static_cast<double>(flt.lastStats().negative);
+    if (name == "frameIndex")
+        return flt.frameIndex();
+    if (name == "width")
+        return flt.width();
+    if (name == "height")
+        return flt.height();
     return flt.params().getNumber(name);
 }
 
@@ -333,8 +350,8 @@ AFN_API const char* afnGetFilterString(AFNFilter f, const char* name)
     return nullptr;
 }
 
-AFN_API void afnSetFilterProgressMonitorFunction(AFNFilter f, AFNProgressMonitorFunction func,
-                                                 void* userPtr)
+AFN_API void afnSetFilterProgressMonitorFunction(
+    AFNFilter f, AFNProgressMonitorFunction func, void* userPtr)
 {
     AFN_TRY
     checkFilter(f);

@@ -28,7 +28,10 @@ inline thread_local ThreadError t_error;
 } // namespace afn::api
 
 struct AFNDeviceImpl {
-    explicit AFNDeviceImpl(AFNDeviceType type) : device(type) {}
+    explicit AFNDeviceImpl(AFNDeviceType type)
+        : device(type)
+    {
+    }
     std::uint32_t magic = afn::api::kDeviceMagic;
     std::atomic<int> refs { 1 };
     afn::Device device;
@@ -60,7 +63,19 @@ inline AFNDeviceImpl* checkDevice(AFNDevice d)
 #define AFN_TRY try {
 #define AFN_CATCH(dev)                                                                             \
     }                                                                                              \
-    catch (const afn::Exception& e) { afn::api::recordError(dev, e.code(), e.what()); }            \
-    catch (const std::bad_alloc&) { afn::api::recordError(dev, AFN_ERROR_OUT_OF_MEMORY, "out of memory"); } \
-    catch (const std::exception& e) { afn::api::recordError(dev, AFN_ERROR_UNKNOWN, e.what()); }   \
-    catch (...) { afn::api::recordError(dev, AFN_ERROR_UNKNOWN, "unknown error"); }
+    catch (const afn::Exception& e)                                                                \
+    {                                                                                              \
+        afn::api::recordError(dev, e.code(), e.what());                                            \
+    }                                                                                              \
+    catch (const std::bad_alloc&)                                                                  \
+    {                                                                                              \
+        afn::api::recordError(dev, AFN_ERROR_OUT_OF_MEMORY, "out of memory");                      \
+    }                                                                                              \
+    catch (const std::exception& e)                                                                \
+    {                                                                                              \
+        afn::api::recordError(dev, AFN_ERROR_UNKNOWN, e.what());                                   \
+    }                                                                                              \
+    catch (...)                                                                                    \
+    {                                                                                              \
+        afn::api::recordError(dev, AFN_ERROR_UNKNOWN, "unknown error");                            \
+    }

@@ -1,9 +1,10 @@
 // SPDX-License-Identifier: Apache-2.0
-// C ABI of the image-quality metrics: argument checks, then lib/core/metrics on the device's threads.
+// C ABI of the image-quality metrics: argument checks, then lib/core/metrics on the device's
+// threads.
 #include "afn/afn.h"
 
-#include "metrics/metrics.h"
 #include "api_common.h"
+#include "metrics/metrics.h"
 
 #include <string>
 
@@ -12,16 +13,18 @@ namespace {
 using afn::throwInvalidArgument;
 
 /// A packed view of `width x height` pixels of `stride` floats; checks the arguments.
-afn::ImageView packedView(const float* data, const char* what, size_t width, size_t height,
-                          size_t stride)
+afn::ImageView packedView(
+    const float* data, const char* what, size_t width, size_t height, size_t stride)
 {
-    if (!data) throwInvalidArgument(std::string("metrics: null ") + what + " image");
-    if (width == 0 || height == 0) throwInvalidArgument("metrics: zero-sized image");
+    if (!data)
+        throwInvalidArgument(std::string("metrics: null ") + what + " image");
+    if (width == 0 || height == 0)
+        throwInvalidArgument("metrics: zero-sized image");
     if (width > (1u << 16) || height > (1u << 16))
         throwInvalidArgument("metrics: image larger than 65536 pixels on a side");
     if (stride < 3 || stride > 64)
-        throwInvalidArgument("metrics: pixelFloatStride " + std::to_string(stride) +
-                             " out of range [3, 64]");
+        throwInvalidArgument(
+            "metrics: pixelFloatStride " + std::to_string(stride) + " out of range [3, 64]");
     afn::ImageView v;
     v.base = reinterpret_cast<const std::byte*>(data);
     v.width = static_cast<int>(width);
@@ -36,13 +39,13 @@ afn::ImageView packedView(const float* data, const char* what, size_t width, siz
 
 extern "C" {
 
-AFN_API bool afnComputeMetrics(AFNDevice d, const float* test, const float* reference,
-                               size_t width, size_t height, size_t pixelFloatStride,
-                               AFNMetrics* out)
+AFN_API bool afnComputeMetrics(AFNDevice d, const float* test, const float* reference, size_t width,
+    size_t height, size_t pixelFloatStride, AFNMetrics* out)
 {
     AFN_TRY
     afn::api::checkDevice(d);
-    if (!out) throwInvalidArgument("metrics: null output");
+    if (!out)
+        throwInvalidArgument("metrics: null output");
     const afn::ImageView t = packedView(test, "test", width, height, pixelFloatStride);
     const afn::ImageView r = packedView(reference, "reference", width, height, pixelFloatStride);
     afn::metrics::FrameMetrics m;
@@ -64,13 +67,13 @@ AFN_API bool afnComputeMetrics(AFNDevice d, const float* test, const float* refe
 }
 
 AFN_API bool afnComputeTemporalMetrics(AFNDevice d, const float* testPrev, const float* test,
-                                       const float* referencePrev, const float* reference,
-                                       size_t width, size_t height, size_t pixelFloatStride,
-                                       AFNTemporalMetrics* out)
+    const float* referencePrev, const float* reference, size_t width, size_t height,
+    size_t pixelFloatStride, AFNTemporalMetrics* out)
 {
     AFN_TRY
     afn::api::checkDevice(d);
-    if (!out) throwInvalidArgument("metrics: null output");
+    if (!out)
+        throwInvalidArgument("metrics: null output");
     const size_t s = pixelFloatStride;
     const afn::ImageView tp = packedView(testPrev, "previous test", width, height, s);
     const afn::ImageView t = packedView(test, "test", width, height, s);

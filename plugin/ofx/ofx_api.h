@@ -29,7 +29,7 @@ typedef struct OfxHost {
 } OfxHost;
 
 typedef OfxStatus(OfxPluginEntryPoint)(const char* action, const void* handle,
-                                       OfxPropertySetHandle inArgs, OfxPropertySetHandle outArgs);
+    OfxPropertySetHandle inArgs, OfxPropertySetHandle outArgs);
 
 /// One plugin of a binary, as returned by OfxGetPlugin().
 typedef struct OfxPlugin {
@@ -107,16 +107,16 @@ typedef struct OfxRangeD {
 
 typedef struct OfxPropertySuiteV1 {
     OfxStatus (*propSetPointer)(OfxPropertySetHandle props, const char* name, int index, void* v);
-    OfxStatus (*propSetString)(OfxPropertySetHandle props, const char* name, int index,
-                               const char* v);
+    OfxStatus (*propSetString)(
+        OfxPropertySetHandle props, const char* name, int index, const char* v);
     OfxStatus (*propSetDouble)(OfxPropertySetHandle props, const char* name, int index, double v);
     OfxStatus (*propSetInt)(OfxPropertySetHandle props, const char* name, int index, int v);
-    OfxStatus (*propSetPointerN)(OfxPropertySetHandle props, const char* name, int count,
-                                 void* const* v);
-    OfxStatus (*propSetStringN)(OfxPropertySetHandle props, const char* name, int count,
-                                const char* const* v);
-    OfxStatus (*propSetDoubleN)(OfxPropertySetHandle props, const char* name, int count,
-                                const double* v);
+    OfxStatus (*propSetPointerN)(
+        OfxPropertySetHandle props, const char* name, int count, void* const* v);
+    OfxStatus (*propSetStringN)(
+        OfxPropertySetHandle props, const char* name, int count, const char* const* v);
+    OfxStatus (*propSetDoubleN)(
+        OfxPropertySetHandle props, const char* name, int count, const double* v);
     OfxStatus (*propSetIntN)(OfxPropertySetHandle props, const char* name, int count, const int* v);
     OfxStatus (*propGetPointer)(OfxPropertySetHandle props, const char* name, int index, void** v);
     OfxStatus (*propGetString)(OfxPropertySetHandle props, const char* name, int index, char** v);
@@ -139,18 +139,18 @@ typedef struct OfxPropertySuiteV1 {
 typedef struct OfxImageEffectSuiteV1 {
     OfxStatus (*getPropertySet)(OfxImageEffectHandle effect, OfxPropertySetHandle* props);
     OfxStatus (*getParamSet)(OfxImageEffectHandle effect, OfxParamSetHandle* paramSet);
-    OfxStatus (*clipDefine)(OfxImageEffectHandle effect, const char* name,
-                            OfxPropertySetHandle* props);
+    OfxStatus (*clipDefine)(
+        OfxImageEffectHandle effect, const char* name, OfxPropertySetHandle* props);
     OfxStatus (*clipGetHandle)(OfxImageEffectHandle effect, const char* name,
-                               OfxImageClipHandle* clip, OfxPropertySetHandle* props);
+        OfxImageClipHandle* clip, OfxPropertySetHandle* props);
     OfxStatus (*clipGetPropertySet)(OfxImageClipHandle clip, OfxPropertySetHandle* props);
-    OfxStatus (*clipGetImage)(OfxImageClipHandle clip, OfxTime time, const OfxRectD* region,
-                              OfxPropertySetHandle* image);
+    OfxStatus (*clipGetImage)(
+        OfxImageClipHandle clip, OfxTime time, const OfxRectD* region, OfxPropertySetHandle* image);
     OfxStatus (*clipReleaseImage)(OfxPropertySetHandle image);
     OfxStatus (*clipGetRegionOfDefinition)(OfxImageClipHandle clip, OfxTime time, OfxRectD* rod);
     int (*abort)(OfxImageEffectHandle effect);
-    OfxStatus (*imageMemoryAlloc)(OfxImageEffectHandle effect, size_t nBytes,
-                                  OfxImageMemoryHandle* memory);
+    OfxStatus (*imageMemoryAlloc)(
+        OfxImageEffectHandle effect, size_t nBytes, OfxImageMemoryHandle* memory);
     OfxStatus (*imageMemoryFree)(OfxImageMemoryHandle memory);
     OfxStatus (*imageMemoryLock)(OfxImageMemoryHandle memory, void** ptr);
     OfxStatus (*imageMemoryUnlock)(OfxImageMemoryHandle memory);
@@ -220,9 +220,9 @@ typedef struct OfxImageEffectSuiteV1 {
 
 typedef struct OfxParameterSuiteV1 {
     OfxStatus (*paramDefine)(OfxParamSetHandle paramSet, const char* paramType, const char* name,
-                             OfxPropertySetHandle* props);
+        OfxPropertySetHandle* props);
     OfxStatus (*paramGetHandle)(OfxParamSetHandle paramSet, const char* name, OfxParamHandle* param,
-                                OfxPropertySetHandle* props);
+        OfxPropertySetHandle* props);
     OfxStatus (*paramSetGetPropertySet)(OfxParamSetHandle paramSet, OfxPropertySetHandle* props);
     OfxStatus (*paramGetPropertySet)(OfxParamHandle param, OfxPropertySetHandle* props);
     OfxStatus (*paramGetValue)(OfxParamHandle param, ...);
@@ -237,7 +237,7 @@ typedef struct OfxParameterSuiteV1 {
     OfxStatus (*paramDeleteKey)(OfxParamHandle param, OfxTime time);
     OfxStatus (*paramDeleteAllKeys)(OfxParamHandle param);
     OfxStatus (*paramCopy)(OfxParamHandle paramTo, OfxParamHandle paramFrom, OfxTime dstOffset,
-                           const OfxRangeD* frameRange);
+        const OfxRangeD* frameRange);
     OfxStatus (*paramEditBegin)(OfxParamSetHandle paramSet, const char* name);
     OfxStatus (*paramEditEnd)(OfxParamSetHandle paramSet);
 } OfxParameterSuiteV1;
@@ -268,7 +268,7 @@ typedef struct OfxParameterSuiteV1 {
 #define kOfxParamPropDoubleType "OfxParamPropDoubleType"
 #define kOfxParamDoubleTypePlain "OfxParamDoubleTypePlain"
 
-// ---- Memory, multithread and message suites ------------------------------------------------------
+// ---- Memory, multithread and message suites -------------------------------------------------
 
 #define kOfxMemorySuite "OfxMemorySuite"
 typedef struct OfxMemorySuiteV1 {
@@ -295,8 +295,8 @@ typedef struct OfxMultiThreadSuiteV1 {
 #define kOfxMessageWarning "OfxMessageWarning"
 #define kOfxMessageLog "OfxMessageLog"
 typedef struct OfxMessageSuiteV1 {
-    OfxStatus (*message)(void* handle, const char* messageType, const char* messageId,
-                         const char* format, ...);
+    OfxStatus (*message)(
+        void* handle, const char* messageType, const char* messageId, const char* format, ...);
 } OfxMessageSuiteV1;
 
 #ifdef __cplusplus

@@ -20,6 +20,7 @@ int main()
         std::fprintf(stderr, "consumer failed: %s\n", message.c_str());
         return 1;
     }
-    for (const std::string& t : afn::filterTypes()) std::printf("%s\n", t.c_str());
+    for (const std::string& t : afn::filterTypes())
+        std::printf("%s\n", t.c_str());
     return 0;
 }

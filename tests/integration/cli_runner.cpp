@@ -3,8 +3,8 @@
 
 #include <filesystem>
 #include <fstream>
-#include <sstream>
 #include <random>
+#include <sstream>
 
 #include <sys/wait.h>
 #include <unistd.h>
@@ -34,7 +34,8 @@ CliResult runAfntool(const std::vector<std::string>& args)
         std::string exe = AFNTOOL_PATH;
         argv.push_back(exe.data());
         std::vector<std::string> copy = args;
-        for (std::string& a : copy) argv.push_back(a.data());
+        for (std::string& a : copy)
+            argv.push_back(a.data());
         argv.push_back(nullptr);
         execv(exe.c_str(), argv.data());
         _exit(127);
@@ -50,8 +51,9 @@ CliResult runAfntool(const std::vector<std::string>& args)
 TempDir::TempDir()
 {
     std::random_device rd;
-    m_path = (fs::temp_directory_path() / ("afn-test-" + std::to_string(getpid()) + "-" +
-                                           std::to_string(rd()))).string();
+    m_path = (fs::temp_directory_path()
+        / ("afn-test-" + std::to_string(getpid()) + "-" + std::to_string(rd())))
+                 .string();
     fs::create_directories(m_path);
 }
 
@@ -65,6 +67,7 @@ TempDir::~TempDir()
 std::vector<std::string> TempDir::entries() const
 {
     std::vector<std::string> names;
-    for (const auto& e : fs::directory_iterator(m_path)) names.push_back(e.path().filename().string());
+    for (const auto& e : fs::directory_iterator(m_path))
+        names.push_back(e.path().filename().string());
     return names;
 }

@@ -54,7 +54,8 @@ TEST(Afntool, MethodsListsEveryMethodWithItsReadiness)
     const CliResult r = runAfntool({ "--methods" });
     ASSERT_EQ(r.exitCode, 0) << r.err;
     for (const std::string& m : afn::filterTypes()) {
-        const std::string line = "\n" + m + (afn::isFilterTypeReady(m.c_str()) ? " ready " : " needs-weights ");
+        const std::string line
+            = "\n" + m + (afn::isFilterTypeReady(m.c_str()) ? " ready " : " needs-weights ");
         EXPECT_NE(("\n" + r.out).find(line), std::string::npos) << m << "\n" << r.out;
     }
 }

@@ -21,7 +21,10 @@ const std::string kSeq = std::string(AFN_EXAMPLES_DIR) + "/sequence/";
 const std::string kFrames = kSeq + "frame.%04d.exr";
 const std::string kRefs = kSeq + "reference.%04d.exr";
 
-bool haveExample() { return fs::exists(kSeq + "frame.0001.exr") && fs::exists(kSeq + "reference.0001.exr"); }
+bool haveExample()
+{
+    return fs::exists(kSeq + "frame.0001.exr") && fs::exists(kSeq + "reference.0001.exr");
+}
 
 /// Every number following "key": in a JSON text, in order ("null" gives NaN).
 std::vector<double> jsonNumbers(const std::string& json, const std::string& key)
@@ -30,7 +33,8 @@ std::vector<double> jsonNumbers(const std::string& json, const std::string& key)
     const std::string needle = "\"" + key + "\": ";
     for (std::size_t p = json.find(needle); p != std::string::npos; p = json.find(needle, p + 1)) {
         const std::size_t v = p + needle.size();
-        out.push_back(json.compare(v, 4, "null") == 0 ? NAN : std::strtod(json.c_str() + v, nullptr));
+        out.push_back(
+            json.compare(v, 4, "null") == 0 ? NAN : std::strtod(json.c_str() + v, nullptr));
     }
     return out;
 }
@@ -45,14 +49,18 @@ std::string readText(const std::string& path)
 
 TEST(AfntoolCompare, SequenceAgainstItselfIsPerfect)
 {
-    if (!haveExample()) GTEST_SKIP() << "examples/sequence not rendered";
+    if (!haveExample())
+        GTEST_SKIP() << "examples/sequence not rendered";
     const CliResult r = runAfntool({ "--frames", "0-1", kFrames, "--compare", kFrames, "--json" });
     ASSERT_EQ(r.exitCode, 0) << r.err;
     const std::vector<double> ssim = jsonNumbers(r.out, "ssim"), rmse = jsonNumbers(r.out, "rmse");
     ASSERT_EQ(ssim.size(), 3u) << r.out; // two frames and the mean
-    for (double v : ssim) EXPECT_NEAR(v, 1.0, 1e-12);
-    for (double v : rmse) EXPECT_EQ(v, 0.0);
-    for (double v : jsonNumbers(r.out, "psnr")) EXPECT_TRUE(std::isnan(v)) << "inf is written as null";
+    for (double v : ssim)
+        EXPECT_NEAR(v, 1.0, 1e-12);
+    for (double v : rmse)
+        EXPECT_EQ(v, 0.0);
+    for (double v : jsonNumbers(r.out, "psnr"))
+        EXPECT_TRUE(std::isnan(v)) << "inf is written as null";
     const std::vector<double> tge = jsonNumbers(r.out, "tge");
     ASSERT_EQ(tge.size(), 2u); // frame 1 and the mean: frame 0 has no previous frame
     EXPECT_EQ(tge[0], 0.0);
@@ -60,7 +68,8 @@ TEST(AfntoolCompare, SequenceAgainstItselfIsPerfect)
 
 TEST(AfntoolCompare, MeansAreMeansOfFrames)
 {
-    if (!haveExample()) GTEST_SKIP() << "examples/sequence not rendered";
+    if (!haveExample())
+        GTEST_SKIP() << "examples/sequence not rendered";
     const CliResult r = runAfntool({ "--frames", "0-1", kFrames, "--compare", kRefs, "--json" });
     ASSERT_EQ(r.exitCode, 0) << r.err;
     for (const char* key : { "psnr", "ssim", "rmse", "smape", "rmseLinear" }) {
@@ -81,11 +90,14 @@ TEST(AfntoolCompare, MeansAreMeansOfFrames)
 
 TEST(AfntoolCompare, ErrorsNameTheFile)
 {
-    if (!haveExample()) GTEST_SKIP() << "examples/sequence not rendered";
-    CliResult r = runAfntool({ "--frames", "0-1", kFrames, "--compare", kSeq + "missing.%04d.exr" });
+    if (!haveExample())
+        GTEST_SKIP() << "examples/sequence not rendered";
+    CliResult r
+        = runAfntool({ "--frames", "0-1", kFrames, "--compare", kSeq + "missing.%04d.exr" });
     EXPECT_EQ(r.exitCode, 1);
     EXPECT_NE(r.err.find("missing.0000.exr"), std::string::npos) << r.err;
-    r = runAfntool({ std::string(AFN_TEST_DATA) + "/blender_64x36.exr", "--compare", kSeq + "reference.0000.exr" });
+    r = runAfntool({ std::string(AFN_TEST_DATA) + "/blender_64x36.exr", "--compare",
+        kSeq + "reference.0000.exr" });
     EXPECT_EQ(r.exitCode, 1);
     EXPECT_NE(r.err.find("does not match"), std::string::npos) << r.err;
     r = runAfntool({ "--frames", "0-1", kFrames, "--benchmark:methods=ta" });
@@ -95,36 +107,42 @@ TEST(AfntoolCompare, ErrorsNameTheFile)
 
 TEST(AfntoolCompare, BenchmarkWritesTheReport)
 {
-    if (!haveExample()) GTEST_SKIP() << "examples/sequence not rendered";
+    if (!haveExample())
+        GTEST_SKIP() << "examples/sequence not rendered";
     TempDir dir;
     const std::string out = dir.file("report");
     const CliResult r = runAfntool({ "--frames", "0-1", kFrames, "--benchmark:methods=ta,nosuch",
-                                     "--compare", kRefs, "--report", out, "-q" });
+        "--compare", kRefs, "--report", out, "-q" });
     ASSERT_EQ(r.exitCode, 0) << r.err;
     for (const char* f : { "results.json", "results.csv", "runtime-vs-error.svg", "index.html",
-                           "crop_f1_ta.png", "crop_f1_reference.png", "crop_f1_noisy_input.png" })
+             "crop_f1_ta.png", "crop_f1_reference.png", "crop_f1_noisy_input.png" })
         EXPECT_TRUE(fs::exists(out + "/" + f)) << f;
     const std::string json = readText(out + "/results.json");
     EXPECT_NE(json.find("method 'nosuch' is not in this build"), std::string::npos);
     const std::string csv = readText(out + "/results.csv");
     std::size_t rows = 0;
-    for (char c : csv) rows += c == '\n';
+    for (char c : csv)
+        rows += c == '\n';
     EXPECT_EQ(rows, 1u + 2u * 3u) << csv; // header; noisy and ta: 2 frames + mean each
     const std::string svg = readText(out + "/runtime-vs-error.svg");
     EXPECT_NE(svg.find(">ta</text>"), std::string::npos);
     const std::string html = readText(out + "/index.html");
     EXPECT_NE(html.find("<img src=\"runtime-vs-error.svg\""), std::string::npos);
-    for (const auto& e : dir.entries()) EXPECT_EQ(e.find(".tmp"), std::string::npos) << e;
+    for (const auto& e : dir.entries())
+        EXPECT_EQ(e.find(".tmp"), std::string::npos) << e;
 }
 
 TEST(AfntoolCompare, SizeBenchmarkTimesGeneratedFrames)
 {
-    const CliResult r = runAfntool({ "--benchmark:size=64x36,128x72:methods=ta:frames=1:warmup=0", "--json", "-q" });
+    const CliResult r = runAfntool(
+        { "--benchmark:size=64x36,128x72:methods=ta:frames=1:warmup=0", "--json", "-q" });
     ASSERT_EQ(r.exitCode, 0) << r.err;
     const std::vector<double> ms = jsonNumbers(r.out, "medianMs");
     ASSERT_EQ(ms.size(), 2u) << r.out;
-    for (double v : ms) EXPECT_GT(v, 0.0);
-    EXPECT_NE(runAfntool({ "--benchmark:size=64by36" }).err.find("WIDTHxHEIGHT"), std::string::npos);
+    for (double v : ms)
+        EXPECT_GT(v, 0.0);
+    EXPECT_NE(
+        runAfntool({ "--benchmark:size=64by36" }).err.find("WIDTHxHEIGHT"), std::string::npos);
 }
 
 } // namespace

@@ -2,8 +2,8 @@
 // Helpers for the AFN tests: build .afnw archives in memory, load the committed parity files.
 #pragma once
 
-#include "nn/weights.h"
 #include "base/image.h"
+#include "nn/weights.h"
 
 #include <cstdint>
 #include <cstring>

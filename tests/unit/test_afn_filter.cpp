@@ -2,9 +2,9 @@
 // The "afn" filter type: refuses to run without weights, takes weights as data (rejecting corrupt
 // ones without losing the previous), denoises a small sequence; feature scaling hand cases.
 #include "afn_test_util.h"
-#include "methods/afn/features.h"
 #include "base/exception.h"
 #include "filter/registry.h"
+#include "methods/afn/features.h"
 
 #include <gtest/gtest.h>
 

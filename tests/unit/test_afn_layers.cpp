@@ -2,10 +2,10 @@
 // AFN building blocks against naive references and hand cases: conv (with the implicit nearest
 // upsampling input), pooling, softmax, the 7x7 kernel apply, and Eq. 3 through the fused pass.
 #include "afn_test_util.h"
-#include "nn/conv.h"
+#include "base/exception.h"
 #include "methods/afn/fusion.h"
 #include "methods/afn/network.h"
-#include "base/exception.h"
+#include "nn/conv.h"
 
 #include <gtest/gtest.h>
 

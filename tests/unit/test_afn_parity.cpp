@@ -4,8 +4,8 @@
 // A 37x21 frame (padding rule covered), random-initialised narrow weights. The tolerance is float
 // rounding: the two sides sum in different orders and use different exp/pow implementations.
 #include "afn_test_util.h"
-#include "methods/afn/network.h"
 #include "base/exception.h"
+#include "methods/afn/network.h"
 
 #include <gtest/gtest.h>
 

@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: Apache-2.0
 // The .afnw reader: a hand-built archive, and rejection of every kind of corruption.
 #include "afn_test_util.h"
-#include "nn/weights.h"
 #include "base/exception.h"
+#include "nn/weights.h"
 
 #include <gtest/gtest.h>
 
@@ -123,7 +123,8 @@ TEST(AfnWeights, EmbeddedBytesEqualTheFile)
         (std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
     ASSERT_EQ(afnTestEmbedded_size, bytes.size());
     EXPECT_EQ(std::memcmp(afnTestEmbedded, bytes.data(), bytes.size()), 0);
-    const auto a = afn::nn::WeightsArchive::parse(afnTestEmbedded, afnTestEmbedded_size, "embedded");
+    const auto a
+        = afn::nn::WeightsArchive::parse(afnTestEmbedded, afnTestEmbedded_size, "embedded");
     EXPECT_EQ(a.tensors().size(), fromFile.tensors().size());
     EXPECT_EQ(a.meta("variant"), "fusion");
 }

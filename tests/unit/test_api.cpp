@@ -29,7 +29,8 @@ struct ApiTest : ::testing::Test {
 std::vector<float> ramp(int w, int h, int ch)
 {
     std::vector<float> v(static_cast<size_t>(w) * h * ch);
-    for (size_t i = 0; i < v.size(); ++i) v[i] = 0.01f * static_cast<float>(i % 97);
+    for (size_t i = 0; i < v.size(); ++i)
+        v[i] = 0.01f * static_cast<float>(i % 97);
     return v;
 }
 
@@ -193,8 +194,8 @@ TEST_F(ApiTest, StridedNegativeRowStrideAndRgbaOutput)
     afn::FilterRef f = device.newFilter("identity");
     const ptrdiff_t row = w * 4 * sizeof(float);
     f.setImage("color", rgbaBottomUp.data(), afn::Format::Float4, w, h, (h - 1) * row, 0, -row);
-    f.setImage("alpha", rgbaBottomUp.data(), afn::Format::Float, w, h, (h - 1) * row + 3 * sizeof(float),
-               4 * sizeof(float), -row);
+    f.setImage("alpha", rgbaBottomUp.data(), afn::Format::Float, w, h,
+        (h - 1) * row + 3 * sizeof(float), 4 * sizeof(float), -row);
     f.setImage("output", out.data(), afn::Format::Float4, w, h);
     f.commit();
     f.execute();
@@ -202,12 +203,14 @@ TEST_F(ApiTest, StridedNegativeRowStrideAndRgbaOutput)
     for (int y = 0; y < h; ++y)
         for (int x = 0; x < w; ++x)
             for (int c = 0; c < 4; ++c)
-                EXPECT_EQ(out[(y * w + x) * 4 + c], float(100 * y + 10 * x + c)) << x << "," << y << "," << c;
+                EXPECT_EQ(out[(y * w + x) * 4 + c], float(100 * y + 10 * x + c))
+                    << x << "," << y << "," << c;
 }
 
 TEST_F(ApiTest, NonFiniteAndNegativeInputsAreSanitisedAndCounted)
 {
-    std::vector<float> color = { 1.0f, std::nanf(""), -2.0f, std::numeric_limits<float>::infinity(), 0.5f, 0.25f };
+    std::vector<float> color
+        = { 1.0f, std::nanf(""), -2.0f, std::numeric_limits<float>::infinity(), 0.5f, 0.25f };
     std::vector<float> out(6);
     afn::FilterRef f = device.newFilter("identity");
     f.setImage("color", color.data(), afn::Format::Float3, 2, 1);
@@ -258,7 +261,8 @@ TEST_F(ApiTest, ProgressCallbackCanCancel)
 TEST_F(ApiTest, ErrorCallbackSeesEveryError)
 {
     int calls = 0;
-    device.setErrorFunction([](void* user, AFNError, const char*) { ++*static_cast<int*>(user); }, &calls);
+    device.setErrorFunction(
+        [](void* user, AFNError, const char*) { ++*static_cast<int*>(user); }, &calls);
     device.newFilter("nope");
     device.newFilter("nope");
     EXPECT_EQ(calls, 2);

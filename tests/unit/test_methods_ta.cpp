@@ -2,8 +2,8 @@
 // Demodulation and temporal accumulation ("ta"): the alpha schedule and lag of TA after a step
 // change of the light (static camera), exact round trips for zero albedo, clamping of absurd
 // values.
-#include "stages/demodulate.h"
 #include "base/exception.h"
+#include "stages/demodulate.h"
 #include "stages/temporal_accumulation.h"
 #include "test_methods_util.h"
 

@@ -2,8 +2,8 @@
 // Helpers for the methods tests: synthetic buffers, binding them to a Filter, frame runs, RMSE.
 #pragma once
 
-#include "filter/registry.h"
 #include "base/image.h"
+#include "filter/registry.h"
 
 #include <cmath>
 #include <cstdint>

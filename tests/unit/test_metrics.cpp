@@ -37,7 +37,10 @@ Image noiseImage(int w, int h, int ch, std::uint32_t seed, float lo, float hi)
 }
 
 /// The evaluation tone map written again here from the notes' formula (not the library's).
-double naiveT(double x) { return std::min(1.0, std::pow(std::max(x, 0.0), 1.0 / 2.2)); }
+double naiveT(double x)
+{
+    return std::min(1.0, std::pow(std::max(x, 0.0), 1.0 / 2.2));
+}
 
 /// SSIM straight from Wang et al. / skimage: for every pixel whose 7x7 window fits, direct window
 /// means, sample variances and covariance; mean of the map; mean over the 3 channels.
@@ -66,7 +69,8 @@ double naiveSsim(const Image& a, const Image& b, int win = 7)
                         vy += dy * dy / (n - 1);
                         cxy += dx * dy / (n - 1);
                     }
-                sum += (2 * mx * my + c1) * (2 * cxy + c2) / ((mx * mx + my * my + c1) * (vx + vy + c2));
+                sum += (2 * mx * my + c1) * (2 * cxy + c2)
+                    / ((mx * mx + my * my + c1) * (vx + vy + c2));
                 ++count;
             }
         }
@@ -126,7 +130,8 @@ TEST(Metrics, SmapeOfKnownPairs)
     // Pairs (o, t) per value; SMAPE = mean |o - t| / (|o| + |t| + 0.001).
     Image test(1, 1, 3), ref(1, 1, 3);
     const float o[3] = { 1.0f, -2.0f, 0.0f }, t[3] = { 3.0f, 2.0f, 0.0f };
-    for (int c = 0; c < 3; ++c) test(0, 0, c) = o[c], ref(0, 0, c) = t[c];
+    for (int c = 0; c < 3; ++c)
+        test(0, 0, c) = o[c], ref(0, 0, c) = t[c];
     const double expected = (2.0 / 4.001 + 4.0 / 4.001 + 0.0) / 3.0;
     EXPECT_NEAR(afn::metrics::computeFrameMetrics(test.view(), ref.view()).smape, expected, 1e-12);
 }
@@ -150,7 +155,7 @@ TEST(Metrics, NonFiniteIsCountedAndMakesTheFrameNaN)
     EXPECT_EQ(m.nonFiniteTest, 2);
     EXPECT_EQ(m.nonFiniteReference, 1);
     for (double v : { m.psnr, m.ssim, m.rmse, m.smape, m.rmseLinear, m.smapeTonemapped, m.psnr8,
-                      m.ssim8, m.rmse8 })
+             m.ssim8, m.rmse8 })
         EXPECT_TRUE(std::isnan(v));
 }
 
@@ -158,7 +163,8 @@ TEST(Metrics, SsimOfTwoConstantsByHand)
 {
     // Constant planes: variances 0, so SSIM = (2ab + C1) / (a^2 + b^2 + C1) with C1 = 1e-4.
     Image white(8, 8, 3, 1.0f), black(8, 8, 3, 0.0f);
-    const afn::metrics::FrameMetrics m = afn::metrics::computeFrameMetrics(white.view(), black.view());
+    const afn::metrics::FrameMetrics m
+        = afn::metrics::computeFrameMetrics(white.view(), black.view());
     EXPECT_NEAR(m.ssim, 1e-4 / 1.0001, 1e-15);
     EXPECT_NEAR(m.ssim8, 1e-4 / 1.0001, 1e-15);
 }
@@ -168,7 +174,8 @@ TEST(Metrics, SsimMatchesNaiveFormula)
     const Image a = noiseImage(23, 17, 3, 1, -0.1f, 1.5f);
     const Image b = noiseImage(23, 17, 3, 2, -0.1f, 1.5f);
     Image c = a; // a slightly perturbed copy: SSIM near 1
-    for (std::size_t i = 0; i < c.size(); i += 5) c.data()[i] *= 1.1f;
+    for (std::size_t i = 0; i < c.size(); i += 5)
+        c.data()[i] *= 1.1f;
     EXPECT_NEAR(afn::metrics::computeFrameMetrics(a.view(), b.view()).ssim, naiveSsim(a, b), 1e-10);
     EXPECT_NEAR(afn::metrics::computeFrameMetrics(c.view(), a.view()).ssim, naiveSsim(c, a), 1e-10);
 }
@@ -177,7 +184,8 @@ TEST(Metrics, SmallImagesShrinkTheWindow)
 {
     const Image a = noiseImage(5, 4, 3, 3, 0.0f, 1.0f);
     const Image b = noiseImage(5, 4, 3, 4, 0.0f, 1.0f);
-    EXPECT_NEAR(afn::metrics::computeFrameMetrics(a.view(), b.view()).ssim, naiveSsim(a, b, 3), 1e-10);
+    EXPECT_NEAR(
+        afn::metrics::computeFrameMetrics(a.view(), b.view()).ssim, naiveSsim(a, b, 3), 1e-10);
     const Image p = noiseImage(1, 1, 3, 5, 0.0f, 1.0f);
     EXPECT_NEAR(afn::metrics::computeFrameMetrics(p.view(), p.view()).ssim, 1.0, 1e-12);
 }
@@ -188,7 +196,8 @@ TEST(Metrics, RejectsBadInputs)
     EXPECT_THROW(afn::metrics::computeFrameMetrics(a.view(), b.view()), afn::Exception);
     EXPECT_THROW(afn::metrics::computeFrameMetrics(g.view(), g.view()), afn::Exception);
     EXPECT_THROW(afn::metrics::computeFrameMetrics(afn::ImageView(), a.view()), afn::Exception);
-    EXPECT_THROW(afn::metrics::computeTemporalMetrics(a.view(), a.view(), a.view(), b.view()), afn::Exception);
+    EXPECT_THROW(afn::metrics::computeTemporalMetrics(a.view(), a.view(), a.view(), b.view()),
+        afn::Exception);
 }
 
 TEST(Metrics, DeterministicAcrossThreadCounts)
@@ -216,17 +225,20 @@ TEST(Metrics, TemporalGradientByHand)
     // The reference is static; the test changes one of 12 values from 0 to 4 (T: 0 -> 1).
     Image ref(2, 2, 3, 0.25f), prev(2, 2, 3, 0.0f), cur(2, 2, 3, 0.0f);
     cur(0, 1, 1) = 4.0f;
-    afn::metrics::TemporalMetrics m = afn::metrics::computeTemporalMetrics(prev.view(), cur.view(), ref.view(), ref.view());
+    afn::metrics::TemporalMetrics m
+        = afn::metrics::computeTemporalMetrics(prev.view(), cur.view(), ref.view(), ref.view());
     EXPECT_NEAR(m.gradientError, 1.0 / 12.0, 1e-12);
     EXPECT_NEAR(m.gradientPsnr, 10.0 * std::log10(12.0), 1e-12);
     // A test that changes exactly as the reference does: no temporal error, whatever its bias.
     Image refPrev(2, 2, 3, 0.0f), refCur(2, 2, 3, 0.0f);
     refCur(0, 1, 1) = 4.0f;
-    m = afn::metrics::computeTemporalMetrics(prev.view(), cur.view(), refPrev.view(), refCur.view());
+    m = afn::metrics::computeTemporalMetrics(
+        prev.view(), cur.view(), refPrev.view(), refCur.view());
     EXPECT_EQ(m.gradientError, 0.0);
     EXPECT_EQ(m.gradientPsnr, kInf);
     cur(1, 1, 0) = std::numeric_limits<float>::quiet_NaN();
-    m = afn::metrics::computeTemporalMetrics(prev.view(), cur.view(), refPrev.view(), refCur.view());
+    m = afn::metrics::computeTemporalMetrics(
+        prev.view(), cur.view(), refPrev.view(), refCur.view());
     EXPECT_EQ(m.nonFinite, 1);
     EXPECT_TRUE(std::isnan(m.gradientError));
 }
@@ -240,19 +252,22 @@ bool haveSkimage()
 
 void writeRaw(const std::string& path, const Image& img)
 {
-    std::vector<double> d(img.data(), img.data() + img.size()); // float64 so skimage works in double
+    std::vector<double> d(
+        img.data(), img.data() + img.size()); // float64 so skimage works in double
     std::ofstream f(path, std::ios::binary);
     f.write(reinterpret_cast<const char*>(d.data()), static_cast<std::streamsize>(d.size() * 8));
 }
 
 TEST(Metrics, MatchesScikitImage)
 {
-    if (!haveSkimage()) GTEST_SKIP() << "python3-skimage is not installed (scripts/setup.sh)";
+    if (!haveSkimage())
+        GTEST_SKIP() << "python3-skimage is not installed (scripts/setup.sh)";
     const int w = 41, h = 29;
     const Image a = noiseImage(w, h, 3, 21, -0.2f, 1.6f);
     Image b = a;
     const Image n = noiseImage(w, h, 3, 22, -0.3f, 0.3f);
-    for (std::size_t i = 0; i < b.size(); ++i) b.data()[i] += n.data()[i];
+    for (std::size_t i = 0; i < b.size(); ++i)
+        b.data()[i] += n.data()[i];
     const std::string dir = ::testing::TempDir();
     const std::string pa = dir + "afn_metrics_a.f64", pb = dir + "afn_metrics_b.f64";
     const std::string out = dir + "afn_metrics_skimage.txt";
@@ -261,7 +276,8 @@ TEST(Metrics, MatchesScikitImage)
     // T(x) is applied in numpy; uint8 images use skimage's default data_range (255) for uint8.
     std::ostringstream py;
     py << "import numpy as np\n"
-       << "from skimage.metrics import structural_similarity as ssim, peak_signal_noise_ratio as psnr\n"
+       << "from skimage.metrics import structural_similarity as ssim, peak_signal_noise_ratio as "
+          "psnr\n"
        << "T = lambda x: np.clip(np.maximum(x, 0) ** (1 / 2.2), 0, 1)\n"
        << "a = T(np.fromfile('" << pa << "', dtype='<f8').reshape(" << h << ", " << w << ", 3))\n"
        << "b = T(np.fromfile('" << pb << "', dtype='<f8').reshape(" << h << ", " << w << ", 3))\n"

@@ -25,7 +25,8 @@ struct MetricsApi : ::testing::Test {
 std::vector<float> pattern(int w, int h, int ch, int seed)
 {
     std::vector<float> v(static_cast<size_t>(w) * h * ch);
-    for (size_t i = 0; i < v.size(); ++i) v[i] = 0.013f * static_cast<float>((i * 31 + seed) % 89);
+    for (size_t i = 0; i < v.size(); ++i)
+        v[i] = 0.013f * static_cast<float>((i * 31 + seed) % 89);
     return v;
 }
 
@@ -33,7 +34,8 @@ TEST_F(MetricsApi, KnownValuesThroughTheCApi)
 {
     // 2x2 RGBA; one of the 12 RGB values differs by T = 1, the alpha channel differs everywhere.
     std::vector<float> ref(16, 0.0f), test(16, 0.0f);
-    for (int p = 0; p < 4; ++p) test[p * 4 + 3] = 5.0f;
+    for (int p = 0; p < 4; ++p)
+        test[p * 4 + 3] = 5.0f;
     test[1 * 4 + 2] = 1.0f;
     AFNMetrics m {};
     ASSERT_TRUE(afn::computeMetrics(device, test.data(), ref.data(), 2, 2, 4, m));
@@ -62,8 +64,8 @@ TEST_F(MetricsApi, ErrorsAreRecordedNotThrown)
     EXPECT_FALSE(afnComputeMetrics(nullptr, img.data(), img.data(), 4, 4, 3, &m));
     EXPECT_EQ(afnGetDeviceError(nullptr, nullptr), AFN_ERROR_INVALID_ARGUMENT);
     AFNTemporalMetrics t {};
-    EXPECT_FALSE(afnComputeTemporalMetrics(device.getHandle(), img.data(), img.data(), nullptr,
-                                           img.data(), 4, 4, 3, &t));
+    EXPECT_FALSE(afnComputeTemporalMetrics(
+        device.getHandle(), img.data(), img.data(), nullptr, img.data(), 4, 4, 3, &t));
     EXPECT_EQ(device.getError(&msg), afn::Error::InvalidArgument);
     EXPECT_NE(msg.find("previous reference"), std::string::npos);
 }
@@ -89,7 +91,8 @@ TEST_F(MetricsApi, SameResultsForEveryThreadCount)
         d.set("numThreads", threads[i]);
         d.commit();
         ASSERT_TRUE(afn::computeMetrics(d, a.data(), b.data(), w, h, 3, m[i]));
-        ASSERT_TRUE(afn::computeTemporalMetrics(d, a.data(), b.data(), b.data(), a.data(), w, h, 3, t[i]));
+        ASSERT_TRUE(
+            afn::computeTemporalMetrics(d, a.data(), b.data(), b.data(), a.data(), w, h, 3, t[i]));
     }
     for (int i = 1; i < 3; ++i) {
         EXPECT_EQ(std::memcmp(&m[0], &m[i], sizeof(AFNMetrics)), 0);

@@ -36,7 +36,8 @@ MethodResult method(const std::string& label, double ms, double rmse)
 size_t count(const std::string& s, const std::string& what)
 {
     size_t n = 0;
-    for (size_t p = s.find(what); p != std::string::npos; p = s.find(what, p + 1)) ++n;
+    for (size_t p = s.find(what); p != std::string::npos; p = s.find(what, p + 1))
+        ++n;
     return n;
 }
 
@@ -68,7 +69,7 @@ TEST(Report, ParetoFront)
 {
     // (ms, rmse): a (1, 0.3) b (5, 0.1) c (6, 0.2: dominated by b) d (5, 0.1: ties b) e NaN.
     std::vector<MethodResult> ms = { method("a", 1, 0.3), method("b", 5, 0.1), method("c", 6, 0.2),
-                                     method("d", 5, 0.1), method("e", 0.5, std::nan("")) };
+        method("d", 5, 0.1), method("e", 0.5, std::nan("")) };
     const std::vector<bool> f = paretoFront(ms, metricColumn("rmse"));
     EXPECT_EQ(f, (std::vector<bool> { true, true, false, true, false }));
     // PSNR is higher-is-better: same front.

@@ -77,7 +77,8 @@ void Device::setError(AFNError code, const std::string& message)
         fn = m_errorFn;
         user = m_errorUser;
     }
-    if (fn) fn(user, code, message.c_str());
+    if (fn)
+        fn(user, code, message.c_str());
 }
 
 AFNError Device::takeError(const char** message)
@@ -87,7 +88,8 @@ AFNError Device::takeError(const char** message)
     m_returnedMessage = m_errorMessage;
     m_errorCode = AFN_ERROR_NONE;
     m_errorMessage.clear();
-    if (message) *message = code == AFN_ERROR_NONE ? nullptr : m_returnedMessage.c_str();
+    if (message)
+        *message = code == AFN_ERROR_NONE ? nullptr : m_returnedMessage.c_str();
     return code;
 }
 

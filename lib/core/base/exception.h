@@ -12,7 +12,11 @@ namespace afn {
 
 class Exception : public std::runtime_error {
 public:
-    Exception(AFNError code, const std::string& message) : std::runtime_error(message), m_code(code) {}
+    Exception(AFNError code, const std::string& message)
+        : std::runtime_error(message)
+        , m_code(code)
+    {
+    }
     AFNError code() const { return m_code; }
 
 private:

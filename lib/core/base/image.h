@@ -15,9 +15,9 @@ struct ImageView {
     const std::byte* base = nullptr; ///< address of pixel (0, 0), channel 0
     int width = 0;
     int height = 0;
-    int channels = 0;                ///< floats per pixel that are read
-    std::ptrdiff_t pixelStride = 0;  ///< bytes between horizontally adjacent pixels
-    std::ptrdiff_t rowStride = 0;    ///< bytes between vertically adjacent rows (may be < 0)
+    int channels = 0; ///< floats per pixel that are read
+    std::ptrdiff_t pixelStride = 0; ///< bytes between horizontally adjacent pixels
+    std::ptrdiff_t rowStride = 0; ///< bytes between vertically adjacent rows (may be < 0)
 
     bool empty() const { return base == nullptr || width <= 0 || height <= 0; }
     /// Pointer to the first channel of pixel (x, y).
@@ -27,7 +27,8 @@ struct ImageView {
     }
     float* atMutable(int x, int y) const
     {
-        return reinterpret_cast<float*>(const_cast<std::byte*>(base) + y * rowStride + x * pixelStride);
+        return reinterpret_cast<float*>(
+            const_cast<std::byte*>(base) + y * rowStride + x * pixelStride);
     }
 };
 
@@ -36,8 +37,10 @@ class Image {
 public:
     Image() = default;
     Image(int width, int height, int channels, float fill = 0.0f)
-        : m_width(width), m_height(height), m_channels(channels),
-          m_data(static_cast<std::size_t>(width) * height * channels, fill)
+        : m_width(width)
+        , m_height(height)
+        , m_channels(channels)
+        , m_data(static_cast<std::size_t>(width) * height * channels, fill)
     {
     }
 
@@ -49,7 +52,10 @@ public:
 
     float* data() { return m_data.data(); }
     const float* data() const { return m_data.data(); }
-    float* at(int x, int y) { return m_data.data() + (static_cast<std::size_t>(y) * m_width + x) * m_channels; }
+    float* at(int x, int y)
+    {
+        return m_data.data() + (static_cast<std::size_t>(y) * m_width + x) * m_channels;
+    }
     const float* at(int x, int y) const
     {
         return m_data.data() + (static_cast<std::size_t>(y) * m_width + x) * m_channels;
@@ -60,7 +66,8 @@ public:
     /// Reallocate only when the shape changes; contents are then unspecified (zero on growth).
     void resize(int width, int height, int channels)
     {
-        if (width == m_width && height == m_height && channels == m_channels) return;
+        if (width == m_width && height == m_height && channels == m_channels)
+            return;
         m_width = width;
         m_height = height;
         m_channels = channels;

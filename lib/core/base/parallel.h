@@ -11,9 +11,10 @@ namespace afn {
 /// Call fn(y0, y1) over [0, height) in blocks of `grain` rows, in parallel.
 template <typename Fn> void parallelRows(int height, Fn&& fn, int grain = 8)
 {
-    tbb::parallel_for(tbb::blocked_range<int>(0, height, grain),
-                      [&](const tbb::blocked_range<int>& r) { fn(r.begin(), r.end()); },
-                      tbb::simple_partitioner());
+    tbb::parallel_for(
+        tbb::blocked_range<int>(0, height, grain),
+        [&](const tbb::blocked_range<int>& r) { fn(r.begin(), r.end()); },
+        tbb::simple_partitioner());
 }
 
 /// Call fn(i) for i in [0, n), in parallel.

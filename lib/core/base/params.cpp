@@ -10,7 +10,8 @@ namespace afn {
 
 static const std::vector<ParamDesc> kEmptyTable;
 
-ParamSet::ParamSet(const std::vector<ParamDesc>* table) : m_table(table ? table : &kEmptyTable)
+ParamSet::ParamSet(const std::vector<ParamDesc>* table)
+    : m_table(table ? table : &kEmptyTable)
 {
     for (const ParamDesc& d : *m_table) {
         if (d.type == AFN_PARAM_STRING)
@@ -23,14 +24,16 @@ ParamSet::ParamSet(const std::vector<ParamDesc>* table) : m_table(table ? table 
 bool ParamSet::has(const std::string& name) const
 {
     for (const ParamDesc& d : *m_table)
-        if (d.name == name) return true;
+        if (d.name == name)
+            return true;
     return false;
 }
 
 const ParamDesc& ParamSet::desc(const std::string& name) const
 {
     for (const ParamDesc& d : *m_table)
-        if (d.name == name) return d;
+        if (d.name == name)
+            return d;
     throwInvalidArgument("unknown parameter '" + name + "'");
 }
 
@@ -45,8 +48,8 @@ void ParamSet::setNumber(const std::string& name, double value, AFNParamType giv
         throwInvalidArgument("parameter '" + name + "' is an integer");
     if (!std::isfinite(value) || value < d.minValue || value > d.maxValue) {
         std::ostringstream os;
-        os << "parameter '" << name << "' = " << value << " is out of range [" << d.minValue
-           << ", " << d.maxValue << "]";
+        os << "parameter '" << name << "' = " << value << " is out of range [" << d.minValue << ", "
+           << d.maxValue << "]";
         throwInvalidArgument(os.str());
     }
     m_numbers[name] = value;
@@ -59,8 +62,10 @@ void ParamSet::setString(const std::string& name, const std::string& value)
         // Accept numbers written as text (command lines, plugin hosts).
         char* end = nullptr;
         const double v = std::strtod(value.c_str(), &end);
-        if (value == "true" || value == "on" || value == "yes") return setNumber(name, 1.0, AFN_PARAM_INT);
-        if (value == "false" || value == "off" || value == "no") return setNumber(name, 0.0, AFN_PARAM_INT);
+        if (value == "true" || value == "on" || value == "yes")
+            return setNumber(name, 1.0, AFN_PARAM_INT);
+        if (value == "false" || value == "off" || value == "no")
+            return setNumber(name, 0.0, AFN_PARAM_INT);
         if (value.empty() || end == nullptr || *end != '\0')
             throwInvalidArgument("parameter '" + name + "' expects a number, got '" + value + "'");
         return setNumber(name, v, d.type == AFN_PARAM_FLOAT ? AFN_PARAM_FLOAT : AFN_PARAM_INT);
@@ -76,14 +81,16 @@ void ParamSet::setString(const std::string& name, const std::string& value)
 double ParamSet::getNumber(const std::string& name) const
 {
     auto it = m_numbers.find(name);
-    if (it == m_numbers.end()) throwInvalidArgument("unknown numeric parameter '" + name + "'");
+    if (it == m_numbers.end())
+        throwInvalidArgument("unknown numeric parameter '" + name + "'");
     return it->second;
 }
 
 const std::string& ParamSet::getString(const std::string& name) const
 {
     auto it = m_strings.find(name);
-    if (it == m_strings.end()) throwInvalidArgument("unknown string parameter '" + name + "'");
+    if (it == m_strings.end())
+        throwInvalidArgument("unknown string parameter '" + name + "'");
     return it->second;
 }
 

@@ -28,7 +28,7 @@ struct ParamDesc {
     double maxValue = 0.0;
     std::string defaultString;
     std::vector<std::string> choiceList; ///< accepted strings (AFN_PARAM_STRING only)
-    std::string choices;                 ///< the same, '|'-separated (the C API's form)
+    std::string choices; ///< the same, '|'-separated (the C API's form)
     std::string label;
     std::string help;
 };
@@ -65,8 +65,8 @@ public:
         return number(member, AFN_PARAM_FLOAT, name, lo, hi, label, help);
     }
     /// An integer member in [lo, hi].
-    ParamBinding& add(int S::*member, const char* name, int lo, int hi, const char* label,
-        const char* help)
+    ParamBinding& add(
+        int S::*member, const char* name, int lo, int hi, const char* label, const char* help)
     {
         return number(member, AFN_PARAM_INT, name, lo, hi, label, help);
     }
@@ -135,8 +135,8 @@ private:
         }
         return v;
     }
-    static ParamDesc describe(AFNParamType type, const char* name, const char* label,
-        const char* help)
+    static ParamDesc describe(
+        AFNParamType type, const char* name, const char* label, const char* help)
     {
         ParamDesc d;
         d.name = name;

@@ -111,8 +111,7 @@ inline __attribute__((always_inline)) void softmax49(float* l)
 }
 
 // Rows [y0, y1) of half-resolution blocks.
-AFN_CPU_CLONES void fuseRows(
-    const FusionInputs& in, const FusionOutputs& out, int y0, int y1)
+AFN_CPU_CLONES void fuseRows(const FusionInputs& in, const FusionOutputs& out, int y0, int y1)
 {
     const Image& d1 = *in.d1;
     const Image& x = *in.x;

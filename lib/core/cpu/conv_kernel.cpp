@@ -15,7 +15,6 @@ namespace afn::cpu {
 
 namespace {
 
-
 constexpr int kLanes = 8;
 constexpr int kPixels = 4; // output pixels per micro-kernel call (register blocking)
 
@@ -27,8 +26,7 @@ const float* zeros()
 
 } // namespace
 
-AFN_CPU_CLONES void convRows(
-    const ConvArgs& a, int y0, int y1)
+AFN_CPU_CLONES void convRows(const ConvArgs& a, int y0, int y1)
 {
     const int w = a.same->width(), h = a.same->height(), r = a.k / 2, cp = a.cp;
     for (int y = y0; y < y1; ++y)

@@ -9,11 +9,11 @@ namespace afn::cpu {
 
 /// One convolution's operands (see nn::Conv::run for the meaning of `up` and `same`).
 struct ConvArgs {
-    const Image* up;   ///< half-size input read through nearest 2x upsampling, or null
+    const Image* up; ///< half-size input read through nearest 2x upsampling, or null
     const Image* same; ///< full-size input
-    Image* out;        ///< output, already sized
-    const float* wp;   ///< weights [ky][kx][ci][cp]
-    const float* bp;   ///< bias [cp]
+    Image* out; ///< output, already sized
+    const float* wp; ///< weights [ky][kx][ci][cp]
+    const float* bp; ///< bias [cp]
     int in, k, cp, outC, nu, ns;
     bool relu;
 };

@@ -23,7 +23,10 @@ static bool isInputName(const std::string& n)
     return std::find(v.begin(), v.end(), n) != v.end();
 }
 
-static std::string sizeText(int w, int h) { return std::to_string(w) + "x" + std::to_string(h); }
+static std::string sizeText(int w, int h)
+{
+    return std::to_string(w) + "x" + std::to_string(h);
+}
 
 Filter::Filter(const std::vector<ParamDesc>* table, StageNeeds stages)
     : m_params(table)
@@ -46,11 +49,14 @@ ImageView ImageBinding::view() const
 void Filter::setImage(const std::string& name, const ImageBinding& b)
 {
     if (name != AFN_IMAGE_OUTPUT && !isInputName(name))
-        throwInvalidArgument("unknown image '" + name + "' (inputs: color, albedo, normal, depth, "
-                             "position, motion, alpha; output: output)");
-    if (b.ptr == nullptr) throwInvalidArgument("image '" + name + "': null pointer");
+        throwInvalidArgument("unknown image '" + name
+            + "' (inputs: color, albedo, normal, depth, "
+              "position, motion, alpha; output: output)");
+    if (b.ptr == nullptr)
+        throwInvalidArgument("image '" + name + "': null pointer");
     if (b.format < AFN_FORMAT_FLOAT || b.format > AFN_FORMAT_FLOAT4)
-        throwInvalidArgument("image '" + name + "': unsupported format " + std::to_string(b.format));
+        throwInvalidArgument(
+            "image '" + name + "': unsupported format " + std::to_string(b.format));
     if (b.width <= 0 || b.height <= 0)
         throwInvalidArgument("image '" + name + "': zero size " + sizeText(b.width, b.height));
     if (std::abs(b.pixelStride) < static_cast<std::ptrdiff_t>(b.channels() * sizeof(float)))
@@ -68,11 +74,13 @@ void Filter::unsetImage(const std::string& name)
 void Filter::setFloats(const std::string& name, const std::vector<float>& values)
 {
     if (name == AFN_ARRAY_VIEW_PROJECTION) {
-        if (values.size() != 16) throwInvalidArgument("viewProjection needs 16 floats");
+        if (values.size() != 16)
+            throwInvalidArgument("viewProjection needs 16 floats");
         std::copy(values.begin(), values.end(), m_camera.viewProjection.begin());
         m_camera.valid = true;
     } else if (name == AFN_ARRAY_PIXEL_OFFSET) {
-        if (values.size() != 2) throwInvalidArgument("pixelOffset needs 2 floats");
+        if (values.size() != 2)
+            throwInvalidArgument("pixelOffset needs 2 floats");
         m_camera.pixelOffset = { values[0], values[1] };
     } else {
         throwInvalidArgument("unknown array parameter '" + name + "'");
@@ -87,18 +95,19 @@ void Filter::setData(const std::string& name, const void*, std::size_t)
 void Filter::validateBindings() const
 {
     auto color = m_images.find(AFN_IMAGE_COLOR);
-    if (color == m_images.end()) throwInvalidOperation("no 'color' image set");
+    if (color == m_images.end())
+        throwInvalidOperation("no 'color' image set");
     const int w = color->second.width, h = color->second.height;
     for (const auto& [name, b] : m_images) {
         if (b.width != w || b.height != h)
-            throwInvalidArgument(name + " size " + sizeText(b.width, b.height) +
-                                 " does not match color " + sizeText(w, h));
+            throwInvalidArgument(name + " size " + sizeText(b.width, b.height)
+                + " does not match color " + sizeText(w, h));
     }
     auto need = [&](const char* n, int minCh) {
         auto it = m_images.find(n);
         if (it != m_images.end() && it->second.channels() < minCh)
-            throwInvalidArgument(std::string("image '") + n + "' needs at least " +
-                                 std::to_string(minCh) + " channels");
+            throwInvalidArgument(std::string("image '") + n + "' needs at least "
+                + std::to_string(minCh) + " channels");
     };
     need(AFN_IMAGE_COLOR, 3);
     need(AFN_IMAGE_ALBEDO, 3);
@@ -106,7 +115,8 @@ void Filter::validateBindings() const
     need(AFN_IMAGE_POSITION, 3);
     need(AFN_IMAGE_MOTION, 2);
     need(AFN_IMAGE_OUTPUT, 3);
-    if (m_images.find(AFN_IMAGE_OUTPUT) == m_images.end()) throwInvalidOperation("no 'output' image set");
+    if (m_images.find(AFN_IMAGE_OUTPUT) == m_images.end())
+        throwInvalidOperation("no 'output' image set");
 }
 
 void Filter::commit()
@@ -157,19 +167,21 @@ void Filter::reportProgress(double fraction) const
 
 void Filter::execute()
 {
-    if (!m_committed) throwInvalidOperation("filter has uncommitted changes; call commit first");
+    if (!m_committed)
+        throwInvalidOperation("filter has uncommitted changes; call commit first");
     const ImageBinding& color = m_images.at(AFN_IMAGE_COLOR);
     std::string inputs;
     for (const auto& [name, b] : m_images)
-        if (name != AFN_IMAGE_OUTPUT) inputs += name + ":" + std::to_string(b.channels()) + " ";
+        if (name != AFN_IMAGE_OUTPUT)
+            inputs += name + ":" + std::to_string(b.channels()) + " ";
     if (m_frameIndex > 0) {
         if (color.width != m_prevWidth || color.height != m_prevHeight)
-            throwInvalidArgument("frame size " + sizeText(color.width, color.height) +
-                                 " differs from the previous frame's " +
-                                 sizeText(m_prevWidth, m_prevHeight) + " (reset the filter at a cut)");
+            throwInvalidArgument("frame size " + sizeText(color.width, color.height)
+                + " differs from the previous frame's " + sizeText(m_prevWidth, m_prevHeight)
+                + " (reset the filter at a cut)");
         if (inputs != m_prevInputs)
-            throwInvalidArgument("frame inputs (" + inputs + ") differ from the previous frame's (" +
-                                 m_prevInputs + ")");
+            throwInvalidArgument("frame inputs (" + inputs + ") differ from the previous frame's ("
+                + m_prevInputs + ")");
     }
     reportProgress(0.0);
     m_stats = InputStats {};
@@ -202,7 +214,8 @@ void Filter::writeOutput(const Image& radiance) const
                 o[0] = r[0];
                 o[1] = r[1];
                 o[2] = r[2];
-                if (dst.channels == 4) o[3] = hasAlpha ? m_frame.alpha(x, y, 0) : 1.0f;
+                if (dst.channels == 4)
+                    o[3] = hasAlpha ? m_frame.alpha(x, y, 0) : 1.0f;
             }
     });
 }

@@ -8,9 +8,9 @@
 // Per execute:  gather -> [demodulate] -> [reproject] -> [accumulate] -> denoise() -> output
 #pragma once
 
+#include "base/params.h"
 #include "filter/conventions.h"
 #include "filter/frame.h"
-#include "base/params.h"
 #include "stages/temporal_accumulation.h"
 
 #include <functional>
@@ -42,10 +42,10 @@ struct StageNeeds {
     /// Reprojection of the previous frame's geometry onto this one.
     enum class Reproject { None, Bilinear, BilinearWithBoxFallback };
 
-    bool demodulate = false;            ///< irradiance(): colour / albedo (stages/demodulate.h)
+    bool demodulate = false; ///< irradiance(): colour / albedo (stages/demodulate.h)
     Reproject reproject = Reproject::None; ///< reprojector(): per-pixel history taps
-    bool accumulate = false;            ///< accumulator(): BMFR temporal accumulation (needs
-                                        ///< demodulate and a reprojection)
+    bool accumulate = false; ///< accumulator(): BMFR temporal accumulation (needs
+                             ///< demodulate and a reprojection)
 };
 
 class Filter {
@@ -74,12 +74,12 @@ protected:
     Filter(const std::vector<ParamDesc>* table, StageNeeds stages);
 
     /// Read the method's settings from params(); called at commit. Throw on invalid combinations.
-    virtual void configure() {}
+    virtual void configure() { }
     /// Denoise one canonical frame into `out` (3 channels, frame size, preallocated). The stages
     /// the method asked for have run on this frame.
     virtual void denoise(const Frame& in, Image& out) = 0;
     /// Drop the method's own temporal history (the stages' is dropped by the base).
-    virtual void resetHistory() {}
+    virtual void resetHistory() { }
     /// Report progress in [0, 1]; throws Cancelled when the callback asks to stop.
     void reportProgress(double fraction) const;
 
@@ -98,13 +98,13 @@ private:
     InputConventions m_conventions;
     std::map<std::string, ImageBinding> m_images;
     std::function<bool(double)> m_progress;
-    Camera m_camera;     ///< set for the next frame
+    Camera m_camera; ///< set for the next frame
     Camera m_prevCamera; ///< camera of the last executed frame
     bool m_committed = false;
     int m_frameIndex = 0;
     int m_prevWidth = 0, m_prevHeight = 0;
     std::string m_prevInputs; ///< which inputs the previous frame had (history consistency)
-    Frame m_frame;            ///< reused across frames: allocated once per resolution
+    Frame m_frame; ///< reused across frames: allocated once per resolution
     Image m_output;
     InputStats m_stats;
     Image m_irradiance;

@@ -33,7 +33,7 @@ struct Camera {
 /// Counts of sanitised input values during one gather.
 struct InputStats {
     std::int64_t nonFinite = 0; ///< NaN/Inf values replaced by 0 (all inputs)
-    std::int64_t negative = 0;  ///< negative colour values clamped to 0
+    std::int64_t negative = 0; ///< negative colour values clamped to 0
 };
 
 struct Frame {
@@ -49,9 +49,9 @@ struct Frame {
     NormalSpace normalSpace = NormalSpace::World;
     DepthKind depthKind = DepthKind::Planar;
     bool colorDemodulated = false; ///< colour is already divided by albedo (BMFR dataset)
-    Camera camera;                 ///< this frame's camera (valid only when given)
-    Camera prevCamera;             ///< the previous executed frame's camera (invalid after reset)
-    int frameIndex = 0;            ///< frames since the last reset (0 = first)
+    Camera camera; ///< this frame's camera (valid only when given)
+    Camera prevCamera; ///< the previous executed frame's camera (invalid after reset)
+    int frameIndex = 0; ///< frames since the last reset (0 = first)
 
     bool hasAlbedo() const { return !albedo.empty(); }
     bool hasNormal() const { return !normal.empty(); }

@@ -5,8 +5,8 @@
 //   - NaN or +-Inf in any input is replaced by 0.
 //   - Negative colour is clamped to 0 (radiance cannot be negative; renderers' negative lobes and
 //     filter ringing would otherwise feed the history).
-//   - Albedo is clamped to [0, 1]; normals are renormalised (a zero normal stays zero and then never
-//     matches history).
+//   - Albedo is clamped to [0, 1]; normals are renormalised (a zero normal stays zero and then
+//     never matches history).
 #include "filter/filter.h"
 
 #include "base/exception.h"
@@ -65,7 +65,8 @@ void gatherFrame(const std::map<std::string, ImageBinding>& images,
 {
     Counters counts;
     const ImageBinding* color = find(images, AFN_IMAGE_COLOR);
-    if (!color) throwInvalidOperation("no 'color' image set");
+    if (!color)
+        throwInvalidOperation("no 'color' image set");
     f.width = color->width;
     f.height = color->height;
 
@@ -80,7 +81,8 @@ void gatherFrame(const std::map<std::string, ImageBinding>& images,
 
     if (const ImageBinding* b = find(images, AFN_IMAGE_ALBEDO))
         gather(*b, 3, f.albedo, counts, [](float* p) {
-            for (int c = 0; c < 3; ++c) p[c] = std::fmin(std::fmax(p[c], 0.0f), 1.0f);
+            for (int c = 0; c < 3; ++c)
+                p[c] = std::fmin(std::fmax(p[c], 0.0f), 1.0f);
         });
     else
         f.albedo = Image();
@@ -94,7 +96,8 @@ void gatherFrame(const std::map<std::string, ImageBinding>& images,
             p[2] *= zSign;
             const float len = std::sqrt(p[0] * p[0] + p[1] * p[1] + p[2] * p[2]);
             const float inv = len > 1e-12f ? 1.0f / len : 0.0f;
-            for (int c = 0; c < 3; ++c) p[c] *= inv;
+            for (int c = 0; c < 3; ++c)
+                p[c] *= inv;
         });
     else
         f.normal = Image();

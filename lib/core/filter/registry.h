@@ -50,10 +50,20 @@ std::unique_ptr<Filter> createFilter(const std::string& name, const Device& devi
 std::unique_ptr<Filter> createFilter(const std::string& name);
 
 // Per-method descriptions (defined in methods/<name>/).
-namespace identity { FilterType filterType(); }
-namespace ta { FilterType filterType(); }
-namespace svgf { FilterType filterType(); }
-namespace bmfr { FilterType filterType(); }
-namespace afnet { FilterType filterType(); }
+namespace identity {
+FilterType filterType();
+}
+namespace ta {
+FilterType filterType();
+}
+namespace svgf {
+FilterType filterType();
+}
+namespace bmfr {
+FilterType filterType();
+}
+namespace afnet {
+FilterType filterType();
+}
 
 } // namespace afn

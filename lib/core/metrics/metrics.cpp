@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: Apache-2.0
-// Image-quality metrics: per-pixel sums and the SSIM map, reduced per fixed row blocks (see metrics.h).
+// Image-quality metrics: per-pixel sums and the SSIM map, reduced per fixed row blocks (see
+// metrics.h).
 #include "metrics/metrics.h"
 
 #include "base/exception.h"
@@ -21,7 +22,10 @@ constexpr int kBlockRows = 16;
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
-int numBlocks(int rows) { return (rows + kBlockRows - 1) / kBlockRows; }
+int numBlocks(int rows)
+{
+    return (rows + kBlockRows - 1) / kBlockRows;
+}
 
 /// Call fn(block, y0, y1) for every fixed block of rows in [begin, end), in parallel.
 template <typename Fn> void forRowBlocks(int begin, int end, Fn&& fn)
@@ -35,25 +39,29 @@ template <typename Fn> void forRowBlocks(int begin, int end, Fn&& fn)
 
 void checkView(const ImageView& v, const char* what)
 {
-    if (v.empty()) throwInvalidArgument(std::string("metrics: ") + what + " image is empty");
+    if (v.empty())
+        throwInvalidArgument(std::string("metrics: ") + what + " image is empty");
     if (v.channels < 3)
-        throwInvalidArgument(std::string("metrics: ") + what + " image has " +
-                             std::to_string(v.channels) + " channels; at least 3 (RGB) are needed");
+        throwInvalidArgument(std::string("metrics: ") + what + " image has "
+            + std::to_string(v.channels) + " channels; at least 3 (RGB) are needed");
 }
 
 void checkSameSize(const ImageView& a, const ImageView& b, const char* what)
 {
     if (a.width != b.width || a.height != b.height)
-        throwInvalidArgument(std::string("metrics: ") + what + " size " + std::to_string(b.width) +
-                             "x" + std::to_string(b.height) + " does not match the test image " +
-                             std::to_string(a.width) + "x" + std::to_string(a.height));
+        throwInvalidArgument(std::string("metrics: ") + what + " size " + std::to_string(b.width)
+            + "x" + std::to_string(b.height) + " does not match the test image "
+            + std::to_string(a.width) + "x" + std::to_string(a.height));
 }
 
-double quantize8(double t) { return std::floor(255.0 * t + 0.5) / 255.0; }
+double quantize8(double t)
+{
+    return std::floor(255.0 * t + 0.5) / 255.0;
+}
 
 /// Sums over linear values of one block of rows.
 struct LinearSums {
-    double sq = 0.0;    // sum (o - t)^2
+    double sq = 0.0; // sum (o - t)^2
     double smape = 0.0; // sum |o - t| / (|o| + |t| + eps)
     std::int64_t nonFiniteTest = 0;
     std::int64_t nonFiniteRef = 0;
@@ -62,10 +70,10 @@ struct LinearSums {
 /// Sums over one tone-mapped channel: errors of T(x) and of its 8-bit version, and the sums of the
 /// SSIM maps (float and 8-bit) over the pixels whose window fits.
 struct ChannelSums {
-    double sq = 0.0;    // sum (T(o) - T(t))^2
+    double sq = 0.0; // sum (T(o) - T(t))^2
     double smape = 0.0; // sum |T(o) - T(t)| / (T(o) + T(t) + eps)
-    double sq8 = 0.0;   // sum (Q(T(o)) - Q(T(t)))^2
-    double ssim = 0.0;  // sum of the SSIM map
+    double sq8 = 0.0; // sum (Q(T(o)) - Q(T(t)))^2
+    double ssim = 0.0; // sum of the SSIM map
     double ssim8 = 0.0; // sum of the SSIM map of the 8-bit values
 };
 
@@ -76,11 +84,11 @@ int ssimWindow(int width, int height)
     return win % 2 ? win : win - 1;
 }
 
-/// Sum of the SSIM map over `outRows` output rows, skimage conventions (metrics.h). `a` and `b` hold
-/// outRows + win - 1 rows of `width` values; output row r, column x uses the window whose top-left
-/// value is (r, x). `hs` is scratch.
-double ssimRowsSum(const double* a, const double* b, int outRows, int width, int win,
-                   std::vector<double>& hs)
+/// Sum of the SSIM map over `outRows` output rows, skimage conventions (metrics.h). `a` and `b`
+/// hold outRows + win - 1 rows of `width` values; output row r, column x uses the window whose
+/// top-left value is (r, x). `hs` is scratch.
+double ssimRowsSum(
+    const double* a, const double* b, int outRows, int width, int win, std::vector<double>& hs)
 {
     const int rows = outRows + win - 1, cols = width - win + 1;
     const double np = static_cast<double>(win) * win;
@@ -88,7 +96,8 @@ double ssimRowsSum(const double* a, const double* b, int outRows, int width, int
     const double c1 = 0.01 * 0.01; // (K1 * data_range)^2, data_range = 1
     const double c2 = 0.03 * 0.03; // (K2 * data_range)^2
     const std::size_t need = static_cast<std::size_t>(rows) * cols * 5;
-    if (hs.size() < need) hs.resize(need);
+    if (hs.size() < need)
+        hs.resize(need);
     // Horizontal window sums of x, y, xx, yy, xy (direct sums: the same order for every pixel).
     for (int r = 0; r < rows; ++r) {
         const double* ra = a + static_cast<std::size_t>(r) * width;
@@ -109,7 +118,8 @@ double ssimRowsSum(const double* a, const double* b, int outRows, int width, int
             double s[5] = { 0, 0, 0, 0, 0 };
             for (int k = 0; k < win; ++k) {
                 const double* o = &hs[(static_cast<std::size_t>(r + k) * cols + x) * 5];
-                for (int q = 0; q < 5; ++q) s[q] += o[q];
+                for (int q = 0; q < 5; ++q)
+                    s[q] += o[q];
             }
             const double ux = s[0] / np, uy = s[1] / np;
             const double vx = covNorm * (s[2] / np - ux * ux);
@@ -144,7 +154,8 @@ ChannelSums channelSums(const ImageView& test, const ImageView& reference, int c
         const int r1 = o0 < o1 ? std::max(y1, o1 + pad) : y1;
         const std::size_t n = static_cast<std::size_t>(r1 - r0) * w;
         for (std::vector<double>* v : { &sc.ta, &sc.tb, &sc.qa, &sc.qb })
-            if (v->size() < n) v->resize(n);
+            if (v->size() < n)
+                v->resize(n);
         for (int y = r0; y < r1; ++y)
             for (int x = 0; x < w; ++x) {
                 const std::size_t i = static_cast<std::size_t>(y - r0) * w + x;
@@ -154,7 +165,8 @@ ChannelSums channelSums(const ImageView& test, const ImageView& reference, int c
                 sc.qb[i] = quantize8(sc.tb[i]);
             }
         ChannelSums s;
-        for (std::size_t i = static_cast<std::size_t>(y0 - r0) * w; i < static_cast<std::size_t>(y1 - r0) * w; ++i) {
+        for (std::size_t i = static_cast<std::size_t>(y0 - r0) * w;
+             i < static_cast<std::size_t>(y1 - r0) * w; ++i) {
             const double d = sc.ta[i] - sc.tb[i], d8 = sc.qa[i] - sc.qb[i];
             s.sq += d * d;
             s.smape += std::abs(d) / (sc.ta[i] + sc.tb[i] + kSmapeEpsilon);
@@ -186,15 +198,18 @@ double ssimCount(int width, int height)
 
 double evalToneMap(double x)
 {
-    if (std::isnan(x)) return x;
+    if (std::isnan(x))
+        return x;
     // 1/2.2, written 0.454545 in WSKPN's code; the difference is below float precision of T.
     return std::clamp(std::pow(std::max(x, 0.0), 1.0 / 2.2), 0.0, 1.0);
 }
 
 double psnrFromMse(double mse)
 {
-    if (std::isnan(mse)) return kNaN;
-    if (mse <= 0.0) return kInf;
+    if (std::isnan(mse))
+        return kNaN;
+    if (mse <= 0.0)
+        return kInf;
     return 10.0 * std::log10(1.0 / mse);
 }
 
@@ -203,7 +218,8 @@ double ssimChannel(const ImageView& a, const ImageView& b, int c, bool q8)
     checkView(a, "test");
     checkView(b, "reference");
     checkSameSize(a, b, "reference");
-    if (c < 0 || c >= 3) throwInvalidArgument("metrics: channel must be 0, 1 or 2");
+    if (c < 0 || c >= 3)
+        throwInvalidArgument("metrics: channel must be 0, 1 or 2");
     const ChannelSums s = channelSums(a, b, c);
     return (q8 ? s.ssim8 : s.ssim) / ssimCount(a.width, a.height);
 }
@@ -225,8 +241,10 @@ FrameMetrics computeFrameMetrics(const ImageView& test, const ImageView& referen
                 const float* t = reference.at(x, y);
                 for (int c = 0; c < 3; ++c) {
                     const double ov = o[c], tv = t[c];
-                    if (!std::isfinite(ov)) ++s.nonFiniteTest;
-                    if (!std::isfinite(tv)) ++s.nonFiniteRef;
+                    if (!std::isfinite(ov))
+                        ++s.nonFiniteTest;
+                    if (!std::isfinite(tv))
+                        ++s.nonFiniteRef;
                     const double d = ov - tv;
                     s.sq += d * d;
                     s.smape += std::abs(d) / (std::abs(ov) + std::abs(tv) + kSmapeEpsilon);
@@ -277,7 +295,7 @@ FrameMetrics computeFrameMetrics(const ImageView& test, const ImageView& referen
 }
 
 TemporalMetrics computeTemporalMetrics(const ImageView& testPrev, const ImageView& test,
-                                       const ImageView& referencePrev, const ImageView& reference)
+    const ImageView& referencePrev, const ImageView& reference)
 {
     checkView(test, "test");
     checkView(testPrev, "previous test");
@@ -298,11 +316,12 @@ TemporalMetrics computeTemporalMetrics(const ImageView& testPrev, const ImageVie
         for (int y = y0; y < y1; ++y) {
             for (int x = 0; x < w; ++x) {
                 const float* px[4] = { test.at(x, y), testPrev.at(x, y), reference.at(x, y),
-                                       referencePrev.at(x, y) };
+                    referencePrev.at(x, y) };
                 for (int c = 0; c < 3; ++c) {
                     double t[4];
                     for (int i = 0; i < 4; ++i) {
-                        if (!std::isfinite(px[i][c])) ++s.nonFinite;
+                        if (!std::isfinite(px[i][c]))
+                            ++s.nonFinite;
                         t[i] = evalToneMap(px[i][c]);
                     }
                     const double e = (t[0] - t[1]) - (t[2] - t[3]);

@@ -2,9 +2,9 @@
 // Direct convolutions of the AFN engine (see afn_conv.h).
 #include "nn/conv.h"
 
-#include "cpu/conv_kernel.h"
 #include "base/exception.h"
 #include "base/parallel.h"
+#include "cpu/conv_kernel.h"
 
 #include <algorithm>
 
@@ -22,8 +22,7 @@ std::string shapeText(const std::vector<std::int64_t>& d)
 
 } // namespace
 
-void Conv::load(
-    const WeightsArchive& a, const std::string& name, int expectedIn, int expectedOut)
+void Conv::load(const WeightsArchive& a, const std::string& name, int expectedIn, int expectedOut)
 {
     const WeightTensor& w = a.tensor(name + ".weight");
     const WeightTensor& b = a.tensor(name + ".bias");

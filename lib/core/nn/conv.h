@@ -5,8 +5,8 @@
 // the row loop is compiled for x86-64-v3 (AVX2+FMA) and baseline x86-64, chosen at load time.
 #pragma once
 
-#include "nn/weights.h"
 #include "base/image.h"
+#include "nn/weights.h"
 
 #include <string>
 #include <vector>

@@ -26,8 +26,8 @@
 // accepted, the 3x3 box around the nearest previous pixel is tested with equal weights.
 #pragma once
 
-#include "filter/frame.h"
 #include "base/params.h"
+#include "filter/frame.h"
 
 #include <cstdint>
 #include <vector>
@@ -94,8 +94,8 @@ private:
     ReprojectSettings m_settings;
     std::vector<PixelTaps> m_taps;
     int m_width = 0, m_height = 0;
-    bool m_hasPrev = false;          ///< geometry of a previous frame is stored
-    bool m_tapsHaveHistory = false;  ///< the current taps were computed against it
+    bool m_hasPrev = false; ///< geometry of a previous frame is stored
+    bool m_tapsHaveHistory = false; ///< the current taps were computed against it
     Image m_prevPosition, m_prevNormal, m_prevDepth;
 };
 

@@ -3,15 +3,16 @@
 // the 1x1 kernel heads, the softmax over 49 taps, the 7x7 filtering of the HDR images and the
 // fusion run per pixel, so neither the kernel maps nor the unfolded 49-channel image stack is
 // ever stored.
-//   K_1spp = softmax(head1(d1))               at half resolution, applied to D(r_1spp)
-//   [K_TA, a] = headTA(concat(U(d1), x))      at full resolution, applied to r_TA; alpha =
-//   sigmoid(a) i = d_TA - alpha * U(D(d_TA)) + alpha * U(d_1spp)
+//   K_1spp = softmax(head1(d1))            half resolution, applied to D(r_1spp) -> d_1spp
+//   [K_TA, a] = headTA(concat(U(d1), x))   full resolution, K_TA applied to r_TA -> d_TA
+//   alpha = sigmoid(a)
+//   i = d_TA - alpha * U(D(d_TA)) + alpha * U(d_1spp)                        (Eq. 3)
 // Tap j = (dy + 3) * 7 + (dx + 3) reads the image at (x + dx, y + dy); taps outside the image
 // read 0 and the kernel is not renormalised (PyTorch F.unfold with zero padding).
 #pragma once
 
-#include "nn/conv.h"
 #include "base/image.h"
+#include "nn/conv.h"
 
 namespace afn::afnet {
 

@@ -2,9 +2,9 @@
 // The AFN inference graph (see afn_network.h).
 #include "methods/afn/network.h"
 
-#include "methods/afn/fusion.h"
 #include "base/exception.h"
 #include "base/parallel.h"
+#include "methods/afn/fusion.h"
 
 #include <algorithm>
 #include <cmath>

@@ -11,9 +11,9 @@
 // Buffers are allocated once per resolution and reused.
 #pragma once
 
+#include "base/image.h"
 #include "nn/conv.h"
 #include "nn/weights.h"
-#include "base/image.h"
 
 #include <string>
 

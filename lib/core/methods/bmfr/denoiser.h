@@ -19,10 +19,10 @@ namespace afn::bmfr {
 /// first accumulation's alphaMin is the shared stage's (AccumulationSettings).
 struct Settings {
     float secondAlphaMin = 0.1f; ///< second accumulation minimum (SECOND_BLEND_ALPHA 0.1)
-    int blockSize = 32;          ///< block edge in pixels (BMFR supports only 32)
-    float noise = 0.01f;         ///< uniform feature noise amplitude (NOISE_AMOUNT 1e-2)
-    bool taa = true;             ///< apply the final TAA step
-    float taaAlpha = 0.2f;       ///< TAA weight of the current frame (BMFR 0.2)
+    int blockSize = 32; ///< block edge in pixels (BMFR supports only 32)
+    float noise = 0.01f; ///< uniform feature noise amplitude (NOISE_AMOUNT 1e-2)
+    bool taa = true; ///< apply the final TAA step
+    float taaAlpha = 0.2f; ///< TAA weight of the current frame (BMFR 0.2)
 };
 
 /// The descriptors of Settings (the method's own parameters).
@@ -45,7 +45,8 @@ public:
     void reset();
     /// Denoise frame `f` into remodulated radiance `out` (3 ch), from the shared stages' results:
     /// the taps of this frame and the temporal accumulation of its demodulated colour.
-    void process(const Frame& f, const Reprojector& taps, const TemporalAccumulator& ta, Image& out);
+    void process(
+        const Frame& f, const Reprojector& taps, const TemporalAccumulator& ta, Image& out);
 
 private:
     Settings m_settings;

@@ -2,8 +2,8 @@
 // BMFR per-frame pipeline: TA, regression, second accumulation, remodulation, TAA (see bmfr.h).
 #include "methods/bmfr/denoiser.h"
 
-#include "stages/demodulate.h"
 #include "base/parallel.h"
+#include "stages/demodulate.h"
 
 #include <algorithm>
 #include <utility>
@@ -23,8 +23,8 @@ void Denoiser::process(
     // Second accumulation with the TA's taps: alpha = max(1/len, secondAlphaMin), len after TA.
     std::swap(m_filtered, m_prevFiltered);
     m_filtered.resize(f.width, f.height, 3);
-    const bool history = m_hasHistory && taps.hasHistory()
-        && m_prevFiltered.width() == f.width && m_prevFiltered.height() == f.height;
+    const bool history = m_hasHistory && taps.hasHistory() && m_prevFiltered.width() == f.width
+        && m_prevFiltered.height() == f.height;
     const Image& len = ta.historyLength();
     parallelRows(f.height, [&](int y0, int y1) {
         for (int y = y0; y < y1; ++y)
@@ -32,9 +32,8 @@ void Denoiser::process(
                 const float* c = m_regressed.at(x, y);
                 float* o = m_filtered.at(x, y);
                 float prev[3];
-                const float ws = history
-                    ? gatherHistory<3>(taps.taps(x, y), m_prevFiltered, prev)
-                    : 0.0f;
+                const float ws
+                    = history ? gatherHistory<3>(taps.taps(x, y), m_prevFiltered, prev) : 0.0f;
                 const float n = len(x, y, 0);
                 if (ws > 0.0f && n > 1.0f) {
                     const float a = std::max(1.0f / n, m_settings.secondAlphaMin);

@@ -21,8 +21,8 @@
 //     [-16, 14] (cycle of frameIndex % 16), not the official table.
 #include "methods/bmfr/denoiser.h"
 
-#include "stages/demodulate.h"
 #include "base/parallel.h"
+#include "stages/demodulate.h"
 
 #include <algorithm>
 #include <cmath>

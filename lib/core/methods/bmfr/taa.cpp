@@ -54,8 +54,7 @@ bool sampleHistory(const PixelTaps& t, const Image& history, float* out)
 
 } // namespace
 
-void taa(
-    const Reprojector& taps, const Image& cur, const Image& history, float alpha, Image& out)
+void taa(const Reprojector& taps, const Image& cur, const Image& history, float alpha, Image& out)
 {
     const int w = cur.width(), h = cur.height();
     out.resize(w, h, 3);

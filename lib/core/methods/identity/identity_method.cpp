@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: Apache-2.0
-// "identity": no denoising. The output is the sanitised input colour (NaN/Inf -> 0, negatives -> 0),
-// which makes it the reference for I/O round trips and the plugin's pass-through.
+// "identity": no denoising. The output is the sanitised input colour (NaN/Inf -> 0, negatives ->
+// 0), which makes it the reference for I/O round trips and the plugin's pass-through.
 #include "filter/registry.h"
 
 namespace afn::identity {

@@ -16,8 +16,8 @@
 // to sum(w c_q) / sum(w), so a constant image stays bit-exactly constant.
 #pragma once
 
-#include "stages/reproject.h"
 #include "methods/svgf/guide.h"
+#include "stages/reproject.h"
 
 namespace afn::svgf {
 
@@ -27,8 +27,7 @@ public:
     void reset();
     /// Filter demodulated `irradiance` (3 ch) of frame `f`, reprojected by `taps` (bilinear with
     /// SVGF's box fallback), into `filtered` (3 ch, demodulated).
-    void process(const Frame& f, const Image& irradiance, const Reprojector& taps,
-        Image& filtered);
+    void process(const Frame& f, const Image& irradiance, const Reprojector& taps, Image& filtered);
 
     /// History length of the last frame (1 ch).
     const Image& historyLength() const { return m_len; }
