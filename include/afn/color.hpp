@@ -5,6 +5,17 @@
 // Errors are thrown as afn::color::ColorError; nothing in here terminates the process.
 #pragma once
 
+// Symbols of the shared library (everything else in it is hidden).
+#if defined(_WIN32)
+#if defined(AFN_BUILDING_COLOR)
+#define AFN_COLOR_API __declspec(dllexport)
+#else
+#define AFN_COLOR_API __declspec(dllimport)
+#endif
+#else
+#define AFN_COLOR_API __attribute__((visibility("default")))
+#endif
+
 #include <memory>
 #include <stdexcept>
 #include <string>
@@ -12,7 +23,7 @@
 
 namespace afn::color {
 
-class ColorError : public std::runtime_error {
+class AFN_COLOR_API ColorError : public std::runtime_error {
 public:
     using std::runtime_error::runtime_error;
 };
@@ -22,10 +33,10 @@ struct ConfigChoice {
     std::string path;
     std::string reason; ///< "--colorconfig" | "$OCIO" | "afn default"
 };
-ConfigChoice resolveConfig(const std::string& explicitPath = {});
+AFN_COLOR_API ConfigChoice resolveConfig(const std::string& explicitPath = {});
 
 /// A loaded config with cached processors. Thread-safe after construction.
-class ColorManager {
+class AFN_COLOR_API ColorManager {
 public:
     /// Load the config chosen by resolveConfig(explicitPath); throws ColorError.
     explicit ColorManager(const std::string& explicitPath = {});
@@ -69,9 +80,9 @@ struct Tile {
 /// Turn a role's raw values into a viewable tile: colour-like roles through the display/view,
 /// normals as n*0.5+0.5, depth and position normalised by their finite range, motion as a
 /// direction/magnitude colour code. `kind` is a role name ("color", "albedo", "normal", ...).
-Tile makeTile(const ColorManager& cm, const std::string& kind, const std::string& label, int width,
-    int height, int components, const float* pixels, const std::string& display = {},
-    const std::string& view = {});
+AFN_COLOR_API Tile makeTile(const ColorManager& cm, const std::string& kind,
+    const std::string& label, int width, int height, int components, const float* pixels,
+    const std::string& display = {}, const std::string& view = {});
 
 /// Arrange tiles in a grid with their labels drawn above them (built-in bitmap font), on a dark
 /// background; returns an RGB image of outWidth x outHeight in [0, 1].
@@ -80,7 +91,7 @@ Tile makeTile(const ColorManager& cm, const std::string& kind, const std::string
 /// So outWidth = kSheetGap + columns * (cellW + kSheetGap) and
 /// outHeight = kSheetGap + rows * (kSheetLabelBand + cellH + kSheetGap). Throws ColorError on no
 /// tiles or a tile whose rgb size does not match width*height*3.
-std::vector<float> layoutContactSheet(
+AFN_COLOR_API std::vector<float> layoutContactSheet(
     const std::vector<Tile>& tiles, int columns, int& outWidth, int& outHeight);
 
 constexpr int kSheetGap = 6; ///< pixels between and around contact-sheet cells
@@ -90,6 +101,6 @@ constexpr float kSheetBackground = 0.1f; ///< contact-sheet background grey (dis
 
 /// Box-filter a tile down so that it fits in maxWidth x maxHeight, keeping its aspect ratio;
 /// returned unchanged when it already fits (useful before layoutContactSheet on large frames).
-Tile fitTile(const Tile& tile, int maxWidth, int maxHeight);
+AFN_COLOR_API Tile fitTile(const Tile& tile, int maxWidth, int maxHeight);
 
 } // namespace afn::color

@@ -7,6 +7,17 @@
 
 #include "afn/afn.h"
 
+// Symbols of the shared library (everything else in it is hidden).
+#if defined(_WIN32)
+#if defined(AFN_BUILDING_IO)
+#define AFN_IO_API __declspec(dllexport)
+#else
+#define AFN_IO_API __declspec(dllimport)
+#endif
+#else
+#define AFN_IO_API __attribute__((visibility("default")))
+#endif
+
 #include <map>
 #include <optional>
 #include <stdexcept>
@@ -17,7 +28,7 @@
 namespace afn::io {
 
 /// An I/O failure: message plus the file it concerns (may be empty).
-class IoError : public std::runtime_error {
+class AFN_IO_API IoError : public std::runtime_error {
 public:
     IoError(const std::string& message, std::string file = {})
         : std::runtime_error(message)
@@ -38,12 +49,12 @@ enum class Role { Color, Albedo, Normal, Depth, Position, Motion, Alpha, Varianc
 constexpr int kNumRoles = 9;
 
 /// Lower-case role name ("color", ...).
-const char* roleName(Role role);
+AFN_IO_API const char* roleName(Role role);
 /// Role from its name; nullopt if unknown.
-std::optional<Role> roleFromName(const std::string& name);
+AFN_IO_API std::optional<Role> roleFromName(const std::string& name);
 /// Number of components a role has (color 3, albedo 3, normal 3, depth 1, position 3, motion 2,
 /// alpha 1, variance 1 or 3 -> 3, specular 3).
-int roleComponents(Role role);
+AFN_IO_API int roleComponents(Role role);
 
 /// Conventions of a role's values, named exactly as the filter parameters of libafn
 /// ("normal.space", "depth.kind", "motion.direction", "motion.yUp", "motion.units").
@@ -56,7 +67,7 @@ struct SpaceTag {
     bool colorDemodulated = false; ///< colour already divided by albedo (BMFR data)
 
     /// The conventions as (filter parameter name, value) pairs, to be set on a filter in a loop.
-    std::vector<std::pair<std::string, std::string>> parameters() const;
+    AFN_IO_API std::vector<std::pair<std::string, std::string>> parameters() const;
 };
 
 /// Where one role lives in a file.
@@ -79,7 +90,7 @@ struct RoleMapping {
     /// Things the user should know (e.g. "Vector pass is all zero: motion blur was on").
     std::vector<std::string> warnings;
 
-    const RoleChannels* find(Role role) const;
+    AFN_IO_API const RoleChannels* find(Role role) const;
 };
 
 /// A user override: role -> comma-separated channel names, e.g.
@@ -92,7 +103,7 @@ struct MappingOverrides {
 };
 
 /// Parse one "--aov" argument ("role=channels" or "normal.space=value"); throws IoError.
-void parseOverride(const std::string& text, MappingOverrides& overrides);
+AFN_IO_API void parseOverride(const std::string& text, MappingOverrides& overrides);
 
 // ---- File inspection ----------------------------------------------------------------------------
 
@@ -117,11 +128,11 @@ struct FileInfo {
 };
 
 /// Read a file's header; throws IoError (missing, unreadable, truncated header).
-FileInfo inspect(const std::string& path);
+AFN_IO_API FileInfo inspect(const std::string& path);
 
 /// Map channels to roles (automatic for Blender Cycles, Arnold, RenderMan, V-Ray, Redshift, Karma,
 /// generic R,G,B), then apply overrides. Never throws for a missing role: see lookedFor.
-RoleMapping mapRoles(const FileInfo& info, const MappingOverrides& overrides = {});
+AFN_IO_API RoleMapping mapRoles(const FileInfo& info, const MappingOverrides& overrides = {});
 
 // ---- Reading frames -----------------------------------------------------------------------------
 
@@ -136,7 +147,7 @@ struct RoleStats {
     double min = 0, max = 0, mean = 0;
     long long nan = 0, inf = 0, negative = 0, count = 0;
 };
-RoleStats computeStats(const RoleImage& image);
+AFN_IO_API RoleStats computeStats(const RoleImage& image);
 
 /// Every channel of a file (all subimages of the data window size), for --keep-aovs.
 struct LayeredImage {
@@ -174,30 +185,30 @@ struct ReadOptions {
 };
 
 /// Read one frame (single EXR, multi-part EXR, or a BMFR dataset frame: see bmfrFramePath).
-FrameImages readFrame(const std::string& path, const ReadOptions& options = {});
+AFN_IO_API FrameImages readFrame(const std::string& path, const ReadOptions& options = {});
 
 // ---- Sequences ----------------------------------------------------------------------------------
 
 /// Parse oiiotool-style frame ranges: "1-10", "1-10x2", "3,5,7", "1-4,10". Throws IoError.
-std::vector<int> parseFrameRange(const std::string& text);
+AFN_IO_API std::vector<int> parseFrameRange(const std::string& text);
 /// True when the name holds a frame pattern: '#' (4 digits each), '@' (1 digit each), %0Nd.
 /// A lone '#' is 4 digits (oiiotool); a run of '#' is one digit each ("####" = 4, as in Nuke).
-bool hasFramePattern(const std::string& pattern);
+AFN_IO_API bool hasFramePattern(const std::string& pattern);
 /// Substitute a frame number ("shot.####.exr", 7 -> "shot.0007.exr"; negative frames keep '-').
-std::string expandFramePattern(const std::string& pattern, int frame);
+AFN_IO_API std::string expandFramePattern(const std::string& pattern, int frame);
 /// Expand for every frame and check each file exists; throws IoError naming the first missing.
-std::vector<std::string> expandSequence(
+AFN_IO_API std::vector<std::string> expandSequence(
     const std::string& pattern, const std::vector<int>& frames, bool mustExist = true);
 
 // ---- BMFR dataset layout ------------------------------------------------------------------------
 
 /// True if `dir` (or dir/inputs) holds color{N}.exr + camera_matrices.h.
-bool isBmfrDataset(const std::string& dir);
+AFN_IO_API bool isBmfrDataset(const std::string& dir);
 /// The per-frame pseudo path for frame N of a BMFR scene folder ("<dir>#bmfr:N"), readable by
 /// readFrame.
-std::string bmfrFramePath(const std::string& dir, int frame);
+AFN_IO_API std::string bmfrFramePath(const std::string& dir, int frame);
 /// Parse camera_matrices.h (named arrays, not a number regex): all frames.
-std::vector<FrameCamera> parseCameraMatrices(const std::string& headerPath);
+AFN_IO_API std::vector<FrameCamera> parseCameraMatrices(const std::string& headerPath);
 
 // ---- Writing ------------------------------------------------------------------------------------
 
@@ -211,11 +222,11 @@ struct WriteOptions {
 /// Write an image atomically: temporary file in the same directory, then rename. The format comes
 /// from the extension (.exr, .png, .tif, ...). `types` may give a per-channel "half"/"float" (empty
 /// = options.dataType). Throws IoError; on failure nothing is left at `path` or beside it.
-void writeImageAtomic(const std::string& path, int width, int height,
+AFN_IO_API void writeImageAtomic(const std::string& path, int width, int height,
     const std::vector<std::string>& channels, const float* pixels, const WriteOptions& options = {},
     const std::vector<std::string>& types = {});
 
 /// True if two paths name the same existing file (or the same path when they do not exist yet).
-bool samePath(const std::string& a, const std::string& b);
+AFN_IO_API bool samePath(const std::string& a, const std::string& b);
 
 } // namespace afn::io

@@ -8,3 +8,7 @@ afn_add_gtest(test_io
     unit/test_io_write.cpp
     unit/test_io_bmfr.cpp
   LIBS afn_io PkgConfig::OIIO)
+
+# The shared library exports only what include/afn/io.hpp declares.
+add_test(NAME io_library_exports COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/unit/check_library_exports.sh
+  $<TARGET_FILE:afn_io> ${PROJECT_SOURCE_DIR}/include/afn/io.hpp afn::io)
