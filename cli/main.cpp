@@ -61,12 +61,13 @@ int run(const Options& opts)
     for (const FrameRef& f : frames)
         inputPaths.push_back(f.path);
 
-    std::unique_ptr<SequenceDenoiser> denoiser;
+    std::unique_ptr<SequenceDenoiser> denoiser, featureWriter;
     for (const Action& a : opts.actions)
-        if (a.name == "denoise") {
-            if (denoiser)
-                throw CliError("--denoise given twice");
-            denoiser = std::make_unique<SequenceDenoiser>(opts, a);
+        if (a.name == "denoise" || a.name == "features") {
+            auto& slot = a.name == "denoise" ? denoiser : featureWriter;
+            if (slot)
+                throw CliError("--" + a.name + " given twice");
+            slot = std::make_unique<SequenceDenoiser>(opts, a);
         }
     std::unique_ptr<SequenceComparer> comparer;
     for (const Action& a : opts.actions)
@@ -95,6 +96,8 @@ int run(const Options& opts)
                     a.arg, frames[i], frames.size(), a.name == "output" ? "-o" : "--" + a.name);
                 if (a.name == "output")
                     writeOutput(ctx, frame, out, inputPaths);
+                else if (a.name == "features")
+                    featureWriter->writeFeatures(frame, out, inputPaths, &progress);
                 else if (a.name == "preview")
                     writePreview(ctx, frame, a, out, inputPaths);
                 else

@@ -30,18 +30,28 @@ void writePreview(RunContext& ctx, const LoadedFrame& frame, const Action& actio
 void writeContactSheet(RunContext& ctx, const LoadedFrame& frame, const Action& action,
     const std::string& path, const std::vector<std::string>& inputs);
 
-/// --denoise: one afn filter kept across the frames of the run (history in frame order).
+/// --denoise, or --features: one afn filter kept across the frames of the run (history in frame
+/// order).
 class SequenceDenoiser {
 public:
+    /// From a --denoise or a --features action (:method=, default afn for --features).
     SequenceDenoiser(const Options& opts, const Action& action);
-    /// Denoise the frame's beauty in place; warnings (sanitised inputs) go through `progress`.
+    /// --denoise: denoise the frame's beauty in place; warnings go through `progress`.
     void process(LoadedFrame& frame, Progress* progress);
+    /// --features: write the method's feature outputs for the frame (the network's inputs as the
+    /// method prepares them) to `path`, a float EXR with one layer per feature; the beauty is
+    /// left as it is and the network does not run.
+    void writeFeatures(LoadedFrame& frame, const std::string& path,
+        const std::vector<std::string>& inputs, Progress* progress);
     const std::string& method() const { return m_method; }
 
 private:
+    void run(LoadedFrame& frame, Progress* progress);
     void check(const std::string& what, const std::string& file);
 
     const Options& m_opts;
+    std::string m_flag; ///< "--denoise" or "--features", for messages
+    bool m_features = false; ///< --features: bind the feature outputs instead of "output"
     std::string m_method;
     std::map<std::string, std::string> m_params;
     afn::DeviceRef m_device;

@@ -10,13 +10,16 @@ using afn::io::Role;
 
 SequenceDenoiser::SequenceDenoiser(const Options& opts, const Action& action)
     : m_opts(opts)
+    , m_flag("--" + action.name)
+    , m_features(action.name == "features")
 {
     m_params = action.mods;
     auto it = m_params.find("method");
-    if (it == m_params.end())
-        throw CliError("--denoise needs :method=NAME (see afntool --help for the methods)");
-    m_method = it->second;
-    m_params.erase(it);
+    if (it == m_params.end() && !m_features)
+        throw CliError("--denoise needs :method=NAME (see afntool --methods)");
+    m_method = it == m_params.end() ? "afn" : it->second;
+    if (it != m_params.end())
+        m_params.erase(it);
     m_device = afn::newDevice();
     if (!m_device)
         throw CliError("cannot create an afn device");
@@ -24,7 +27,9 @@ SequenceDenoiser::SequenceDenoiser(const Options& opts, const Action& action)
     m_device.commit();
     check("device", "");
     m_filter = m_device.newFilter(m_method.c_str());
-    check("--denoise", "");
+    check(m_flag, "");
+    if (m_features && afn::filterTypeFeatures(m_method.c_str()).empty())
+        throw CliError("--features: method '" + m_method + "' has no feature outputs");
 
     // Weights: ":weights=FILE" on this action, else --weights FILE; read once, handed over as data.
     std::string weights = opts.weights;
@@ -66,7 +71,7 @@ afn::Format formatFor(int components)
 
 } // namespace
 
-void SequenceDenoiser::process(LoadedFrame& frame, Progress* progress)
+void SequenceDenoiser::run(LoadedFrame& frame, Progress* progress)
 {
     afn::io::FrameImages& img = frame.images;
     const afn::io::RoleImage& color = img.roles.at(Role::Color);
@@ -77,7 +82,7 @@ void SequenceDenoiser::process(LoadedFrame& frame, Progress* progress)
         m_filter.set(name.c_str(), value);
     for (const auto& [key, value] : m_params)
         m_filter.set(key.c_str(), value);
-    check("--denoise", frame.ref.path);
+    check(m_flag, frame.ref.path);
 
     // The working-space beauty is the colour input; other roles as read.
     m_filter.setImage(AFN_IMAGE_COLOR, frame.beauty.data(), afn::Format::Float3, w, h);
@@ -99,12 +104,29 @@ void SequenceDenoiser::process(LoadedFrame& frame, Progress* progress)
         m_filter.setFloats(AFN_ARRAY_VIEW_PROJECTION, img.camera->viewProjection, 16);
         m_filter.setFloats(AFN_ARRAY_PIXEL_OFFSET, img.camera->pixelOffset, 2);
     }
-    m_output.assign(static_cast<std::size_t>(w) * h * 3, 0.0f);
-    m_filter.setImage(AFN_IMAGE_OUTPUT, m_output.data(), afn::Format::Float3, w, h);
+    if (m_features) {
+        // Every feature output, packed side by side in one buffer; no "output": the method
+        // stops once its features are written.
+        const std::vector<AFNFeatureInfo> features = afn::filterTypeFeatures(m_method.c_str());
+        int channels = 0;
+        for (const AFNFeatureInfo& f : features)
+            channels += f.channels;
+        m_output.assign(static_cast<std::size_t>(w) * h * channels, 0.0f);
+        int offset = 0;
+        for (const AFNFeatureInfo& f : features) {
+            m_filter.setImage((std::string(AFN_IMAGE_FEATURE_PREFIX) + f.name).c_str(),
+                m_output.data(), formatFor(f.channels), w, h, offset * sizeof(float),
+                channels * sizeof(float), 0);
+            offset += f.channels;
+        }
+    } else {
+        m_output.assign(static_cast<std::size_t>(w) * h * 3, 0.0f);
+        m_filter.setImage(AFN_IMAGE_OUTPUT, m_output.data(), afn::Format::Float3, w, h);
+    }
     m_filter.commit();
-    check("--denoise", frame.ref.path);
+    check(m_flag, frame.ref.path);
     m_filter.execute();
-    check("--denoise", frame.ref.path);
+    check(m_flag, frame.ref.path);
 
     const int nonFinite = m_filter.get<int>(AFN_STAT_NON_FINITE);
     const int negative = m_filter.get<int>(AFN_STAT_NEGATIVE);
@@ -116,7 +138,30 @@ void SequenceDenoiser::process(LoadedFrame& frame, Progress* progress)
         warn(std::to_string(negative) + " negative colour values clamped to 0 (" + frame.ref.path
                 + ")",
             m_opts.quiet, progress);
+}
+
+void SequenceDenoiser::process(LoadedFrame& frame, Progress* progress)
+{
+    run(frame, progress);
     frame.beauty.swap(m_output);
+}
+
+void SequenceDenoiser::writeFeatures(LoadedFrame& frame, const std::string& path,
+    const std::vector<std::string>& inputs, Progress* progress)
+{
+    run(frame, progress);
+    std::vector<std::string> channels;
+    for (const AFNFeatureInfo& f : afn::filterTypeFeatures(m_method.c_str())) {
+        static const char* const kRgb[] = { "R", "G", "B" };
+        for (int c = 0; c < f.channels; ++c)
+            channels.push_back(std::string(f.name) + "." + (f.channels == 1 ? "Z" : kRgb[c]));
+    }
+    const afn::io::RoleImage& color = frame.images.roles.at(Role::Color);
+    afn::io::WriteOptions wo;
+    wo.dataType = "float"; // features are read back exactly
+    wo.inputs = inputs;
+    wo.attributes["afn:method"] = m_method;
+    afn::io::writeImageAtomic(path, color.width, color.height, channels, m_output.data(), wo);
 }
 
 } // namespace afntool

@@ -106,6 +106,8 @@ Options parseCommandLine(int argc, const char* const* argv)
             o.actions.push_back({ "info", "", mods });
         } else if (flag == "--denoise") {
             o.actions.push_back({ "denoise", "", mods });
+        } else if (flag == "--features") {
+            o.actions.push_back({ "features", needValue(i, argc, argv, flag), mods });
         } else if (flag == "--preview") {
             o.actions.push_back({ "preview", needValue(i, argc, argv, flag), mods });
         } else if (flag == "--contact-sheet") {
@@ -190,6 +192,9 @@ std::string helpText()
        << "  --info                  layers, channels, windows, role mapping, per-role statistics\n"
        << "  --denoise:method=NAME[:param=value...]\n"
        << "                          denoise the sequence in frame order (history kept)\n"
+       << "  --features[:method=afn] OUT.exr\n"
+       << "                          the learned method's network inputs as it prepares them\n"
+       << "                          (one float layer per feature; no weights needed)\n"
        << "  --preview OUT.png       display-referred beauty (:display=NAME:view=NAME)\n"
        << "  --contact-sheet OUT.png every AOV of the frame as a labelled tile\n"
        << "                          (:columns=4:tilesize=480)\n"

@@ -41,17 +41,6 @@ std::string ofxSafe(std::string s)
     return s;
 }
 
-std::vector<std::string> splitChoices(const char* choices)
-{
-    std::vector<std::string> out;
-    std::stringstream ss(choices);
-    std::string item;
-    while (std::getline(ss, item, '|'))
-        if (!item.empty())
-            out.push_back(item);
-    return out;
-}
-
 ParamCatalog buildCatalog()
 {
     ParamCatalog c;
@@ -180,7 +169,7 @@ void defineParams(OfxImageEffectHandle descriptor, bool temporalDefault)
             d.set(kOfxParamPropDisplayMax, i.maxValue);
             d.set(kOfxParamPropDoubleType, kOfxParamDoubleTypePlain);
         } else {
-            const std::vector<std::string> options = splitChoices(i.choices);
+            const std::vector<std::string> options = afn::splitChoices(i.choices);
             d.setStrings(kOfxParamPropChoiceOption, options);
             auto it = std::find(options.begin(), options.end(), i.defaultString);
             d.set(kOfxParamPropDefault, it == options.end() ? 0 : int(it - options.begin()));
@@ -255,7 +244,7 @@ Settings readSettings(OfxImageEffectHandle instance)
             check(suites().param->paramGetValue(paramHandle(set, p.ofxName), &v.number),
                 "reading parameter " + p.ofxName);
         } else if (p.info.type == AFN_PARAM_STRING) {
-            const std::vector<std::string> options = splitChoices(p.info.choices);
+            const std::vector<std::string> options = afn::splitChoices(p.info.choices);
             const int index = getIntValue(set, p.ofxName);
             if (index < 0 || index >= static_cast<int>(options.size()))
                 throw OfxError(kOfxStatErrValue, "parameter " + p.ofxName + " index out of range");

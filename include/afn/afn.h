@@ -93,6 +93,8 @@ typedef enum AFNDeviceType {
 #define AFN_IMAGE_ALPHA "alpha" ///< coverage, passed through to a FLOAT4 output
 /// Output image.
 #define AFN_IMAGE_OUTPUT "output"
+/// Prefix of a method's feature outputs ("feature.<name>", see afnGetFilterTypeFeature).
+#define AFN_IMAGE_FEATURE_PREFIX "feature."
 /// Parameters every filter has: the conventions of the bound inputs.
 #define AFN_CONVENTION_NORMAL_SPACE "normal.space"
 #define AFN_CONVENTION_DEPTH_KIND "depth.kind"
@@ -133,6 +135,15 @@ typedef struct AFNParamInfo {
     const char* label; ///< short human label
     const char* help; ///< one-line description with units and source of the default
 } AFNParamInfo;
+
+/// Description of one feature output: an intermediate image a method can write besides "output"
+/// (for learned methods, the inputs of the network exactly as it sees them; training tools read
+/// them so that they never re-implement the input preparation).
+typedef struct AFNFeatureInfo {
+    const char* name; ///< bound as AFN_IMAGE_FEATURE_PREFIX + name
+    int channels; ///< 1 or 3; the bound image needs at least this many
+    const char* help; ///< one line: what the values are (range, space, scaling)
+} AFNFeatureInfo;
 
 typedef struct AFNDeviceImpl* AFNDevice;
 typedef struct AFNFilterImpl* AFNFilter;
@@ -175,6 +186,11 @@ AFN_API const char* afnGetFilterTypeDescription(const char* type);
 /// its trained weights. False for a learned method without built-in weights (set them with
 /// afnSetFilterData(filter, AFN_DATA_WEIGHTS, ...)) and for unknown types.
 AFN_API bool afnIsFilterTypeReady(const char* type);
+/// Number of feature outputs of a filter type (0 for most methods), -1 if unknown.
+AFN_API int afnGetFilterTypeNumFeatures(const char* type);
+/// Fill *info with the index-th feature output of a type; false if out of range. Strings are
+/// static.
+AFN_API bool afnGetFilterTypeFeature(const char* type, int index, AFNFeatureInfo* info);
 /// Number of parameters of a filter type (common input-convention parameters included), -1 if
 /// unknown.
 AFN_API int afnGetFilterTypeNumParams(const char* type);
@@ -192,8 +208,11 @@ AFN_API void afnReleaseFilter(AFNFilter filter);
 
 /// Bind an image. Inputs: "color" (required), "albedo", "normal", "depth", "position", "motion",
 /// "alpha". Output: "output" (FLOAT3 or FLOAT4; with FLOAT4 the 4th channel is passed through from
-/// "alpha" or set to 1). Strides in bytes; 0 = packed. The buffer must stay valid until it is
-/// unset or replaced; the filter never keeps pointers into it across afnExecuteFilter() calls.
+/// "alpha" or set to 1). Feature outputs: "feature.<name>" (see afnGetFilterTypeFeature). A filter
+/// needs "output" or at least one feature output; with feature outputs only, the method stops once
+/// they are written (a learned method then runs without weights). Strides in bytes; 0 = packed. The
+/// buffer must stay valid until it is unset or replaced; the filter never keeps pointers into it
+/// across afnExecuteFilter() calls.
 AFN_API void afnSetFilterImage(AFNFilter filter, const char* name, void* ptr, AFNFormat format,
     size_t width, size_t height, size_t byteOffset, size_t pixelByteStride,
     ptrdiff_t rowByteStride);

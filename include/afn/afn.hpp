@@ -215,6 +215,38 @@ inline DeviceRef newDevice(DeviceType type = DeviceType::Default)
     return DeviceRef(afnNewDevice(static_cast<AFNDeviceType>(type)));
 }
 
+/// Feature outputs of a filter type.
+inline std::vector<AFNFeatureInfo> filterTypeFeatures(const char* type)
+{
+    std::vector<AFNFeatureInfo> out;
+    const int n = afnGetFilterTypeNumFeatures(type);
+    for (int i = 0; i < n; ++i) {
+        AFNFeatureInfo info {};
+        if (afnGetFilterTypeFeature(type, i, &info))
+            out.push_back(info);
+    }
+    return out;
+}
+
+/// Split a '|'-separated choice list (AFNParamInfo::choices).
+inline std::vector<std::string> splitChoices(const char* choices)
+{
+    std::vector<std::string> out;
+    std::string item;
+    for (const char* c = choices ? choices : "";; ++c) {
+        if (*c == '|' || *c == '\0') {
+            if (!item.empty())
+                out.push_back(item);
+            item.clear();
+            if (*c == '\0')
+                break;
+        } else {
+            item += *c;
+        }
+    }
+    return out;
+}
+
 /// True when filters of this type run as created (see afnIsFilterTypeReady).
 inline bool isFilterTypeReady(const char* type)
 {

@@ -151,6 +151,24 @@ AFN_API bool afnIsFilterTypeReady(const char* type)
     return t && t->ready;
 }
 
+AFN_API int afnGetFilterTypeNumFeatures(const char* type)
+{
+    const afn::FilterType* t = type ? afn::findFilterType(type) : nullptr;
+    return t ? static_cast<int>(t->features.size()) : -1;
+}
+
+AFN_API bool afnGetFilterTypeFeature(const char* type, int index, AFNFeatureInfo* info)
+{
+    const afn::FilterType* t = type ? afn::findFilterType(type) : nullptr;
+    if (!t || !info || index < 0 || index >= static_cast<int>(t->features.size()))
+        return false;
+    const afn::FeatureOutput& f = t->features[index];
+    info->name = f.name.c_str();
+    info->channels = f.channels;
+    info->help = f.help.c_str();
+    return true;
+}
+
 AFN_API int afnGetFilterTypeNumParams(const char* type)
 {
     const afn::FilterType* t = type ? afn::findFilterType(type) : nullptr;

@@ -190,6 +190,26 @@ TEST(Afntool, SequenceDenoiseWritesEveryFrame)
     EXPECT_EQ(dir.entries().size(), 8u);
 }
 
+TEST(Afntool, FeaturesWriteTheNetworkInputsPerFrame)
+{
+    TempDir dir;
+    const CliResult r
+        = runAfntool({ "--frames", "0-1", kSequence, "--features", dir.file("features.####.exr") });
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    const afn::io::FileInfo info = afn::io::inspect(dir.file("features.0001.exr"));
+    ASSERT_EQ(info.subimages.size(), 1u);
+    std::vector<std::string> channels = info.subimages[0].channels;
+    std::sort(channels.begin(), channels.end());
+    const std::vector<std::string> want = { "accumulated.B", "accumulated.G", "accumulated.R",
+        "albedo.B", "albedo.G", "albedo.R", "depth01.Z", "irradiance.B", "irradiance.G",
+        "irradiance.R", "normal01.B", "normal01.G", "normal01.R" };
+    EXPECT_EQ(channels, want);
+    for (const std::string& t : info.subimages[0].types)
+        EXPECT_EQ(t, "float");
+    expectCleanError(runAfntool({ kFrame0, "--features:method=svgf", dir.file("f.exr") }),
+        "has no feature outputs");
+}
+
 TEST(Afntool, MissingFrameIsNamed)
 {
     TempDir dir;

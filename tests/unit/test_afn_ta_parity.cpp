@@ -1,8 +1,9 @@
 // SPDX-License-Identifier: Apache-2.0
-// The training toolkit's numpy TA (training/afn/ta.py, which makes the TA-1spp training input)
-// against the core's Reprojector + TemporalAccumulator on committed vectors
-// (tests/data/afn_parity/ta_case.afnw: sub-pixel motion, off-screen taps, position and normal
-// rejections). Both compute in float32 in the same order, so they must agree exactly.
+// The core's Reprojector + TemporalAccumulator against golden vectors made by an independent
+// numpy implementation of BMFR's accumulation (tests/data/afn_parity/ta_case.afnw: sub-pixel
+// motion, off-screen taps, position and normal rejections). Both compute in float32 in the same
+// order, so they must agree exactly. (The training toolkit now prepares its inputs through the core
+// itself, afntool --features.)
 #include "afn_test_util.h"
 #include "filter/frame.h"
 #include "stages/reproject.h"

@@ -1,13 +1,13 @@
 # SPDX-License-Identifier: Apache-2.0
 """Colour and feature transforms shared by the network, the dataset and the C++ core.
 
-The C++ core (lib/core/afn_features.cpp, lib/core/demodulate.h) uses the same constants; they are
+The C++ core (lib/core/methods/afn/features.cpp, lib/core/stages/demodulate.h) uses the same constants; they are
 kept in agreement by the parity test (tests/data/afn_parity) and tests/unit/test_afn_*.cpp.
 
 Conventions:
   * tone map for network inputs (NBGD/WSKPN, Lee et al. Sec. III-A):
     ``T(x) = clip(max(x, 0) ** (1 / 2.2), 0, 1)``
-  * demodulation (lib/core/demodulate.h): ``irr = colour / max(albedo, ALBEDO_EPS)``, remodulation
+  * demodulation (lib/core/stages/demodulate.h): ``irr = colour / max(albedo, ALBEDO_EPS)``, remodulation
     ``colour = irr * max(albedo, ALBEDO_EPS)``; ALBEDO_EPS = 2^-10.
   * shading normal to [0, 1]: ``clip(n * 0.5 + 0.5, 0, 1)``.
   * depth to [0, 1]: per-frame min-max over finite values below DEPTH_SKY (WSKPN); values that are
@@ -18,8 +18,8 @@ import numpy as np
 import torch
 
 GAMMA = 2.2                     # tone-map exponent 1 / GAMMA
-ALBEDO_EPS = 1.0 / 1024.0       # floor of the albedo divisor, lib/core/demodulate.h kAlbedoEpsilon
-MAX_IRRADIANCE = 1e15           # lib/core/demodulate.h kMaxIrradiance
+ALBEDO_EPS = 1.0 / 1024.0       # floor of the albedo divisor, lib/core/stages/demodulate.h kAlbedoEpsilon
+MAX_IRRADIANCE = 1e15           # lib/core/stages/demodulate.h kMaxIrradiance
 DEPTH_SKY = 1e9                 # depth at or beyond this is "no surface" (Blender sky: 1e10)
 
 

@@ -1,78 +1,66 @@
 # SPDX-License-Identifier: Apache-2.0
-"""Training data: rendered sequences (training/render-dataset, docs/dataset.md) read through
-OpenImageIO, turned into the AFN inputs exactly as the C++ "afn" filter prepares them:
+"""Training data: rendered sequences (training/render-dataset, docs/dataset.md) turned into the AFN
+inputs by the C++ library itself, so the Python and C++ inputs cannot drift:
 
-    colour    Combined RGB, non-finite -> 0, negatives -> 0 (the core's gather)
-    albedo    Denoising Albedo clamped to [0, 1]; normals normalised (zero stays zero), as the gather
-    c1        colour / max(albedo, 2^-10)                      (color.demodulate)
-    cta       BMFR TA of c1 (ta.py) with Vector motion (y up in Blender -> negated), Position, Normal
-    normal01  world Normal * 0.5 + 0.5;  depth01: planar Depth, per-frame min-max (color.py)
-    target    reference.NNNN.exr RGB (full radiance, albedo included)
+    afntool --frames F SCENE/frame.####.exr --features:alphaMin=A CACHE/features.####.exr
+    afntool --frames F SCENE/reference.####.exr -d float -o CACHE/target.####.exr
 
-A scene folder holds frame.NNNN.exr and reference.NNNN.exr; a dataset root holds scene folders
-(and a manifest.json). Whole scenes are prepared once and kept in memory as float32 arrays;
-:class:`CropSampler` draws 128x128 crops with random flips and brightness jitter in [0.8, 1.2].
+``--features`` runs the ``afn`` method's input preparation (the role mapping of any renderer's
+files, the bad-input rule, demodulation, BMFR temporal accumulation, feature scaling) and writes
+what the network sees, one float layer per feature (afnGetFilterTypeFeature):
+
+    c1        irradiance      1-spp colour / max(albedo, 2^-10), linear HDR, >= 0
+    cta       accumulated     TA-1spp: temporal accumulation of c1, linear HDR
+    albedo    albedo          [0, 1] (1 when the file has none)
+    normal01  normal01        shading normal * 0.5 + 0.5, [0, 1]
+    depth01   depth01         per-frame min-max depth, [0, 1]
+    target    the reference's beauty (full radiance, albedo included), as afntool reads it
+
+A scene folder holds frame.NNNN.exr and reference.NNNN.exr; a dataset root holds scene folders.
+Whole scenes are prepared once and kept in memory as float32 arrays; :class:`CropSampler` draws
+128x128 crops with random flips and brightness jitter in [0.8, 1.2].
 """
 
 import glob
 import os
 import re
+import tempfile
 
 import numpy as np
 import torch
 
-from . import color
-from .ta import TemporalAccumulator
+from . import afntool
 
 FRAME_RE = re.compile(r"frame\.(\d+)\.exr$")
 KEYS = ("c1", "cta", "albedo", "normal01", "depth01", "target")
+# Dataset key -> (feature layer written by afntool --features, channel suffixes).
+FEATURES = {"c1": ("irradiance", "RGB"), "cta": ("accumulated", "RGB"),
+            "albedo": ("albedo", "RGB"), "normal01": ("normal01", "RGB"),
+            "depth01": ("depth01", "Z")}
 
 
-def _read_channels(path, names):
-    """Read the named channels (matched by suffix, e.g. 'Combined.R') into (H, W, len(names))."""
+def read_layers(path, layers):
+    """Read named channels of an EXR: {key: (H, W, C) float32} for {key: (layer, suffixes)}."""
     import OpenImageIO as oiio
-    inp = oiio.ImageInput.open(path)
-    if inp is None:
-        raise OSError(f"cannot open {path}: {oiio.geterror()}")
-    try:
-        spec = inp.spec()
-        all_names = list(spec.channelnames)
-        pixels = inp.read_image(0, spec.nchannels, "float")
-    finally:
-        inp.close()
-    if pixels is None:
-        raise OSError(f"cannot read {path}")
-    pixels = np.asarray(pixels, np.float32).reshape(spec.height, spec.width, spec.nchannels)
-    idx = []
-    for n in names:
-        hits = [i for i, c in enumerate(all_names) if c == n or c.endswith("." + n)]
-        if not hits:
-            raise KeyError(f"{path}: no channel '{n}' (has: {', '.join(all_names)})")
-        idx.append(hits[0])
-    return pixels[..., idx]
-
-
-def _rgb(path, layer):
-    return _read_channels(path, [f"{layer}.{c}" for c in "RGB"])
-
-
-def _reference_rgb(path):
-    try:
-        return _rgb(path, "Combined")
-    except KeyError:
-        return _read_channels(path, ["R", "G", "B"])
-
-
-def _unit(n):
-    """Normalise like the core's gather: n * (1 / |n|) if |n| > 1e-12, else 0 (float32)."""
-    n = n.astype(np.float32)
-    length = np.sqrt(n[..., 0] * n[..., 0] + n[..., 1] * n[..., 1] + n[..., 2] * n[..., 2])
-    inv = np.where(length > 1e-12, np.float32(1) / np.maximum(length, np.float32(1e-30)), 0)
-    return (n * inv.astype(np.float32)[..., None]).astype(np.float32)
+    buf = oiio.ImageBuf(path)
+    if buf.has_error:
+        raise OSError(f"cannot read {path}: {buf.geterror()}")
+    spec = buf.spec()
+    names = list(spec.channelnames)
+    px = np.asarray(buf.get_pixels(oiio.FLOAT), np.float32).reshape(
+        spec.height, spec.width, spec.nchannels)
+    out = {}
+    for key, (layer, suffixes) in layers.items():
+        wanted = [f"{layer}.{c}" if layer else c for c in suffixes]
+        missing = [n for n in wanted if n not in names]
+        if missing:
+            raise KeyError(f"{path}: no channel {', '.join(missing)} (has: {', '.join(names)})")
+        out[key] = np.ascontiguousarray(px[..., [names.index(n) for n in wanted]])
+    return out
 
 
 def frame_numbers(scene_dir):
-    """Sorted frame numbers that have both a noisy frame and a reference."""
+    """Sorted frame numbers (as text) that have both a noisy frame and a reference."""
     nums = []
     for f in glob.glob(os.path.join(scene_dir, "frame.*.exr")):
         m = FRAME_RE.search(f)
@@ -81,8 +69,15 @@ def frame_numbers(scene_dir):
     return sorted(nums)
 
 
-def load_scene(scene_dir, alpha_min=0.2, max_frames=None):
-    """Prepare every frame of one scene (in order, TA needs the history).
+def load_scene(scene_dir, alpha_min=0.2, max_frames=None, tool=None):
+    """Prepare every frame of one scene through afntool (in order: TA needs the history).
+
+    Args:
+        scene_dir: folder with frame.NNNN.exr and reference.NNNN.exr (any renderer's naming
+            that afntool maps; frame numbers with 4 digits).
+        alpha_min: temporal accumulation's minimum blend factor (the afn method's alphaMin).
+        max_frames: first frames only (None: all).
+        tool: afntool path (None: :func:`afntool.find_afntool`).
 
     Returns:
         dict of numpy arrays, each (F, H, W, C) float32, keys :data:`KEYS`.
@@ -90,27 +85,21 @@ def load_scene(scene_dir, alpha_min=0.2, max_frames=None):
     nums = frame_numbers(scene_dir)[:max_frames]
     if not nums:
         raise FileNotFoundError(f"{scene_dir}: no frame.NNNN.exr with a reference.NNNN.exr")
-    ta = TemporalAccumulator(alpha_min=alpha_min)
-    out = {k: [] for k in KEYS}
-    for n in nums:
-        path = os.path.join(scene_dir, f"frame.{n}.exr")
-        col = _rgb(path, "Combined")
-        col = np.where(np.isfinite(col), np.maximum(col, 0), 0).astype(np.float32)
-        alb = np.nan_to_num(_rgb(path, "Denoising Albedo"), nan=0.0, posinf=0.0, neginf=0.0)
-        alb = np.clip(alb, 0.0, 1.0)                       # the core's gather clamps albedo
-        nrm = _unit(np.nan_to_num(_read_channels(path, ["Normal.X", "Normal.Y", "Normal.Z"])))
-        pos = np.nan_to_num(_read_channels(path, ["Position.X", "Position.Y", "Position.Z"]))
-        depth = _read_channels(path, ["Depth.Z"])[..., 0]
-        vec = np.nan_to_num(_read_channels(path, ["Vector.X", "Vector.Y"]))
-        motion = np.stack([vec[..., 0], -vec[..., 1]], -1)   # Blender y up -> rows (y down)
-        c1 = color.demodulate(col, alb)
-        cta, _ = ta.accumulate(c1, motion=motion, position=pos, normal=nrm)
-        out["c1"].append(c1)
-        out["cta"].append(cta)
-        out["albedo"].append(alb)
-        out["normal01"].append(color.normal_to_unit_range(nrm))
-        out["depth01"].append(color.depth_to_unit_range(depth)[..., None])
-        out["target"].append(_reference_rgb(os.path.join(scene_dir, f"reference.{n}.exr")))
+    frames = afntool.frame_list(nums)
+    with tempfile.TemporaryDirectory(prefix="afn-features-") as cache:
+        afntool.run(["-q", "--frames", frames, os.path.join(scene_dir, "frame.####.exr"),
+                     f"--features:alphaMin={alpha_min}",
+                     os.path.join(cache, "features.####.exr")], tool)
+        afntool.run(["-q", "--frames", frames, os.path.join(scene_dir, "reference.####.exr"),
+                     "-d", "float", "-o", os.path.join(cache, "target.####.exr")], tool)
+        out = {k: [] for k in KEYS}
+        for n in nums:
+            n4 = f"{int(n):04d}"
+            feats = read_layers(os.path.join(cache, f"features.{n4}.exr"), FEATURES)
+            feats.update(read_layers(os.path.join(cache, f"target.{n4}.exr"),
+                                     {"target": ("", "RGB")}))
+            for k in KEYS:
+                out[k].append(feats[k])
     return {k: np.stack(v).astype(np.float32) for k, v in out.items()}
 
 

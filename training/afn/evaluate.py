@@ -26,6 +26,7 @@ import subprocess
 import sys
 import time
 
+from . import afntool
 from .weights import WeightsFormatError, loads
 
 REPO = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
@@ -42,13 +43,6 @@ VARIANTS = [("1spp", "1-spp only"), ("ta", "TA-1spp only"), ("fusion", "Fusion o
 
 def log(msg):
     print(f"afn.evaluate: {msg}", file=sys.stderr, flush=True)
-
-
-def find_afntool():
-    """Newest ../build*/cli/afntool next to training/, or None."""
-    found = [p for p in glob.glob(os.path.join(REPO, "build*", "cli", "afntool"))
-             if os.path.isfile(p) and os.access(p, os.X_OK)]
-    return max(found, key=os.path.getmtime) if found else None
 
 
 def sha256(path):
@@ -81,13 +75,6 @@ def frames_found(scene_dir):
     return sorted(nums)
 
 
-def frame_spec(nums):
-    """afntool --frames syntax: A-B when contiguous, else a comma list."""
-    if nums == list(range(nums[0], nums[-1] + 1)):
-        return f"{nums[0]}-{nums[-1]}"
-    return ",".join(map(str, nums))
-
-
 def afntool_command(args, scene, method, weights):
     d = os.path.join(args.data, scene)
     cmd = [args.afntool, "--threads", str(args.threads), "--frames", args.scene_frames[scene]]
@@ -99,13 +86,6 @@ def afntool_command(args, scene, method, weights):
     return cmd + ["--compare", os.path.join(d, "reference.####.exr"), "--json"]
 
 
-def error_text(stderr):
-    """afntool's own error line(s), else the last line of its stderr."""
-    lines = [ln.strip() for ln in stderr.splitlines() if ln.strip()]
-    errs = [ln for ln in lines if "ERROR" in ln]
-    return " ".join(errs or lines[-1:]) or "no message"
-
-
 def run_one(args, scene, method, weights=None, label=None):
     """Metrics of one method on one scene: {'mean', 'frames', 'seconds'} or {'error'}."""
     cmd = afntool_command(args, scene, method, weights)
@@ -114,7 +94,7 @@ def run_one(args, scene, method, weights=None, label=None):
     try:
         p = subprocess.run(cmd, check=True, capture_output=True, text=True)
     except subprocess.CalledProcessError as e:
-        msg = f"afntool exited with {e.returncode}: {error_text(e.stderr)}"
+        msg = f"afntool exited with {e.returncode}: {afntool.error_text(e.stderr)}"
         log(f"{scene}: {label} FAILED: {msg}")
         return {"error": msg, "command": shlex.join(cmd)}
     try:
@@ -318,7 +298,7 @@ def check_inputs(args):
         nums = frames_found(d)
         if not nums:
             raise SystemExit(f"afn.evaluate: no frame.NNNN.exr with a reference.NNNN.exr in {d}")
-        args.scene_frames[scene] = args.frames or frame_spec(nums)
+        args.scene_frames[scene] = args.frames or afntool.frame_list(nums)
 
 
 def data_summary(data):
@@ -356,7 +336,7 @@ def main(argv=None):
     args = ap.parse_args(argv)
     args.scenes = [s for s in args.scenes.split(",") if s]
     args.ablation = parse_ablation(args.ablation)
-    args.afntool = args.afntool or find_afntool()
+    args.afntool = args.afntool or afntool.find_afntool()
     check_inputs(args)
 
     meta = {"date": datetime.datetime.now(datetime.timezone.utc).strftime("%Y-%m-%d %H:%M UTC"),

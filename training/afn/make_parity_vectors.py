@@ -9,8 +9,9 @@ Files (all in the weights-archive format of weights.py, so the C++ reader is exe
   case_<variant>.afnw      inputs c1, cta, albedo, normal01, depth01 and the PyTorch outputs
                            o (cropped), i, d_ta, d_1spp, alpha (padded size); images are stored
                            (H, W, C) interleaved, float32.
-  ta_case.afnw             3 frames (23x13) of irradiance, motion (pixels, y down), position and
-                           normal, and the outputs of the Python TA (ta.py): acc_N, spp_N
+(tests/data/afn_parity/ta_case.afnw, a golden case of the core's temporal accumulation, was made
+by an earlier numpy TA; the toolkit now prepares its inputs through afntool and has no TA of its
+own, so that file is kept as committed.)
 The frame is 37x21 (odd, not a multiple of 8) so the pad-to-8 rule is covered.
 """
 
@@ -21,7 +22,6 @@ import numpy as np
 import torch
 
 from .model import AFN, AFNConfig
-from .ta import TemporalAccumulator
 from .weights import dumps, save_model
 
 WIDTH, HEIGHT = 37, 21
@@ -64,29 +64,6 @@ def run(model: AFN, inputs: dict) -> dict:
             for k in ("o", "i", "d_ta", "d_1spp", "alpha")}
 
 
-def make_ta_case(seed: int = 2, frames: int = 3, h: int = 13, w: int = 23) -> dict:
-    """A TA sequence with sub-pixel motion, off-screen taps, disocclusions and zero normals."""
-    rng = np.random.RandomState(seed)
-    ta = TemporalAccumulator()
-    out = {}
-    yy, xx = np.mgrid[0:h, 0:w].astype(np.float32)
-    for f in range(frames):
-        irr = rng.exponential(1.0, (h, w, 3)).astype(np.float32)
-        motion = rng.uniform(-1.5, 1.5, (h, w, 2)).astype(np.float32)
-        motion[0, 0] = [-40.0, 0.0]                             # far off screen
-        pos = np.stack([xx * 0.1, yy * 0.1, np.full_like(xx, 2.0)], -1).astype(np.float32)
-        pos[h // 2:, w // 2:, 2] += np.float32(f)                # a block that moves in depth
-        n = np.zeros((h, w, 3), np.float32)
-        n[..., 2] = 1.0
-        n[2, 3] = 0.0                                            # zero normal never matches
-        if f == 2:
-            n[:4, :4] = [1.0, 0.0, 0.0]                          # turned normals: rejected
-        acc, spp = ta.accumulate(irr, motion=motion, position=pos, normal=n)
-        out.update({f"irr_{f}": irr, f"motion_{f}": motion, f"position_{f}": pos,
-                    f"normal_{f}": n, f"acc_{f}": acc, f"spp_{f}": spp[..., None]})
-    return out
-
-
 def main(argv=None):
     here = os.path.dirname(os.path.abspath(__file__))
     default_out = os.path.join(here, "..", "..", "tests", "data", "afn_parity")
@@ -104,8 +81,6 @@ def main(argv=None):
                           {"width": WIDTH, "height": HEIGHT, "variant": variant,
                            "torch": torch.__version__}))
         print(f"{variant}: o range [{outputs['o'].min():.4f}, {outputs['o'].max():.4f}]")
-    with open(os.path.join(args.out, "ta_case.afnw"), "wb") as f:
-        f.write(dumps(make_ta_case(), {"frames": 3}))
     print(f"wrote {os.path.normpath(args.out)}")
 
 

@@ -2,7 +2,7 @@
 """The Adaptive Fusion Network (Lee, Lee, Yoon, Song, "Real-Time Monte Carlo Denoising With
 Adaptive Fusion Network", IEEE Access), Section III, as implemented by afn.
 
-The C++ inference engine (lib/core/afn_network.cpp) implements exactly this graph; the parameter
+The C++ inference engine (lib/core/methods/afn/network.cpp) implements exactly this graph; the parameter
 names (``enc1.weight`` ...) are the tensor names of the weights archive (weights.py).
 
 Fixed by the paper: 7x7 per-pixel kernels (49 channels); K_TA applied at full resolution to the

@@ -124,12 +124,9 @@ def init_weights(model, path, device):
               f"{', '.join(fresh)}", flush=True)
 
 
-def main(argv=None):
-    args = parse_args(argv)
-    device = resolve_device(args.device)
-    if args.threads:
-        torch.set_num_threads(args.threads)
-    torch.manual_seed(args.seed)
+def resolve_scenes(args):
+    """(all scenes by name, training names, held-out names) from the arguments; SystemExit on a
+    contradiction (unknown held-out scene, a scene both trained on and held out, none left)."""
     all_scenes = find_scenes(args.data)
     holdout = [s for s in args.holdout.split(",") if s]
     for s in holdout:
@@ -141,14 +138,90 @@ def main(argv=None):
         raise SystemExit("afn.train: a scene is both trained on and held out")
     if not train_names:
         raise SystemExit("afn.train: no training scenes")
-    cfg = AFNConfig(variant=args.variant, enc=tuple(int(v) for v in args.enc.split(",")),
-                    dec=tuple(int(v) for v in args.dec.split(",")), refine=args.refine)
-    os.makedirs(os.path.join(args.out, "checkpoints"), exist_ok=True)
-    config = {**vars(args), "device": str(device), "model": cfg.to_dict(), "train_scenes":
-              train_names, "holdout_scenes": holdout, "git": git_revision(),
-              "torch": torch.__version__}
-    with open(os.path.join(args.out, "config.json"), "w") as f:
-        json.dump(config, f, indent=2)
+    return all_scenes, train_names, holdout
+
+
+def model_config(args):
+    """The AFNConfig the arguments describe."""
+    return AFNConfig(variant=args.variant, enc=tuple(int(v) for v in args.enc.split(",")),
+                     dec=tuple(int(v) for v in args.dec.split(",")), refine=args.refine)
+
+
+class RunFolder:
+    """A self-describing results folder: config.json, log.csv (one line per epoch),
+    checkpoints/latest.pt (resume point) and model.afnw (the latest weights for the C++ core)."""
+
+    def __init__(self, path):
+        self.path = path
+        self.latest = os.path.join(path, "checkpoints", "latest.pt")
+        self.log = os.path.join(path, "log.csv")
+        self.weights = os.path.join(path, "model.afnw")
+        os.makedirs(os.path.dirname(self.latest), exist_ok=True)
+
+    def save_config(self, config):
+        with open(os.path.join(self.path, "config.json"), "w") as f:
+            json.dump(config, f, indent=2)
+
+    def resume(self, model, opt, sampler, device):
+        """Restore the latest checkpoint if there is one; returns the epoch to start from."""
+        if not os.path.exists(self.latest):
+            return 0
+        ck = torch.load(self.latest, map_location=device)
+        model.load_state_dict(ck["model"])
+        opt.load_state_dict(ck["optimizer"])
+        sampler.rng.set_state(ck["sampler_rng"])
+        torch.set_rng_state(ck["torch_rng"])
+        print(f"resumed from {self.latest} after epoch {ck['epoch']}", flush=True)
+        return ck["epoch"]
+
+    def append_log(self, epoch, train_smape, val_psnr, val_smape, seconds):
+        if not os.path.exists(self.log):
+            with open(self.log, "w") as f:
+                f.write("epoch,train_smape,val_psnr,val_smape,seconds\n")
+        with open(self.log, "a") as f:
+            f.write(f"{epoch},{train_smape:.6f},{val_psnr:.4f},{val_smape:.6f},{seconds:.1f}\n")
+
+    def checkpoint(self, model, opt, sampler, epoch, cfg, device):
+        """Write latest.pt atomically and export model.afnw."""
+        tmp = self.latest + ".tmp"
+        torch.save({"model": model.state_dict(), "optimizer": opt.state_dict(), "epoch": epoch,
+                    "config": cfg.to_dict(), "sampler_rng": sampler.rng.get_state(),
+                    "torch_rng": torch.get_rng_state()}, tmp)
+        os.replace(tmp, self.latest)
+        save_model(self.weights, model.cpu())
+        model.to(device)
+
+
+def train_epoch(model, opt, sampler, steps, batch, device):
+    """One epoch of SMAPE steps; returns (mean loss, batches skipped as non-finite)."""
+    losses, skipped = [], 0
+    for _ in range(steps):
+        b = to_tensors(sampler.batch(batch), device)
+        loss = smape(forward(model, b), b["target"])
+        opt.zero_grad(set_to_none=True)
+        loss.backward()
+        grads_ok = all(torch.isfinite(p.grad).all() for p in model.parameters()
+                       if p.grad is not None)
+        if not (torch.isfinite(loss) and grads_ok):
+            skipped += 1          # never let one bad batch poison the weights
+            continue
+        opt.step()
+        losses.append(loss.item())
+    return (float(np.mean(losses)) if losses else float("nan")), skipped
+
+
+def main(argv=None):
+    args = parse_args(argv)
+    device = resolve_device(args.device)
+    if args.threads:
+        torch.set_num_threads(args.threads)
+    torch.manual_seed(args.seed)
+    all_scenes, train_names, holdout = resolve_scenes(args)
+    cfg = model_config(args)
+    run = RunFolder(args.out)
+    run.save_config({**vars(args), "device": str(device), "model": cfg.to_dict(),
+                     "train_scenes": train_names, "holdout_scenes": holdout,
+                     "git": git_revision(), "torch": torch.__version__})
 
     mf = args.max_frames or None
     print(f"loading {len(train_names)} training and {len(holdout)} held-out scenes ...", flush=True)
@@ -160,54 +233,22 @@ def main(argv=None):
 
     model = AFN(cfg).to(device)
     opt = torch.optim.Adam(model.parameters(), lr=args.lr)
-    start = 0
-    latest = os.path.join(args.out, "checkpoints", "latest.pt")
-    if os.path.exists(latest):
-        ck = torch.load(latest, map_location=device)
-        model.load_state_dict(ck["model"])
-        opt.load_state_dict(ck["optimizer"])
-        start = ck["epoch"]
-        sampler.rng.set_state(ck["sampler_rng"])
-        torch.set_rng_state(ck["torch_rng"])
-        print(f"resumed from {latest} after epoch {start}", flush=True)
-    elif args.init:
+    start = run.resume(model, opt, sampler, device)
+    if start == 0 and args.init:
         init_weights(model, args.init, device)
         print(f"initialised from {args.init}", flush=True)
-    log_path = os.path.join(args.out, "log.csv")
-    if not os.path.exists(log_path):
-        with open(log_path, "w") as f:
-            f.write("epoch,train_smape,val_psnr,val_smape,seconds\n")
 
     run_start = time.time()
     for epoch in range(start, args.epochs):
         t0 = time.time()
-        losses, skipped = [], 0
-        for _ in range(steps):
-            batch = to_tensors(sampler.batch(args.batch), device)
-            loss = smape(forward(model, batch), batch["target"])
-            opt.zero_grad(set_to_none=True)
-            loss.backward()
-            grads_ok = all(torch.isfinite(p.grad).all() for p in model.parameters()
-                           if p.grad is not None)
-            if not (torch.isfinite(loss) and grads_ok):
-                skipped += 1          # never let one bad batch poison the weights
-                continue
-            opt.step()
-            losses.append(loss.item())
+        loss, skipped = train_epoch(model, opt, sampler, steps, args.batch, device)
         vp, vs = validate(model, val, device, args.val_frames)
         dt = time.time() - t0
-        with open(log_path, "a") as f:
-            f.write(f"{epoch + 1},{np.mean(losses):.6f},{vp:.4f},{vs:.6f},{dt:.1f}\n")
-        print(f"epoch {epoch + 1}/{args.epochs}: train SMAPE {np.mean(losses):.5f}, "
+        run.append_log(epoch + 1, loss, vp, vs, dt)
+        print(f"epoch {epoch + 1}/{args.epochs}: train SMAPE {loss:.5f}, "
               f"val PSNR {vp:.3f} dB, val SMAPE {vs:.5f} ({dt:.1f} s)"
               + (f", {skipped} non-finite batches skipped" if skipped else ""), flush=True)
-        tmp = latest + ".tmp"
-        torch.save({"model": model.state_dict(), "optimizer": opt.state_dict(), "epoch": epoch + 1,
-                    "config": cfg.to_dict(), "sampler_rng": sampler.rng.get_state(),
-                    "torch_rng": torch.get_rng_state()}, tmp)
-        os.replace(tmp, latest)
-        save_model(os.path.join(args.out, "model.afnw"), model.cpu())
-        model.to(device)
+        run.checkpoint(model, opt, sampler, epoch + 1, cfg, device)
         if args.minutes and time.time() - run_start > args.minutes * 60.0:
             print(f"time limit of {args.minutes} minutes reached after epoch {epoch + 1}", flush=True)
             break

@@ -1,6 +1,6 @@
 # SPDX-License-Identifier: Apache-2.0
 """The afn weights archive (``.afnw``), shared by the training toolkit and the C++ core
-(lib/core/afn_weights.cpp reads it with a bounds check on every field).
+(lib/core/nn/weights.cpp reads it with a bounds check on every field).
 
 Layout, all integers little-endian::
 

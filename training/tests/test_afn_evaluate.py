@@ -16,9 +16,9 @@ TRAINING = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 SEQUENCE = os.path.join(TRAINING, "..", "examples", "sequence")
 PARITY = os.path.join(TRAINING, "..", "tests", "data", "afn_parity")
 sys.path.insert(0, TRAINING)
-from afn import evaluate  # noqa: E402
+from afn import afntool, evaluate  # noqa: E402
 
-AFNTOOL = evaluate.find_afntool()
+AFNTOOL = afntool.find_afntool()
 SCENES = {"alpha": 0, "beta": 3}          # scene -> first example frame it shows
 HEADLINE = ["psnr", "ssim", "rmse", "smape"]
 
@@ -164,8 +164,8 @@ def test_failed_variant_is_a_footnote_not_a_crash(run):
 
 
 def test_helpers():
-    assert evaluate.frame_spec([0, 1, 2, 3]) == "0-3"
-    assert evaluate.frame_spec([2, 4, 5]) == "2,4,5"
+    assert afntool.frame_list([0, 1, 2, 3]) == "0-3"
+    assert afntool.frame_list([2, 4, 5]) == "2,4,5"
     assert evaluate.best_flags([30.0004, 30.0001, None], "{:.3f}", True) == [True, True, False]
     assert evaluate.best_flags([0.2, 0.1, 0.3], "{:.4f}", False) == [False, True, False]
     assert evaluate.parse_ablation("full=a.afnw,ta=b.afnw") == {"full": "a.afnw", "ta": "b.afnw"}

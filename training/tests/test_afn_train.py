@@ -37,6 +37,25 @@ def test_load_scene_prepares_inputs(scene):
     assert not np.array_equal(scene["cta"][1], scene["c1"][1])
 
 
+def test_features_are_the_cores_inputs(scene):
+    """c1 is the 1-spp colour over max(albedo, 2^-10) exactly as the core computes it (float32),
+    read from the Blender passes here only to cross-check afntool --features."""
+    px = dataset.read_layers(os.path.join(SEQUENCE, "frame.0000.exr"), {
+        "color": ("ViewLayer.Combined", "RGB"), "albedo": ("ViewLayer.Denoising Albedo", "RGB")})
+    color = np.where(np.isfinite(px["color"]), np.maximum(px["color"], 0), 0).astype(np.float32)
+    albedo = np.clip(np.nan_to_num(px["albedo"]), 0, 1).astype(np.float32)
+    c1 = np.minimum(color / np.maximum(albedo, np.float32(2.0 ** -10)), np.float32(1e15))
+    np.testing.assert_array_equal(scene["c1"][0], c1)
+    np.testing.assert_array_equal(scene["albedo"][0], albedo)
+
+
+def test_a_missing_afntool_is_a_clear_error(monkeypatch, tmp_path):
+    from afn import afntool
+    monkeypatch.setenv("AFNTOOL", str(tmp_path / "no-such-afntool"))
+    with pytest.raises(afntool.AfntoolError, match="afntool not found"):
+        dataset.load_scene(SEQUENCE, max_frames=1)
+
+
 def test_crop_sampler(scene):
     s = dataset.CropSampler([scene], crop=40, seed=1)
     b = s.batch(3)

@@ -75,14 +75,3 @@ def test_committed_parity_vectors_match_this_model(variant):
     # the inputs are reproducible too
     for k, v in mpv.make_inputs().items():
         np.testing.assert_array_equal(v, case[k])
-
-
-def test_committed_ta_vectors_match_this_ta():
-    """ta_case.afnw (checked bit-exactly against the C++ TA by tests/unit/test_afn_ta_parity.cpp)
-    still equals what afn/ta.py computes."""
-    with open(os.path.join(PARITY, "ta_case.afnw"), "rb") as f:
-        case, _ = loads(f.read())
-    now = mpv.make_ta_case()
-    assert set(now) == set(case)
-    for k in now:
-        np.testing.assert_array_equal(now[k], case[k], err_msg=k)

@@ -15,7 +15,7 @@ TRAINING = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 sys.path.insert(0, TRAINING)
 import render_dataset as rd  # noqa: E402
 
-# What issue 4 asks the library to cover between its scenes.
+# What the scene library must cover between its scenes.
 REQUIRED_COVERAGE = {
     "glossy", "mirror", "soft_shadows", "hard_shadows", "moving_light_static_camera",
     "light_switch", "fine_geometry", "high_frequency_texture", "refraction", "emissive", "indoor",

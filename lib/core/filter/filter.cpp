@@ -3,6 +3,7 @@
 
 #include "base/exception.h"
 #include "base/parallel.h"
+#include "filter/registry.h"
 #include "stages/demodulate.h"
 
 #include <algorithm>
@@ -28,10 +29,53 @@ static std::string sizeText(int w, int h)
     return std::to_string(w) + "x" + std::to_string(h);
 }
 
-Filter::Filter(const std::vector<ParamDesc>* table, StageNeeds stages)
-    : m_params(table)
-    , m_stages(stages)
+Filter::Filter(const FilterType& type)
+    : m_type(type)
+    , m_params(&type.params)
+    , m_stages(type.stages)
 {
+}
+
+namespace {
+
+/// The feature of `type` that image name `name` ("feature.<x>") binds, or null.
+const FeatureOutput* featureOf(const FilterType& type, const std::string& name)
+{
+    const std::string prefix = AFN_IMAGE_FEATURE_PREFIX;
+    if (name.compare(0, prefix.size(), prefix) != 0)
+        return nullptr;
+    for (const FeatureOutput& f : type.features)
+        if (name.compare(prefix.size(), std::string::npos, f.name) == 0)
+            return &f;
+    return nullptr;
+}
+
+} // namespace
+
+bool Filter::outputBound() const
+{
+    return m_images.count(AFN_IMAGE_OUTPUT) != 0;
+}
+
+void Filter::writeFeature(const std::string& name, const Image& image) const
+{
+    auto it = m_images.find(AFN_IMAGE_FEATURE_PREFIX + name);
+    if (it == m_images.end())
+        return;
+    const FeatureOutput* f = featureOf(m_type, it->first);
+    if (!f || image.channels() < f->channels || image.width() != m_frame.width
+        || image.height() != m_frame.height)
+        throwInvalidOperation("feature '" + name + "' does not match its description");
+    const ImageView dst = it->second.view();
+    parallelRows(dst.height, [&](int y0, int y1) {
+        for (int y = y0; y < y1; ++y)
+            for (int x = 0; x < dst.width; ++x) {
+                const float* v = image.at(x, y);
+                float* o = dst.atMutable(x, y);
+                for (int c = 0; c < f->channels; ++c)
+                    o[c] = v[c];
+            }
+    });
 }
 
 ImageView ImageBinding::view() const
@@ -48,10 +92,15 @@ ImageView ImageBinding::view() const
 
 void Filter::setImage(const std::string& name, const ImageBinding& b)
 {
-    if (name != AFN_IMAGE_OUTPUT && !isInputName(name))
+    const FeatureOutput* feature = featureOf(m_type, name);
+    if (name != AFN_IMAGE_OUTPUT && !isInputName(name) && !feature) {
+        std::string features;
+        for (const FeatureOutput& f : m_type.features)
+            features += (features.empty() ? "" : ", ") + (AFN_IMAGE_FEATURE_PREFIX + f.name);
         throwInvalidArgument("unknown image '" + name
-            + "' (inputs: color, albedo, normal, depth, "
-              "position, motion, alpha; output: output)");
+            + "' (inputs: color, albedo, normal, depth, position, motion, alpha; output: output"
+            + (features.empty() ? "" : "; features of " + m_type.name + ": " + features) + ")");
+    }
     if (b.ptr == nullptr)
         throwInvalidArgument("image '" + name + "': null pointer");
     if (b.format < AFN_FORMAT_FLOAT || b.format > AFN_FORMAT_FLOAT4)
@@ -115,7 +164,13 @@ void Filter::validateBindings() const
     need(AFN_IMAGE_POSITION, 3);
     need(AFN_IMAGE_MOTION, 2);
     need(AFN_IMAGE_OUTPUT, 3);
-    if (m_images.find(AFN_IMAGE_OUTPUT) == m_images.end())
+    bool anyFeature = false;
+    for (const FeatureOutput& f : m_type.features) {
+        const std::string n = AFN_IMAGE_FEATURE_PREFIX + f.name;
+        need(n.c_str(), f.channels);
+        anyFeature = anyFeature || m_images.count(n) != 0;
+    }
+    if (!outputBound() && !anyFeature)
         throwInvalidOperation("no 'output' image set");
 }
 
@@ -172,7 +227,7 @@ void Filter::execute()
     const ImageBinding& color = m_images.at(AFN_IMAGE_COLOR);
     std::string inputs;
     for (const auto& [name, b] : m_images)
-        if (name != AFN_IMAGE_OUTPUT)
+        if (isInputName(name))
             inputs += name + ":" + std::to_string(b.channels()) + " ";
     if (m_frameIndex > 0) {
         if (color.width != m_prevWidth || color.height != m_prevHeight)
@@ -192,7 +247,8 @@ void Filter::execute()
     runStages();
     m_output.resize(m_frame.width, m_frame.height, 3);
     denoise(m_frame, m_output);
-    writeOutput(m_output);
+    if (outputBound())
+        writeOutput(m_output);
     reportProgress(1.0);
     m_prevWidth = color.width;
     m_prevHeight = color.height;

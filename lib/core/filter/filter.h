@@ -37,6 +37,15 @@ struct ImageBinding {
 /// Names of the bindable input images (AFN_IMAGE_* except the output).
 const std::vector<std::string>& inputImageNames();
 
+struct FilterType;
+
+/// An intermediate image a method can write besides its output (AFNFeatureInfo in afn.h).
+struct FeatureOutput {
+    std::string name; ///< bound as AFN_IMAGE_FEATURE_PREFIX + name
+    int channels = 3; ///< 1 or 3
+    std::string help;
+};
+
 /// The shared stages a method composes; the Filter base runs them before denoise().
 struct StageNeeds {
     /// Reprojection of the previous frame's geometry onto this one.
@@ -71,7 +80,8 @@ public:
     int height() const { return m_frame.height; }
 
 protected:
-    Filter(const std::vector<ParamDesc>* table, StageNeeds stages);
+    /// A filter of `type` (parameter table, stages, feature outputs); the type outlives it.
+    explicit Filter(const FilterType& type);
 
     /// Read the method's settings from params(); called at commit. Throw on invalid combinations.
     virtual void configure() { }
@@ -83,6 +93,12 @@ protected:
     /// Report progress in [0, 1]; throws Cancelled when the callback asks to stop.
     void reportProgress(double fraction) const;
 
+    /// True when the caller bound "output" (false: only feature outputs are wanted).
+    bool outputBound() const;
+    /// Write the first channels of `image` (frame size) into the feature output `name` when the
+    /// caller bound it; `name` must be one of the type's features.
+    void writeFeature(const std::string& name, const Image& image) const;
+
     /// Results of the shared stages for the current frame.
     const Image& irradiance() const { return m_irradiance; }
     const Reprojector& reprojector() const { return m_reprojector; }
@@ -93,6 +109,7 @@ private:
     void runStages();
     void writeOutput(const Image& radiance) const;
 
+    const FilterType& m_type;
     ParamSet m_params;
     StageNeeds m_stages;
     InputConventions m_conventions;
@@ -112,7 +129,7 @@ private:
     TemporalAccumulator m_accumulator;
 };
 
-/// Convert the bound images into a canonical frame (see frame.h), counting sanitised values.
+/// Convert the bound images into a canonical frame (see filter/frame.h), counting sanitised values.
 void gatherFrame(const std::map<std::string, ImageBinding>& images,
     const InputConventions& conventions, Frame& frame, InputStats& stats);
 

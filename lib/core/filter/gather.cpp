@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-// Conversion of caller buffers into the canonical Frame (conventions in frame.h).
+// Conversion of caller buffers into the canonical Frame (conventions in filter/frame.h).
 //
 // Sanitising rule (documented in the README, counted in InputStats):
 //   - NaN or +-Inf in any input is replaced by 0.

@@ -26,6 +26,7 @@ struct FilterType {
     /// stages accumulate), the method's own, reprojection (when they reproject), conventions.
     std::vector<ParamDesc> params;
     StageNeeds stages;
+    std::vector<FeatureOutput> features; ///< feature outputs the method can write
     bool ready = true; ///< runs as created: needs no data, or the build embeds its weights
     std::vector<AFNDeviceType> devices { AFN_DEVICE_TYPE_CPU }; ///< devices it runs on
     FilterFactory create;

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: Apache-2.0
 // Image-quality metrics: per-pixel sums and the SSIM map, reduced per fixed row blocks (see
-// metrics.h).
+// metrics/metrics.h).
 #include "metrics/metrics.h"
 
 #include "base/exception.h"
@@ -77,14 +77,14 @@ struct ChannelSums {
     double ssim8 = 0.0; // sum of the SSIM map of the 8-bit values
 };
 
-/// SSIM window side for an image (the largest odd size <= 7 that fits; see metrics.h).
+/// SSIM window side for an image (the largest odd size <= 7 that fits; see metrics/metrics.h).
 int ssimWindow(int width, int height)
 {
     int win = std::min(kSsimWindow, std::min(width, height));
     return win % 2 ? win : win - 1;
 }
 
-/// Sum of the SSIM map over `outRows` output rows, skimage conventions (metrics.h). `a` and `b`
+/// Sum of the SSIM map over `outRows` output rows, skimage conventions (metrics/metrics.h). `a` and `b`
 /// hold outRows + win - 1 rows of `width` values; output row r, column x uses the window whose
 /// top-left value is (r, x). `hs` is scratch.
 double ssimRowsSum(
@@ -265,7 +265,7 @@ FrameMetrics computeFrameMetrics(const ImageView& test, const ImageView& referen
     m.nonFiniteTest = lin.nonFiniteTest;
     m.nonFiniteReference = lin.nonFiniteRef;
     if (m.nonFiniteTest > 0 || m.nonFiniteReference > 0) {
-        // Never skip a broken pixel: the whole frame scores NaN (see metrics.h).
+        // Never skip a broken pixel: the whole frame scores NaN (see metrics/metrics.h).
         m.psnr = m.ssim = m.rmse = m.smape = m.rmseLinear = m.smapeTonemapped = kNaN;
         m.psnr8 = m.ssim8 = m.rmse8 = kNaN;
         return m;

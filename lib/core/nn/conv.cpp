@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-// Direct convolutions of the AFN engine (see afn_conv.h).
+// Direct convolutions of the AFN engine (see nn/conv.h).
 #include "nn/conv.h"
 
 #include "base/exception.h"

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-// Bounds-checked parsing of the .afnw weights archive (format in afn_weights.h).
+// Bounds-checked parsing of the .afnw weights archive (format in nn/weights.h).
 #include "nn/weights.h"
 
 #include "base/exception.h"

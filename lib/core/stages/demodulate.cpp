@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-// Albedo demodulation and remodulation (see demodulate.h for the convention).
+// Albedo demodulation and remodulation (see stages/demodulate.h for the convention).
 #include "stages/demodulate.h"
 
 #include "base/parallel.h"

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-// Reprojection and per-tap acceptance (conventions in reproject.h).
+// Reprojection and per-tap acceptance (conventions in stages/reproject.h).
 #include "stages/reproject.h"
 
 #include "base/parallel.h"

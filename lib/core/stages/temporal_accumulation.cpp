@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-// BMFR temporal accumulation (see temporal_accumulation.h).
+// BMFR temporal accumulation (see stages/temporal_accumulation.h).
 #include "stages/temporal_accumulation.h"
 
 #include "base/parallel.h"

@@ -1,13 +1,13 @@
 // SPDX-License-Identifier: Apache-2.0
 // Temporal accumulation exactly as BMFR (bmfr.cl accumulate_noisy_data), per pixel:
-//   prev, spp_s = renormalised reprojected history (accepted bilinear taps, reproject.h)
+//   prev, spp_s = renormalised reprojected history (accepted bilinear taps, stages/reproject.h)
 //   if sum(w) > 0: alpha = max(1 / (spp_s + 1), alphaMin), spp = min(spp_s + 1, 255)
 //   else:          alpha = 1, spp = 1                       (disocclusion: history reset)
 //   acc = prev + alpha * (colour - prev)
 // The blend is written as a lerp from the history (BMFR: alpha*c + (1-alpha)*prev; identical in
 // exact arithmetic) so that an unchanged value stays bit-exactly unchanged. spp is kept as a float
 // capped at 255 (BMFR stores a uchar; the cap has no effect once alpha = alphaMin). Inputs are
-// finite and non-negative (demodulate.h), so the history never holds NaN/Inf.
+// finite and non-negative (stages/demodulate.h), so the history never holds NaN/Inf.
 #pragma once
 
 #include "stages/reproject.h"

@@ -28,7 +28,7 @@ namespace {
 class AfnFilter final : public Filter {
 public:
     explicit AfnFilter(const FilterType& t)
-        : Filter(&t.params, t.stages)
+        : Filter(t)
     {
 #ifdef AFN_HAS_EMBEDDED_WEIGHTS
         m_net.load(nn::WeightsArchive::parse(afnEmbeddedWeights,
@@ -50,7 +50,7 @@ public:
 private:
     void configure() override
     {
-        if (!m_net.loaded())
+        if (outputBound() && !m_net.loaded())
             throwInvalidOperation(
                 "afn: no weights: this build embeds no trained AFN model; set an .afnw file "
                 "with afnSetFilterData(filter, \"weights\", data, size) (afntool: --weights FILE)");
@@ -65,6 +65,13 @@ private:
             m_albedo.fill(1.0f);
         normalToUnitRange(in.normal, in.width, in.height, m_normal01);
         depthToUnitRange(in.depth, in.width, in.height, m_depth01);
+        writeFeature("irradiance", irradiance());
+        writeFeature("accumulated", accumulator().color());
+        writeFeature("albedo", m_albedo);
+        writeFeature("normal01", m_normal01);
+        writeFeature("depth01", m_depth01);
+        if (!outputBound())
+            return; // only the network's inputs were asked for
         const Inputs net { &irradiance(), &accumulator().color(), &m_albedo, &m_normal01,
             &m_depth01 };
         m_net.run(net, m_result);
@@ -90,6 +97,13 @@ FilterType filterType()
     t.ready = false;
 #endif
     t.stages = { true, StageNeeds::Reproject::Bilinear, true };
+    t.features = {
+        { "irradiance", 3, "1-spp colour divided by max(albedo, 2^-10), linear HDR, >= 0" },
+        { "accumulated", 3, "BMFR temporal accumulation of the irradiance (TA-1spp), linear HDR" },
+        { "albedo", 3, "albedo as the network sees it, [0, 1] (1 without an albedo input)" },
+        { "normal01", 3, "shading normal * 0.5 + 0.5, [0, 1] (0.5 without a normal input)" },
+        { "depth01", 1, "per-frame min-max depth, [0, 1] (0 without a depth input)" },
+    };
     t.create = factoryOf<AfnFilter>();
     return t;
 }

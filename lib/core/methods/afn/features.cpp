@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-// AFN auxiliary-feature scaling (see afn_features.h).
+// AFN auxiliary-feature scaling (see methods/afn/features.h).
 #include "methods/afn/features.h"
 
 #include <algorithm>

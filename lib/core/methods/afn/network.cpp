@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-// The AFN inference graph (see afn_network.h).
+// The AFN inference graph (see methods/afn/network.h).
 #include "methods/afn/network.h"
 
 #include "base/exception.h"

@@ -3,7 +3,7 @@
 //   x = [T(r_1spp), T(r_TA), albedo, normal01, depth01]            13 ch, full res (padded)
 //   e1 = relu(enc1(D x)), e2 = relu(enc2(D e1)), e3 = relu(enc3(D e2))
 //   d2 = relu(dec2([U e3, e2])), d1 = relu(dec1([U d2, e1]))          half-res-start U-Net
-//   filtering + fusion (afn_fusion.h) -> i
+//   filtering + fusion (methods/afn/fusion.h) -> i
 //   o = i + ref3(relu(ref2(relu(ref1([T(i), albedo, normal01, depth01])))))   variant "full" only
 // with T(x) = clip(max(x, 0)^(1/2.2), 0, 1), D = 2x2 average pooling, U = nearest 2x upsampling.
 // Odd sizes: every input is padded at the right/bottom to a multiple of 8 by edge replication,

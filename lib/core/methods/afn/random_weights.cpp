@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-// Random AFN weights (see afn_random_weights.h).
+// Random AFN weights (see methods/afn/random_weights.h).
 #include "methods/afn/random_weights.h"
 
 #include <cmath>

@@ -11,7 +11,7 @@ namespace {
 class BmfrFilter final : public Filter {
 public:
     explicit BmfrFilter(const FilterType& t)
-        : Filter(&t.params, t.stages)
+        : Filter(t)
     {
     }
 

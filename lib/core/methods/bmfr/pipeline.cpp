@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-// BMFR per-frame pipeline: TA, regression, second accumulation, remodulation, TAA (see bmfr.h).
+// BMFR per-frame pipeline: TA, regression, second accumulation, remodulation, TAA (see methods/bmfr/denoiser.h).
 #include "methods/bmfr/denoiser.h"
 
 #include "base/parallel.h"

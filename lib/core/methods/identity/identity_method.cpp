@@ -10,7 +10,7 @@ namespace {
 class IdentityFilter final : public Filter {
 public:
     explicit IdentityFilter(const FilterType& t)
-        : Filter(&t.params, t.stages)
+        : Filter(t)
     {
     }
 

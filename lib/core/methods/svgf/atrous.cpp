@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-// One SVGF à-trous iteration on colour + variance (see svgf.h).
+// One SVGF à-trous iteration on colour + variance (see methods/svgf/denoiser.h).
 #include "methods/svgf/denoiser.h"
 
 #include "base/parallel.h"

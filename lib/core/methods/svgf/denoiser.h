@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: Apache-2.0
 // Spatiotemporal variance-guided filtering (Schied et al., HPG 2017) on demodulated irradiance.
 // Per frame:
-//   1. reprojection with SVGF's 3x3 box fallback (reproject.h acceptance tests);
+//   1. reprojection with SVGF's 3x3 box fallback (stages/reproject.h acceptance tests);
 //   2. temporal integration of colour and luminance moments (l, l^2) with
 //      alpha = max(alpha, 1/len), alphaMoments = max(momentsAlpha, 1/len) (Falcor's cumulative
 //      start; the paper's fixed 0.2 is reached after 5 frames); len = history length, 1 on
@@ -10,7 +10,7 @@
 //      moments and colour replaces it (phiL = sigmaL, not variance-scaled), boosted by 4/len
 //      (Falcor);
 //   4. à-trous: 5x5 B3-spline taps h = (1/16, 1/4, 3/8, 1/4, 1/16), step 2^i, weights of
-//      svgf_guide.h with phiL = sigmaL * sqrt(g3x3(var)) + 1e-10; variance filtered with squared
+//      methods/svgf/guide.h with phiL = sigmaL * sqrt(g3x3(var)) + 1e-10; variance filtered with squared
 //      weights; the output of iteration feedbackTap is the next frame's colour history.
 // Filtered values are written as c_p + sum(w (c_q - c_p)) / sum(w), identical in exact arithmetic
 // to sum(w c_q) / sum(w), so a constant image stays bit-exactly constant.

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-// SVGF edge-stopping guides (see svgf_guide.h).
+// SVGF edge-stopping guides (see methods/svgf/guide.h).
 #include "methods/svgf/guide.h"
 
 #include "base/parallel.h"

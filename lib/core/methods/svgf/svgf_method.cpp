@@ -12,7 +12,7 @@ namespace {
 class SvgfFilter final : public Filter {
 public:
     explicit SvgfFilter(const FilterType& t)
-        : Filter(&t.params, t.stages)
+        : Filter(t)
     {
     }
 

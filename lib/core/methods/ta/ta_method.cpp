@@ -11,7 +11,7 @@ namespace {
 class TaFilter final : public Filter {
 public:
     explicit TaFilter(const FilterType& t)
-        : Filter(&t.params, t.stages)
+        : Filter(t)
     {
     }
 
