@@ -84,8 +84,8 @@ int ssimWindow(int width, int height)
     return win % 2 ? win : win - 1;
 }
 
-/// Sum of the SSIM map over `outRows` output rows, skimage conventions (metrics/metrics.h). `a` and `b`
-/// hold outRows + win - 1 rows of `width` values; output row r, column x uses the window whose
+/// Sum of the SSIM map over `outRows` output rows, skimage conventions (metrics/metrics.h). `a` and
+/// `b` hold outRows + win - 1 rows of `width` values; output row r, column x uses the window whose
 /// top-left value is (r, x). `hs` is scratch.
 double ssimRowsSum(
     const double* a, const double* b, int outRows, int width, int win, std::vector<double>& hs)

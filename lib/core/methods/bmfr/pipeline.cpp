@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: Apache-2.0
-// BMFR per-frame pipeline: TA, regression, second accumulation, remodulation, TAA (see methods/bmfr/denoiser.h).
+// BMFR per-frame pipeline: TA, regression, second accumulation, remodulation, TAA (see
+// methods/bmfr/denoiser.h).
 #include "methods/bmfr/denoiser.h"
 
 #include "base/parallel.h"

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: Apache-2.0
 // BMFR blockwise regression: per block, a Householder QR of the feature matrix with the colour
-// channels appended as extra columns, back substitution, and the weighted feature sum (see methods/bmfr/denoiser.h).
+// channels appended as extra columns, back substitution, and the weighted feature sum (see
+// methods/bmfr/denoiser.h).
 //
 // Choices (the official code runs on a GPU with fp16 buffers):
 //   - Scaled features (positions or their screen-space stand-ins) are min-max normalised per block
@@ -12,9 +13,9 @@
 //   - Colour is centred on its block mean (computed in double) before the fit and the mean added
 //     back after: a constant block is reproduced exactly.
 //   - Pixels whose colour was divided by an albedo below kAlbedoEpsilon in some channel (black
-//     albedo: their irradiance is amplified up to 1024x, see stages/demodulate.h) are left out of the fit
-//     (zero rows do not change a least-squares QR) and keep their accumulated value, so they
-//     neither pollute their block nor get polluted by it.
+//     albedo: their irradiance is amplified up to 1024x, see stages/demodulate.h) are left out of
+//     the fit (zero rows do not change a least-squares QR) and keep their accumulated value, so
+//     they neither pollute their block nor get polluted by it.
 //   - Out-of-image block pixels are mirrored into the image (BMFR reflects at the borders), so
 //   every
 //     block has blockSize^2 rows. The 16 block offsets below are our own values in BMFR's range

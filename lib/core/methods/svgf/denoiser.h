@@ -10,8 +10,8 @@
 //      moments and colour replaces it (phiL = sigmaL, not variance-scaled), boosted by 4/len
 //      (Falcor);
 //   4. à-trous: 5x5 B3-spline taps h = (1/16, 1/4, 3/8, 1/4, 1/16), step 2^i, weights of
-//      methods/svgf/guide.h with phiL = sigmaL * sqrt(g3x3(var)) + 1e-10; variance filtered with squared
-//      weights; the output of iteration feedbackTap is the next frame's colour history.
+//      methods/svgf/guide.h with phiL = sigmaL * sqrt(g3x3(var)) + 1e-10; variance filtered with
+//      squared weights; the output of iteration feedbackTap is the next frame's colour history.
 // Filtered values are written as c_p + sum(w (c_q - c_p)) / sum(w), identical in exact arithmetic
 // to sum(w c_q) / sum(w), so a constant image stays bit-exactly constant.
 #pragma once

@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: Apache-2.0
-// SVGF temporal integration, spatial variance estimate and per-frame driver (see methods/svgf/denoiser.h).
+// SVGF temporal integration, spatial variance estimate and per-frame driver (see
+// methods/svgf/denoiser.h).
 #include "methods/svgf/denoiser.h"
 
 #include "base/parallel.h"
