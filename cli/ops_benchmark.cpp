@@ -8,6 +8,7 @@
 #include "cli_error.h"
 #include "progress.h"
 #include "report.h"
+#include "text.h"
 
 #include <algorithm>
 #include <cctype>
@@ -30,17 +31,6 @@ using Clock = std::chrono::steady_clock;
 double msSince(Clock::time_point t0)
 {
     return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
-}
-
-std::vector<std::string> split(const std::string& s, char sep)
-{
-    std::vector<std::string> out;
-    std::stringstream ss(s);
-    std::string item;
-    while (std::getline(ss, item, sep))
-        if (!item.empty())
-            out.push_back(item);
-    return out;
 }
 
 int toInt(const std::string& text, const std::string& what)
@@ -79,7 +69,7 @@ MethodResult parseSetting(const std::string& item)
 {
     MethodResult m;
     m.label = item;
-    const std::vector<std::string> parts = split(item, '/');
+    const std::vector<std::string> parts = splitList(item, '/');
     m.method = parts.empty() ? "" : parts[0];
     for (std::size_t i = 1; i < parts.size(); ++i) {
         const std::size_t eq = parts[i].find('=');
@@ -182,7 +172,7 @@ int runBenchmark(const Options& opts, const Action& action)
     // Settings to run; unknown methods are skipped with a warning.
     const std::vector<std::string> known = afn::filterTypes();
     std::vector<MethodResult> settings;
-    for (const std::string& item : split(methodsText, ',')) {
+    for (const std::string& item : splitList(methodsText, ',')) {
         MethodResult m = parseSetting(item);
         if (std::find(known.begin(), known.end(), m.method) == known.end()) {
             report.warnings.push_back("method '" + m.method + "' is not in this build; skipped");
@@ -229,7 +219,7 @@ int runBenchmark(const Options& opts, const Action& action)
 
     // Crop frames and rectangle (default: the last frame, a centred square of up to 128 pixels).
     std::vector<int> cropIdx;
-    for (const std::string& s : split(modifier(action, "crop-frames"), ',')) {
+    for (const std::string& s : splitList(modifier(action, "crop-frames"), ',')) {
         const int f = toInt(s, "crop-frames");
         for (std::size_t i = 0; i < frames.size(); ++i)
             if (frames[i].ref.frame == f)
@@ -238,7 +228,7 @@ int runBenchmark(const Options& opts, const Action& action)
     if (cropIdx.empty())
         cropIdx.push_back(static_cast<int>(frames.size()) - 1);
     CropSet rect;
-    const std::vector<std::string> cr = split(modifier(action, "crop"), ',');
+    const std::vector<std::string> cr = splitList(modifier(action, "crop"), ',');
     if (cr.size() == 4) {
         rect.x = toInt(cr[0], "crop"), rect.y = toInt(cr[1], "crop");
         rect.width = toInt(cr[2], "crop"), rect.height = toInt(cr[3], "crop");

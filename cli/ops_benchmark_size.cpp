@@ -10,6 +10,7 @@
 #include "json_writer.h"
 #include "progress.h"
 #include "report.h"
+#include "text.h"
 
 #include <algorithm>
 #include <chrono>
@@ -30,17 +31,6 @@ struct SizePoint {
     double medianCpuMs = 0.0; ///< process CPU time, all threads
     double cpuMsPerMegapixel = 0.0;
 };
-
-std::vector<std::string> splitList(const std::string& s, char sep)
-{
-    std::vector<std::string> out;
-    std::stringstream ss(s);
-    std::string item;
-    while (std::getline(ss, item, sep))
-        if (!item.empty())
-            out.push_back(item);
-    return out;
-}
 
 std::pair<int, int> parseSize(const std::string& text)
 {

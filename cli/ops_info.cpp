@@ -99,6 +99,17 @@ void printText(const FileReport& r)
     std::printf("\n");
 }
 
+void writeBox(JsonWriter& j, const char* key, const afn::io::Box& b)
+{
+    j.key(key)
+        .beginObject()
+        .field("x", b.x)
+        .field("y", b.y)
+        .field("width", b.width)
+        .field("height", b.height)
+        .endObject();
+}
+
 void writeJson(JsonWriter& j, const FileReport& r)
 {
     j.beginObject();
@@ -117,20 +128,8 @@ void writeJson(JsonWriter& j, const FileReport& r)
     for (const auto& si : r.info.subimages) {
         j.beginObject();
         j.field("name", si.name);
-        j.key("dataWindow")
-            .beginObject()
-            .field("x", si.dataWindow.x)
-            .field("y", si.dataWindow.y)
-            .field("width", si.dataWindow.width)
-            .field("height", si.dataWindow.height)
-            .endObject();
-        j.key("displayWindow")
-            .beginObject()
-            .field("x", si.displayWindow.x)
-            .field("y", si.displayWindow.y)
-            .field("width", si.displayWindow.width)
-            .field("height", si.displayWindow.height)
-            .endObject();
+        writeBox(j, "dataWindow", si.dataWindow);
+        writeBox(j, "displayWindow", si.displayWindow);
         j.key("channels").value(si.channels);
         j.key("types").value(si.types);
         j.field("compression", si.compression);

@@ -195,23 +195,21 @@ void writeContactSheet(RunContext& ctx, const LoadedFrame& frame, const Action& 
     } catch (const afn::color::ColorError& e) {
         throw CliError(std::string("--contact-sheet: ") + e.what(), path);
     }
-    int columns = 4;
-    try {
-        columns = std::stoi(get("columns", "4"));
-    } catch (const std::exception&) {
-        throw CliError("--contact-sheet:columns expects an integer");
-    }
-    if (columns < 1)
-        throw CliError("--contact-sheet:columns must be >= 1");
+    auto intModifier = [&](const char* key, const char* def, int min) {
+        int v = 0;
+        try {
+            v = std::stoi(get(key, def));
+        } catch (const std::exception&) {
+            throw CliError(std::string("--contact-sheet:") + key + " expects an integer");
+        }
+        if (v < min)
+            throw CliError(
+                std::string("--contact-sheet:") + key + " must be >= " + std::to_string(min));
+        return v;
+    };
+    const int columns = intModifier("columns", "4", 1);
     // Tiles at most 480x270 (downscaled with a box filter) so a 4K frame's sheet stays viewable.
-    int maxTile = 480;
-    try {
-        maxTile = std::stoi(get("tilesize", "480"));
-    } catch (const std::exception&) {
-        throw CliError("--contact-sheet:tilesize expects an integer");
-    }
-    if (maxTile < 16)
-        throw CliError("--contact-sheet:tilesize must be >= 16");
+    const int maxTile = intModifier("tilesize", "480", 16);
     for (afn::color::Tile& t : tiles)
         t = afn::color::fitTile(t, maxTile, maxTile * 9 / 16);
     int w = 0, h = 0;

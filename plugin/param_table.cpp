@@ -95,6 +95,18 @@ OfxPropertySetHandle define(OfxParamSetHandle set, const char* type, const std::
     return props;
 }
 
+/// A parameter that never animates (the result at t replays the frames before t with one
+/// setting), with its label and hint.
+OfxPropertySetHandle defineFixed(OfxParamSetHandle set, const char* type, const std::string& name,
+    const std::string& label, const std::string& hint)
+{
+    Props p(define(set, type, name));
+    p.set(kOfxPropLabel, label);
+    p.set(kOfxParamPropHint, hint);
+    p.set(kOfxParamPropAnimates, 0);
+    return p.handle();
+}
+
 } // namespace
 
 const ParamCatalog& paramCatalog()
@@ -109,30 +121,22 @@ void defineParams(OfxImageEffectHandle descriptor, bool temporalDefault)
     OfxParamSetHandle set = nullptr;
     check(suites().effect->getParamSet(descriptor, &set), "getting the parameter set");
 
-    Props method(define(set, kOfxParamTypeChoice, kParamMethod));
-    method.set(kOfxPropLabel, "Method");
-    method.set(kOfxParamPropHint, "denoising method (options follow the library's method list)");
+    Props method(defineFixed(set, kOfxParamTypeChoice, kParamMethod, "Method",
+        "denoising method (options follow the library's method list)"));
     method.setStrings(kOfxParamPropChoiceOption, c.methods);
     method.set(kOfxParamPropDefault, c.defaultMethod);
-    method.set(kOfxParamPropAnimates, 0);
 
-    Props temporal(define(set, kOfxParamTypeBoolean, kParamTemporal));
-    temporal.set(kOfxPropLabel, "Temporal");
-    temporal.set(kOfxParamPropHint,
+    Props temporal(defineFixed(set, kOfxParamTypeBoolean, kParamTemporal, "Temporal",
         "use the history of every frame from the clip's first frame "
-        "(off: each frame is denoised on its own)");
+        "(off: each frame is denoised on its own)"));
     temporal.set(kOfxParamPropDefault, temporalDefault ? 1 : 0);
-    temporal.set(kOfxParamPropAnimates, 0);
 
-    Props weights(define(set, kOfxParamTypeString, kParamWeights));
-    weights.set(kOfxPropLabel, "Weights file");
-    weights.set(kOfxParamPropHint,
+    Props weights(defineFixed(set, kOfxParamTypeString, kParamWeights, "Weights file",
         "trained weights archive (.afnw) for learned methods such as "
-        "afn; empty = the weights built into the library, if any");
+        "afn; empty = the weights built into the library, if any"));
     weights.set(kOfxParamPropStringMode, kOfxParamStringIsFilePath);
     weights.set(kOfxParamPropStringFilePathExists, 1);
     weights.set(kOfxParamPropDefault, "");
-    weights.set(kOfxParamPropAnimates, 0);
 
     std::string group;
     for (const ParamSpec& p : c.params) {
@@ -147,12 +151,8 @@ void defineParams(OfxImageEffectHandle descriptor, bool temporalDefault)
             : i.type == AFN_PARAM_INT               ? kOfxParamTypeInteger
             : i.type == AFN_PARAM_FLOAT             ? kOfxParamTypeDouble
                                                     : kOfxParamTypeChoice;
-        Props d(define(set, type, p.ofxName));
-        d.set(kOfxPropLabel, i.label);
-        d.set(kOfxParamPropHint, i.help);
+        Props d(defineFixed(set, type, p.ofxName, i.label, i.help));
         d.set(kOfxParamPropParent, "group_" + group);
-        // Parameters never animate: the result at t replays the frames before t with one setting.
-        d.set(kOfxParamPropAnimates, 0);
         if (i.type == AFN_PARAM_BOOL) {
             d.set(kOfxParamPropDefault, i.defaultValue != 0.0 ? 1 : 0);
         } else if (i.type == AFN_PARAM_INT) {

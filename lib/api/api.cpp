@@ -46,6 +46,12 @@ std::string checkName(const char* name)
     return name;
 }
 
+/// The filter type named `type`, or null (also for a null name).
+const afn::FilterType* typeOf(const char* type)
+{
+    return type ? afn::findFilterType(type) : nullptr;
+}
+
 AFNDeviceImpl* deviceOf(AFNFilter f)
 {
     return (f && f->magic == kFilterMagic) ? f->device : nullptr;
@@ -141,25 +147,25 @@ AFN_API const char* afnGetFilterTypeName(int index)
 
 AFN_API const char* afnGetFilterTypeDescription(const char* type)
 {
-    const afn::FilterType* t = type ? afn::findFilterType(type) : nullptr;
+    const afn::FilterType* t = typeOf(type);
     return t ? t->description.c_str() : nullptr;
 }
 
 AFN_API bool afnIsFilterTypeReady(const char* type)
 {
-    const afn::FilterType* t = type ? afn::findFilterType(type) : nullptr;
+    const afn::FilterType* t = typeOf(type);
     return t && t->ready;
 }
 
 AFN_API int afnGetFilterTypeNumFeatures(const char* type)
 {
-    const afn::FilterType* t = type ? afn::findFilterType(type) : nullptr;
+    const afn::FilterType* t = typeOf(type);
     return t ? static_cast<int>(t->features.size()) : -1;
 }
 
 AFN_API bool afnGetFilterTypeFeature(const char* type, int index, AFNFeatureInfo* info)
 {
-    const afn::FilterType* t = type ? afn::findFilterType(type) : nullptr;
+    const afn::FilterType* t = typeOf(type);
     if (!t || !info || index < 0 || index >= static_cast<int>(t->features.size()))
         return false;
     const afn::FeatureOutput& f = t->features[index];
@@ -171,13 +177,13 @@ AFN_API bool afnGetFilterTypeFeature(const char* type, int index, AFNFeatureInfo
 
 AFN_API int afnGetFilterTypeNumParams(const char* type)
 {
-    const afn::FilterType* t = type ? afn::findFilterType(type) : nullptr;
+    const afn::FilterType* t = typeOf(type);
     return t ? static_cast<int>(t->params.size()) : -1;
 }
 
 AFN_API bool afnGetFilterTypeParam(const char* type, int index, AFNParamInfo* info)
 {
-    const afn::FilterType* t = type ? afn::findFilterType(type) : nullptr;
+    const afn::FilterType* t = typeOf(type);
     if (!t || !info || index < 0 || index >= static_cast<int>(t->params.size()))
         return false;
     const afn::ParamDesc& d = t->params[index];
