@@ -1,11 +1,11 @@
 # SPDX-License-Identifier: Apache-2.0
 # Colour: conversions against hand-derived values, config resolution, AOV tiles and contact sheets.
 find_package(Threads REQUIRED)
-afn_add_gtest(test_color_convert SOURCES unit/test_color_convert.cpp LIBS afn_color)
+afn_add_gtest(test_color_convert SOURCES unit/color/test_color_convert.cpp LIBS afn_color)
 # These two also check internal helpers (bitmap font, install-relative config lookup), which the
 # shared library hides: they link the object library.
-afn_add_gtest(test_color_config SOURCES unit/test_color_config.cpp LIBS afn_color_objects)
-afn_add_gtest(test_color_tiles SOURCES unit/test_color_tiles.cpp LIBS afn_color_objects)
+afn_add_gtest(test_color_config SOURCES unit/color/test_color_config.cpp LIBS afn_color_objects)
+afn_add_gtest(test_color_tiles SOURCES unit/color/test_color_tiles.cpp LIBS afn_color_objects)
 target_include_directories(test_color_tiles PRIVATE ${PROJECT_SOURCE_DIR}/lib/color)
 target_include_directories(test_color_config PRIVATE ${PROJECT_SOURCE_DIR}/lib/color)
 target_link_libraries(test_color_convert PRIVATE Threads::Threads)

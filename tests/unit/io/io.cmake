@@ -2,11 +2,11 @@
 # afn_io unit tests: role mapping, reading, sequences, BMFR layout, atomic writes.
 afn_add_gtest(test_io
   SOURCES
-    unit/test_io_roles.cpp
-    unit/test_io_read.cpp
-    unit/test_io_sequence.cpp
-    unit/test_io_write.cpp
-    unit/test_io_bmfr.cpp
+    unit/io/test_io_roles.cpp
+    unit/io/test_io_read.cpp
+    unit/io/test_io_sequence.cpp
+    unit/io/test_io_write.cpp
+    unit/io/test_io_bmfr.cpp
   LIBS afn_io PkgConfig::OIIO)
 
 # The shared library exports only what include/afn/io.hpp declares.

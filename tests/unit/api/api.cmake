@@ -1,0 +1,4 @@
+# SPDX-License-Identifier: Apache-2.0
+# The C API's contract (every call's error state) and the metrics through the C API.
+afn_add_gtest(test_api SOURCES unit/api/test_api.cpp LIBS afn)
+afn_add_gtest(test_metrics_api SOURCES unit/api/test_metrics_api.cpp LIBS afn)

@@ -1,0 +1,33 @@
+# SPDX-License-Identifier: Apache-2.0
+# The compute core's internals, folder by folder as lib/core (stages, methods, nn, metrics); the
+# shared helpers of these tests sit in unit/core/.
+set(AFN_CORE_TESTS ${CMAKE_CURRENT_LIST_DIR})
+
+# Stages and classical methods (demodulation, reprojection, temporal accumulation, SVGF, BMFR) and
+# the filters through createFilter; test_methods_blender reads examples/sequence with OIIO.
+afn_add_gtest(test_methods
+  SOURCES
+    unit/core/stages/test_methods_reproject.cpp
+    unit/core/methods/test_methods_ta.cpp
+    unit/core/methods/test_methods_filters.cpp
+    unit/core/methods/test_methods_blender.cpp
+  LIBS afn_core PkgConfig::OIIO)
+target_include_directories(test_methods PRIVATE ${AFN_CORE_TESTS})
+
+# The learned methods' engine: weights archive, layers, fused filtering/fusion, PyTorch parity,
+# the afn filter, and the temporal accumulation's golden vectors.
+afn_add_gtest(test_afn
+  SOURCES
+    unit/core/nn/test_afn_weights.cpp
+    unit/core/nn/test_afn_layers.cpp
+    unit/core/methods/afn/test_afn_parity.cpp
+    unit/core/methods/afn/test_afn_filter.cpp
+    unit/core/stages/test_afn_ta_parity.cpp
+  LIBS afn_core)
+target_include_directories(test_afn PRIVATE ${AFN_CORE_TESTS})
+# The embedding mechanism of the shipped weights, exercised on a committed parity file.
+include(AfnEmbed)
+afn_embed_file(test_afn ${AFN_TEST_DATA}/afn_parity/weights_fusion.afnw afnTestEmbedded)
+
+# Image-quality metrics (internals, vs a naive SSIM and scikit-image).
+afn_add_gtest(test_metrics SOURCES unit/core/metrics/test_metrics.cpp LIBS afn_core)
