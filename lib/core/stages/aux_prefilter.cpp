@@ -65,8 +65,7 @@ void boxMean(const Image& src, Image& tmp, Image& out)
 
 inline float reliability(float share)
 {
-    return std::clamp(
-        (kAuxUnreliableShare - share) / (kAuxUnreliableShare - kAuxReliableShare), 0.0f, 1.0f);
+    return std::clamp(1.0f - share / kAuxUnreliableShare, 0.0f, 1.0f);
 }
 
 inline bool hasSurface(float z)

@@ -16,11 +16,8 @@
 //   1. flags    speckle pixels of each buffer (stages/aux_noise.h: differs from all 8 neighbours);
 //   2. u        share of flagged pixels in the 5x5 window, accumulated over time through the
 //               reprojection (the "variance over neighbourhood and history");
-//   3. r        reliability = clamp((0.24 - u) / (0.24 - 0.08), 0, 1): 1 where at most 2 of 25
-//               pixels of the window are speckle (clean surfaces; isolated aliasing of a clean
-//               texture, e.g. a mirror reflecting a far checker floor, stays as given: smoothing
-//               it moves sharp structure into the irradiance, which BMFR's low-order regression
-//               cannot fit), 0 where 6 or more are (the surfaces that follow random bounces);
+//   3. r        reliability = clamp(1 - u / kAuxUnreliableShare, 0, 1): 1 on clean surfaces
+//               (flag-free windows), 0 where 4 or more of 25 neighbours are speckle;
 //   4. albedo   d = r * albedo + (1 - r) * h, h = temporal accumulation (alpha >= 0.1, same taps
 //               and history rule as the colour's) of the 5x5 mean albedo: a smooth, stable
 //               estimate of the expected albedo. Where r = 0 the demodulation divides by a smooth
@@ -60,10 +57,8 @@ struct AuxSettings {
 /// Descriptors of AuxSettings (in the table of every method that demodulates).
 const ParamBinding<AuxSettings>& auxBinding();
 
-/// Share of speckle pixels in a 5x5 window up to which a buffer is fully reliable (2 of 25).
-constexpr float kAuxReliableShare = 0.08f;
-/// Share of speckle pixels in a 5x5 window from which a buffer is fully unreliable (6 of 25).
-constexpr float kAuxUnreliableShare = 0.24f;
+/// Share of speckle pixels in a 5x5 window at which a buffer is fully unreliable (4 of 25).
+constexpr float kAuxUnreliableShare = 0.16f;
 /// Minimum blend factor of the albedo's temporal accumulation.
 constexpr float kAuxAlbedoAlphaMin = 0.1f;
 /// Floor of the demodulation factor where it is unreliable (2^-5; scaled by 1 - r).
