@@ -173,14 +173,18 @@ def save_json(path, results):
 
 
 def write_table(args, results):
-    lines = ["| Sequence | Method | bad % before | bad % after | PSNR before | PSNR after | "
-             "TGE before | TGE after |", "|---|---|---|---|---|---|---|---|"]
-    for (name, method, when), m in results.items():
-        if when != "before" or (name, method, "after") not in results:
-            continue
-        a = results[(name, method, "after")]
+    lines = ["| Sequence | Method | bad % before | bad % after | after / before | PSNR before | "
+             "PSNR after | TGE before | TGE after |", "|---|---|---|---|---|---|---|---|---|"]
+    order = {m: i for i, m in enumerate(METHODS)}
+    seqs = list(dict.fromkeys(n for n, _, _ in results))
+    keys = sorted((k for k in results if k[2] == "before" and k[:2] + ("after",) in results),
+                  key=lambda k: (seqs.index(k[0]), order.get(k[1], 99)))
+    for name, method, _ in keys:
+        m, a = results[(name, method, "before")], results[(name, method, "after")]
+        ratio = a["bad"] / m["bad"] if m["bad"] > 0 else float("nan")
         lines.append(f"| `{name}` | {method} | {100 * m['bad']:.3f} | {100 * a['bad']:.3f} | "
-                     f"{m['psnr']:.2f} | {a['psnr']:.2f} | {m['tge']:.5f} | {a['tge']:.5f} |")
+                     f"{ratio:.2f} | {m['psnr']:.2f} | {a['psnr']:.2f} | {m['tge']:.5f} | "
+                     f"{a['tge']:.5f} |")
     with open(args.out, "w") as fh:
         fh.write("\n".join(lines) + "\n")
     print("\n".join(lines))
