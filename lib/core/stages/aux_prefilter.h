@@ -36,7 +36,8 @@
 // "clean" leaves every buffer untouched (bit-identical to the behaviour before this stage);
 // "auto" (default) decides on the first frame of each history: noisy when the albedo's or the
 // normal's speckle share exceeds kAuxNoisyShare (0.5 %), clean otherwise; the decision holds
-// until the history is reset, so a sequence is filtered in one mode. With colour that is already
+// until the history is reset, so a sequence is filtered in one mode (a changed "aux" parameter,
+// too, takes effect at the next reset: afnResetFilter or a new filter). With colour that is already
 // demodulated (AFN_CONVENTION_COLOR_DEMODULATED) the albedo is never changed (the colour was
 // divided by the given albedo; only that one remodulates it exactly).
 #pragma once
