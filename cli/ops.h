@@ -47,6 +47,8 @@ public:
 
 private:
     void run(LoadedFrame& frame, Progress* progress);
+    /// The per-frame log line of the aux decision and speckle shares (methods that demodulate).
+    void logAux(const LoadedFrame& frame, Progress* progress);
     void check(const std::string& what, const std::string& file);
 
     const Options& m_opts;

@@ -4,6 +4,8 @@
 #include "cli_error.h"
 #include "progress.h"
 
+#include <cstdio>
+
 namespace afntool {
 
 using afn::io::Role;
@@ -54,6 +56,16 @@ void SequenceDenoiser::check(const std::string& what, const std::string& file)
 }
 
 namespace {
+
+/// "3.21 %" for a speckle share, "-" without the input.
+std::string shareText(float share)
+{
+    if (share < 0.0f)
+        return "-";
+    char text[32];
+    std::snprintf(text, sizeof(text), "%.2f %%", 100.0 * share);
+    return text;
+}
 
 afn::Format formatFor(int components)
 {
@@ -128,6 +140,7 @@ void SequenceDenoiser::run(LoadedFrame& frame, Progress* progress)
     m_filter.execute();
     check(m_flag, frame.ref.path);
 
+    logAux(frame, progress);
     const int nonFinite = m_filter.get<int>(AFN_STAT_NON_FINITE);
     const int negative = m_filter.get<int>(AFN_STAT_NEGATIVE);
     if (nonFinite > 0)
@@ -138,6 +151,22 @@ void SequenceDenoiser::run(LoadedFrame& frame, Progress* progress)
         warn(std::to_string(negative) + " negative colour values clamped to 0 (" + frame.ref.path
                 + ")",
             m_opts.quiet, progress);
+}
+
+void SequenceDenoiser::logAux(const LoadedFrame& frame, Progress* progress)
+{
+    bool hasAux = false;
+    for (const AFNParamInfo& p : afn::filterTypeParams(m_method.c_str()))
+        hasAux = hasAux || std::string(p.name) == AFN_PARAM_AUX;
+    if (!hasAux)
+        return; // the method does not demodulate
+    const std::string mode = m_filter.get<std::string>(AFN_PARAM_AUX);
+    const bool noisy = m_filter.get<bool>(AFN_STAT_AUX_NOISY);
+    note(m_flag + ": aux " + (noisy ? "noisy" : "clean") + " (aux=" + mode + "; speckle: albedo "
+            + shareText(m_filter.get<float>(AFN_STAT_ALBEDO_SPECKLE)) + ", normal "
+            + shareText(m_filter.get<float>(AFN_STAT_NORMAL_SPECKLE)) + ", depth "
+            + shareText(m_filter.get<float>(AFN_STAT_DEPTH_SPECKLE)) + ") " + frame.ref.path,
+        m_opts.quiet, progress);
 }
 
 void SequenceDenoiser::process(LoadedFrame& frame, Progress* progress)

@@ -33,7 +33,46 @@ struct FileReport {
     afn::io::FileInfo info;
     afn::io::RoleMapping mapping;
     std::map<Role, afn::io::RoleStats> stats;
+    std::map<Role, AFNAuxNoise> noise; ///< auxiliary roles only (afnEstimateAuxNoise)
 };
+
+/// The auxiliary roles whose noise --info estimates, with their afnEstimateAuxNoise names.
+const std::pair<Role, const char*> kAuxRoles[] = { { Role::Albedo, AFN_IMAGE_ALBEDO },
+    { Role::Normal, AFN_IMAGE_NORMAL }, { Role::Depth, AFN_IMAGE_DEPTH } };
+
+/// Noise estimates of the frame's auxiliary roles (the numbers "aux=auto" decides on).
+void estimateNoise(const afn::io::FrameImages& fi, std::map<Role, AFNAuxNoise>& out)
+{
+    afn::DeviceRef device = afn::newDevice();
+    if (!device)
+        throw CliError("cannot create an afn device");
+    device.commit();
+    for (const auto& [role, name] : kAuxRoles) {
+        auto it = fi.roles.find(role);
+        if (it == fi.roles.end())
+            continue;
+        const afn::io::RoleImage& img = it->second;
+        AFNAuxNoise n {};
+        if (!afnEstimateAuxNoise(device.getHandle(), name, img.pixels.data(), img.width, img.height,
+                img.components, &n)) {
+            std::string message;
+            device.getError(&message);
+            throw CliError("--info: " + message);
+        }
+        out[role] = n;
+    }
+}
+
+/// What aux=auto would decide for this frame: noisy when the albedo or the normal is.
+bool autoNoisy(const FileReport& r)
+{
+    for (Role role : { Role::Albedo, Role::Normal }) {
+        auto it = r.noise.find(role);
+        if (it != r.noise.end() && it->second.noisy)
+            return true;
+    }
+    return false;
+}
 
 FileReport collect(const Options& opts, const FrameRef& ref)
 {
@@ -47,6 +86,7 @@ FileReport collect(const Options& opts, const FrameRef& ref)
         r.mapping = fi.mapping;
         for (const auto& [role, image] : fi.roles)
             r.stats[role] = afn::io::computeStats(image);
+        estimateNoise(fi, r.noise);
         if (ref.path.find("#bmfr:") == std::string::npos) {
             r.info = afn::io::inspect(ref.path);
         } else {
@@ -87,12 +127,17 @@ void printText(const FileReport& r)
                             "negative %lld\n",
                     st->second.min, st->second.max, st->second.mean, st->second.nan, st->second.inf,
                     st->second.negative);
+            auto nz = r.noise.find(role);
+            if (nz != r.noise.end())
+                std::printf("              noise: speckle %.2f %% of pixels (%s)\n",
+                    100.0 * nz->second.speckle, nz->second.noisy ? "noisy" : "clean");
         } else {
             auto lf = r.mapping.lookedFor.find(role);
             std::printf("    %-9s (not found; looked for %s)\n", afn::io::roleName(role),
                 lf == r.mapping.lookedFor.end() ? "-" : join(lf->second).c_str());
         }
     }
+    std::printf("  aux=auto: %s\n", autoNoisy(r) ? "noisy" : "clean");
     std::printf("  conventions:");
     for (const auto& [name, value] : r.mapping.tag.parameters())
         std::printf(" %s=%s", name.c_str(), value.c_str());
@@ -153,6 +198,15 @@ void writeJson(JsonWriter& j, const FileReport& r)
             j.field(name, value);
     }
     j.endObject();
+    j.key("auxNoise").beginObject();
+    for (const auto& [role, n] : r.noise)
+        j.key(afn::io::roleName(role))
+            .beginObject()
+            .field("speckle", n.speckle)
+            .field("noisy", n.noisy)
+            .endObject();
+    j.endObject();
+    j.field("auxAuto", std::string(autoNoisy(r) ? "noisy" : "clean"));
     j.key("stats").beginObject();
     for (const auto& [role, s] : r.stats) {
         j.key(afn::io::roleName(role))

@@ -48,4 +48,13 @@ void warn(const std::string& message, bool quiet, Progress* progress)
     std::fprintf(stderr, "afntool WARNING: %s\n", message.c_str());
 }
 
+void note(const std::string& message, bool quiet, Progress* progress)
+{
+    if (quiet)
+        return;
+    if (progress)
+        progress->clear();
+    std::fprintf(stderr, "afntool: %s\n", message.c_str());
+}
+
 } // namespace afntool

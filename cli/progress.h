@@ -25,5 +25,7 @@ private:
 
 /// Print "afntool WARNING: ..." on stderr unless quiet.
 void warn(const std::string& message, bool quiet, Progress* progress = nullptr);
+/// Print "afntool: <message>" on stderr (a per-frame log line), unless quiet.
+void note(const std::string& message, bool quiet, Progress* progress = nullptr);
 
 } // namespace afntool

@@ -103,6 +103,9 @@ typedef enum AFNDeviceType {
 #define AFN_CONVENTION_MOTION_UNITS "motion.units"
 #define AFN_CONVENTION_MOTION_SCALE "motion.scale"
 #define AFN_CONVENTION_COLOR_DEMODULATED "color.demodulated"
+/// Quality of the auxiliary buffers (albedo, normal, depth): "auto" (default), "clean", "noisy"
+/// (a parameter of every method that demodulates; lib/core/stages/aux_prefilter.h).
+#define AFN_PARAM_AUX "aux"
 /// Array parameters (afnSetFilterFloats).
 #define AFN_ARRAY_VIEW_PROJECTION "viewProjection"
 #define AFN_ARRAY_PIXEL_OFFSET "pixelOffset"
@@ -114,6 +117,13 @@ typedef enum AFNDeviceType {
 #define AFN_STAT_FRAME_INDEX "frameIndex"
 #define AFN_STAT_WIDTH "width"
 #define AFN_STAT_HEIGHT "height"
+/// 1 when the auxiliary buffers are prefiltered as noisy for the current history, else 0.
+#define AFN_STAT_AUX_NOISY "stats.auxNoisy"
+/// Share in [0, 1] of speckle pixels (afnEstimateAuxNoise) of the last frame's albedo, normal and
+/// depth inputs as given; -1 when the input is absent (afnGetFilterFloat).
+#define AFN_STAT_ALBEDO_SPECKLE "stats.albedoSpeckle"
+#define AFN_STAT_NORMAL_SPECKLE "stats.normalSpeckle"
+#define AFN_STAT_DEPTH_SPECKLE "stats.depthSpeckle"
 
 /// Types of filter parameters, as reported by afnGetFilterTypeParam().
 typedef enum AFNParamType {
@@ -234,7 +244,7 @@ AFN_API void afnSetFilterData(
 
 /// Read a parameter or a statistic of the last execute: "stats.nonFinite" (input values replaced
 /// because NaN/Inf), "stats.negative" (negative colour values clamped), "frameIndex" (frames since
-/// the last reset), "width", "height".
+/// the last reset), "width", "height", "stats.auxNoisy" and "stats.*Speckle" (AFN_STAT_*).
 AFN_API bool afnGetFilterBool(AFNFilter filter, const char* name);
 AFN_API int afnGetFilterInt(AFNFilter filter, const char* name);
 AFN_API float afnGetFilterFloat(AFNFilter filter, const char* name);
@@ -292,6 +302,26 @@ AFN_API bool afnComputeMetrics(AFNDevice device, const float* test, const float*
 AFN_API bool afnComputeTemporalMetrics(AFNDevice device, const float* testPrev, const float* test,
     const float* referencePrev, const float* reference, size_t width, size_t height,
     size_t pixelFloatStride, AFNTemporalMetrics* out);
+
+// ---- Auxiliary-buffer noise
+// ----------------------------------------------------------------------
+
+/// Noise estimate of an auxiliary buffer (lib/core/stages/aux_noise.h): the share of "speckle"
+/// pixels, which differ from all 8 neighbours by more than a threshold (albedo 10 % relative;
+/// unit normals 0.3 apart; depth 5 % relative, pixels without a surface ignored). A clean
+/// (first-hit) buffer has almost none; one that follows specular bounces or carries DOF or motion
+/// blur at low sample counts has many. The "aux=auto" decision uses the same number.
+typedef struct AFNAuxNoise {
+    double speckle; ///< [0, 1] share of speckle pixels
+    bool noisy; ///< speckle above the "auto" threshold (0.5 %)
+} AFNAuxNoise;
+
+/// Estimate the noise of an auxiliary buffer of `role` "albedo", "normal" (3 floats read per
+/// pixel) or "depth" (1 float): packed rows of `width * pixelFloatStride` floats. Returns false
+/// (and records an error on the device) for a bad device or role, NULL pointers, zero size or a
+/// stride too small for the role.
+AFN_API bool afnEstimateAuxNoise(AFNDevice device, const char* role, const float* data,
+    size_t width, size_t height, size_t pixelFloatStride, AFNAuxNoise* out);
 
 #ifdef __cplusplus
 }

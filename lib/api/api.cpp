@@ -330,6 +330,14 @@ static double filterNumber(AFNFilterImpl* f, const std::string& name)
         return flt.width();
     if (name == "height")
         return flt.height();
+    if (name == AFN_STAT_AUX_NOISY)
+        return flt.auxReport().noisy ? 1.0 : 0.0;
+    if (name == AFN_STAT_ALBEDO_SPECKLE)
+        return flt.auxReport().albedoSpeckle;
+    if (name == AFN_STAT_NORMAL_SPECKLE)
+        return flt.auxReport().normalSpeckle;
+    if (name == AFN_STAT_DEPTH_SPECKLE)
+        return flt.auxReport().depthSpeckle;
     return flt.params().getNumber(name);
 }
 

@@ -86,6 +86,36 @@ TEST(Afntool, InfoTextShowsStatisticsAndMissingRoles)
     EXPECT_NE(r.out.find("albedo    (not found; looked for"), std::string::npos) << r.out;
 }
 
+TEST(Afntool, InfoReportsAuxNoisePerRoleAndTheAutoChoice)
+{
+    // examples/sequence maps Blender's Denoising Albedo, which follows the gold torus' specular
+    // bounces: noisy; the world-space Normal pass is first-hit: clean.
+    const CliResult text = runAfntool({ "--info", kFrame0 });
+    ASSERT_EQ(text.exitCode, 0) << text.err;
+    EXPECT_NE(text.out.find("noise: speckle"), std::string::npos) << text.out;
+    EXPECT_NE(text.out.find("aux=auto: noisy"), std::string::npos) << text.out;
+    const CliResult json = runAfntool({ "--info", "--json", kFrame0 });
+    ASSERT_EQ(json.exitCode, 0) << json.err;
+    for (const char* key :
+        { "\"auxNoise\": {", "\"albedo\": {\"speckle\": ", "\"auxAuto\": \"noisy\"" })
+        EXPECT_NE(json.out.find(key), std::string::npos) << key << "\n" << json.out;
+}
+
+TEST(Afntool, DenoiseLogsTheAuxModePerFrame)
+{
+    TempDir dir;
+    const CliResult r = runAfntool({ "--frames", "0-1", kSequence, "--denoise:method=ta:aux=clean",
+        "-o", dir.file("out.####.exr") });
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_NE(r.err.find("--denoise: aux clean (aux=clean; speckle: albedo "), std::string::npos)
+        << r.err;
+    EXPECT_NE(r.err.find("frame.0001.exr"), std::string::npos) << r.err;
+    const CliResult a = runAfntool(
+        { "--frames", "0-1", kSequence, "--denoise:method=ta", "-o", dir.file("auto.####.exr") });
+    ASSERT_EQ(a.exitCode, 0) << a.err;
+    EXPECT_NE(a.err.find("aux noisy (aux=auto;"), std::string::npos) << a.err;
+}
+
 TEST(Afntool, ConvertWritesTopLevelBeautyAndKeepsAovsOnRequest)
 {
     TempDir dir;

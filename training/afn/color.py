@@ -8,7 +8,9 @@ Conventions:
   * tone map for network inputs (NBGD/WSKPN, Lee et al. Sec. III-A):
     ``T(x) = clip(max(x, 0) ** (1 / 2.2), 0, 1)``
   * demodulation (lib/core/stages/demodulate.h): ``irr = colour / max(albedo, ALBEDO_EPS)``, remodulation
-    ``colour = irr * max(albedo, ALBEDO_EPS)``; ALBEDO_EPS = 2^-10.
+    ``colour = irr * max(albedo, ALBEDO_EPS)``; ALBEDO_EPS = 2^-10. ``albedo`` is the dataset's
+    "albedo" feature: the demodulation factor after the core's aux prefilter
+    (lib/core/stages/aux_prefilter.h), so training remodulates exactly as the C++ filter does.
   * shading normal to [0, 1]: ``clip(n * 0.5 + 0.5, 0, 1)``.
   * depth to [0, 1]: per-frame min-max over finite values below DEPTH_SKY (WSKPN); values that are
     non-finite or >= DEPTH_SKY (Blender writes 1e10 for the sky) map to 1 (far).

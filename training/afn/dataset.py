@@ -6,14 +6,17 @@ inputs by the C++ library itself, so the Python and C++ inputs cannot drift:
     afntool --frames F SCENE/reference.####.exr -d float -o CACHE/target.####.exr
 
 ``--features`` runs the ``afn`` method's input preparation (the role mapping of any renderer's
-files, the bad-input rule, demodulation, BMFR temporal accumulation, feature scaling) and writes
-what the network sees, one float layer per feature (afnGetFilterTypeFeature):
+files, the bad-input rule, the aux prefilter with the method's default ``aux=auto``, demodulation,
+BMFR temporal accumulation, feature scaling) and writes what the network sees, one float layer per
+feature (afnGetFilterTypeFeature):
 
-    c1        irradiance      1-spp colour / max(albedo, 2^-10), linear HDR, >= 0
+    c1        irradiance      1-spp colour / max(d, 2^-10), linear HDR, >= 0
     cta       accumulated     TA-1spp: temporal accumulation of c1, linear HDR
-    albedo    albedo          [0, 1] (1 when the file has none)
-    normal01  normal01        shading normal * 0.5 + 0.5, [0, 1]
-    depth01   depth01         per-frame min-max depth, [0, 1]
+    albedo    albedo          d, the demodulation factor: the albedo after the aux prefilter
+                              (lib/core/stages/aux_prefilter.h; the file's albedo when it is clean),
+                              [0, 1] (1 when the file has none); the remodulation multiplies by it
+    normal01  normal01        prefiltered shading normal * 0.5 + 0.5, [0, 1]
+    depth01   depth01         prefiltered per-frame min-max depth, [0, 1]
     target    the reference's beauty (full radiance, albedo included), as afntool reads it
 
 A scene folder holds frame.NNNN.exr and reference.NNNN.exr; a dataset root holds scene folders.
@@ -69,13 +72,15 @@ def frame_numbers(scene_dir):
     return sorted(nums)
 
 
-def load_scene(scene_dir, alpha_min=0.2, max_frames=None, tool=None):
+def load_scene(scene_dir, alpha_min=0.2, max_frames=None, tool=None, aux="auto"):
     """Prepare every frame of one scene through afntool (in order: TA needs the history).
 
     Args:
         scene_dir: folder with frame.NNNN.exr and reference.NNNN.exr (any renderer's naming
             that afntool maps; frame numbers with 4 digits).
         alpha_min: temporal accumulation's minimum blend factor (the afn method's alphaMin).
+        aux: the afn method's ``aux`` parameter (auto, clean, noisy; lib/core/stages/aux_prefilter.h):
+            training data must be prepared as the filter will see it in use (default auto).
         max_frames: first frames only (None: all).
         tool: afntool path (None: :func:`afntool.find_afntool`).
 
@@ -88,7 +93,7 @@ def load_scene(scene_dir, alpha_min=0.2, max_frames=None, tool=None):
     frames = afntool.frame_list(nums)
     with tempfile.TemporaryDirectory(prefix="afn-features-") as cache:
         afntool.run(["-q", "--frames", frames, os.path.join(scene_dir, "frame.####.exr"),
-                     f"--features:alphaMin={alpha_min}",
+                     f"--features:alphaMin={alpha_min}:aux={aux}",
                      os.path.join(cache, "features.####.exr")], tool)
         afntool.run(["-q", "--frames", frames, os.path.join(scene_dir, "reference.####.exr"),
                      "-d", "float", "-o", os.path.join(cache, "target.####.exr")], tool)

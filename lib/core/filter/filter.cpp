@@ -178,6 +178,8 @@ void Filter::commit()
 {
     validateBindings();
     m_conventions = conventionsBinding().read(m_params);
+    if (m_stages.demodulate)
+        m_aux.setSettings(auxBinding().read(m_params));
     if (m_stages.reproject != StageNeeds::Reproject::None) {
         ReprojectSettings r = reprojectBinding().read(m_params);
         r.boxFallback = m_stages.reproject == StageNeeds::Reproject::BilinearWithBoxFallback;
@@ -201,13 +203,18 @@ void Filter::runStages()
     if (m_frame.frameIndex == 0) {
         m_reprojector.reset();
         m_accumulator.reset();
+        m_aux.reset();
         resetHistory();
     }
-    if (m_stages.demodulate)
-        demodulate(m_frame, m_irradiance);
     const bool reproject = m_stages.reproject != StageNeeds::Reproject::None;
+    if (m_stages.demodulate)
+        m_aux.prepare(m_frame); // may rewrite the normal and depth (noisy mode)
     if (reproject)
         m_reprojector.compute(m_frame);
+    if (m_stages.demodulate) {
+        m_aux.finish(m_frame, reproject ? &m_reprojector : nullptr); // may rewrite the albedo
+        demodulate(m_frame, m_irradiance);
+    }
     if (m_stages.accumulate)
         m_accumulator.accumulate(m_reprojector, m_irradiance);
     if (reproject)

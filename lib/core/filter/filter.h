@@ -5,12 +5,15 @@
 // into the bound output. It also owns the temporal history's life: the first frame after creation
 // or a reset starts every stage and the method from an empty history.
 //
-// Per execute:  gather -> [demodulate] -> [reproject] -> [accumulate] -> denoise() -> output
+// Per execute:  gather -> [aux prefilter: geometry] -> [reproject] -> [aux prefilter: albedo]
+//               -> [demodulate] -> [accumulate] -> denoise() -> output
+// (the aux prefilter runs with demodulation; stages/aux_prefilter.h)
 #pragma once
 
 #include "base/params.h"
 #include "filter/conventions.h"
 #include "filter/frame.h"
+#include "stages/aux_prefilter.h"
 #include "stages/temporal_accumulation.h"
 
 #include <functional>
@@ -51,7 +54,8 @@ struct StageNeeds {
     /// Reprojection of the previous frame's geometry onto this one.
     enum class Reproject { None, Bilinear, BilinearWithBoxFallback };
 
-    bool demodulate = false; ///< irradiance(): colour / albedo (stages/demodulate.h)
+    bool demodulate = false; ///< irradiance(): colour / albedo (stages/demodulate.h), after the
+                             ///< aux prefilter (stages/aux_prefilter.h, parameter "aux")
     Reproject reproject = Reproject::None; ///< reprojector(): per-pixel history taps
     bool accumulate = false; ///< accumulator(): BMFR temporal accumulation (needs
                              ///< demodulate and a reprojection)
@@ -76,6 +80,8 @@ public:
 
     int frameIndex() const { return m_frameIndex; }
     const InputStats& lastStats() const { return m_stats; }
+    /// What the aux prefilter measured and decided on the last frame (methods that demodulate).
+    const AuxReport& auxReport() const { return m_aux.report(); }
     int width() const { return m_frame.width; }
     int height() const { return m_frame.height; }
 
@@ -125,6 +131,7 @@ private:
     Image m_output;
     InputStats m_stats;
     Image m_irradiance;
+    AuxPrefilter m_aux;
     Reprojector m_reprojector;
     TemporalAccumulator m_accumulator;
 };

@@ -24,6 +24,8 @@ FilterType registered(FilterType t)
     append(table, std::move(t.params));
     if (t.stages.reproject != StageNeeds::Reproject::None)
         append(table, reprojectBinding().descriptors());
+    if (t.stages.demodulate)
+        append(table, auxBinding().descriptors());
     append(table, conventionsBinding().descriptors());
     t.params = std::move(table);
     return t;

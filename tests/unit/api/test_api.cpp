@@ -373,8 +373,10 @@ TEST_F(ApiTest, FeatureOutputsAreTheNetworkInputs)
     std::vector<float> irr(w * h * 3, -1.0f), acc(w * h * 3, -1.0f), depth(w * h, -1.0f);
     std::vector<float> out1(w * h * 3), out2(w * h * 3);
 
-    // Features only: no "output", the network does not run.
+    // Features only: no "output", the network does not run. This albedo varies per pixel, so
+    // aux=auto would call it noisy; aux=clean demodulates by it as given.
     afn::FilterRef f = device.newFilter("afn");
+    f.set(AFN_PARAM_AUX, "clean");
     f.setImage(AFN_IMAGE_COLOR, color.data(), afn::Format::Float3, w, h);
     f.setImage(AFN_IMAGE_ALBEDO, albedo.data(), afn::Format::Float3, w, h);
     f.setImage("feature.irradiance", irr.data(), afn::Format::Float3, w, h);
@@ -388,6 +390,19 @@ TEST_F(ApiTest, FeatureOutputsAreTheNetworkInputs)
     EXPECT_EQ(acc, irr) << "first frame: the accumulation is the frame itself";
     for (float v : depth)
         EXPECT_EQ(v, 0.0f) << "no depth input: 0";
+
+    // aux=noisy: the "albedo" feature is the demodulation factor the irradiance was divided by.
+    std::vector<float> factor(w * h * 3, -1.0f);
+    f.set(AFN_PARAM_AUX, "noisy");
+    f.setImage("feature.albedo", factor.data(), afn::Format::Float3, w, h);
+    f.commit();
+    afnResetFilter(f.getHandle());
+    f.execute();
+    ASSERT_EQ(error(), afn::Error::None);
+    EXPECT_TRUE(f.get<bool>(AFN_STAT_AUX_NOISY));
+    EXPECT_NE(factor, albedo) << "the speckled albedo was prefiltered";
+    for (size_t i = 0; i < irr.size(); ++i)
+        ASSERT_EQ(irr[i], color[i] / std::max(factor[i], 1.0f / 1024.0f)) << i;
 
     // Binding features does not change the output.
     afn::FilterRef a = device.newFilter("afn"), b = device.newFilter("afn");

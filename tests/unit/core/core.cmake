@@ -8,6 +8,7 @@ set(AFN_CORE_TESTS ${CMAKE_CURRENT_LIST_DIR})
 afn_add_gtest(test_methods
   SOURCES
     unit/core/stages/test_methods_reproject.cpp
+    unit/core/stages/test_aux_prefilter.cpp
     unit/core/methods/test_methods_ta.cpp
     unit/core/methods/test_methods_filters.cpp
     unit/core/methods/test_methods_blender.cpp

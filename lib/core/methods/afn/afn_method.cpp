@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: Apache-2.0
 // "afn": the Adaptive Fusion Network denoiser (Lee et al.). Per frame, after the shared stages
-// (demodulation of the 1-spp colour, BMFR temporal accumulation for TA-1spp): scale normal and
+// (aux prefilter, demodulation of the 1-spp colour, BMFR temporal accumulation for TA-1spp; the
+// albedo, normal and depth seen here are the prefiltered ones): scale normal and
 // depth (features.h), run the network (network.h) and remodulate. The network output is clamped
 // to >= 0 by the remodulation (stages/demodulate.h).
 //
@@ -100,9 +101,12 @@ FilterType filterType()
     t.features = {
         { "irradiance", 3, "1-spp colour divided by max(albedo, 2^-10), linear HDR, >= 0" },
         { "accumulated", 3, "BMFR temporal accumulation of the irradiance (TA-1spp), linear HDR" },
-        { "albedo", 3, "albedo as the network sees it, [0, 1] (1 without an albedo input)" },
-        { "normal01", 3, "shading normal * 0.5 + 0.5, [0, 1] (0.5 without a normal input)" },
-        { "depth01", 1, "per-frame min-max depth, [0, 1] (0 without a depth input)" },
+        { "albedo", 3,
+            "demodulation factor = the albedo after the aux prefilter (as given when clean), "
+            "[0, 1] (1 without an albedo input); the network input and the remodulation" },
+        { "normal01", 3,
+            "prefiltered shading normal * 0.5 + 0.5, [0, 1] (0.5 without a normal input)" },
+        { "depth01", 1, "prefiltered per-frame min-max depth, [0, 1] (0 without a depth input)" },
     };
     t.create = factoryOf<AfnFilter>();
     return t;

@@ -1,0 +1,200 @@
+// SPDX-License-Identifier: Apache-2.0
+// Prefiltering of possibly-noisy auxiliary buffers (see stages/aux_prefilter.h).
+#include "stages/aux_prefilter.h"
+
+#include "base/parallel.h"
+#include "stages/temporal_accumulation.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace afn {
+
+const ParamBinding<AuxSettings>& auxBinding()
+{
+    using M = AuxSettings::Mode;
+    static const ParamBinding<AuxSettings> binding = ParamBinding<AuxSettings>().add(
+        &AuxSettings::aux, AFN_PARAM_AUX,
+        { { "auto", M::Auto }, { "clean", M::Clean }, { "noisy", M::Noisy } }, "Auxiliary buffers",
+        "albedo/normal/depth quality: clean (first-hit AOVs, used as given), noisy (AOVs that "
+        "follow specular bounces or carry DOF/motion-blur noise: prefiltered, demodulation "
+        "blended towards a smooth albedo where unreliable) or auto (decided on the first frame "
+        "from the share of speckle pixels, reported as stats.auxNoisy)");
+    return binding;
+}
+
+namespace {
+
+constexpr int kRadius = 2; ///< 5x5 windows
+
+/// Mean over the (2r+1)^2 window clipped to the image, per channel (separable box sums).
+void boxMean(const Image& src, Image& tmp, Image& out)
+{
+    const int w = src.width(), h = src.height(), c = src.channels();
+    tmp.resize(w, h, c);
+    out.resize(w, h, c);
+    parallelRows(h, [&](int y0, int y1) {
+        for (int y = y0; y < y1; ++y)
+            for (int x = 0; x < w; ++x) {
+                float* o = tmp.at(x, y);
+                for (int k = 0; k < c; ++k)
+                    o[k] = 0.0f;
+                const int xa = std::max(x - kRadius, 0), xb = std::min(x + kRadius, w - 1);
+                for (int q = xa; q <= xb; ++q)
+                    for (int k = 0; k < c; ++k)
+                        o[k] += src(q, y, k);
+                for (int k = 0; k < c; ++k)
+                    o[k] /= static_cast<float>(xb - xa + 1);
+            }
+    });
+    parallelRows(h, [&](int y0, int y1) {
+        for (int y = y0; y < y1; ++y)
+            for (int x = 0; x < w; ++x) {
+                float* o = out.at(x, y);
+                for (int k = 0; k < c; ++k)
+                    o[k] = 0.0f;
+                const int ya = std::max(y - kRadius, 0), yb = std::min(y + kRadius, h - 1);
+                for (int q = ya; q <= yb; ++q)
+                    for (int k = 0; k < c; ++k)
+                        o[k] += tmp(x, q, k);
+                for (int k = 0; k < c; ++k)
+                    o[k] /= static_cast<float>(yb - ya + 1);
+            }
+    });
+}
+
+inline float reliability(float share)
+{
+    return std::clamp(1.0f - share / kAuxUnreliableShare, 0.0f, 1.0f);
+}
+
+inline bool hasSurface(float z)
+{
+    return std::isfinite(z) && std::fabs(z) < kAuxDepthSky;
+}
+
+} // namespace
+
+void AuxPrefilter::reset()
+{
+    m_decided = false;
+    m_hasHistory = false;
+}
+
+void AuxPrefilter::prepare(Frame& f)
+{
+    const bool albedo = f.hasAlbedo();
+    const std::int64_t pixels = static_cast<std::int64_t>(f.width) * f.height;
+    Image normalFlags, depthFlags;
+    auto share = [&](std::int64_t n) { return static_cast<double>(n) / pixels; };
+    m_report.albedoSpeckle
+        = albedo ? share(speckleFlags(f.albedo.view(), AuxKind::Albedo, m_albedoFlags)) : -1.0;
+    m_report.normalSpeckle
+        = f.hasNormal() ? share(speckleFlags(f.normal.view(), AuxKind::Normal, normalFlags)) : -1.0;
+    m_report.depthSpeckle
+        = f.hasDepth() ? share(speckleFlags(f.depth.view(), AuxKind::Depth, depthFlags)) : -1.0;
+
+    if (!m_decided) {
+        using M = AuxSettings::Mode;
+        m_report.noisy = m_settings.aux == M::Noisy
+            || (m_settings.aux == M::Auto
+                && std::max(m_report.albedoSpeckle, m_report.normalSpeckle) > kAuxNoisyShare);
+        m_decided = true;
+    }
+    if (!m_report.noisy)
+        return;
+
+    if (f.hasNormal()) {
+        boxMean(normalFlags, m_tmp, m_share);
+        boxMean(f.normal, m_tmp, m_mean);
+        parallelRows(f.height, [&](int y0, int y1) {
+            for (int y = y0; y < y1; ++y)
+                for (int x = 0; x < f.width; ++x) {
+                    const float r = reliability(m_share(x, y, 0));
+                    if (r >= 1.0f)
+                        continue;
+                    float* n = f.normal.at(x, y);
+                    const float* m = m_mean.at(x, y);
+                    float v[3], len2 = 0.0f;
+                    for (int k = 0; k < 3; ++k) {
+                        v[k] = r * n[k] + (1.0f - r) * m[k];
+                        len2 += v[k] * v[k];
+                    }
+                    if (len2 > 1e-12f)
+                        for (int k = 0; k < 3; ++k)
+                            n[k] = v[k] / std::sqrt(len2);
+                }
+        });
+    }
+    if (f.hasDepth()) {
+        // Mean over pixels with a surface: channels (z * valid, valid).
+        Image zv(f.width, f.height, 2);
+        for (int y = 0; y < f.height; ++y)
+            for (int x = 0; x < f.width; ++x) {
+                const float z = f.depth(x, y, 0);
+                const bool ok = hasSurface(z);
+                zv(x, y, 0) = ok ? z : 0.0f;
+                zv(x, y, 1) = ok ? 1.0f : 0.0f;
+            }
+        boxMean(depthFlags, m_tmp, m_share);
+        boxMean(zv, m_tmp, m_mean);
+        parallelRows(f.height, [&](int y0, int y1) {
+            for (int y = y0; y < y1; ++y)
+                for (int x = 0; x < f.width; ++x) {
+                    const float r = reliability(m_share(x, y, 0));
+                    float& z = f.depth(x, y, 0);
+                    if (r >= 1.0f || !hasSurface(z) || !(m_mean(x, y, 1) > 0.0f))
+                        continue;
+                    z = r * z + (1.0f - r) * (m_mean(x, y, 0) / m_mean(x, y, 1));
+                }
+        });
+    }
+}
+
+void AuxPrefilter::finish(Frame& f, const Reprojector* taps)
+{
+    if (!m_report.noisy || !f.hasAlbedo() || f.colorDemodulated) {
+        m_hasHistory = false;
+        return;
+    }
+    const int w = f.width, h = f.height;
+    // Current (smoothed albedo, flag share) per pixel, then its temporal accumulation.
+    boxMean(m_albedoFlags, m_tmp, m_share);
+    boxMean(f.albedo, m_tmp, m_mean);
+    std::swap(m_hist, m_prevHist);
+    m_hist.resize(w, h, 5);
+    const bool history = m_hasHistory && taps && taps->hasHistory() && m_prevHist.width() == w
+        && m_prevHist.height() == h;
+    parallelRows(h, [&](int y0, int y1) {
+        for (int y = y0; y < y1; ++y)
+            for (int x = 0; x < w; ++x) {
+                const float cur[4]
+                    = { m_mean(x, y, 0), m_mean(x, y, 1), m_mean(x, y, 2), m_share(x, y, 0) };
+                float* o = m_hist.at(x, y);
+                float prev[5];
+                const float ws
+                    = history ? gatherHistory<5>(taps->taps(x, y), m_prevHist, prev) : 0.0f;
+                if (ws > 0.0f) {
+                    const float len = std::min(prev[4] + 1.0f, kMaxHistoryLength);
+                    const float alpha = std::max(1.0f / len, kAuxAlbedoAlphaMin);
+                    for (int k = 0; k < 4; ++k)
+                        o[k] = prev[k] + alpha * (cur[k] - prev[k]);
+                    o[4] = len;
+                } else {
+                    for (int k = 0; k < 4; ++k)
+                        o[k] = cur[k];
+                    o[4] = 1.0f;
+                }
+                const float r = reliability(o[3]);
+                if (r >= 1.0f)
+                    continue; // reliable: the albedo stays exactly as given
+                float* a = f.albedo.at(x, y);
+                const float floor = (1.0f - r) * kAuxNoisyAlbedoFloor;
+                for (int k = 0; k < 3; ++k)
+                    a[k] = std::max(r * a[k] + (1.0f - r) * o[k], floor);
+            }
+    });
+    m_hasHistory = true;
+}
+
+} // namespace afn

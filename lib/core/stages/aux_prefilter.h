@@ -1,0 +1,100 @@
+// SPDX-License-Identifier: Apache-2.0
+// Possibly-noisy auxiliary buffers: the shared stage that makes demodulation, edge-stopping and
+// network features safe when albedo, normals or depth are noisy (issue 12).
+//
+// The problem. Methods divide the colour by the albedo, filter, and multiply by the albedo again
+// (stages/demodulate.h). When the albedo is itself 1-spp noise (Blender's Denoising Albedo on
+// metal and glass, any AOV under depth of field or motion blur), the remodulation multiplies the
+// clean filtered irradiance by that noise and the output gets the speckle back, whatever the
+// filter. Noisy normals and depth make edge-stopping weights random (SVGF), feed noise into
+// regression features (BMFR) and network inputs (AFN), and reject history (reprojection).
+//
+// The choice. Demodulation and remodulation use the SAME per-pixel factor d, so any factor is
+// unbiased (colour / d * d = colour): the factor only decides in which domain the filter works.
+// A per-pixel factor is worth having where it is reliable (it takes texture out of the signal);
+// where it is noise it should be smooth. So, in "noisy" mode:
+//   1. flags    speckle pixels of each buffer (stages/aux_noise.h: differs from all 8 neighbours);
+//   2. u        share of flagged pixels in the 5x5 window, accumulated over time through the
+//               reprojection (the "variance over neighbourhood and history");
+//   3. r        reliability = clamp(1 - u / kAuxUnreliableShare, 0, 1): 1 on clean surfaces
+//               (flag-free windows), 0 where 4 or more of 25 neighbours are speckle;
+//   4. albedo   d = r * albedo + (1 - r) * h, h = temporal accumulation (alpha >= 0.1, same taps
+//               and history rule as the colour's) of the 5x5 mean albedo: a smooth, stable
+//               estimate of the expected albedo. Where r = 0 the demodulation divides by a smooth
+//               field, i.e. the method effectively filters the colour without per-pixel
+//               demodulation (a smooth gain commutes with the filter up to its own variation);
+//               where the unreliable factor is also near zero, d >= (1 - r) / 32, which bounds
+//               the gain at 32x instead of 1024x (stages/demodulate.h's 2^-10 floor).
+//   5. normal   n' = normalize(r n + (1 - r) mean5x5(n)),
+//      depth    z' = r z + (1 - r) mean5x5(z) over pixels with a surface,
+//               before reprojection, so history acceptance, SVGF's edge-stopping, BMFR's features
+//               and AFN's inputs all see the prefiltered geometry.
+// The rewritten buffers replace the frame's (Frame::albedo, normal, depth): every method, the
+// remodulation and the AFN features (hence training, through afntool --features) see the same
+// values. Flags and r are per buffer; a clean buffer in a noisy frame is left as it is (r = 1).
+//
+// "clean" leaves every buffer untouched (bit-identical to the behaviour before this stage);
+// "auto" (default) decides on the first frame of each history: noisy when the albedo's or the
+// normal's speckle share exceeds kAuxNoisyShare (0.5 %), clean otherwise; the decision holds
+// until the history is reset, so a sequence is filtered in one mode (a changed "aux" parameter,
+// too, takes effect at the next reset: afnResetFilter or a new filter). With colour that is already
+// demodulated (AFN_CONVENTION_COLOR_DEMODULATED) the albedo is never changed (the colour was
+// divided by the given albedo; only that one remodulates it exactly).
+#pragma once
+
+#include "base/params.h"
+#include "filter/frame.h"
+#include "stages/aux_noise.h"
+#include "stages/reproject.h"
+
+namespace afn {
+
+/// The "aux" parameter of every method that demodulates.
+struct AuxSettings {
+    enum class Mode { Auto, Clean, Noisy };
+    Mode aux = Mode::Auto; ///< auto: decided from the data on the first frame of a history
+};
+
+/// Descriptors of AuxSettings (in the table of every method that demodulates).
+const ParamBinding<AuxSettings>& auxBinding();
+
+/// Share of speckle pixels in a 5x5 window at which a buffer is fully unreliable (4 of 25).
+constexpr float kAuxUnreliableShare = 0.16f;
+/// Minimum blend factor of the albedo's temporal accumulation.
+constexpr float kAuxAlbedoAlphaMin = 0.1f;
+/// Floor of the demodulation factor where it is unreliable (2^-5; scaled by 1 - r).
+constexpr float kAuxNoisyAlbedoFloor = 1.0f / 32.0f;
+
+/// What the stage measured and decided for the last frame (afnGetFilterFloat "stats.aux*").
+struct AuxReport {
+    bool noisy = false; ///< prefiltering in effect for this frame's history
+    double albedoSpeckle = -1.0; ///< share of speckle pixels, -1 without the input
+    double normalSpeckle = -1.0;
+    double depthSpeckle = -1.0;
+};
+
+class AuxPrefilter {
+public:
+    void setSettings(const AuxSettings& s) { m_settings = s; }
+    /// Drop the history and the auto decision (next frame decides again).
+    void reset();
+
+    /// Before reprojection: measure, decide (first frame of a history), prefilter normal and
+    /// depth of `frame` in place.
+    void prepare(Frame& frame);
+    /// After reprojection (`taps` null when the method does not reproject): replace the frame's
+    /// albedo by the demodulation factor d (see the file comment).
+    void finish(Frame& frame, const Reprojector* taps);
+
+    const AuxReport& report() const { return m_report; }
+
+private:
+    AuxSettings m_settings;
+    AuxReport m_report;
+    bool m_decided = false;
+    bool m_hasHistory = false;
+    Image m_albedoFlags, m_flags, m_share, m_mean, m_tmp;
+    Image m_hist, m_prevHist; ///< per pixel: smoothed albedo (3), flag share (1), length (1)
+};
+
+} // namespace afn

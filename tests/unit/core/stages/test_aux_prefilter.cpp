@@ -1,0 +1,199 @@
+// SPDX-License-Identifier: Apache-2.0
+// The aux prefilter (lib/core/stages/aux_prefilter.h) through every method that demodulates:
+//   - noisy albedo (per-pixel random, irradiance smooth) gives an output error within a small
+//     factor (2x) of the same sequence with the clean (expected) albedo, where remodulating by the
+//     raw albedo used to return (ta, svgf, afn) or keep much of (bmfr) the input noise;
+//   - clean albedo: "auto" decides clean and the output is bit-identical to "clean";
+//   - the speckle estimate separates the two; the bad-input rule still holds in noisy mode.
+#include "stages/aux_noise.h"
+#include "test_methods_util.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <string>
+#include <vector>
+
+namespace {
+
+using afn::Image;
+using methods_test::Buffers;
+using methods_test::makeImage;
+using methods_test::runFrame;
+
+constexpr int kW = 64, kH = 48, kFrames = 8;
+
+/// The methods that demodulate (afn only when the build embeds its weights).
+std::vector<std::string> methods()
+{
+    std::vector<std::string> m = { "ta", "svgf", "bmfr" };
+    if (const afn::FilterType* t = afn::findFilterType("afn"); t && t->ready)
+        m.push_back("afn");
+    return m;
+}
+
+float irradiance(int x, int y)
+{
+    return 0.5f + 0.3f * std::sin(x / 9.0f) * std::cos(y / 7.0f);
+}
+
+/// Expected albedo: two flat halves (a clean, piecewise constant texture).
+float cleanAlbedo(int x, int, int c)
+{
+    return x < kW / 2 ? 0.5f : 0.3f + 0.1f * c;
+}
+
+struct Sequence {
+    std::vector<Image> color, noisyAlbedo;
+    Image reference;
+};
+
+/// Frame k: albedo sample a = expected * (0.2 + 1.6 u), u uniform per pixel and frame (as an AOV
+/// that follows a random bounce); colour = irradiance * a (the same path), plus 10 % noise.
+Sequence makeSequence()
+{
+    Sequence s;
+    methods_test::Lcg rng { 12345u };
+    for (int k = 0; k < kFrames; ++k) {
+        Image a(kW, kH, 3), c(kW, kH, 3);
+        for (int y = 0; y < kH; ++y)
+            for (int x = 0; x < kW; ++x) {
+                const float u = 0.5f + 0.5f * rng.next();
+                const float n = 1.0f + 0.1f * rng.next();
+                for (int ch = 0; ch < 3; ++ch) {
+                    a(x, y, ch) = std::fmin(cleanAlbedo(x, y, ch) * (0.2f + 1.6f * u), 1.0f);
+                    c(x, y, ch) = irradiance(x, y) * a(x, y, ch) * n;
+                }
+            }
+        s.noisyAlbedo.push_back(a);
+        s.color.push_back(c);
+    }
+    // The expectation of the clipped albedo sample is what the colour averages to.
+    s.reference = makeImage(kW, kH, 3, [&](int x, int y, int ch) {
+        double sum = 0.0;
+        const int n = 1000;
+        for (int i = 0; i < n; ++i) {
+            const double u = (i + 0.5) / n;
+            sum += std::fmin(cleanAlbedo(x, y, ch) * (0.2 + 1.6 * u), 1.0);
+        }
+        return static_cast<float>(irradiance(x, y) * sum / n);
+    });
+    return s;
+}
+
+/// Run the sequence through a method with albedo per frame from `albedo(k)`; RMSE of the last
+/// frame against the reference.
+template <typename AlbedoOf>
+double runSequence(const std::string& method, const char* aux, const Sequence& s, AlbedoOf albedo,
+    Image* out = nullptr, bool* noisy = nullptr)
+{
+    auto f = afn::createFilter(method);
+    f->params().setString("aux", aux);
+    Buffers b;
+    b.normal = makeImage(kW, kH, 3, [](int, int, int c) { return c == 2 ? 1.0f : 0.0f; });
+    b.depth = makeImage(kW, kH, 1, [](int, int, int) { return 3.0f; });
+    for (int k = 0; k < kFrames; ++k) {
+        b.color = s.color[k];
+        b.albedo = albedo(k);
+        runFrame(*f, b);
+    }
+    if (out)
+        *out = b.out;
+    if (noisy)
+        *noisy = f->auxReport().noisy;
+    return methods_test::rmse(b.out, s.reference);
+}
+
+Image expectedAlbedo(const Sequence& s)
+{
+    // The clean albedo a renderer's first-hit AOV would give: the expectation of the samples.
+    return makeImage(
+        kW, kH, 3, [&](int x, int y, int ch) { return s.reference(x, y, ch) / irradiance(x, y); });
+}
+
+TEST(AuxPrefilter, SpeckleShareSeparatesNoisyFromClean)
+{
+    const Sequence s = makeSequence();
+    const double noisy = afn::speckleShare(s.noisyAlbedo[0].view(), afn::AuxKind::Albedo);
+    const double clean = afn::speckleShare(expectedAlbedo(s).view(), afn::AuxKind::Albedo);
+    EXPECT_GT(noisy, 0.2);
+    EXPECT_EQ(clean, 0.0);
+    EXPECT_GT(noisy, afn::kAuxNoisyShare);
+}
+
+TEST(AuxPrefilter, NoisyAlbedoErrorWithinSmallFactorOfClean)
+{
+    const Sequence s = makeSequence();
+    const Image clean = expectedAlbedo(s);
+    const double input = methods_test::rmse(s.color.back(), s.reference);
+    for (const std::string& m : methods()) {
+        bool decided = false;
+        const double withClean = runSequence(m, "clean", s, [&](int) { return clean; });
+        const double withNoisy = runSequence(
+            m, "auto", s, [&](int k) { return s.noisyAlbedo[k]; }, nullptr, &decided);
+        const double before = runSequence(m, "clean", s, [&](int k) { return s.noisyAlbedo[k]; });
+        std::printf("%s: RMSE noisy albedo %.4f (raw remodulation %.4f), clean albedo %.4f, input "
+                    "%.4f\n",
+            m.c_str(), withNoisy, before, withClean, input);
+        EXPECT_TRUE(decided) << m << ": auto should find the albedo noisy";
+        EXPECT_LT(withNoisy, 2.0 * withClean + 0.005)
+            << m << ": noisy " << withNoisy << " clean " << withClean << " input " << input;
+        EXPECT_LT(withNoisy, 0.8 * before)
+            << m << ": remodulating by the raw albedo gave " << before;
+    }
+}
+
+TEST(AuxPrefilter, CleanAlbedoAutoIsBitIdenticalToClean)
+{
+    const Sequence s = makeSequence();
+    const Image clean = expectedAlbedo(s);
+    for (const std::string& m : methods()) {
+        Image autoOut, cleanOut;
+        bool decided = true;
+        runSequence(
+            m, "auto", s, [&](int) { return clean; }, &autoOut, &decided);
+        runSequence(
+            m, "clean", s, [&](int) { return clean; }, &cleanOut);
+        EXPECT_FALSE(decided) << m;
+        EXPECT_TRUE(methods_test::bitEqual(autoOut, cleanOut)) << m;
+    }
+}
+
+TEST(AuxPrefilter, ForcedNoisyOnCleanAlbedoIsNotWorse)
+{
+    const Sequence s = makeSequence();
+    const Image clean = expectedAlbedo(s);
+    for (const std::string& m : methods()) {
+        const double asClean = runSequence(m, "clean", s, [&](int) { return clean; });
+        const double asNoisy = runSequence(m, "noisy", s, [&](int) { return clean; });
+        EXPECT_LE(asNoisy, asClean * 1.05 + 1e-6) << m; // no speckle: the albedo stays as given
+    }
+}
+
+TEST(AuxPrefilter, BadAlbedoCountedAndReplacedInNoisyMode)
+{
+    const float nan = std::numeric_limits<float>::quiet_NaN();
+    const float inf = std::numeric_limits<float>::infinity();
+    const Sequence s = makeSequence();
+    for (const std::string& m : methods()) {
+        auto f = afn::createFilter(m);
+        f->params().setString("aux", "noisy");
+        Buffers b;
+        for (int k = 0; k < 3; ++k) {
+            b.color = s.color[k];
+            b.albedo = s.noisyAlbedo[k];
+            b.albedo(3, 4, 0) = nan;
+            b.albedo(5, 6, 1) = inf;
+            b.albedo(7, 8, 2) = -inf;
+            b.albedo(9, 9, 0) = -2.0f;
+            runFrame(*f, b);
+            EXPECT_EQ(f->lastStats().nonFinite, 3) << m;
+            EXPECT_TRUE(methods_test::allFiniteNonNegative(b.out)) << m;
+            EXPECT_TRUE(f->auxReport().noisy) << m;
+        }
+    }
+}
+
+} // namespace
