@@ -15,6 +15,7 @@ TRAINING = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 sys.path.insert(0, os.path.join(TRAINING, "scenes"))
 sys.path.insert(0, TRAINING)
 import dataset_exr  # noqa: E402
+import reference_noise  # noqa: E402
 from generator import split  # noqa: E402
 from generator.describe import describe  # noqa: E402
 from generator.families import FAMILIES  # noqa: E402
@@ -79,6 +80,11 @@ def test_driver_writes_levels_headers_vectors_references_and_resumes(tmp_path):
     _, b = dataset_exr.read(str(seq / "reference_part1.0000.exr"))
     _, r = dataset_exr.read(ref)
     assert np.allclose(r, (a + b) / 2, atol=1e-6) and not np.array_equal(a, b)
+    rows = reference_noise.parts_noise(str(tmp_path))
+    assert [row["frame"] for row in rows] == [0, 1]
+    for row in rows:  # two parts: the average is 6.02 dB cleaner than part 0 vs part 1
+        assert abs(row["reference_psnr_db"] - row["part_vs_part_psnr_db"] - 6.02) < 0.011
+        assert set(row) >= {"input_1spp_psnr_db", "input_4spp_psnr_db"}
 
     second = subprocess.run(cmd, capture_output=True, text=True, timeout=600)
     assert second.returncode == 0, second.stderr
