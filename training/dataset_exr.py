@@ -6,6 +6,8 @@
   header attribute ``afn:vector_source``.
 * :func:`average_parts`: average K independent reference parts into one reference whose
   ``cycles.<layer>.samples`` header is the sum of the parts' samples.
+* :func:`sample_weighted_mean`: a training target from independent renders of one frame (Combined
+  only), each weighted by its sample count, as if one render had taken all their samples.
 * :func:`samples`: the sample count Blender recorded in a file's header.
 
 Every write goes to a temporary name in the same folder and is renamed when complete.
@@ -18,6 +20,7 @@ import OpenImageIO as oiio
 
 VECTOR_SOURCE_ATTR = "afn:vector_source"
 PARTS_ATTR = "afn:reference_parts"
+TARGET_ATTR = "afn:target"
 
 
 def read(path):
@@ -114,4 +117,37 @@ def average_parts(part_paths, out_path):
     spec.attribute(PARTS_ATTR, "%d independent parts of %d samples averaged"
                    % (len(part_paths), total // max(1, len(part_paths))))
     write(out_path, spec, (acc / len(part_paths)).astype(np.float32))
+    return total
+
+
+def combined_channels(names):
+    """Indices of ``<layer>.Combined.R/G/B/A`` in ``names``."""
+    idx = [next(i for i, n in enumerate(names) if n.endswith("Combined." + c)) for c in "RGBA"]
+    return idx
+
+
+def sample_weighted_mean(paths, out_path, note):
+    """Mean of the Combined passes of ``paths`` weighted by their header sample counts.
+
+    Cycles' pixel value is the mean of its samples, so the result equals a render with the summed
+    samples. Writes Combined RGBA as float32 with ``cycles.<layer>.samples`` = the sum and
+    ``afn:target`` = ``note``; returns the sum.
+    """
+    acc, total, first = None, 0, None
+    for path in paths:
+        spec, pix = read(path)
+        n = samples(path)
+        if not n:
+            raise ValueError("no sample count in the header of %s" % path)
+        rgba = pix[..., combined_channels(list(spec.channelnames))].astype(np.float64) * n
+        acc = rgba if acc is None else acc + rgba
+        total += n
+        first = first or spec
+    out = oiio.ImageSpec(first.width, first.height, 4, oiio.FLOAT)
+    out.channelnames = tuple(first.channelnames[i]
+                             for i in combined_channels(list(first.channelnames)))
+    out.attribute("compression", "zip")
+    out.attribute(_samples_attr(first), str(total))
+    out.attribute(TARGET_ATTR, note)
+    write(out_path, out, (acc / total).astype(np.float32))
     return total

@@ -9,10 +9,15 @@ and post-processes the result (dataset_exr.py). Output layout::
     OUT/<split>/<family>-<seed>/description.json   the generator's scene description
     OUT/<split>/<family>-<seed>/scene.json         the runner's record (exposure, cameras, seconds)
     OUT/<split>/<family>-<seed>/spp<S>/frame.NNNN.exr   S samples, every pass afn maps
-    OUT/<split>/<family>-<seed>/spp<S>/reference.NNNN.exr -> ../reference.NNNN.exr   (symlink)
-    OUT/<split>/<family>-<seed>/reference.NNNN.exr     target (train) or clean reference (eval)
+    OUT/<split>/<family>-<seed>/spp<S>/reference.NNNN.exr   what frame.NNNN.exr is scored against
+    OUT/train/<family>-<seed>/extra.NNNN.exr           an extra independent render (--extra-spp)
+    OUT/eval/<family>-<seed>/reference.NNNN.exr        clean reference (--eval-ref-spp), the mean
+    OUT/eval/<family>-<seed>/reference_partK.NNNN.exr  of these independent parts
 
-``<split>`` is ``train`` or ``eval`` (generator/split.py). Resumable: rerun the same command and
+``<split>`` is ``train`` or ``eval`` (generator/split.py). A training level's reference is the
+sample-weighted mean of the *other* levels and ``extra`` (independent of that level's input: with
+the defaults 100, 97, 85 and 37 samples for levels 1, 4, 16 and 64); an evaluation level's
+reference is a symlink to the clean ``../reference.NNNN.exr``. Resumable: rerun the same command and
 finished sequences and files are skipped; a sequence directory made with other settings, or whose
 description the generator no longer reproduces, is refused with a message.
 """
@@ -39,9 +44,9 @@ VECTOR_NOTE = ("Vector of an unblurred 1-spp render of the same frame (vector.NN
                "writes an all-zero Vector pass when motion blur is on")
 
 # Defaults: the budgeted dataset of docs/dataset.md (about 5 hours on this 2-core machine).
-DEFAULTS = {"frames": 8, "height": 144, "train": 168, "levels": "1,4,16,64", "target_spp": 64,
-            "eval_held_out": 3, "eval_reserved": 3, "eval_levels": "1,16", "eval_ref_spp": 512,
-            "eval_ref_parts": 2}
+DEFAULTS = {"frames": 6, "height": 144, "train": 196, "levels": "1,4,16,64", "extra_spp": 16,
+            "eval_frames": 8, "eval_held_out": 3, "eval_reserved": 3, "eval_levels": "1,16",
+            "eval_ref_spp": 512, "eval_ref_parts": 2}
 
 
 def noise_seed(name):
@@ -50,7 +55,7 @@ def noise_seed(name):
 
 
 def plan(args):
-    """[(split, family, seed, levels, reference spp, reference parts)], evaluation first."""
+    """[(split, family, seed, frames, levels, reference spp, parts, reference name)], eval first."""
     if args.sequences:
         pairs = []
         for item in args.sequences.split(","):
@@ -64,9 +69,10 @@ def plan(args):
     else:
         evals = split.evaluation_sequences(args.eval_held_out, args.eval_reserved)
         trains = split.training_sequences(args.train)
-    out = [("eval", f, s, args.eval_levels, args.eval_ref_spp, args.eval_ref_parts)
-           for f, s in evals]
-    out += [("train", f, s, args.levels, args.target_spp, 1) for f, s in trains]
+    out = [("eval", f, s, args.eval_frames, args.eval_levels, args.eval_ref_spp,
+            args.eval_ref_parts, "reference") for f, s in evals]
+    out += [("train", f, s, args.frames, args.levels, args.extra_spp, 1, "extra")
+            for f, s in trains]
     if args.only:
         out = [p for p in out if p[0] == args.only]
     return out
@@ -96,6 +102,7 @@ def run_blender(args, desc_path, seq_dir, settings, progress):
            "--height", str(settings["height"]), "--levels", settings["levels"],
            "--reference-spp", str(settings["reference_spp"]),
            "--reference-parts", str(settings["reference_parts"]),
+           "--reference-name", settings["reference_name"],
            "--seed", str(settings["noise_seed"]), "--threads", str(args.threads)]
     log_path = os.path.join(seq_dir, "blender.log")
     with open(log_path, "w") as log:
@@ -111,12 +118,23 @@ def run_blender(args, desc_path, seq_dir, settings, progress):
         return json.load(fh)
 
 
-def post_process(seq_dir, frames, levels, parts, blur):
-    """Splice unblurred vectors, average reference parts, link references, check sample headers."""
-    levels = [int(x) for x in levels.split(",")]
+def level_targets(levels, extra_spp):
+    """Samples of each training level's target: the other levels plus the extra render."""
+    return {spp: sum(levels) - spp + extra_spp for spp in levels}
+
+
+def post_process(seq_dir, frames, settings, blur):
+    """Splice unblurred vectors, check sample headers, and give every level its references.
+
+    Evaluation: average the reference parts, link ``spp<S>/reference.NNNN.exr`` to the result.
+    Training: write each level's target, the sample-weighted mean of the other levels and
+    ``extra.NNNN.exr``.
+    """
+    levels = [int(x) for x in settings["levels"].split(",")]
+    parts = settings["reference_parts"]
     for f in range(frames):
         ref = os.path.join(seq_dir, "reference.%04d.exr" % f)
-        if parts > 1 and not os.path.exists(ref):
+        if settings["reference_name"] == "reference" and parts > 1 and not os.path.exists(ref):
             dataset_exr.average_parts([os.path.join(seq_dir, "reference_part%d.%04d.exr" % (k, f))
                                        for k in range(parts)], ref)
         for spp in levels:
@@ -124,12 +142,21 @@ def post_process(seq_dir, frames, levels, parts, blur):
             if blur:
                 dataset_exr.splice_vector(frame, os.path.join(seq_dir, "vector.%04d.exr" % f),
                                           VECTOR_NOTE)
-            if f == 0 and dataset_exr.samples(frame) != spp:
+            if dataset_exr.samples(frame) != spp:
                 raise DatasetError("%s: header says %s samples, expected %d"
                                    % (frame, dataset_exr.samples(frame), spp))
-            link = os.path.join(seq_dir, "spp%d" % spp, "reference.%04d.exr" % f)
-            if not os.path.lexists(link):
-                os.symlink(os.path.join("..", "reference.%04d.exr" % f), link)
+            target = os.path.join(seq_dir, "spp%d" % spp, "reference.%04d.exr" % f)
+            if os.path.lexists(target):
+                continue
+            if settings["reference_name"] == "reference":
+                os.symlink(os.path.join("..", "reference.%04d.exr" % f), target)
+                continue
+            others = [os.path.join(seq_dir, "spp%d" % o, "frame.%04d.exr" % f)
+                      for o in levels if o != spp]
+            others.append(os.path.join(seq_dir, "extra.%04d.exr" % f))
+            dataset_exr.sample_weighted_mean(
+                others, target, "sample-weighted mean of %s: independent of spp%d's noise"
+                % (", ".join(os.path.relpath(p, seq_dir) for p in others), spp))
 
 
 def record(split_name, desc, state, settings, seq_dir, out):
@@ -139,11 +166,17 @@ def record(split_name, desc, state, settings, seq_dir, out):
     def total(table, prefix):
         return round(sum(v for k, v in table.items() if k.startswith(prefix)), 2)
 
-    series = ["spp%d/" % int(s) for s in settings["levels"].split(",")] + ["reference", "vector",
-                                                                           "probe"]
+    series = ["spp%d/" % int(s) for s in settings["levels"].split(",")] + [
+        settings["reference_name"], "vector", "probe"]
     return {"split": split_name, "family": desc["family"], "seed": desc["seed"],
             "dir": os.path.relpath(seq_dir, out), "summary": desc["summary"],
-            "levels": [int(s) for s in settings["levels"].split(",")],
+            "levels": [int(s) for s in settings["levels"].split(",")], "frames": desc["frames"],
+            "reference_samples": (
+                {"spp%s" % s: settings["reference_spp"] for s in settings["levels"].split(",")}
+                if split_name == "eval" else
+                {"spp%d" % s: n for s, n in level_targets(
+                    [int(x) for x in settings["levels"].split(",")],
+                    settings["reference_spp"]).items()}),
             "reference_spp": settings["reference_spp"],
             "reference_parts": settings["reference_parts"], "noise_seed": settings["noise_seed"],
             "exposure": state.get("exposure"), "motion_blur": desc["motion_blur"],
@@ -158,12 +191,13 @@ def parse_args(argv):
     ap = argparse.ArgumentParser(prog="generate-dataset", description=__doc__.split("\n")[0])
     ap.add_argument("--out", required=True, help="output directory (outside any repository)")
     d = DEFAULTS
-    ap.add_argument("--frames", type=int, default=d["frames"])
+    ap.add_argument("--frames", type=int, default=d["frames"], help="frames per training sequence")
+    ap.add_argument("--eval-frames", type=int, default=d["eval_frames"])
     ap.add_argument("--height", type=int, default=d["height"], help="pixels; width is 16:9")
     ap.add_argument("--train", type=int, default=d["train"], help="training sequences")
     ap.add_argument("--levels", default=d["levels"], help="training input sample counts")
-    ap.add_argument("--target-spp", type=int, default=d["target_spp"],
-                    help="samples of the independent-seed training target")
+    ap.add_argument("--extra-spp", type=int, default=d["extra_spp"],
+                    help="samples of the extra independent render in every training target")
     ap.add_argument("--eval-held-out", type=int, default=d["eval_held_out"],
                     help="evaluation scenes of the held-out family")
     ap.add_argument("--eval-reserved", type=int, default=d["eval_reserved"],
@@ -186,15 +220,19 @@ def main(argv=None):
     args = parse_args(sys.argv[1:] if argv is None else argv)
     todo = plan(args)
     if args.plan:
-        for split_name, family, seed, levels, ref_spp, parts in todo:
-            print("%-5s %-24s levels %-10s reference %d spp (%d part(s))"
-                  % (split_name, split.sequence_name(family, seed), levels, ref_spp, parts))
+        for split_name, family, seed, frames, levels, ref_spp, parts, ref_name in todo:
+            print("%-5s %-24s %d frames, levels %-10s %s %d spp (%d part(s))"
+                  % (split_name, split.sequence_name(family, seed), frames, levels, ref_name,
+                     ref_spp, parts))
         return 0
     out = os.path.abspath(args.out)
     os.makedirs(out, exist_ok=True)
     manifest_path = os.path.join(out, "manifest.json")
     manifest = json.load(open(manifest_path)) if os.path.exists(manifest_path) else {}
-    manifest.update({"format": FORMAT, "frames": args.frames, "height": args.height,
+    manifest.update({"format": FORMAT, "frames": args.frames, "eval_frames": args.eval_frames,
+                     "height": args.height, "levels": args.levels, "extra_spp": args.extra_spp,
+                     "eval_levels": args.eval_levels, "eval_ref_spp": args.eval_ref_spp,
+                     "eval_ref_parts": args.eval_ref_parts,
                      "width": width_for(args.height),
                      "split": {"held_out_families": list(split.HELD_OUT_FAMILIES),
                                "train_families": list(split.TRAIN_FAMILIES),
@@ -202,15 +240,16 @@ def main(argv=None):
                      "threads": args.threads, "nice": args.nice})
     records = manifest.setdefault("sequences", {})
     t_start, done = time.time(), [0]
-    for i, (split_name, family, seed, levels, ref_spp, parts) in enumerate(todo):
+    for i, (split_name, family, seed, frames, levels, ref_spp, parts, ref_name) in \
+            enumerate(todo):
         name = split.sequence_name(family, seed)
         seq_dir = os.path.join(out, split_name, name)
         if records.get(name, {}).get("complete") and os.path.exists(seq_dir):
             continue
-        desc = describe(family, seed, args.frames)
+        desc = describe(family, seed, frames)
         settings = {"width": width_for(args.height), "height": args.height, "levels": levels,
                     "reference_spp": ref_spp, "reference_parts": parts,
-                    "noise_seed": noise_seed(name)}
+                    "reference_name": ref_name, "noise_seed": noise_seed(name)}
         check_resume(seq_dir, {k: v for k, v in settings.items() if k != "noise_seed"})
         desc_path = write_description(seq_dir, desc)
 
@@ -220,7 +259,7 @@ def main(argv=None):
                                                        time.time() - t_start), flush=True)
 
         state = run_blender(args, desc_path, seq_dir, settings, progress)
-        post_process(seq_dir, args.frames, levels, parts, desc["motion_blur"] is not None)
+        post_process(seq_dir, frames, settings, desc["motion_blur"] is not None)
         records[name] = record(split_name, desc, state, settings, seq_dir, out)
         manifest["blender"] = state.get("blender")
         manifest["render_seconds"] = round(sum(r["render_seconds"] for r in records.values()), 2)

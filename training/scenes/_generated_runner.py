@@ -3,7 +3,8 @@
 
 Usage: blender -b --factory-startup --python training/scenes/_generated_runner.py -- \\
            --description DIR/description.json --out DIR [--width 256] [--height 144] \\
-           [--levels 1,4,16,64] [--reference-spp 64] [--reference-parts 1] [--seed 0] [--threads 2]
+           [--levels 1,4,16,64] [--reference-spp 16] [--reference-parts 1] [--reference-name extra] \
+           [--seed 0] [--threads 2]
 
 Builds the description (generator/blender_build.py), sets the film exposure so frame 0's
 log-average luminance (over pixels that are not black) matches the description's key, with the
@@ -12,9 +13,11 @@ for frames 0..N-1:
 
 * ``spp<S>/frame.NNNN.exr`` for every level S: S samples, every pass afn maps (noise seed
   ``seed + 1 + level index``);
-* ``reference.NNNN.exr`` (Combined, float32, ``--reference-spp`` samples, seed ``seed + 100``), or
-  with ``--reference-parts K`` the K independent parts ``reference_partK.NNNN.exr`` of
-  ``--reference-spp / K`` samples each (seeds ``seed + 100 + k``) that the driver averages;
+* ``<name>.NNNN.exr`` (``--reference-name``, default ``reference``; Combined, float32,
+  ``--reference-spp`` samples, seed ``seed + 100``), or with ``--reference-parts K`` the K
+  independent parts ``<name>_partK.NNNN.exr`` of ``--reference-spp / K`` samples each (seeds
+  ``seed + 100 + k``); the driver averages parts into evaluation references and combines a
+  training sequence's ``extra`` render with its levels into per-level targets;
 * with motion blur on: ``vector.NNNN.exr``, a 1-spp render of every pass with motion blur off,
   because Cycles writes an all-zero Vector pass when motion blur is on (the driver copies its Vector
   channels into the blurred frames);
@@ -54,8 +57,9 @@ def parse_args():
     ap.add_argument("--width", type=int, default=256)
     ap.add_argument("--height", type=int, default=144)
     ap.add_argument("--levels", default="1,4,16,64")
-    ap.add_argument("--reference-spp", type=int, default=64)
+    ap.add_argument("--reference-spp", type=int, default=16)
     ap.add_argument("--reference-parts", type=int, default=1)
+    ap.add_argument("--reference-name", default="reference")
     ap.add_argument("--seed", type=int, default=0)
     ap.add_argument("--threads", type=int, default=2)
     return ap.parse_args(argv)
@@ -68,11 +72,11 @@ def jobs(args, blur):
            for i, spp in enumerate(levels)]
     parts = max(1, args.reference_parts)
     if parts == 1:
-        out.append(("reference", "reference", args.reference_spp, args.seed + 100, blur))
+        out.append((args.reference_name, "reference", args.reference_spp, args.seed + 100, blur))
     else:
         for k in range(parts):
-            out.append(("reference_part%d" % k, "reference", args.reference_spp // parts,
-                        args.seed + 100 + k, blur))
+            out.append(("%s_part%d" % (args.reference_name, k), "reference",
+                        args.reference_spp // parts, args.seed + 100 + k, blur))
     if blur:
         out.append(("vector", "noisy", 1, args.seed + 200, False))
     return out
@@ -126,6 +130,7 @@ def main():
     state.update({"family": desc["family"], "seed": desc["seed"], "frames": desc["frames"],
                   "width": args.width, "height": args.height, "levels": args.levels,
                   "reference_spp": args.reference_spp, "reference_parts": args.reference_parts,
+                  "reference_name": args.reference_name,
                   "noise_seed": args.seed, "motion_blur": blur, "blender": bpy.app.version_string,
                   "view_layer": afn_render.VIEW_LAYER_NAME})
     times = state.setdefault("seconds", {})

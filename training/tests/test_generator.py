@@ -87,13 +87,18 @@ def test_driver_plan_puts_evaluation_first_and_uses_its_settings():
     args = gd.parse_args(["--out", "/nonexistent", "--train", "9"])
     todo = gd.plan(args)
     assert [p[0] for p in todo] == ["eval"] * 6 + ["train"] * 9
-    assert todo[0][3:] == (gd.DEFAULTS["eval_levels"], gd.DEFAULTS["eval_ref_spp"],
-                           gd.DEFAULTS["eval_ref_parts"])
-    assert todo[-1][3:] == (gd.DEFAULTS["levels"], gd.DEFAULTS["target_spp"], 1)
+    assert todo[0][3:] == (gd.DEFAULTS["eval_frames"], gd.DEFAULTS["eval_levels"],
+                           gd.DEFAULTS["eval_ref_spp"], gd.DEFAULTS["eval_ref_parts"], "reference")
+    assert todo[-1][3:] == (gd.DEFAULTS["frames"], gd.DEFAULTS["levels"], gd.DEFAULTS["extra_spp"],
+                            1, "extra")
     chosen = gd.plan(gd.parse_args(["--out", "/x", "--sequences", "room:4,atrium:2"]))
     assert [(p[0], p[1], p[2]) for p in chosen] == [("eval", "atrium", 2), ("train", "room", 4)]
     with pytest.raises(gd.DatasetError, match="FAMILY:SEED"):
         gd.plan(gd.parse_args(["--out", "/x", "--sequences", "castle:1"]))
+
+
+def test_training_targets_leave_their_own_level_out():
+    assert gd.level_targets([1, 4, 16, 64], 16) == {1: 100, 4: 97, 16: 85, 64: 37}
 
 
 def test_rerun_refuses_a_description_the_generator_no_longer_makes(tmp_path):

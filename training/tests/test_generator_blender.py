@@ -50,8 +50,9 @@ def _blurred_eval_scene():
 def test_driver_writes_levels_headers_vectors_references_and_resumes(tmp_path):
     family, seed = _blurred_eval_scene()
     cmd = [sys.executable, os.path.join(TRAINING, "generate-dataset"), "--out", str(tmp_path),
-           "--sequences", "%s:%d" % (family, seed), "--frames", "2", "--height", "18",
-           "--eval-levels", "1,4", "--eval-ref-spp", "4", "--eval-ref-parts", "2"]
+           "--sequences", "%s:%d,tabletop:1" % (family, seed), "--frames", "2", "--height", "18",
+           "--eval-frames", "2", "--eval-levels", "1,4", "--eval-ref-spp", "4",
+           "--eval-ref-parts", "2", "--levels", "1,2,4", "--extra-spp", "3"]
     first = subprocess.run(cmd, capture_output=True, text=True, timeout=600)
     assert first.returncode == 0, first.stdout[-3000:] + first.stderr[-3000:]
     name = split.sequence_name(family, seed)
@@ -85,6 +86,18 @@ def test_driver_writes_levels_headers_vectors_references_and_resumes(tmp_path):
     for row in rows:  # two parts: the average is 6.02 dB cleaner than part 0 vs part 1
         assert abs(row["reference_psnr_db"] - row["part_vs_part_psnr_db"] - 6.02) < 0.011
         assert set(row) >= {"input_1spp_psnr_db", "input_4spp_psnr_db"}
+
+    # Training: each level's reference is the sample-weighted mean of the other levels and extra.
+    train = tmp_path / "train" / "tabletop-0000001"
+    assert manifest["sequences"]["tabletop-0000001"]["reference_samples"] == \
+        {"spp1": 9, "spp2": 8, "spp4": 6}
+    frames = {n: dataset_exr.read(str(train / ("spp%d" % n) / "frame.0001.exr")) for n in (1, 2, 4)}
+    extra = dataset_exr.read(str(train / "extra.0001.exr"))
+    rgba = lambda sp: sp[1][..., dataset_exr.combined_channels(list(sp[0].channelnames))]  # noqa
+    target = str(train / "spp2" / "reference.0001.exr")
+    assert dataset_exr.samples(target) == 8 and not os.path.islink(target)
+    expected = (rgba(frames[1]) * 1 + rgba(frames[4]) * 4 + rgba(extra) * 3) / 8
+    assert np.allclose(rgba(dataset_exr.read(target)), expected, rtol=1e-5, atol=1e-6)
 
     second = subprocess.run(cmd, capture_output=True, text=True, timeout=600)
     assert second.returncode == 0, second.stderr
