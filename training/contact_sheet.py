@@ -3,7 +3,7 @@
 """Contact sheet of a rendered dataset: one labelled frame per scene, sRGB PNG.
 
 Usage: /usr/bin/python3 training/contact_sheet.py DATASET_DIR OUT.png [--frame N] [--noisy]
-       [--columns 4] [--limit N]
+       [--columns 4] [--limit N] [--per-family K]
 
 DATASET_DIR is a ``render-dataset`` or a ``generate-dataset`` output.
 
@@ -47,18 +47,26 @@ def main(argv):
     ap.add_argument("--noisy", action="store_true")
     ap.add_argument("--columns", type=int, default=4)
     ap.add_argument("--limit", type=int, default=0, help="at most this many scenes (name order)")
+    ap.add_argument("--per-family", type=int, default=0,
+                    help="generated sets: the K lowest seeds of each family")
     args = ap.parse_args(argv)
     with open(os.path.join(args.dataset, "manifest.json")) as fh:
         manifest = json.load(fh)
     # afn-dataset-1 (render-dataset) lists "scenes"; afn-dataset-2 (generate-dataset) lists
-    # "sequences", whose noisy frames lie in spp<S>/ (the lowest S is shown with --noisy).
+    # "sequences", whose frames and references lie in spp<S>/ (the lowest S is shown).
     records = manifest.get("scenes") or manifest.get("sequences", {})
+    if args.per_family:
+        seen = {}
+        for name, rec in sorted(records.items(), key=lambda kv: (kv[1]["seed"], kv[0])):
+            seen.setdefault(rec.get("family"), []).append(name)
+        keep = {n for names in seen.values() for n in names[:args.per_family]}
+        records = {n: r for n, r in records.items() if n in keep}
     if args.limit:
         records = dict(sorted(records.items())[:args.limit])
     tiles = []
     for name, rec in sorted(records.items()):
         folder = os.path.join(args.dataset, rec["dir"])
-        if args.noisy and "levels" in rec:
+        if "levels" in rec:  # generated: the lowest level's frame and the reference it is scored by
             folder = os.path.join(folder, "spp%d" % min(rec["levels"]))
         path = os.path.join(folder, "%s.%04d.exr" % ("frame" if args.noisy else "reference",
                                                     args.frame))
