@@ -131,6 +131,7 @@ def main():
                   "width": args.width, "height": args.height, "levels": args.levels,
                   "reference_spp": args.reference_spp, "reference_parts": args.reference_parts,
                   "reference_name": args.reference_name,
+                  "world_map_resolution": blender_build.world_map_resolution(desc["world"]),
                   "noise_seed": args.seed, "motion_blur": blur, "blender": bpy.app.version_string,
                   "view_layer": afn_render.VIEW_LAYER_NAME})
     times = state.setdefault("seconds", {})

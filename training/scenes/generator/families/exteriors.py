@@ -123,7 +123,7 @@ def night(rng, frames):
         head["dims"] = s.vec(0.04, 1.5, 0.15)
         objects.append(head)
     return {"objects": objects, "lights": lights,
-            "world": L.world(rng, {"dark": 2.0, "hdri": 1.0}, hdri_names=("night", "city")),
+            "world": L.world(rng, {"dark": 2.0, "hdri": 1.0}, hdri_names=("night",)),
             "rig": {"centre": [0.0, 0.0, 1.5], "distance": (5.0, 12.0), "height": (1.2, 5.0),
                     "lens": (20.0, 50.0),
                     "bounds": [[-25.0, -width / 2 + 0.5, 0.5], [25.0, width / 2 - 0.5, 6.0]],
