@@ -2,8 +2,8 @@
 """Driver that renders the generated training and evaluation sequences (see docs/dataset.md).
 
 Runs with /usr/bin/python3; for every (family, seed) of the plan it writes the scene description
-(training/scenes/generator), runs ``nice blender -b -t THREADS`` on training/scenes/_generated_runner.py
-and post-processes the result (dataset_exr.py). Output layout::
+(training/scenes/generator), runs ``nice blender -b -t THREADS`` on
+training/scenes/_generated_runner.py and post-processes the result (dataset_exr.py). Output layout::
 
     OUT/manifest.json                          settings, split, one record per sequence, seconds
     OUT/<split>/<family>-<seed>/description.json   the generator's scene description

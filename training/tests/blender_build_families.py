@@ -13,7 +13,6 @@ import sys
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, os.path.join(HERE, "..", "scenes"))
 sys.path.insert(0, os.path.join(HERE, "..", "..", "examples", "blender"))
-import bpy  # noqa: E402
 import afn_render  # noqa: E402
 from generator import blender_build  # noqa: E402
 

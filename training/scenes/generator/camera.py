@@ -115,7 +115,7 @@ def camera(rng, rig, frames, p_dof=0.25, blocked=None, tries=30):
 
 
 def speed_px(cam, width=256):
-    """Rough largest per-frame image motion of the camera in pixels at ``width`` (for the manifest)."""
+    """Rough largest per-frame image motion of the camera, in pixels at ``width`` (manifest)."""
     keys = cam["keys"]
     if len(keys) < 2:
         return 0.0

@@ -8,8 +8,8 @@ Light: ``type`` AREA/POINT/SPOT/SUN, ``power`` (watts; SUN: W/m^2), ``colour``, 
 POINT/SPOT radius in metres, SUN angular diameter in degrees), ``location`` at frame 0, ``aim``
 (point the light faces, or ``None``), ``velocity`` (metres per frame, constant), ``spot_deg``
 (SPOT cone), ``portal`` (AREA light that is a light portal for the world, ``size`` by ``size_y``,
-never moved or switched), ``switch`` (``None`` or a list of ``[frame, power_factor, colour]`` steps: the light
-jumps to ``power * power_factor`` and ``colour`` at that frame).
+never moved or switched), ``switch`` (``None`` or a list of ``[frame, power_factor, colour]``
+steps: the light jumps to ``power * power_factor`` and ``colour`` at that frame).
 """
 
 import math

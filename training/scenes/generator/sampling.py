@@ -31,7 +31,7 @@ def log_uniform(rng, lo, hi):
 
 
 def colour(rng, sat=(0.0, 0.9), val=(0.05, 0.9)):
-    """A linear-RGB colour from a uniform hue and the given saturation and (sRGB-like) value ranges."""
+    """A linear-RGB colour: uniform hue, saturation and (sRGB-like) value from the ranges."""
     r, g, b = colorsys.hsv_to_rgb(rng.random(), rng.uniform(*sat), rng.uniform(*val))
     return [round(c ** 2.2, 4) for c in (r, g, b)]
 

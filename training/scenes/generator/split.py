@@ -6,8 +6,8 @@
   seeds are 0 .. EVAL_SEED_START - 1.
 
 The evaluation set is the first scenes of the held-out family plus reserved seeds of training
-families (:func:`evaluation_sequences`); training takes families round-robin (:func:`training_sequences`),
-so any prefix of the training list is balanced across families.
+families (:func:`evaluation_sequences`); training takes families round-robin
+(:func:`training_sequences`), so any prefix of the training list is balanced across families.
 """
 
 from .families import FAMILIES

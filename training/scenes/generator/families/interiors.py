@@ -60,7 +60,8 @@ def room_shell(rng, sx, sy, h, window):
         parts.append(P.box((0, sy / 2 + t / 2, h / 2), (sx, t, h), wall))
         return parts, None
     ww, wh = rng.uniform(1.0, min(2.5, sx - 1.0)), rng.uniform(0.8, h - 1.2)
-    wx, wz = rng.uniform(-(sx - ww) / 2 + 0.2, (sx - ww) / 2 - 0.2), rng.uniform(0.8, h - 0.3 - wh) + wh / 2
+    wx = rng.uniform(-(sx - ww) / 2 + 0.2, (sx - ww) / 2 - 0.2)
+    wz = rng.uniform(0.8, h - 0.3 - wh) + wh / 2
     y = sy / 2 + t / 2
     left, right = wx - ww / 2 + sx / 2, sx / 2 - (wx + ww / 2)
     parts += [P.box((-sx / 2 + left / 2, y, h / 2), (left, t, h), wall),
@@ -77,7 +78,7 @@ def room_shell(rng, sx, sy, h, window):
 
 
 def room(rng, frames):
-    """A closed or windowed room with furniture, shelves of small objects and lamps (indirect light)."""
+    """A closed or windowed room: furniture, shelves of small objects, lamps (indirect light)."""
     sx, sy, h = rng.uniform(4.0, 8.0), rng.uniform(4.0, 8.0), rng.uniform(2.5, 3.4)
     window = s.chance(rng, 0.6)
     objects, opening = room_shell(rng, sx, sy, h, window)
@@ -105,8 +106,9 @@ def room(rng, frames):
         lights.append(L.area(rng, (rng.uniform(-1, 1), rng.uniform(-1, 1), h - 0.02),
                              (0, 0, 0), power=(100.0, 900.0), size=(0.4, 1.5)))
     for _ in range(rng.randint(0, 2)):  # lamps: small sources with a translucent shade
-        x, y, z = rng.uniform(-sx / 2 + 0.5, sx / 2 - 0.5), rng.uniform(-sy / 2 + 0.5, sy / 2 - 0.5), \
-            rng.uniform(0.8, 2.0)
+        x = rng.uniform(-sx / 2 + 0.5, sx / 2 - 0.5)
+        y = rng.uniform(-sy / 2 + 0.5, sy / 2 - 0.5)
+        z = rng.uniform(0.8, 2.0)
         lights.append(L.point(rng, (x, y, z), power=(20.0, 200.0), radius=(0.01, 0.06)))
         if s.chance(rng, 0.6):
             objects.append(P.obj("tube", (x, y, z + 0.05), (0.35, 0.35, 0.3),

@@ -13,8 +13,9 @@ import math
 from .. import materials as mats
 from .. import sampling as s
 
-# Shapes and what they add: primitives (``tube``: a cylinder open at both ends, e.g. a lamp shade), thin geometry (rod, wire_grid, helix), hair-like detail
-# (hair_ball, grass), fine geometry (text), irregular solids (rock).
+# Shapes and what they add: primitives (``tube``: a cylinder open at both ends, e.g. a lamp
+# shade), thin geometry (rod, wire_grid, helix), hair-like detail (hair_ball, grass), fine
+# geometry (text), irregular solids (rock).
 SHAPES = ("cube", "uv_sphere", "ico_sphere", "cylinder", "tube", "cone", "torus", "monkey",
           "plane", "rod", "wire_grid", "helix", "hair_ball", "grass", "text", "rock")
 
