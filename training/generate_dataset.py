@@ -55,7 +55,12 @@ def noise_seed(name):
 
 
 def plan(args):
-    """[(split, family, seed, frames, levels, reference spp, parts, reference name)], eval first."""
+    """[(split, family, seed, frames, levels, reference spp, parts, reference name)].
+
+    Training sequences come first (``--order train-first``, the default): they are cheap (no clean
+    reference) and usable as soon as each finishes, while an evaluation sequence spends most of its
+    time on its clean reference parts. ``--order eval-first`` renders the evaluation set first.
+    """
     if args.sequences:
         pairs = []
         for item in args.sequences.split(","):
@@ -69,10 +74,10 @@ def plan(args):
     else:
         evals = split.evaluation_sequences(args.eval_held_out, args.eval_reserved)
         trains = split.training_sequences(args.train)
-    out = [("eval", f, s, args.eval_frames, args.eval_levels, args.eval_ref_spp,
-            args.eval_ref_parts, "reference") for f, s in evals]
-    out += [("train", f, s, args.frames, args.levels, args.extra_spp, 1, "extra")
-            for f, s in trains]
+    ev = [("eval", f, s, args.eval_frames, args.eval_levels, args.eval_ref_spp,
+           args.eval_ref_parts, "reference") for f, s in evals]
+    tr = [("train", f, s, args.frames, args.levels, args.extra_spp, 1, "extra") for f, s in trains]
+    out = ev + tr if args.order == "eval-first" else tr + ev
     if args.only:
         out = [p for p in out if p[0] == args.only]
     return out
@@ -207,6 +212,8 @@ def parse_args(argv):
     ap.add_argument("--eval-ref-parts", type=int, default=d["eval_ref_parts"],
                     help="independent parts the evaluation reference is averaged from")
     ap.add_argument("--only", choices=("train", "eval"), help="render only one split")
+    ap.add_argument("--order", choices=("train-first", "eval-first"), default="train-first",
+                    help="which split renders first (default: training, usable early)")
     ap.add_argument("--sequences", default="",
                     help="render these FAMILY:SEED pairs instead of the plan (split by split.py)")
     ap.add_argument("--threads", type=int, default=2)

@@ -83,16 +83,19 @@ def test_held_out_split_never_overlaps_training():
         set(split.TRAIN_FAMILIES)
 
 
-def test_driver_plan_puts_evaluation_first_and_uses_its_settings():
+def test_driver_plan_puts_training_first_and_uses_its_settings():
     args = gd.parse_args(["--out", "/nonexistent", "--train", "9"])
     todo = gd.plan(args)
-    assert [p[0] for p in todo] == ["eval"] * 6 + ["train"] * 9
-    assert todo[0][3:] == (gd.DEFAULTS["eval_frames"], gd.DEFAULTS["eval_levels"],
-                           gd.DEFAULTS["eval_ref_spp"], gd.DEFAULTS["eval_ref_parts"], "reference")
-    assert todo[-1][3:] == (gd.DEFAULTS["frames"], gd.DEFAULTS["levels"], gd.DEFAULTS["extra_spp"],
-                            1, "extra")
+    assert [p[0] for p in todo] == ["train"] * 9 + ["eval"] * 6
+    assert todo[-1][3:] == (gd.DEFAULTS["eval_frames"], gd.DEFAULTS["eval_levels"],
+                            gd.DEFAULTS["eval_ref_spp"], gd.DEFAULTS["eval_ref_parts"], "reference")
+    assert todo[0][3:] == (gd.DEFAULTS["frames"], gd.DEFAULTS["levels"], gd.DEFAULTS["extra_spp"],
+                           1, "extra")
+    first = gd.plan(gd.parse_args(["--out", "/x", "--train", "9", "--order", "eval-first"]))
+    assert [p[0] for p in first] == ["eval"] * 6 + ["train"] * 9
+    assert sorted(first) == sorted(todo)
     chosen = gd.plan(gd.parse_args(["--out", "/x", "--sequences", "room:4,atrium:2"]))
-    assert [(p[0], p[1], p[2]) for p in chosen] == [("eval", "atrium", 2), ("train", "room", 4)]
+    assert [(p[0], p[1], p[2]) for p in chosen] == [("train", "room", 4), ("eval", "atrium", 2)]
     with pytest.raises(gd.DatasetError, match="FAMILY:SEED"):
         gd.plan(gd.parse_args(["--out", "/x", "--sequences", "castle:1"]))
 
