@@ -43,7 +43,7 @@ FORMAT = "afn-dataset-2"
 VECTOR_NOTE = ("Vector of an unblurred 1-spp render of the same frame (vector.NNNN.exr): Cycles "
                "writes an all-zero Vector pass when motion blur is on")
 
-# Defaults: the budgeted dataset of docs/dataset.md (about 5 hours on this 2-core machine).
+# Defaults: the budgeted dataset of docs/dataset.md (2.1 h of two idle cores; ~9 h niced, shared).
 DEFAULTS = {"frames": 6, "height": 144, "train": 196, "levels": "1,4,16,64", "extra_spp": 16,
             "eval_frames": 8, "eval_held_out": 3, "eval_reserved": 3, "eval_levels": "1,16",
             "eval_ref_spp": 512, "eval_ref_parts": 2}
