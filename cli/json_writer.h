@@ -29,6 +29,7 @@ public:
     JsonWriter& value(const std::string& s) { return raw(quote(s)); }
     JsonWriter& value(const char* s) { return raw(quote(s)); }
     JsonWriter& value(bool b) { return raw(b ? "true" : "false"); }
+    JsonWriter& null() { return raw("null"); }
     JsonWriter& value(long long v) { return raw(std::to_string(v)); }
     JsonWriter& value(int v) { return raw(std::to_string(v)); }
     JsonWriter& value(double v)

@@ -54,6 +54,7 @@ private:
     const Options& m_opts;
     std::string m_flag; ///< "--denoise" or "--features", for messages
     bool m_features = false; ///< --features: bind the feature outputs instead of "output"
+    bool m_hasSpp = false; ///< the method has an "spp" parameter (set from the file's header)
     std::string m_method;
     std::map<std::string, std::string> m_params;
     afn::DeviceRef m_device;

@@ -3,6 +3,7 @@
 
 #include "cli_error.h"
 #include "progress.h"
+#include "sample_count.h"
 
 #include <cstdio>
 
@@ -32,6 +33,8 @@ SequenceDenoiser::SequenceDenoiser(const Options& opts, const Action& action)
     check(m_flag, "");
     if (m_features && afn::filterTypeFeatures(m_method.c_str()).empty())
         throw CliError("--features: method '" + m_method + "' has no feature outputs");
+    for (const AFNParamInfo& p : afn::filterTypeParams(m_method.c_str()))
+        m_hasSpp = m_hasSpp || std::string(p.name) == "spp";
 
     // Weights: ":weights=FILE" on this action, else --weights FILE; read once, handed over as data.
     std::string weights = opts.weights;
@@ -92,6 +95,8 @@ void SequenceDenoiser::run(LoadedFrame& frame, Progress* progress)
     // Conventions of this file's AOVs, then the user's explicit parameters (which win).
     for (const auto& [name, value] : img.mapping.tag.parameters())
         m_filter.set(name.c_str(), value);
+    if (const std::optional<int> spp = sampleCountParam(m_hasSpp, m_params, img.samples))
+        m_filter.set("spp", *spp); // the sample count in the file's header, 0 when it has none
     for (const auto& [key, value] : m_params)
         m_filter.set(key.c_str(), value);
     check(m_flag, frame.ref.path);

@@ -5,6 +5,7 @@
 #include "json_writer.h"
 
 #include <cstdio>
+#include <optional>
 #include <sstream>
 
 namespace afntool {
@@ -34,6 +35,7 @@ struct FileReport {
     afn::io::RoleMapping mapping;
     std::map<Role, afn::io::RoleStats> stats;
     std::map<Role, AFNAuxNoise> noise; ///< auxiliary roles only (afnEstimateAuxNoise)
+    std::optional<int> samples;
 };
 
 /// The auxiliary roles whose noise --info estimates, with their afnEstimateAuxNoise names.
@@ -84,6 +86,7 @@ FileReport collect(const Options& opts, const FrameRef& ref)
         ro.required = {};
         const afn::io::FrameImages fi = afn::io::readFrame(ref.path, ro);
         r.mapping = fi.mapping;
+        r.samples = fi.samples;
         for (const auto& [role, image] : fi.roles)
             r.stats[role] = afn::io::computeStats(image);
         estimateNoise(fi, r.noise);
@@ -102,7 +105,8 @@ FileReport collect(const Options& opts, const FrameRef& ref)
 void printText(const FileReport& r)
 {
     std::printf("%s\n", r.path.c_str());
-    std::printf("  format: %s, renderer: %s\n", r.info.format.c_str(), r.mapping.renderer.c_str());
+    std::printf("  format: %s, renderer: %s, samples per pixel: %s\n", r.info.format.c_str(),
+        r.mapping.renderer.c_str(), r.samples ? std::to_string(*r.samples).c_str() : "unknown");
     for (std::size_t s = 0; s < r.info.subimages.size(); ++s) {
         const afn::io::SubimageInfo& si = r.info.subimages[s];
         std::printf("  subimage %zu%s%s: data window %s, display window %s, compression %s\n", s,
@@ -161,6 +165,10 @@ void writeJson(JsonWriter& j, const FileReport& r)
     j.field("file", r.path);
     j.field("format", r.info.format);
     j.field("renderer", r.mapping.renderer);
+    if (r.samples)
+        j.field("samples", *r.samples);
+    else
+        j.key("samples").null();
     const afn::io::SubimageInfo* first = r.info.subimages.empty() ? nullptr : &r.info.subimages[0];
     j.field("width", first ? first->dataWindow.width : 0);
     j.field("height", first ? first->dataWindow.height : 0);

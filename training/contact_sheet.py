@@ -3,7 +3,9 @@
 """Contact sheet of a rendered dataset: one labelled frame per scene, sRGB PNG.
 
 Usage: /usr/bin/python3 training/contact_sheet.py DATASET_DIR OUT.png [--frame N] [--noisy]
-       [--columns 4]
+       [--columns 4] [--limit N] [--per-family K]
+
+DATASET_DIR is a ``render-dataset`` or a ``generate-dataset`` output.
 
 Uses each scene's reference (or, with ``--noisy``, its 1-spp frame) of frame N (default 0),
 converts linear to sRGB with OpenColorIO's built-in transform in OpenImageIO, and writes the tiles
@@ -44,12 +46,32 @@ def main(argv):
     ap.add_argument("--frame", type=int, default=0)
     ap.add_argument("--noisy", action="store_true")
     ap.add_argument("--columns", type=int, default=4)
+    ap.add_argument("--limit", type=int, default=0, help="at most this many scenes (name order)")
+    ap.add_argument("--per-family", type=int, default=0,
+                    help="generated sets: the K lowest seeds of each family")
     args = ap.parse_args(argv)
     with open(os.path.join(args.dataset, "manifest.json")) as fh:
         manifest = json.load(fh)
-    kind = "frame" if args.noisy else "reference"
-    tiles = [tile(os.path.join(args.dataset, rec["dir"], "%s.%04d.exr" % (kind, args.frame)), name)
-             for name, rec in sorted(manifest["scenes"].items())]
+    # afn-dataset-1 (render-dataset) lists "scenes"; afn-dataset-2 (generate-dataset) lists
+    # "sequences", whose frames and references lie in spp<S>/ (the lowest S is shown).
+    records = manifest.get("scenes") or manifest.get("sequences", {})
+    if args.per_family:
+        seen = {}
+        for name, rec in sorted(records.items(), key=lambda kv: (kv[1]["seed"], kv[0])):
+            seen.setdefault(rec.get("family"), []).append(name)
+        keep = {n for names in seen.values() for n in names[:args.per_family]}
+        records = {n: r for n, r in records.items() if n in keep}
+    if args.limit:
+        records = dict(sorted(records.items())[:args.limit])
+    tiles = []
+    for name, rec in sorted(records.items()):
+        folder = os.path.join(args.dataset, rec["dir"])
+        if "levels" in rec:  # generated: the lowest level's frame and the reference it is scored by
+            folder = os.path.join(folder, "spp%d" % min(rec["levels"]))
+        path = os.path.join(folder, "%s.%04d.exr" % ("frame" if args.noisy else "reference",
+                                                    args.frame))
+        if os.path.exists(path):
+            tiles.append(tile(path, name))
     if not tiles:
         sys.exit("contact_sheet ERROR: no scenes in %s" % args.dataset)
     w, h = tiles[0].spec().width, tiles[0].spec().height

@@ -130,6 +130,13 @@ struct FileInfo {
 /// Read a file's header; throws IoError (missing, unreadable, truncated header).
 AFN_IO_API FileInfo inspect(const std::string& path);
 
+/// Samples per pixel the renderer recorded in the header: Blender Cycles'
+/// `cycles.<view layer>.samples`, the layer that `colorChannel` (e.g. "ViewLayer.Combined.R")
+/// belongs to, or the only such attribute. nullopt when absent, ambiguous or not a positive
+/// integer.
+AFN_IO_API std::optional<int> samplesPerPixel(
+    const FileInfo& info, const std::string& colorChannel = {});
+
 /// Map channels to roles (automatic for Blender Cycles, Arnold, RenderMan, V-Ray, Redshift, Karma,
 /// generic R,G,B), then apply overrides. Never throws for a missing role: see lookedFor.
 AFN_IO_API RoleMapping mapRoles(const FileInfo& info, const MappingOverrides& overrides = {});
@@ -174,6 +181,7 @@ struct FrameImages {
     std::map<Role, RoleImage> roles; ///< every mapped role
     std::optional<LayeredImage> all; ///< filled when ReadOptions::keepAll
     std::optional<FrameCamera> camera;
+    std::optional<int> samples; ///< samples per pixel from the header (samplesPerPixel)
     /// Ground truth when the input provides one (BMFR reference{N}.exr, full radiance), else empty.
     std::optional<RoleImage> reference;
 };

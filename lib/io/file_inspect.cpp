@@ -2,6 +2,8 @@
 // Header inspection: subimages, channels with their types, windows, compression, attributes.
 #include "oiio_util.h"
 
+#include <cstdlib>
+
 namespace afn::io {
 namespace detail {
 
@@ -80,6 +82,28 @@ FileInfo inspect(const std::string& path)
 {
     auto in = detail::openInput(path);
     return detail::infoFromSpecs(path, in->format_name(), detail::readSpecs(*in, path));
+}
+
+std::optional<int> samplesPerPixel(const FileInfo& info, const std::string& colorChannel)
+{
+    const std::string head = "cycles.", tail = ".samples";
+    std::vector<std::pair<std::string, std::string>> found; // (layer, value)
+    for (const auto& [name, value] : info.attributes)
+        if (name.size() > head.size() + tail.size() && name.compare(0, head.size(), head) == 0
+            && name.compare(name.size() - tail.size(), tail.size(), tail) == 0)
+            found.emplace_back(
+                name.substr(head.size(), name.size() - head.size() - tail.size()), value);
+    const std::pair<std::string, std::string>* pick = found.size() == 1 ? &found.front() : nullptr;
+    for (const auto& f : found)
+        if (colorChannel.compare(0, f.first.size() + 1, f.first + ".") == 0)
+            pick = &f;
+    if (!pick)
+        return std::nullopt;
+    char* end = nullptr;
+    const long n = std::strtol(pick->second.c_str(), &end, 10);
+    if (end == pick->second.c_str() || *end != '\0' || n < 1 || n > (1L << 30))
+        return std::nullopt;
+    return static_cast<int>(n);
 }
 
 } // namespace afn::io

@@ -157,14 +157,16 @@ FrameImages readFrame(const std::string& path, const ReadOptions& options)
     const std::vector<OIIO::ImageSpec> specs = detail::readSpecs(*in, path);
     FrameImages out;
     out.path = path;
-    out.mapping
-        = mapRoles(detail::infoFromSpecs(path, in->format_name(), specs), options.overrides);
+    const FileInfo info = detail::infoFromSpecs(path, in->format_name(), specs);
+    out.mapping = mapRoles(info, options.overrides);
     for (Role r : options.required)
         if (!out.mapping.find(r))
             throw IoError(detail::missingRoleMessage(r, out.mapping), path);
 
     // All roles share the colour's data window (the first part's when there is no colour).
     const RoleChannels* color = out.mapping.find(Role::Color);
+    out.samples
+        = samplesPerPixel(info, color && !color->channels.empty() ? color->channels[0] : "");
     const int ref = color ? color->subimage : 0;
     std::vector<RoleChannels> kept;
     for (const RoleChannels& rc : out.mapping.roles) {

@@ -74,6 +74,7 @@ TEST(Afntool, InfoJsonMapsBlenderRoles)
         EXPECT_NE(rolesObj.find(std::string("\"") + role + "\": [\"ViewLayer."), std::string::npos)
             << role << " in " << rolesObj;
     EXPECT_NE(r.out.find("\"motion.yUp\": true"), std::string::npos);
+    EXPECT_NE(r.out.find("\"samples\": 4,"), std::string::npos) << r.out; // cycles.*.samples
 }
 
 TEST(Afntool, InfoTextShowsStatisticsAndMissingRoles)
@@ -84,6 +85,7 @@ TEST(Afntool, InfoTextShowsStatisticsAndMissingRoles)
     ASSERT_EQ(r.exitCode, 0) << r.err;
     EXPECT_NE(r.out.find("min 0.25  max 2.25  mean 1.25"), std::string::npos) << r.out;
     EXPECT_NE(r.out.find("albedo    (not found; looked for"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("samples per pixel: unknown"), std::string::npos) << r.out;
 }
 
 TEST(Afntool, InfoReportsAuxNoisePerRoleAndTheAutoChoice)

@@ -19,12 +19,15 @@ feature (afnGetFilterTypeFeature):
     depth01   depth01         prefiltered per-frame min-max depth, [0, 1]
     target    the reference's beauty (full radiance, albedo included), as afntool reads it
 
-A scene folder holds frame.NNNN.exr and reference.NNNN.exr; a dataset root holds scene folders.
+A scene folder holds frame.NNNN.exr and reference.NNNN.exr; a dataset root holds scene folders,
+or is a generated dataset (``afn-dataset-2``, :mod:`afn.generated`) whose level folders
+``<split>/<seq>/spp<S>`` are the scenes, chosen per sample count (:func:`find_scenes`).
 Whole scenes are prepared once and kept in memory as float32 arrays; :class:`CropSampler` draws
 128x128 crops with random flips and brightness jitter in [0.8, 1.2].
 """
 
 import glob
+import json
 import os
 import re
 import tempfile
@@ -32,7 +35,7 @@ import tempfile
 import numpy as np
 import torch
 
-from . import afntool
+from . import afntool, generated
 
 FRAME_RE = re.compile(r"frame\.(\d+)\.exr$")
 KEYS = ("c1", "cta", "albedo", "normal01", "depth01", "target")
@@ -108,12 +111,44 @@ def load_scene(scene_dir, alpha_min=0.2, max_frames=None, tool=None, aux="auto")
     return {k: np.stack(v).astype(np.float32) for k, v in out.items()}
 
 
-def find_scenes(root):
-    """Scene folders under a dataset root (or the root itself if it is a scene)."""
+def find_scenes(root, spp=None):
+    """Scene folders under a dataset root (or the root itself if it is a scene).
+
+    Args:
+        root: a scene folder, a folder of scene folders, or a generated dataset.
+        spp: sample counts to select (list of int or ``"1,16"``). A generated dataset needs them
+            (its scenes are ``<family>-<seed>/spp<S>``); for other folders they must match the
+            manifest's ``spp`` when it has one.
+
+    Returns:
+        {name: folder}, sorted by name.
+
+    Raises:
+        ValueError: ``spp`` missing for a generated dataset, or not a level of the dataset.
+    """
+    levels = generated.parse_levels(spp)
+    m = generated.manifest(root)
+    if m is not None:
+        return generated.scenes(root, m, levels)[0]
+    flat = os.path.join(root, "manifest.json")
+    if levels and os.path.isfile(flat):
+        with open(flat) as f:
+            have = json.load(f).get("spp")
+        if have is not None and levels != [int(have)]:
+            raise ValueError(f"{root} holds {have}-spp inputs only, not {spp}")
     if frame_numbers(root):
         return {os.path.basename(os.path.normpath(root)): root}
     return {d: os.path.join(root, d) for d in sorted(os.listdir(root))
             if os.path.isdir(os.path.join(root, d)) and frame_numbers(os.path.join(root, d))}
+
+
+def evaluation_scenes(root, spp=None):
+    """Names of the scenes :func:`find_scenes` lists that must never be trained on (a generated
+    dataset's ``eval`` split; empty for other folders)."""
+    m = generated.manifest(root)
+    if m is None:
+        return set()
+    return generated.scenes(root, m, generated.parse_levels(spp))[1]
 
 
 def to_tensors(sample, device="cpu"):

@@ -22,7 +22,8 @@ import numpy as np
 import torch
 
 from . import color
-from .dataset import CropSampler, find_scenes, load_scene, to_tensors
+from .dataset import CropSampler, evaluation_scenes, find_scenes, load_scene, to_tensors
+from .generated import expand
 from .loss import smape
 from .model import AFN, VARIANTS, AFNConfig
 from .weights import load_model, save_model
@@ -33,8 +34,10 @@ def parse_args(argv=None):
     ap.add_argument("-d", "--data", required=True, help="dataset root (scene folders) or one scene")
     ap.add_argument("-o", "--out", required=True, help="results folder (resumed when it exists)")
     ap.add_argument("--scenes", default="", help="comma list of training scenes (default: all "
-                    "not held out)")
+                    "not held out); in a generated dataset FAMILY-SEED names all its --spp levels")
     ap.add_argument("--holdout", default="", help="comma list of validation scenes, never trained on")
+    ap.add_argument("--spp", default="", help="input sample counts of a generated dataset "
+                    "(afn-dataset-2), e.g. 1 or 16,64: its spp<S> folders are the scenes")
     ap.add_argument("--variant", default="full", choices=VARIANTS, help="ablation variant")
     ap.add_argument("--enc", default="16,32,64", help="encoder widths e1,e2,e3")
     ap.add_argument("--dec", default="32,24", help="decoder widths d2,d1")
@@ -126,16 +129,22 @@ def init_weights(model, path, device):
 
 def resolve_scenes(args):
     """(all scenes by name, training names, held-out names) from the arguments; SystemExit on a
-    contradiction (unknown held-out scene, a scene both trained on and held out, none left)."""
-    all_scenes = find_scenes(args.data)
-    holdout = [s for s in args.holdout.split(",") if s]
-    for s in holdout:
-        if s not in all_scenes:
-            raise SystemExit(f"afn.train: held-out scene '{s}' not in {args.data}")
-    train_names = [s for s in args.scenes.split(",") if s] or \
-        [s for s in all_scenes if s not in holdout]
+    contradiction (unknown scene, a scene both trained on and held out, an evaluation scene of a
+    generated dataset trained on, none left)."""
+    try:
+        all_scenes = find_scenes(args.data, args.spp or None)
+        evals = evaluation_scenes(args.data, args.spp or None)
+        holdout = expand([s for s in args.holdout.split(",") if s], all_scenes)
+        chosen = expand([s for s in args.scenes.split(",") if s], all_scenes)
+    except ValueError as e:
+        raise SystemExit(f"afn.train: {e}")
+    except KeyError as e:
+        raise SystemExit(f"afn.train: scene {e} not in {args.data}")
+    train_names = chosen or [s for s in all_scenes if s not in holdout and s not in evals]
     if set(train_names) & set(holdout):
         raise SystemExit("afn.train: a scene is both trained on and held out")
+    if set(train_names) & evals:
+        raise SystemExit("afn.train: evaluation scenes of a generated dataset are never trained on")
     if not train_names:
         raise SystemExit("afn.train: no training scenes")
     return all_scenes, train_names, holdout

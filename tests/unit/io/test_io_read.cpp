@@ -335,3 +335,29 @@ TEST(IoRead, CommittedBlenderFile)
     for (const std::string& w : f.mapping.warnings)
         EXPECT_EQ(w.find("all zero"), std::string::npos);
 }
+
+TEST(IoRead, SamplesPerPixelFromTheBlenderHeader)
+{
+    ScratchDir dir;
+    Part p;
+    p.channels = afn_test::blenderChannels("ViewLayer");
+    p.attributes = { { "cycles.ViewLayer.samples", "16" }, { "cycles.ViewLayer.total_time", "1" } };
+    afn_test::writeExr(dir.file("bl.exr"), { p });
+    EXPECT_EQ(readFrame(dir.file("bl.exr")).samples, std::optional<int>(16));
+
+    p.attributes = {};
+    afn_test::writeExr(dir.file("none.exr"), { p });
+    EXPECT_FALSE(readFrame(dir.file("none.exr")).samples.has_value());
+
+    FileInfo info; // two view layers: the colour's wins; otherwise ambiguous
+    info.attributes = { { "cycles.Back.samples", "4" }, { "cycles.ViewLayer.samples", "64" } };
+    EXPECT_EQ(samplesPerPixel(info, "ViewLayer.Combined.R"), std::optional<int>(64));
+    EXPECT_EQ(samplesPerPixel(info, "Back.Combined.R"), std::optional<int>(4));
+    EXPECT_FALSE(samplesPerPixel(info).has_value());
+    info.attributes = { { "cycles.ViewLayer.samples", "1" } }; // one layer: any colour channel
+    EXPECT_EQ(samplesPerPixel(info, "R"), std::optional<int>(1));
+    for (const char* bad : { "", "abc", "16x", "0", "-3" }) {
+        info.attributes = { { "cycles.ViewLayer.samples", bad } };
+        EXPECT_FALSE(samplesPerPixel(info).has_value()) << bad;
+    }
+}

@@ -5,6 +5,9 @@
 // depth (features.h), run the network (network.h) and remodulate. The network output is clamped
 // to >= 0 by the remodulation (stages/demodulate.h).
 //
+// Settings (settings.h): `spp`, the input's samples per pixel, which will choose between the
+// low- and high-count models; read at commit.
+//
 // Weights: the shipped archive embedded at build time (cmake/AfnEmbed.cmake, AFN_WEIGHTS_FILE)
 // when the build has one, else none; afnSetFilterData(filter, AFN_DATA_WEIGHTS, data, size)
 // overrides at run time. Without weights commit fails with a message: untrained weights never run
@@ -13,6 +16,7 @@
 #include "filter/registry.h"
 #include "methods/afn/features.h"
 #include "methods/afn/network.h"
+#include "methods/afn/settings.h"
 #include "stages/demodulate.h"
 
 #include <algorithm>
@@ -51,6 +55,7 @@ public:
 private:
     void configure() override
     {
+        m_settings = settingsBinding().read(params());
         if (outputBound() && !m_net.loaded())
             throwInvalidOperation(
                 "afn: no weights: this build embeds no trained AFN model; set an .afnw file "
@@ -80,11 +85,23 @@ private:
         remodulate(in, m_result, out);
     }
 
+    Settings m_settings;
     Network m_net;
     Image m_albedo, m_normal01, m_depth01, m_result;
 };
 
 } // namespace
+
+const ParamBinding<Settings>& settingsBinding()
+{
+    using S = Settings;
+    static const ParamBinding<S> binding
+        = ParamBinding<S>().add(&S::spp, "spp", 0, 1 << 20, "Samples per pixel",
+            "samples per pixel of the colour input, which chooses the model trained for that count "
+            "(0 = unknown: the low-count model); afntool reads it from the file (Blender: "
+            "cycles.<layer>.samples) unless given");
+    return binding;
+}
 
 FilterType filterType()
 {
@@ -98,6 +115,7 @@ FilterType filterType()
     t.ready = false;
 #endif
     t.stages = { true, StageNeeds::Reproject::Bilinear, true };
+    t.params = settingsBinding().descriptors();
     t.features = {
         { "irradiance", 3, "1-spp colour divided by max(albedo, 2^-10), linear HDR, >= 0" },
         { "accumulated", 3, "BMFR temporal accumulation of the irradiance (TA-1spp), linear HDR" },

@@ -5,9 +5,11 @@
 #include "base/exception.h"
 #include "filter/registry.h"
 #include "methods/afn/features.h"
+#include "methods/afn/settings.h"
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <iterator>
@@ -99,4 +101,20 @@ TEST(AfnFeatures, NormalAndDepthScaling)
     afn::afnet::depthToUnitRange(afn::Image(), 3, 2, z01);
     EXPECT_EQ(z01.width(), 3);
     EXPECT_EQ(z01(2, 1, 0), 0.0f);
+}
+
+TEST(AfnFilter, SampleCountParameter)
+{
+    const afn::FilterType* t = afn::findFilterType("afn");
+    ASSERT_NE(t, nullptr);
+    const auto it = std::find_if(t->params.begin(), t->params.end(),
+        [](const afn::ParamDesc& d) { return d.name == "spp"; });
+    ASSERT_NE(it, t->params.end());
+    EXPECT_EQ(it->type, AFN_PARAM_INT);
+    EXPECT_EQ(it->defaultValue, 0.0); // unknown until the host reads the file
+    afn::ParamSet params(&t->params);
+    EXPECT_EQ(afn::afnet::settingsBinding().read(params).spp, 0);
+    params.setNumber("spp", 64, AFN_PARAM_INT);
+    EXPECT_EQ(afn::afnet::settingsBinding().read(params).spp, 64);
+    EXPECT_THROW(params.setNumber("spp", -1, AFN_PARAM_INT), afn::Exception);
 }
