@@ -2,24 +2,22 @@
 // "afn": the Adaptive Fusion Network denoiser (Lee et al.). Per frame, after the shared stages
 // (demodulation of the 1-spp colour, BMFR temporal accumulation for TA-1spp): scale normal and
 // depth (features.h), run the network (network.h) and remodulate. The network output is clamped
-// to >= 0 by the remodulation (stages/demodulate.h).
+// to >= 0 by the remodulation (stages/demodulate.h). Weights: weights_source.h.
 //
-// Weights: the shipped archive embedded at build time (cmake/AfnEmbed.cmake, AFN_WEIGHTS_FILE)
-// when the build has one, else none; afnSetFilterData(filter, AFN_DATA_WEIGHTS, data, size)
-// overrides at run time. Without weights commit fails with a message: untrained weights never run
-// silently.
+// On a CUDA device (builds with AFN_HAS_CUDA) the whole filter, shared stages included, runs on
+// the GPU instead (cuda/afn_cuda_filter.h); it reads the same parameters.
 #include "base/exception.h"
 #include "filter/registry.h"
 #include "methods/afn/features.h"
 #include "methods/afn/network.h"
+#include "methods/afn/weights_source.h"
 #include "stages/demodulate.h"
 
-#include <algorithm>
-
-#ifdef AFN_HAS_EMBEDDED_WEIGHTS
-extern "C" const unsigned char afnEmbeddedWeights[];
-extern "C" const unsigned long long afnEmbeddedWeights_size;
+#ifdef AFN_HAS_CUDA
+#include "cuda/afn_cuda_filter.h"
 #endif
+
+#include <algorithm>
 
 namespace afn::afnet {
 
@@ -30,19 +28,14 @@ public:
     explicit AfnFilter(const FilterType& t)
         : Filter(t)
     {
-#ifdef AFN_HAS_EMBEDDED_WEIGHTS
-        m_net.load(nn::WeightsArchive::parse(afnEmbeddedWeights,
-            static_cast<std::size_t>(afnEmbeddedWeights_size), "embedded AFN weights"));
-#endif
+        loadEmbeddedNetwork(m_net);
     }
 
     void setData(const std::string& name, const void* data, std::size_t size) override
     {
         if (name != AFN_DATA_WEIGHTS)
             Filter::setData(name, data, size);
-        Network net;
-        net.load(nn::WeightsArchive::parse(data, size, "weights set with afnSetFilterData"));
-        m_net = std::move(net); // only valid weights replace the current ones
+        m_net = networkFromData(data, size); // only valid weights replace the current ones
         markDirty();
         reset();
     }
@@ -51,9 +44,7 @@ private:
     void configure() override
     {
         if (outputBound() && !m_net.loaded())
-            throwInvalidOperation(
-                "afn: no weights: this build embeds no trained AFN model; set an .afnw file "
-                "with afnSetFilterData(filter, \"weights\", data, size) (afntool: --weights FILE)");
+            throwNoWeights();
     }
     void denoise(const Frame& in, Image& out) override
     {
@@ -83,6 +74,17 @@ private:
     Image m_albedo, m_normal01, m_depth01, m_result;
 };
 
+std::unique_ptr<Filter> create(const FilterType& t, const Device& device)
+{
+#ifdef AFN_HAS_CUDA
+    if (device.type() == AFN_DEVICE_TYPE_CUDA)
+        return cuda::createAfnCudaFilter(t, device);
+#else
+    (void)device;
+#endif
+    return std::make_unique<AfnFilter>(t);
+}
+
 } // namespace
 
 FilterType filterType()
@@ -104,7 +106,10 @@ FilterType filterType()
         { "normal01", 3, "shading normal * 0.5 + 0.5, [0, 1] (0.5 without a normal input)" },
         { "depth01", 1, "per-frame min-max depth, [0, 1] (0 without a depth input)" },
     };
-    t.create = factoryOf<AfnFilter>();
+#ifdef AFN_HAS_CUDA
+    t.devices = { AFN_DEVICE_TYPE_CPU, AFN_DEVICE_TYPE_CUDA };
+#endif
+    t.create = create;
     return t;
 }
 
