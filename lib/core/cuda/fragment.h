@@ -8,7 +8,7 @@
 //     k = 2t + 8 r, column g; row k in the low 16 bits
 //   C/D (16 x 8 floats): element i at row g + 8 (i >> 1), column 2t + (i & 1)
 // Every kernel addresses its operands through these functions, and the host tests emulate the
-// instruction with them (tests/unit/test_cuda_tiles.cpp).
+// instruction with them (tests/unit/core/cuda/test_cuda_layout.cpp).
 #pragma once
 
 #include "cuda/device_math.h"

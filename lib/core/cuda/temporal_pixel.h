@@ -3,7 +3,8 @@
 // with BMFR's per-tap acceptance (stages/reproject.cpp, bilinear taps, no box fallback) and
 // temporal accumulation (stages/temporal_accumulation.cpp), written operation for operation as the
 // CPU stages. Compiled without contracting multiply-adds (temporal.cu: --fmad=false), it gives
-// the CPU's results bit for bit (tests/unit/test_cuda_pixels.cpp checks this on the CPU).
+// the CPU's results bit for bit (tests/unit/core/cuda/test_cuda_emulated.cpp checks this on
+// the CPU).
 #pragma once
 
 #include "cuda/device_math.h"

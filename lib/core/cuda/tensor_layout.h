@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: Apache-2.0
 // Memory layouts of the CUDA AFN engine. Plain C++ (no CUDA header), built in every configuration
-// so that the index math is tested on any machine (tests/unit/test_cuda_layout.cpp):
+// so that the index math is tested on any machine (tests/unit/core/cuda/test_cuda_layout.cpp):
 //   activations  NHWC half precision; the channel stride is rounded up to 16 (one K step of the
 //                tensor-core instruction mma.m16n8k16); channels past a tensor's own count hold 0.
 //   conv weights for each tap, 16-channel K chunk and output channel n: 8 32-bit words, word w
