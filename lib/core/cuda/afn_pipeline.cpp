@@ -17,14 +17,16 @@ constexpr int layerIndex(NetLayer l)
 }
 
 /// Allocate `count` elements; a fresh allocation is filled with 0xff bytes (NaN as float and as
-/// half) when `poison` is set.
-template <typename T> void allocateBuffer(DeviceBuffer<T>& b, std::size_t count, bool poison)
+/// half) on `stream` when `poison` is set. (Every copy and fill of the pipeline goes through its
+/// own stream: the legacy default stream is not ordered with a non-blocking stream.)
+template <typename T>
+void allocateBuffer(DeviceBuffer<T>& b, std::size_t count, bool poison, cudaStream_t stream)
 {
     if (b.size() == count)
         return;
     b.resize(count);
     if (poison && count > 0)
-        AFN_CUDA_CHECK(cudaMemset(b.data(), 0xff, b.bytes()));
+        AFN_CUDA_CHECK(cudaMemsetAsync(b.data(), 0xff, b.bytes(), stream));
 }
 
 std::size_t pixels(int w, int h)
@@ -64,12 +66,12 @@ FrameLayout FrameLayout::of(const Frame& f)
     return l;
 }
 
-void AfnPipeline::Tensor::allocate(int w, int h, int channels, bool poison)
+void AfnPipeline::Tensor::allocate(int w, int h, int channels, bool poison, cudaStream_t stream)
 {
     width = w;
     height = h;
     stride = channelStride(channels);
-    allocateBuffer(data, pixels(w, h) * stride, poison);
+    allocateBuffer(data, pixels(w, h) * stride, poison, stream);
 }
 
 AfnPipeline::AfnPipeline(int gpu)
@@ -106,11 +108,12 @@ void AfnPipeline::setNetwork(const afnet::Network& network)
         layer.packed = packConv(network.layer(which), up);
         layer.weights.resize(layer.packed.weights.size());
         layer.bias.resize(layer.packed.bias.size());
-        AFN_CUDA_CHECK(cudaMemcpy(layer.weights.data(), layer.packed.weights.data(),
-            layer.weights.bytes(), cudaMemcpyHostToDevice));
-        AFN_CUDA_CHECK(cudaMemcpy(layer.bias.data(), layer.packed.bias.data(), layer.bias.bytes(),
-            cudaMemcpyHostToDevice));
+        AFN_CUDA_CHECK(cudaMemcpyAsync(layer.weights.data(), layer.packed.weights.data(),
+            layer.weights.bytes(), cudaMemcpyHostToDevice, m_stream.get()));
+        AFN_CUDA_CHECK(cudaMemcpyAsync(layer.bias.data(), layer.packed.bias.data(),
+            layer.bias.bytes(), cudaMemcpyHostToDevice, m_stream.get()));
     }
+    AFN_CUDA_CHECK(cudaStreamSynchronize(m_stream.get()));
     m_hasNetwork = true;
     m_layout = FrameLayout {}; // channel counts may differ: allocate and capture again
     m_graphsValid = false;
@@ -121,40 +124,41 @@ void AfnPipeline::allocate(const FrameLayout& layout)
     const int w = layout.width, h = layout.height;
     const std::size_t n = pixels(w, h);
     const bool p = m_poison;
-    allocateBuffer(m_color, 3 * n, p);
-    allocateBuffer(m_albedo, layout.albedo ? 3 * n : 0, p);
-    allocateBuffer(m_motion, layout.motion ? 2 * n : 0, p);
-    allocateBuffer(m_irradiance, 3 * n, p);
-    allocateBuffer(m_output, 3 * n, p);
+    const cudaStream_t st = m_stream.get();
+    allocateBuffer(m_color, 3 * n, p, st);
+    allocateBuffer(m_albedo, layout.albedo ? 3 * n : 0, p, st);
+    allocateBuffer(m_motion, layout.motion ? 2 * n : 0, p, st);
+    allocateBuffer(m_irradiance, 3 * n, p, st);
+    allocateBuffer(m_output, 3 * n, p, st);
     for (int s = 0; s < 2; ++s) {
-        allocateBuffer(m_position[s], layout.position ? 3 * n : 0, p);
-        allocateBuffer(m_normal[s], layout.normal ? 3 * n : 0, p);
-        allocateBuffer(m_depth[s], layout.depth ? n : 0, p);
-        allocateBuffer(m_accumulated[s], 3 * n, p);
-        allocateBuffer(m_history[s], n, p);
+        allocateBuffer(m_position[s], layout.position ? 3 * n : 0, p, st);
+        allocateBuffer(m_normal[s], layout.normal ? 3 * n : 0, p, st);
+        allocateBuffer(m_depth[s], layout.depth ? n : 0, p, st);
+        allocateBuffer(m_accumulated[s], 3 * n, p, st);
+        allocateBuffer(m_history[s], n, p, st);
     }
-    allocateBuffer(m_depthRange, 2, p);
-    allocateBuffer(m_constants, 1, p);
+    allocateBuffer(m_depthRange, 2, p, st);
+    allocateBuffer(m_constants, 1, p, st);
 
     const auto channels = [&](NetLayer l) { return m_layers[layerIndex(l)].packed.outChannels; };
     m_paddedWidth = paddedSize(w);
     m_paddedHeight = paddedSize(h);
     const int wp = m_paddedWidth, hp = m_paddedHeight;
-    m_x.allocate(wp, hp, kInputChannels, p);
-    m_xHalf.allocate(wp / 2, hp / 2, kInputChannels, p);
-    m_e1.allocate(wp / 2, hp / 2, channels(NetLayer::Enc1), p);
-    m_e1Pool.allocate(wp / 4, hp / 4, channels(NetLayer::Enc1), p);
-    m_e2.allocate(wp / 4, hp / 4, channels(NetLayer::Enc2), p);
-    m_e2Pool.allocate(wp / 8, hp / 8, channels(NetLayer::Enc2), p);
-    m_e3.allocate(wp / 8, hp / 8, channels(NetLayer::Enc3), p);
-    m_d2.allocate(wp / 4, hp / 4, channels(NetLayer::Dec2), p);
-    m_d1.allocate(wp / 2, hp / 2, channels(NetLayer::Dec1), p);
-    allocateBuffer(m_color1Half, 3 * pixels(wp / 2, hp / 2), p);
+    m_x.allocate(wp, hp, kInputChannels, p, st);
+    m_xHalf.allocate(wp / 2, hp / 2, kInputChannels, p, st);
+    m_e1.allocate(wp / 2, hp / 2, channels(NetLayer::Enc1), p, st);
+    m_e1Pool.allocate(wp / 4, hp / 4, channels(NetLayer::Enc1), p, st);
+    m_e2.allocate(wp / 4, hp / 4, channels(NetLayer::Enc2), p, st);
+    m_e2Pool.allocate(wp / 8, hp / 8, channels(NetLayer::Enc2), p, st);
+    m_e3.allocate(wp / 8, hp / 8, channels(NetLayer::Enc3), p, st);
+    m_d2.allocate(wp / 4, hp / 4, channels(NetLayer::Dec2), p, st);
+    m_d1.allocate(wp / 2, hp / 2, channels(NetLayer::Dec1), p, st);
+    allocateBuffer(m_color1Half, 3 * pixels(wp / 2, hp / 2), p, st);
     if (m_refine) {
-        allocateBuffer(m_fused, 3 * pixels(wp, hp), p);
-        m_refineInput.allocate(wp, hp, kRefineInputChannels, p);
-        m_r1.allocate(wp, hp, channels(NetLayer::Ref1), p);
-        m_r2.allocate(wp, hp, channels(NetLayer::Ref2), p);
+        allocateBuffer(m_fused, 3 * pixels(wp, hp), p, st);
+        m_refineInput.allocate(wp, hp, kRefineInputChannels, p, st);
+        m_r1.allocate(wp, hp, channels(NetLayer::Ref1), p, st);
+        m_r2.allocate(wp, hp, channels(NetLayer::Ref2), p, st);
     } else {
         m_fused.release();
         m_refineInput = Tensor {};
@@ -418,11 +422,15 @@ void AfnPipeline::downloadIntermediate(Intermediate which, Image& out)
         if (b.size() != pixels(w, h) * c)
             throwInvalidOperation("CUDA afn: that intermediate is not computed");
         out.resize(w, h, c);
-        AFN_CUDA_CHECK(cudaMemcpy(out.data(), b.data(), b.bytes(), cudaMemcpyDeviceToHost));
+        AFN_CUDA_CHECK(cudaMemcpyAsync(
+            out.data(), b.data(), b.bytes(), cudaMemcpyDeviceToHost, m_stream.get()));
+        AFN_CUDA_CHECK(cudaStreamSynchronize(m_stream.get()));
     };
     auto halves = [&](const Tensor& t, int c) {
         std::vector<std::uint16_t> h(t.data.size());
-        AFN_CUDA_CHECK(cudaMemcpy(h.data(), t.data.data(), t.data.bytes(), cudaMemcpyDeviceToHost));
+        AFN_CUDA_CHECK(cudaMemcpyAsync(
+            h.data(), t.data.data(), t.data.bytes(), cudaMemcpyDeviceToHost, m_stream.get()));
+        AFN_CUDA_CHECK(cudaStreamSynchronize(m_stream.get()));
         out.resize(t.width, t.height, c);
         for (std::size_t p = 0; p < pixels(t.width, t.height); ++p)
             for (int k = 0; k < c; ++k)

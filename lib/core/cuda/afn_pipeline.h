@@ -89,7 +89,7 @@ private:
     struct Tensor {
         DeviceBuffer<std::uint16_t> data;
         int width = 0, height = 0, stride = 0;
-        void allocate(int w, int h, int channels, bool poison);
+        void allocate(int w, int h, int channels, bool poison, cudaStream_t stream);
     };
     void allocate(const FrameLayout& layout);
     void captureGraphs();

@@ -20,10 +20,18 @@ __global__ void resetDepthRangeKernel(std::uint32_t* range)
 __global__ void __launch_bounds__(kBlockX* kBlockY)
     temporalKernel(TemporalBuffers b, const FrameConstants* frame, std::uint32_t* depthRange)
 {
-    __shared__ FrameConstants constants;
-    if (threadIdx.x == 0 && threadIdx.y == 0)
-        constants = *frame;
+    // The frame's constants, copied once per block into shared memory (as words: a __shared__
+    // variable cannot have the struct's default member initialisers).
+    constexpr int kWords = sizeof(FrameConstants) / sizeof(std::uint32_t);
+    static_assert(sizeof(FrameConstants) % sizeof(std::uint32_t) == 0, "FrameConstants words");
+    static_assert(alignof(FrameConstants) == alignof(std::uint32_t), "FrameConstants alignment");
+    static_assert(kWords <= kBlockX * kBlockY, "one word per thread");
+    __shared__ std::uint32_t constantWords[kWords];
+    const int thread = threadIdx.y * kBlockX + threadIdx.x;
+    if (thread < kWords)
+        constantWords[thread] = reinterpret_cast<const std::uint32_t*>(frame)[thread];
     __syncthreads();
+    const FrameConstants& constants = *reinterpret_cast<const FrameConstants*>(constantWords);
     const int x = blockIdx.x * kBlockX + threadIdx.x;
     const int y = blockIdx.y * kBlockY + threadIdx.y;
     const bool inside = x < b.width && y < b.height;
