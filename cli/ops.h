@@ -48,6 +48,9 @@ public:
 private:
     void run(LoadedFrame& frame, Progress* progress);
     void check(const std::string& what, const std::string& file);
+    /// --device cuda|auto: the filter on the CUDA device; with auto, nothing (the CPU is used)
+    /// when there is no CUDA device or the method does not run there.
+    void openOnCuda(const std::string& choice);
 
     const Options& m_opts;
     std::string m_flag; ///< "--denoise" or "--features", for messages
