@@ -40,5 +40,6 @@ afn_add_gtest(test_cuda_engine
     unit/core/cuda/test_cuda_layout.cpp
     unit/core/cuda/test_cuda_emulated.cpp
     unit/core/cuda/cuda_emulator.cpp
+    unit/core/cuda/emulated_pipeline.cpp
   LIBS afn_core)
 target_include_directories(test_cuda_engine PRIVATE ${AFN_CORE_TESTS})

@@ -1,12 +1,12 @@
 // SPDX-License-Identifier: Apache-2.0
-// The CUDA engine's kernel code, run on the CPU through the host emulation (cuda_emulator.h),
+// The CUDA engine's kernel code, run on the CPU through the host emulation (emulated_pipeline.h),
 // against the CPU engine: the first stage bit for bit, the network input to half precision, and
 // the whole filter within the documented tolerance (afn_output_compare.h) on synthetic sequences
 // of several sizes, input sets and weights. Built in every configuration: a GPU is not needed.
 #include "afn_output_compare.h"
 #include "afn_parity_cases.h"
 #include "cuda/frame_constants.h"
-#include "cuda_emulator.h"
+#include "emulated_pipeline.h"
 #include "filter/registry.h"
 #include "methods/afn/features.h"
 #include "methods/afn/weights_source.h"
