@@ -50,6 +50,9 @@ private:
     /// The per-frame log line of the aux decision and speckle shares (methods that demodulate).
     void logAux(const LoadedFrame& frame, Progress* progress);
     void check(const std::string& what, const std::string& file);
+    /// --device cuda|auto: the filter on the CUDA device; with auto, nothing (the CPU is used)
+    /// when there is no CUDA device or the method does not run there.
+    void openOnCuda(const std::string& choice);
 
     const Options& m_opts;
     std::string m_flag; ///< "--denoise" or "--features", for messages

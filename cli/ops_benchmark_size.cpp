@@ -181,7 +181,8 @@ int runSizeBenchmark(const Options& opts, const Action& action)
     j.beginObject()
         .field("timedFrames", timed)
         .field("warmupFrames", warmup)
-        .field("threads", opts.threads);
+        .field("threads", opts.threads)
+        .field("device", opts.device);
     j.key("points").beginArray();
     std::ostringstream csv;
     csv << "method,width,height,megapixels,medianMs,msPerMegapixel,relativeToFirst,medianCpuMs,"
@@ -215,10 +216,10 @@ int runSizeBenchmark(const Options& opts, const Action& action)
     if (opts.json)
         std::printf("%s\n", j.str().c_str());
     else
-        std::printf("(median of %d timed frames after %d warm-up frames; rel. = per-megapixel time "
-                    "against the method's first size: 1.0 = linear in pixel count; cpu = process "
-                    "CPU time of all threads)\n",
-            timed, warmup);
+        std::printf("(median of %d timed frames after %d warm-up frames on --device %s; rel. = "
+                    "per-megapixel time against the method's first size: 1.0 = linear in pixel "
+                    "count; cpu = process CPU time of all threads)\n",
+            timed, warmup, opts.device.c_str());
     if (!opts.report.empty()) {
         std::error_code ec;
         std::filesystem::create_directories(opts.report, ec);

@@ -7,9 +7,52 @@
 
 #include <cstdio>
 
+#include <iostream>
+
 namespace afntool {
 
 using afn::io::Role;
+
+namespace {
+
+/// A note on stderr, once per run (benchmarks create many denoisers).
+void noteOnce(const std::string& text, bool quiet)
+{
+    static bool said = false;
+    if (!quiet && !said)
+        std::cerr << "afntool: note: " << text << "\n";
+    said = true;
+}
+
+} // namespace
+
+void SequenceDenoiser::openOnCuda(const std::string& choice)
+{
+    afn::DeviceRef cuda = afn::newDevice(afn::DeviceType::CUDA);
+    if (!cuda) {
+        const char* why = nullptr;
+        afnGetDeviceError(nullptr, &why);
+        const std::string reason = why ? why : "unknown reason";
+        if (choice == "cuda")
+            throw CliError("--device cuda: " + reason);
+        noteOnce("no CUDA device (" + reason + "); denoising on the CPU", m_opts.quiet);
+        return;
+    }
+    cuda.set("numThreads", m_opts.threads);
+    cuda.commit();
+    afn::FilterRef filter = cuda.newFilter(m_method.c_str());
+    std::string message;
+    const afn::Error error = cuda.getError(&message);
+    if (error == afn::Error::None) {
+        m_device = cuda;
+        m_filter = filter;
+    } else if (choice == "auto" && error == afn::Error::Unsupported) {
+        noteOnce(
+            "method '" + m_method + "' runs on the CPU only; denoising on the CPU", m_opts.quiet);
+    } else {
+        throw CliError(m_flag + ": " + message);
+    }
+}
 
 SequenceDenoiser::SequenceDenoiser(const Options& opts, const Action& action)
     : m_opts(opts)
@@ -23,14 +66,19 @@ SequenceDenoiser::SequenceDenoiser(const Options& opts, const Action& action)
     m_method = it == m_params.end() ? "afn" : it->second;
     if (it != m_params.end())
         m_params.erase(it);
-    m_device = afn::newDevice();
-    if (!m_device)
-        throw CliError("cannot create an afn device");
-    m_device.set("numThreads", opts.threads);
-    m_device.commit();
-    check("device", "");
-    m_filter = m_device.newFilter(m_method.c_str());
-    check(m_flag, "");
+    // Feature outputs are computed on the CPU: auto stays there, cuda reports the device's error.
+    if (opts.device == "cuda" || (opts.device == "auto" && !m_features))
+        openOnCuda(opts.device);
+    if (!m_filter) {
+        m_device = afn::newDevice(afn::DeviceType::CPU);
+        if (!m_device)
+            throw CliError("cannot create an afn device");
+        m_device.set("numThreads", opts.threads);
+        m_device.commit();
+        check("device", "");
+        m_filter = m_device.newFilter(m_method.c_str());
+        check(m_flag, "");
+    }
     if (m_features && afn::filterTypeFeatures(m_method.c_str()).empty())
         throw CliError("--features: method '" + m_method + "' has no feature outputs");
     for (const AFNParamInfo& p : afn::filterTypeParams(m_method.c_str()))

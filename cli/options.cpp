@@ -88,6 +88,10 @@ Options parseCommandLine(int argc, const char* const* argv)
             o.threads = parseInt(needValue(i, argc, argv, flag), flag);
             if (o.threads < 0)
                 throw CliError("--threads must be >= 0");
+        } else if (flag == "--device") {
+            o.device = needValue(i, argc, argv, flag);
+            if (o.device != "cpu" && o.device != "cuda" && o.device != "auto")
+                throw CliError("--device expects cpu, cuda or auto, got '" + o.device + "'");
         } else if (flag == "--weights") {
             o.weights = needValue(i, argc, argv, flag);
         } else if (flag == "-d") {
@@ -178,6 +182,12 @@ std::string helpText()
        << "                          the working space)\n"
        << "  --outcolorspace NAME    colour space of written images (default: the input's)\n"
        << "  --threads N             worker threads (0 = all cores)\n"
+       << "  --device cpu|cuda|auto  where --denoise runs (default cpu: the reference results,\n"
+       << "                          the same on every machine). cuda: an NVIDIA GPU of compute\n"
+       << "                          capability 9.0+ in builds with CUDA; only afn runs there\n"
+       << "                          (half precision, within docs/gpu.md's tolerance of cpu).\n"
+       << "                          auto: cuda when there is one and the method runs there,\n"
+       << "                          else cpu with a note on stderr\n"
        << "  --weights FILE          network weights (.afnw) for learned methods such as afn,\n"
        << "                          instead of the ones built in (also :weights=FILE on "
           "--denoise)\n"

@@ -127,4 +127,10 @@ void postError(void* handle, const std::string& message)
         suites().message->message(handle, kOfxMessageError, "", "%s", message.c_str());
 }
 
+void postNote(void* handle, const std::string& message)
+{
+    if (suites().message && suites().message->message)
+        suites().message->message(handle, kOfxMessageLog, "", "%s", message.c_str());
+}
+
 } // namespace afnofx

@@ -78,5 +78,7 @@ private:
 
 /// Post an error message on an instance (or descriptor) when the host has a message suite.
 void postError(void* handle, const std::string& message);
+/// Write a note to the host's log (no dialog) when the host has a message suite.
+void postNote(void* handle, const std::string& message);
 
 } // namespace afnofx

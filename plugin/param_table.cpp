@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <cstring>
+#include <iterator>
 #include <sstream>
 
 namespace afnofx {
@@ -175,6 +176,16 @@ void defineParams(OfxImageEffectHandle descriptor, bool temporalDefault)
             d.set(kOfxParamPropDefault, it == options.end() ? 0 : int(it - options.begin()));
         }
     }
+
+    // Last, so that the parameters above keep their places in saved projects.
+    Props device(defineFixed(set, kOfxParamTypeChoice, kParamDevice, "Device",
+        "where the filter runs: cpu (the reference results, the same on every machine), cuda (an "
+        "NVIDIA GPU of compute capability 9.0 or newer, in builds with CUDA; only afn runs there, "
+        "in half precision within the documented tolerance of cpu), auto (cuda when there is one "
+        "and the method runs there, else cpu with a note in the host's log)"));
+    device.setStrings(kOfxParamPropChoiceOption,
+        std::vector<std::string>(std::begin(kDeviceOptions), std::end(kDeviceOptions)));
+    device.set(kOfxParamPropDefault, 0);
 }
 
 static OfxParamHandle paramHandle(OfxParamSetHandle set, const std::string& name)
@@ -229,6 +240,11 @@ Settings readSettings(OfxImageEffectHandle instance)
         throw OfxError(kOfxStatErrValue, "method index " + std::to_string(m) + " is out of range");
     s.method = c.methods[m];
     s.temporal = getIntValue(set, kParamTemporal) != 0;
+    const int device = getIntValue(set, kParamDevice);
+    if (device < 0 || device >= static_cast<int>(std::size(kDeviceOptions)))
+        throw OfxError(
+            kOfxStatErrValue, "device index " + std::to_string(device) + " is out of range");
+    s.device = kDeviceOptions[device];
     char* path = nullptr;
     check(suites().param->paramGetValue(paramHandle(set, kParamWeights), &path),
         "reading parameter weights");
@@ -261,7 +277,7 @@ std::string Settings::key() const
 {
     std::ostringstream os;
     os.precision(17);
-    os << method << ';' << temporal << ';' << weightsPath << ';' << weightsStamp;
+    os << method << ';' << temporal << ';' << weightsPath << ';' << weightsStamp << ';' << device;
     for (const Value& v : values)
         os << ';' << v.spec->ofxName << '=' << v.number << v.choice;
     return os.str();

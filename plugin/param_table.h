@@ -18,6 +18,10 @@ constexpr const char* kParamMethod = "method";
 constexpr const char* kParamTemporal = "temporal";
 /// OFX name of the weights file (learned methods; empty = the weights built into the library).
 constexpr const char* kParamWeights = "weights";
+/// OFX name of the device choice (the last parameter: appended after every other one).
+constexpr const char* kParamDevice = "device";
+/// Options of the device choice, in order (saved projects store the index).
+constexpr const char* kDeviceOptions[] = { "cpu", "cuda", "auto" };
 
 /// One OFX parameter mirroring one library parameter.
 struct ParamSpec {
@@ -36,8 +40,8 @@ struct ParamCatalog {
 /// The catalog, built once from the library (thread-safe).
 const ParamCatalog& paramCatalog();
 
-/// Define the method choice, the temporal switch and every catalog parameter on a descriptor.
-/// `temporalDefault`: default of the temporal switch (off in the Filter context).
+/// Define the method choice, the temporal switch, every catalog parameter and the device choice on
+/// a descriptor. `temporalDefault`: default of the temporal switch (off in the Filter context).
 void defineParams(OfxImageEffectHandle descriptor, bool temporalDefault);
 
 /// Show the parameters of the instance's current method and hide (kOfxParamPropSecret) the other
@@ -50,6 +54,7 @@ struct Settings {
     bool temporal = true;
     std::string weightsPath; ///< "" = none
     std::string weightsStamp; ///< size and modification time of the file (reload on change)
+    std::string device = "cpu"; ///< one of kDeviceOptions
     struct Value {
         const ParamSpec* spec;
         double number; ///< bool/int/float value

@@ -85,15 +85,10 @@ const std::vector<float>& SequenceRunner::frame(
         if (r.key == key && r.time == time)
             return r.rgba;
 
-    if (!m_device) {
-        m_device = afn::newDevice();
-        m_device.commit();
-        checkError("creating the afn device");
-    }
     const std::string weights = settings.weightsPath + "|" + settings.weightsStamp;
-    if (!m_filter || m_filterMethod != settings.method || m_filterWeights != weights) {
-        m_filter = m_device.newFilter(settings.method.c_str());
-        checkError(("creating filter " + settings.method).c_str());
+    if (!m_filter || m_filterMethod != settings.method || m_filterWeights != weights
+        || m_deviceChoice != settings.device) {
+        createFilter(settings, req.instance);
         m_filterMethod = settings.method;
         m_filterWeights.clear();
         m_hasState = false;
@@ -131,6 +126,54 @@ const std::vector<float>& SequenceRunner::frame(
         m_hasState = settings.temporal;
     }
     return m_results.back().rgba;
+}
+
+void SequenceRunner::createFilter(const Settings& settings, OfxImageEffectHandle instance)
+{
+    m_filter = afn::FilterRef();
+    m_hasState = false;
+    m_deviceChoice = settings.device;
+    std::string why;
+    if (settings.device != "cpu") {
+        if (openOnCuda(settings, why))
+            return;
+        postNote(instance, "afn: device auto: " + why + "; denoising on the CPU");
+    }
+    if (!m_device || m_device.get("type") != AFN_DEVICE_TYPE_CPU) {
+        m_device = afn::newDevice(afn::DeviceType::CPU);
+        m_device.commit();
+        checkError("creating the afn device");
+    }
+    m_filter = m_device.newFilter(settings.method.c_str());
+    checkError(("creating filter " + settings.method).c_str());
+}
+
+bool SequenceRunner::openOnCuda(const Settings& settings, std::string& why)
+{
+    const bool onCuda = m_device && m_device.get("type") == AFN_DEVICE_TYPE_CUDA;
+    afn::DeviceRef cuda = onCuda ? m_device : afn::newDevice(afn::DeviceType::CUDA);
+    if (!cuda) {
+        const char* reason = nullptr;
+        afnGetDeviceError(nullptr, &reason);
+        why = std::string("no CUDA device (") + (reason ? reason : "unknown reason") + ")";
+        if (settings.device == "cuda")
+            throw OfxError(kOfxStatFailed, "device cuda: " + why);
+        return false;
+    }
+    if (!onCuda)
+        cuda.commit();
+    afn::FilterRef filter = cuda.newFilter(settings.method.c_str());
+    std::string message;
+    const afn::Error error = cuda.getError(&message);
+    if (error == afn::Error::None) {
+        m_device = cuda;
+        m_filter = filter;
+        return true;
+    }
+    if (settings.device == "cuda" || error != afn::Error::Unsupported)
+        throw OfxError(kOfxStatFailed, "creating filter " + settings.method + ": " + message);
+    why = "method '" + settings.method + "' runs on the CPU only";
+    return false;
 }
 
 void SequenceRunner::loadWeights(const Settings& settings)

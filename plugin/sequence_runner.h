@@ -48,8 +48,15 @@ private:
     std::vector<float>& storeSlot(const std::string& key, double time);
     void checkError(const char* what);
     void loadWeights(const Settings& settings);
+    /// Create the filter of `settings.method` on the device `settings.device` asks for (auto: CUDA
+    /// when there is one and the method runs there, else the CPU with a note in the host's log).
+    void createFilter(const Settings& settings, OfxImageEffectHandle instance);
+    /// The filter on the CUDA device (true); false with the reason in `why` when auto falls back
+    /// to the CPU. Throws OfxError when cuda was chosen and cannot serve.
+    bool openOnCuda(const Settings& settings, std::string& why);
 
     afn::DeviceRef m_device;
+    std::string m_deviceChoice; ///< settings.device the device and filter were made for
     afn::FilterRef m_filter;
     std::string m_filterMethod;
     std::string m_filterWeights; ///< path and stamp of the weights set on the filter

@@ -73,11 +73,15 @@ typedef enum AFNFormat {
 } AFNFormat;
 
 /// Device types. The CUDA device exists only in builds with CUDA (afnNewDevice fails with
-/// AFN_ERROR_UNSUPPORTED otherwise, and when no GPU is present).
+/// AFN_ERROR_UNSUPPORTED otherwise, and when no suitable GPU is present, saying why).
 typedef enum AFNDeviceType {
     AFN_DEVICE_TYPE_DEFAULT = 0, ///< the CPU (the reference device; results do not depend on it)
     AFN_DEVICE_TYPE_CPU = 1, ///< the CPU, on a oneTBB thread arena
-    AFN_DEVICE_TYPE_CUDA = 3, ///< an NVIDIA GPU (reserved until a build provides it)
+    /// An NVIDIA GPU of compute capability 9.0 or newer (Hopper). Only the "afn" method runs there
+    /// (afnNewFilter fails with AFN_ERROR_UNSUPPORTED for the others); its results match the CPU's
+    /// within the half-precision tolerance of docs/gpu.md. "numThreads" sizes the CPU threads that
+    /// gather the inputs.
+    AFN_DEVICE_TYPE_CUDA = 3,
 } AFNDeviceType;
 
 // ---- Names ------------------------------------------------------------------------------------

@@ -47,6 +47,8 @@ TEST(Afntool, HelpListsMethodsAndParameters)
     EXPECT_NE(r.out.find("identity"), std::string::npos);
     EXPECT_NE(r.out.find("normal.space=world"), std::string::npos);
     EXPECT_NE(r.out.find("--denoise:method=NAME"), std::string::npos);
+    EXPECT_NE(r.out.find("--device cpu|cuda|auto"), std::string::npos);
+    EXPECT_NE(r.out.find("only afn runs there"), std::string::npos);
 }
 
 TEST(Afntool, MethodsListsEveryMethodWithItsReadiness)
@@ -206,6 +208,35 @@ TEST(Afntool, UnknownArgumentsAndMethods)
     expectCleanError(runAfntool({ kBlender, "--denoise:method=nope", "-o", "/tmp/x.exr" }), "nope");
     expectCleanError(runAfntool({ kBlender, "--denoise", "-o", "/tmp/x.exr" }), "method");
     expectCleanError(runAfntool({ kBlender, "-d", "int8", "-o", "/tmp/x.exr" }), "half or float");
+}
+
+TEST(Afntool, DeviceChoice)
+{
+    expectCleanError(runAfntool({ kFrame0, "--device", "gpu" }), "cpu, cuda or auto");
+    const bool hasCuda = static_cast<bool>(afn::newDevice(afn::DeviceType::CUDA));
+    TempDir dir;
+    auto denoise = [&](const std::string& device, const std::string& prefix) {
+        return runAfntool({ "--device", device, "--frames", "0-1", kSequence, "--denoise:method=ta",
+            "-o", dir.file(prefix + ".####.exr") });
+    };
+    const CliResult cpu = denoise("cpu", "cpu");
+    ASSERT_EQ(cpu.exitCode, 0) << cpu.err;
+    EXPECT_EQ(cpu.err.find("note:"), std::string::npos) << cpu.err;
+    // auto: ta runs on the CPU only, so the CPU is used, with a note saying why.
+    const CliResult automatic = denoise("auto", "auto");
+    ASSERT_EQ(automatic.exitCode, 0) << automatic.err;
+    EXPECT_NE(automatic.err.find(hasCuda ? "runs on the CPU only" : "note: no CUDA device"),
+        std::string::npos)
+        << automatic.err;
+    for (const char* f : { "0000", "0001" }) {
+        const auto a = afn::io::readFrame(dir.file(std::string("cpu.") + f + ".exr"));
+        const auto b = afn::io::readFrame(dir.file(std::string("auto.") + f + ".exr"));
+        EXPECT_EQ(a.roles.at(afn::io::Role::Color).pixels, b.roles.at(afn::io::Role::Color).pixels)
+            << f;
+    }
+    // cuda: an error without a CUDA device; with one, ta does not run there.
+    expectCleanError(
+        denoise("cuda", "cuda"), hasCuda ? "does not run on the cuda device" : "--device cuda: ");
 }
 
 TEST(Afntool, SequenceDenoiseWritesEveryFrame)

@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: Apache-2.0
 // The OFX plugin driven through the in-process test host, compared with the same filter run
 // directly through the C API over the same frames (whole frames, tiles, render scale 0.5,
-// out-of-order times, two threads), plus describe contracts, identity, abort and errors.
+// out-of-order times, two threads), plus describe contracts, identity, abort, errors and the
+// device choice.
 #include "ofx_test_host.h"
 #include "synthetic_sequence.h"
 
@@ -406,6 +407,40 @@ TEST(PluginHost, BadInputIsReportedThroughTheMessageSuite)
     const auto messages = s.host.messages();
     ASSERT_FALSE(messages.empty());
     EXPECT_NE(messages.back().find("motion"), std::string::npos) << messages.back();
+    EXPECT_EQ(s.host.liveImages(), 0);
+    EXPECT_EQ(s.host.destroyInstance(inst.get()), kOfxStatOK);
+}
+
+TEST(PluginHost, DeviceChoiceFallsBackToTheCpuWithANote)
+{
+    Session s;
+    ASSERT_TRUE(s.loaded);
+    const bool hasCuda = static_cast<bool>(afn::newDevice(afn::DeviceType::CUDA));
+    const auto ref = referenceFrames(s.seq, { "ta", true, 1.0, kAllAux });
+    // auto: ta runs on the CPU only, so the CPU is used, with a note in the host's log saying why.
+    auto inst = s.instance("ta", kAllAux);
+    ASSERT_EQ(s.host.setParam(inst.get(), "device", 2), kOfxStatOK);
+    for (int k = 0; k < s.seq.numFrames; ++k)
+        EXPECT_TRUE(nearlyEqual(s.render(inst.get(), s.seq.firstFrame + k), ref[k])) << k;
+    auto messages = s.host.messages();
+    ASSERT_EQ(messages.size(), 1u);
+    EXPECT_EQ(messages[0].rfind(kOfxMessageLog, 0), 0u) << messages[0];
+    EXPECT_NE(
+        messages[0].find(hasCuda ? "runs on the CPU only" : "no CUDA device"), std::string::npos)
+        << messages[0];
+    // cuda: an error without a CUDA device; with one, ta does not run there.
+    ASSERT_EQ(s.host.setParam(inst.get(), "device", 1), kOfxStatOK);
+    Frame f;
+    EXPECT_NE(s.host.renderFrame(inst.get(), s.seq.firstFrame, 1.0, 1, f), kOfxStatOK);
+    messages = s.host.messages();
+    ASSERT_EQ(messages.size(), 2u);
+    EXPECT_NE(messages[1].find(hasCuda ? "does not run on the cuda device" : "device cuda: "),
+        std::string::npos)
+        << messages[1];
+    // cpu again: the reference results, no further message.
+    ASSERT_EQ(s.host.setParam(inst.get(), "device", 0), kOfxStatOK);
+    EXPECT_TRUE(nearlyEqual(s.render(inst.get(), s.seq.firstFrame + 2), ref[2]));
+    EXPECT_EQ(s.host.messages().size(), 2u);
     EXPECT_EQ(s.host.liveImages(), 0);
     EXPECT_EQ(s.host.destroyInstance(inst.get()), kOfxStatOK);
 }

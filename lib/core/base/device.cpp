@@ -3,6 +3,10 @@
 
 #include "base/exception.h"
 
+#ifdef AFN_HAS_CUDA
+#include "cuda/gpu.h"
+#endif
+
 #include <tbb/info.h>
 #include <tbb/task_arena.h>
 
@@ -11,8 +15,16 @@ namespace afn {
 Device::Device(AFNDeviceType type)
     : m_type(type == AFN_DEVICE_TYPE_DEFAULT ? AFN_DEVICE_TYPE_CPU : type)
 {
-    if (m_type == AFN_DEVICE_TYPE_CUDA)
-        throw Exception(AFN_ERROR_UNSUPPORTED, "this build of afn has no CUDA device");
+    if (m_type == AFN_DEVICE_TYPE_CUDA) {
+#ifdef AFN_HAS_CUDA
+        m_gpuOrdinal = cuda::findGpu().ordinal;
+        return;
+#else
+        throw Exception(AFN_ERROR_UNSUPPORTED,
+            "this build of afn has no CUDA device (it was configured without a CUDA compiler; "
+            "see docs/gpu.md)");
+#endif
+    }
     if (m_type != AFN_DEVICE_TYPE_CPU)
         throwInvalidArgument("unknown device type " + std::to_string(static_cast<int>(type)));
 }

@@ -36,6 +36,13 @@ Filter::Filter(const FilterType& type)
 {
 }
 
+Filter::Filter(const FilterType& type, StageNeeds stages)
+    : m_type(type)
+    , m_params(&type.params)
+    , m_stages(stages)
+{
+}
+
 namespace {
 
 /// The feature of `type` that image name `name` ("feature.<x>") binds, or null.
@@ -55,6 +62,14 @@ const FeatureOutput* featureOf(const FilterType& type, const std::string& name)
 bool Filter::outputBound() const
 {
     return m_images.count(AFN_IMAGE_OUTPUT) != 0;
+}
+
+bool Filter::anyFeatureBound() const
+{
+    for (const FeatureOutput& f : m_type.features)
+        if (m_images.count(AFN_IMAGE_FEATURE_PREFIX + f.name) != 0)
+            return true;
+    return false;
 }
 
 void Filter::writeFeature(const std::string& name, const Image& image) const
@@ -164,13 +179,9 @@ void Filter::validateBindings() const
     need(AFN_IMAGE_POSITION, 3);
     need(AFN_IMAGE_MOTION, 2);
     need(AFN_IMAGE_OUTPUT, 3);
-    bool anyFeature = false;
-    for (const FeatureOutput& f : m_type.features) {
-        const std::string n = AFN_IMAGE_FEATURE_PREFIX + f.name;
-        need(n.c_str(), f.channels);
-        anyFeature = anyFeature || m_images.count(n) != 0;
-    }
-    if (!outputBound() && !anyFeature)
+    for (const FeatureOutput& f : m_type.features)
+        need((AFN_IMAGE_FEATURE_PREFIX + f.name).c_str(), f.channels);
+    if (!outputBound() && !anyFeatureBound())
         throwInvalidOperation("no 'output' image set");
 }
 

@@ -88,6 +88,9 @@ public:
 protected:
     /// A filter of `type` (parameter table, stages, feature outputs); the type outlives it.
     explicit Filter(const FilterType& type);
+    /// A filter of `type` whose base runs `stages` instead of the type's: a device filter that
+    /// runs the shared stages itself passes StageNeeds {} (cuda/afn_cuda_filter.h).
+    Filter(const FilterType& type, StageNeeds stages);
 
     /// Read the method's settings from params(); called at commit. Throw on invalid combinations.
     virtual void configure() { }
@@ -101,6 +104,8 @@ protected:
 
     /// True when the caller bound "output" (false: only feature outputs are wanted).
     bool outputBound() const;
+    /// True when the caller bound at least one feature output.
+    bool anyFeatureBound() const;
     /// Write the first channels of `image` (frame size) into the feature output `name` when the
     /// caller bound it; `name` must be one of the type's features.
     void writeFeature(const std::string& name, const Image& image) const;

@@ -1,6 +1,6 @@
 # SPDX-License-Identifier: Apache-2.0
-# The compute core's internals, folder by folder as lib/core (stages, methods, nn, metrics); the
-# shared helpers of these tests sit in unit/core/.
+# The compute core's internals, folder by folder as lib/core (stages, methods, nn, metrics,
+# cuda); the shared helpers of these tests sit in unit/core/.
 set(AFN_CORE_TESTS ${CMAKE_CURRENT_LIST_DIR})
 
 # Stages and classical methods (demodulation, reprojection, temporal accumulation, SVGF, BMFR) and
@@ -32,3 +32,15 @@ afn_embed_file(test_afn ${AFN_TEST_DATA}/afn_parity/weights_fusion.afnw afnTestE
 
 # Image-quality metrics (internals, vs a naive SSIM and scikit-image).
 afn_add_gtest(test_metrics SOURCES unit/core/metrics/test_metrics.cpp LIBS afn_core)
+
+# The CUDA engine's layouts and kernel code on the CPU (host emulation of the kernels' per-pixel
+# and per-lane code against the CPU engine); built with or without CUDA. The GPU itself is tested
+# by tests/gpu/.
+afn_add_gtest(test_cuda_engine
+  SOURCES
+    unit/core/cuda/test_cuda_layout.cpp
+    unit/core/cuda/test_cuda_emulated.cpp
+    unit/core/cuda/cuda_emulator.cpp
+    unit/core/cuda/emulated_pipeline.cpp
+  LIBS afn_core)
+target_include_directories(test_cuda_engine PRIVATE ${AFN_CORE_TESTS})

@@ -3,28 +3,27 @@
 // (aux prefilter, demodulation of the 1-spp colour, BMFR temporal accumulation for TA-1spp; the
 // albedo, normal and depth seen here are the prefiltered ones): scale normal and
 // depth (features.h), run the network (network.h) and remodulate. The network output is clamped
-// to >= 0 by the remodulation (stages/demodulate.h).
+// to >= 0 by the remodulation (stages/demodulate.h). Weights: weights_source.h.
 //
 // Settings (settings.h): `spp`, the input's samples per pixel, which will choose between the
 // low- and high-count models; read at commit.
 //
-// Weights: the shipped archive embedded at build time (cmake/AfnEmbed.cmake, AFN_WEIGHTS_FILE)
-// when the build has one, else none; afnSetFilterData(filter, AFN_DATA_WEIGHTS, data, size)
-// overrides at run time. Without weights commit fails with a message: untrained weights never run
-// silently.
+// On a CUDA device (builds with AFN_HAS_CUDA) the whole filter, shared stages included, runs on
+// the GPU instead (cuda/afn_cuda_filter.h). It has no aux prefilter yet: it refuses aux=noisy and
+// runs aux=auto as clean (docs/gpu.md).
 #include "base/exception.h"
 #include "filter/registry.h"
 #include "methods/afn/features.h"
 #include "methods/afn/network.h"
 #include "methods/afn/settings.h"
+#include "methods/afn/weights_source.h"
 #include "stages/demodulate.h"
 
-#include <algorithm>
-
-#ifdef AFN_HAS_EMBEDDED_WEIGHTS
-extern "C" const unsigned char afnEmbeddedWeights[];
-extern "C" const unsigned long long afnEmbeddedWeights_size;
+#ifdef AFN_HAS_CUDA
+#include "cuda/afn_cuda_filter.h"
 #endif
+
+#include <algorithm>
 
 namespace afn::afnet {
 
@@ -35,19 +34,14 @@ public:
     explicit AfnFilter(const FilterType& t)
         : Filter(t)
     {
-#ifdef AFN_HAS_EMBEDDED_WEIGHTS
-        m_net.load(nn::WeightsArchive::parse(afnEmbeddedWeights,
-            static_cast<std::size_t>(afnEmbeddedWeights_size), "embedded AFN weights"));
-#endif
+        loadEmbeddedNetwork(m_net);
     }
 
     void setData(const std::string& name, const void* data, std::size_t size) override
     {
         if (name != AFN_DATA_WEIGHTS)
             Filter::setData(name, data, size);
-        Network net;
-        net.load(nn::WeightsArchive::parse(data, size, "weights set with afnSetFilterData"));
-        m_net = std::move(net); // only valid weights replace the current ones
+        m_net = networkFromData(data, size); // only valid weights replace the current ones
         markDirty();
         reset();
     }
@@ -57,9 +51,7 @@ private:
     {
         m_settings = settingsBinding().read(params());
         if (outputBound() && !m_net.loaded())
-            throwInvalidOperation(
-                "afn: no weights: this build embeds no trained AFN model; set an .afnw file "
-                "with afnSetFilterData(filter, \"weights\", data, size) (afntool: --weights FILE)");
+            throwNoWeights();
     }
     void denoise(const Frame& in, Image& out) override
     {
@@ -89,6 +81,17 @@ private:
     Network m_net;
     Image m_albedo, m_normal01, m_depth01, m_result;
 };
+
+std::unique_ptr<Filter> create(const FilterType& t, const Device& device)
+{
+#ifdef AFN_HAS_CUDA
+    if (device.type() == AFN_DEVICE_TYPE_CUDA)
+        return cuda::createAfnCudaFilter(t, device);
+#else
+    (void)device;
+#endif
+    return std::make_unique<AfnFilter>(t);
+}
 
 } // namespace
 
@@ -126,7 +129,10 @@ FilterType filterType()
             "prefiltered shading normal * 0.5 + 0.5, [0, 1] (0.5 without a normal input)" },
         { "depth01", 1, "prefiltered per-frame min-max depth, [0, 1] (0 without a depth input)" },
     };
-    t.create = factoryOf<AfnFilter>();
+#ifdef AFN_HAS_CUDA
+    t.devices = { AFN_DEVICE_TYPE_CPU, AFN_DEVICE_TYPE_CUDA };
+#endif
+    t.create = create;
     return t;
 }
 

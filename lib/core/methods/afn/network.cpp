@@ -67,6 +67,33 @@ void Network::load(const nn::WeightsArchive& a)
     m_loaded = true;
 }
 
+const nn::Conv& Network::layer(Layer which) const
+{
+    switch (which) {
+    case Layer::Enc1:
+        return m_enc1;
+    case Layer::Enc2:
+        return m_enc2;
+    case Layer::Enc3:
+        return m_enc3;
+    case Layer::Dec2:
+        return m_dec2;
+    case Layer::Dec1:
+        return m_dec1;
+    case Layer::Head1:
+        return m_head1;
+    case Layer::HeadTa:
+        return m_headTa;
+    case Layer::Ref1:
+        return m_ref1;
+    case Layer::Ref2:
+        return m_ref2;
+    case Layer::Ref3:
+        break;
+    }
+    return m_ref3;
+}
+
 void Network::prepare(const Inputs& in)
 {
     if (!m_loaded)

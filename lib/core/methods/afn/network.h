@@ -51,7 +51,14 @@ public:
     void refine(); ///< refinement (copy of i when the variant has none)
     void crop(Image& out) const; ///< o cropped to the input size
 
-    /// Intermediates at the padded size (tests): fused i, d_TA, alpha; d_1spp at half size.
+    /// The layers, for engines that pack them in their own layout (lib/core/cuda).
+    enum class Layer { Enc1, Enc2, Enc3, Dec2, Dec1, Head1, HeadTa, Ref1, Ref2, Ref3 };
+    const nn::Conv& layer(Layer which) const;
+
+    /// Intermediates at the padded size (tests): network input x, fused i, d_TA, alpha; the
+    /// decoder output d1 and d_1spp at half size.
+    const Image& input() const { return m_x; }
+    const Image& decoderOutput() const { return m_d1; }
     const Image& fused() const { return m_fused; }
     const Image& filteredTa() const { return m_dTa; }
     const Image& alpha() const { return m_alpha; }

@@ -1,0 +1,62 @@
+// SPDX-License-Identifier: Apache-2.0
+#include "cuda/afn_cuda_filter.h"
+
+#include "base/exception.h"
+#include "cuda/frame_constants.h"
+#include "methods/afn/weights_source.h"
+#include "stages/aux_prefilter.h"
+
+namespace afn::cuda {
+
+AfnCudaFilter::AfnCudaFilter(const FilterType& type, int gpu)
+    : Filter(type, StageNeeds {})
+    , m_pipeline(gpu)
+{
+    m_networkChanged = afnet::loadEmbeddedNetwork(m_net);
+}
+
+void AfnCudaFilter::setData(const std::string& name, const void* data, std::size_t size)
+{
+    if (name != AFN_DATA_WEIGHTS)
+        Filter::setData(name, data, size);
+    m_net = afnet::networkFromData(data, size); // only valid weights replace the current ones
+    m_networkChanged = true;
+    markDirty();
+    reset();
+}
+
+void AfnCudaFilter::configure()
+{
+    if (anyFeatureBound())
+        throw Exception(AFN_ERROR_UNSUPPORTED,
+            "afn on a CUDA device writes no feature outputs; create the filter on the CPU "
+            "device for them (afntool: --device cpu)");
+    if (!m_net.loaded())
+        afnet::throwNoWeights();
+    // No aux prefilter on the GPU yet (stages/aux_prefilter.h): aux=auto runs as clean here.
+    if (auxBinding().read(params()).aux == AuxSettings::Mode::Noisy)
+        throw Exception(AFN_ERROR_UNSUPPORTED,
+            "afn on a CUDA device has no aux prefilter yet: aux=noisy runs on the CPU device only "
+            "(afntool: --device cpu)");
+    // The same parameters as the CPU filter's stages (filter/filter.cpp commit()).
+    m_reproject = reprojectBinding().read(params());
+    m_accumulation = accumulationBinding().read(params());
+    if (m_networkChanged) {
+        m_pipeline.setNetwork(m_net);
+        m_networkChanged = false;
+    }
+}
+
+void AfnCudaFilter::denoise(const Frame& in, Image& out)
+{
+    reportProgress(0.1);
+    m_pipeline.run(in, frameConstants(in, m_reproject, m_accumulation), out);
+    reportProgress(0.95);
+}
+
+std::unique_ptr<Filter> createAfnCudaFilter(const FilterType& type, const Device& device)
+{
+    return std::make_unique<AfnCudaFilter>(type, device.gpuOrdinal());
+}
+
+} // namespace afn::cuda

@@ -1,0 +1,42 @@
+// SPDX-License-Identifier: Apache-2.0
+// The "afn" filter on a CUDA device. It derives from Filter with no CPU stages: the Filter base
+// gathers and sanitises the inputs on the CPU, then the whole method (demodulation, reprojection,
+// temporal accumulation, features, network, remodulation) runs on the GPU (afn_pipeline.h). It has
+// the CPU filter's parameters, weights and errors; its results match the CPU's within the
+// half-precision tolerance of docs/gpu.md.
+#pragma once
+
+#include "base/device.h"
+#include "cuda/afn_pipeline.h"
+#include "filter/registry.h"
+#include "stages/temporal_accumulation.h"
+
+#include <memory>
+
+namespace afn::cuda {
+
+class AfnCudaFilter final : public Filter {
+public:
+    AfnCudaFilter(const FilterType& type, int gpu);
+
+    void setData(const std::string& name, const void* data, std::size_t size) override;
+    /// Fill the GPU buffers with NaN when allocated and the output before each frame (tests).
+    void setPoison(bool poison) { m_pipeline.setPoison(poison); }
+    /// The GPU pipeline (tests read intermediates from it).
+    AfnPipeline& pipeline() { return m_pipeline; }
+
+private:
+    void configure() override;
+    void denoise(const Frame& in, Image& out) override;
+
+    afnet::Network m_net; ///< validated archive, packed for the GPU when it changes
+    bool m_networkChanged = false;
+    ReprojectSettings m_reproject;
+    AccumulationSettings m_accumulation;
+    AfnPipeline m_pipeline;
+};
+
+/// Create the afn filter on a CUDA device (the registry's factory for that device type).
+std::unique_ptr<Filter> createAfnCudaFilter(const FilterType& type, const Device& device);
+
+} // namespace afn::cuda

@@ -1,0 +1,454 @@
+// SPDX-License-Identifier: Apache-2.0
+// The CUDA afn pipeline (see afn_pipeline.h).
+#include "cuda/afn_pipeline.h"
+
+#include "base/exception.h"
+#include "cuda/gpu.h"
+
+namespace afn::cuda {
+
+namespace {
+
+using NetLayer = afnet::Network::Layer;
+
+constexpr int layerIndex(NetLayer l)
+{
+    return static_cast<int>(l);
+}
+
+/// Allocate `count` elements; a fresh allocation is filled with 0xff bytes (NaN as float and as
+/// half) on `stream` when `poison` is set. (Every copy and fill of the pipeline goes through its
+/// own stream: the legacy default stream is not ordered with a non-blocking stream.)
+template <typename T>
+void allocateBuffer(DeviceBuffer<T>& b, std::size_t count, bool poison, cudaStream_t stream)
+{
+    if (b.size() == count)
+        return;
+    b.resize(count);
+    if (poison && count > 0)
+        AFN_CUDA_CHECK(cudaMemsetAsync(b.data(), 0xff, b.bytes(), stream));
+}
+
+std::size_t pixels(int w, int h)
+{
+    return static_cast<std::size_t>(w) * static_cast<std::size_t>(h);
+}
+
+template <typename T>
+void uploadImage(DeviceBuffer<T>& dst, const Image& src, std::size_t expected, cudaStream_t stream)
+{
+    if (src.size() != expected || dst.size() != expected)
+        throwInvalidOperation("CUDA afn: an input does not match the configured frame");
+    AFN_CUDA_CHECK(
+        cudaMemcpyAsync(dst.data(), src.data(), dst.bytes(), cudaMemcpyHostToDevice, stream));
+}
+
+} // namespace
+
+bool FrameLayout::operator==(const FrameLayout& o) const
+{
+    return width == o.width && height == o.height && albedo == o.albedo && normal == o.normal
+        && depth == o.depth && position == o.position && motion == o.motion
+        && colorDemodulated == o.colorDemodulated;
+}
+
+FrameLayout FrameLayout::of(const Frame& f)
+{
+    FrameLayout l;
+    l.width = f.width;
+    l.height = f.height;
+    l.albedo = f.hasAlbedo();
+    l.normal = f.hasNormal();
+    l.depth = f.hasDepth();
+    l.position = f.hasPosition();
+    l.motion = f.hasMotion();
+    l.colorDemodulated = f.colorDemodulated;
+    return l;
+}
+
+void AfnPipeline::Tensor::allocate(int w, int h, int channels, bool poison, cudaStream_t stream)
+{
+    width = w;
+    height = h;
+    stride = channelStride(channels);
+    allocateBuffer(data, pixels(w, h) * stride, poison, stream);
+}
+
+AfnPipeline::AfnPipeline(int gpu)
+    : m_gpu((useGpu(gpu), gpu)) // the stream below belongs to this GPU
+{
+}
+
+AfnPipeline::~AfnPipeline()
+{
+    cudaSetDevice(m_gpu); // the members free their memory on this GPU
+}
+
+void AfnPipeline::setNetwork(const afnet::Network& network)
+{
+    if (!network.loaded())
+        throwInvalidOperation("CUDA afn: no network loaded");
+    useGpu(m_gpu);
+    m_variant = network.variant();
+    m_refine = m_variant == afnet::Variant::Full;
+    for (int i = 0; i < static_cast<int>(m_layers.size()); ++i) {
+        const auto which = static_cast<NetLayer>(i);
+        Layer& layer = m_layers[i];
+        if (!m_refine && i >= layerIndex(NetLayer::Ref1)) {
+            layer = Layer {};
+            continue;
+        }
+        int up = 0; // channels of the half-size input of concat(U(up), same)
+        if (which == NetLayer::Dec2)
+            up = network.layer(NetLayer::Enc3).outChannels();
+        else if (which == NetLayer::Dec1)
+            up = network.layer(NetLayer::Dec2).outChannels();
+        else if (which == NetLayer::HeadTa)
+            up = network.layer(NetLayer::Dec1).outChannels();
+        layer.packed = packConv(network.layer(which), up);
+        layer.weights.resize(layer.packed.weights.size());
+        layer.bias.resize(layer.packed.bias.size());
+        AFN_CUDA_CHECK(cudaMemcpyAsync(layer.weights.data(), layer.packed.weights.data(),
+            layer.weights.bytes(), cudaMemcpyHostToDevice, m_stream.get()));
+        AFN_CUDA_CHECK(cudaMemcpyAsync(layer.bias.data(), layer.packed.bias.data(),
+            layer.bias.bytes(), cudaMemcpyHostToDevice, m_stream.get()));
+    }
+    AFN_CUDA_CHECK(cudaStreamSynchronize(m_stream.get()));
+    m_hasNetwork = true;
+    m_layout = FrameLayout {}; // channel counts may differ: allocate and capture again
+    m_graphsValid = false;
+}
+
+void AfnPipeline::allocate(const FrameLayout& layout)
+{
+    const int w = layout.width, h = layout.height;
+    const std::size_t n = pixels(w, h);
+    const bool p = m_poison;
+    const cudaStream_t st = m_stream.get();
+    allocateBuffer(m_color, 3 * n, p, st);
+    allocateBuffer(m_albedo, layout.albedo ? 3 * n : 0, p, st);
+    allocateBuffer(m_motion, layout.motion ? 2 * n : 0, p, st);
+    allocateBuffer(m_irradiance, 3 * n, p, st);
+    allocateBuffer(m_output, 3 * n, p, st);
+    for (int s = 0; s < 2; ++s) {
+        allocateBuffer(m_position[s], layout.position ? 3 * n : 0, p, st);
+        allocateBuffer(m_normal[s], layout.normal ? 3 * n : 0, p, st);
+        allocateBuffer(m_depth[s], layout.depth ? n : 0, p, st);
+        allocateBuffer(m_accumulated[s], 3 * n, p, st);
+        allocateBuffer(m_history[s], n, p, st);
+    }
+    allocateBuffer(m_depthRange, 2, p, st);
+    allocateBuffer(m_constants, 1, p, st);
+
+    const auto channels = [&](NetLayer l) { return m_layers[layerIndex(l)].packed.outChannels; };
+    m_paddedWidth = paddedSize(w);
+    m_paddedHeight = paddedSize(h);
+    const int wp = m_paddedWidth, hp = m_paddedHeight;
+    m_x.allocate(wp, hp, kInputChannels, p, st);
+    m_xHalf.allocate(wp / 2, hp / 2, kInputChannels, p, st);
+    m_e1.allocate(wp / 2, hp / 2, channels(NetLayer::Enc1), p, st);
+    m_e1Pool.allocate(wp / 4, hp / 4, channels(NetLayer::Enc1), p, st);
+    m_e2.allocate(wp / 4, hp / 4, channels(NetLayer::Enc2), p, st);
+    m_e2Pool.allocate(wp / 8, hp / 8, channels(NetLayer::Enc2), p, st);
+    m_e3.allocate(wp / 8, hp / 8, channels(NetLayer::Enc3), p, st);
+    m_d2.allocate(wp / 4, hp / 4, channels(NetLayer::Dec2), p, st);
+    m_d1.allocate(wp / 2, hp / 2, channels(NetLayer::Dec1), p, st);
+    allocateBuffer(m_color1Half, 3 * pixels(wp / 2, hp / 2), p, st);
+    if (m_refine) {
+        allocateBuffer(m_fused, 3 * pixels(wp, hp), p, st);
+        m_refineInput.allocate(wp, hp, kRefineInputChannels, p, st);
+        m_r1.allocate(wp, hp, channels(NetLayer::Ref1), p, st);
+        m_r2.allocate(wp, hp, channels(NetLayer::Ref2), p, st);
+    } else {
+        m_fused.release();
+        m_refineInput = Tensor {};
+        m_r1 = Tensor {};
+        m_r2 = Tensor {};
+    }
+    m_layout = layout;
+}
+
+void AfnPipeline::configure(const Frame& frame)
+{
+    if (!m_hasNetwork)
+        throwInvalidOperation("CUDA afn: no network loaded");
+    useGpu(m_gpu);
+    const FrameLayout layout = FrameLayout::of(frame);
+    if (layout != m_layout) {
+        allocate(layout);
+        m_graphsValid = false;
+    }
+    if (!m_graphsValid)
+        captureGraphs();
+}
+
+void AfnPipeline::captureGraphs()
+{
+    m_graphsValid = false;
+    for (int slot = 0; slot < 2; ++slot)
+        m_graphs[slot].reset(captureGraph(m_stream.get(), [&](cudaStream_t s) {
+            enqueueTemporalFeatures(slot, s);
+            enqueueKernelPrediction(s);
+            enqueueFilteringFusion(slot, s);
+            enqueueRefinement(s);
+        }));
+    m_graphsValid = true;
+}
+
+void AfnPipeline::enqueue(Stage stage, cudaStream_t stream) const
+{
+    switch (stage) {
+    case Stage::TemporalFeatures:
+        return enqueueTemporalFeatures(m_slot, stream);
+    case Stage::KernelPrediction:
+        return enqueueKernelPrediction(stream);
+    case Stage::FilteringFusion:
+        return enqueueFilteringFusion(m_slot, stream);
+    case Stage::Refinement:
+        return enqueueRefinement(stream);
+    }
+}
+
+const float* AfnPipeline::colorTaSource(int slot) const
+{
+    return m_variant == afnet::Variant::OneSpp ? m_irradiance.data() : m_accumulated[slot].data();
+}
+
+const float* AfnPipeline::color1Source(int slot) const
+{
+    return m_variant == afnet::Variant::Ta ? m_accumulated[slot].data() : m_irradiance.data();
+}
+
+void AfnPipeline::enqueueTemporalFeatures(int slot, cudaStream_t stream) const
+{
+    const FrameLayout& l = m_layout;
+    const int prev = slot ^ 1;
+    launchResetDepthRange(m_depthRange.data(), stream);
+    TemporalBuffers b;
+    b.width = l.width;
+    b.height = l.height;
+    b.color = m_color.data();
+    b.albedo = l.albedo ? m_albedo.data() : nullptr;
+    b.motion = l.motion ? m_motion.data() : nullptr;
+    b.position = l.position ? m_position[slot].data() : nullptr;
+    b.prevPosition = l.position ? m_position[prev].data() : nullptr;
+    b.normal = l.normal ? m_normal[slot].data() : nullptr;
+    b.prevNormal = l.normal ? m_normal[prev].data() : nullptr;
+    b.depth = l.depth ? m_depth[slot].data() : nullptr;
+    b.prevDepth = l.depth ? m_depth[prev].data() : nullptr;
+    b.prevAccumulated = m_accumulated[prev].data();
+    b.prevHistoryLength = m_history[prev].data();
+    b.irradiance = m_irradiance.data();
+    b.accumulated = m_accumulated[slot].data();
+    b.historyLength = m_history[slot].data();
+    launchTemporal(b, m_constants.data(), m_depthRange.data(), stream);
+
+    PrepareBuffers p;
+    p.width = l.width;
+    p.height = l.height;
+    p.paddedWidth = m_paddedWidth;
+    p.paddedHeight = m_paddedHeight;
+    p.color1 = color1Source(slot);
+    p.colorTa = colorTaSource(slot);
+    p.albedo = b.albedo;
+    p.normal = b.normal;
+    p.depth = b.depth;
+    p.depthRange = m_depthRange.data();
+    p.x = m_x.data.data();
+    p.xHalf = m_xHalf.data.data();
+    p.color1Half = m_color1Half.data();
+    launchPrepare(p, stream);
+}
+
+ConvOperands AfnPipeline::operands(const Layer& layer, const Tensor* up, const Tensor& same) const
+{
+    const PackedConv& pc = layer.packed;
+    const bool upOk = up ? (pc.upChunks() * kChunk == up->stride && 2 * up->width == same.width
+                          && 2 * up->height == same.height)
+                         : pc.upChunks() == 0;
+    if (!upOk || pc.sameChunks() * kChunk != same.stride || pc.tiles() == 0)
+        throwInvalidOperation("CUDA afn: a layer does not match its input tensors");
+    ConvOperands op;
+    op.up = up ? up->data.data() : nullptr;
+    op.upStride = up ? up->stride : 0;
+    op.upChunks = pc.upChunks();
+    op.upWidth = up ? up->width : 0;
+    op.same = same.data.data();
+    op.sameStride = same.stride;
+    op.sameChunks = pc.sameChunks();
+    op.width = same.width;
+    op.height = same.height;
+    op.ksize = pc.ksize;
+    op.weights = layer.weights.data();
+    op.bias = layer.bias.data();
+    op.tiles = pc.tiles();
+    return op;
+}
+
+void AfnPipeline::enqueueKernelPrediction(cudaStream_t stream) const
+{
+    auto conv = [&](NetLayer l, const Tensor* up, const Tensor& same, const Tensor& out) {
+        launchConvRelu(operands(m_layers[layerIndex(l)], up, same),
+            ReluOutput { out.data.data(), out.stride }, stream);
+    };
+    auto pool = [&](const Tensor& in, const Tensor& out) {
+        launchPool(in.data.data(), in.width, in.height, in.stride, out.data.data(), stream);
+    };
+    conv(NetLayer::Enc1, nullptr, m_xHalf, m_e1);
+    pool(m_e1, m_e1Pool);
+    conv(NetLayer::Enc2, nullptr, m_e1Pool, m_e2);
+    pool(m_e2, m_e2Pool);
+    conv(NetLayer::Enc3, nullptr, m_e2Pool, m_e3);
+    conv(NetLayer::Dec2, &m_e3, m_e2, m_d2);
+    conv(NetLayer::Dec1, &m_d2, m_e1, m_d1);
+}
+
+FinalOutput AfnPipeline::finalOutput() const
+{
+    FinalOutput o;
+    o.fused = m_fused.data();
+    o.albedo = m_layout.albedo ? m_albedo.data() : nullptr;
+    o.plainAlbedo = m_layout.colorDemodulated ? 1 : 0;
+    o.data = m_output.data();
+    o.width = m_layout.width;
+    o.height = m_layout.height;
+    return o;
+}
+
+void AfnPipeline::enqueueFilteringFusion(int slot, cudaStream_t stream) const
+{
+    FilterFuseArgs a;
+    a.head1 = operands(m_layers[layerIndex(NetLayer::Head1)], nullptr, m_d1);
+    a.headTa = operands(m_layers[layerIndex(NetLayer::HeadTa)], &m_d1, m_x);
+    a.x = m_x.data.data();
+    a.colorTa.data = colorTaSource(slot);
+    a.colorTa.width = m_layout.width;
+    a.colorTa.height = m_layout.height;
+    a.colorTa.paddedWidth = m_paddedWidth;
+    a.colorTa.paddedHeight = m_paddedHeight;
+    a.color1Half.data = m_color1Half.data();
+    a.color1Half.width = m_paddedWidth / 2;
+    a.color1Half.height = m_paddedHeight / 2;
+    if (m_refine) {
+        a.fused = m_fused.data();
+        a.refineInput = m_refineInput.data.data();
+    } else {
+        a.output = finalOutput();
+    }
+    launchFilterFuse(a, stream);
+}
+
+void AfnPipeline::enqueueRefinement(cudaStream_t stream) const
+{
+    if (!m_refine)
+        return;
+    auto conv = [&](NetLayer l, const Tensor& same, const Tensor& out) {
+        launchConvRelu(operands(m_layers[layerIndex(l)], nullptr, same),
+            ReluOutput { out.data.data(), out.stride }, stream);
+    };
+    conv(NetLayer::Ref1, m_refineInput, m_r1);
+    conv(NetLayer::Ref2, m_r1, m_r2);
+    launchConvFinal(
+        operands(m_layers[layerIndex(NetLayer::Ref3)], nullptr, m_r2), finalOutput(), stream);
+}
+
+void AfnPipeline::upload(const Frame& f, const FrameConstants& constants)
+{
+    useGpu(m_gpu);
+    if (FrameLayout::of(f) != m_layout || !m_graphsValid)
+        throwInvalidOperation("CUDA afn: upload of a frame the pipeline is not configured for");
+    const cudaStream_t s = m_stream.get();
+    const std::size_t n = pixels(f.width, f.height);
+    uploadImage(m_color, f.color, 3 * n, s);
+    if (m_layout.albedo)
+        uploadImage(m_albedo, f.albedo, 3 * n, s);
+    if (m_layout.motion)
+        uploadImage(m_motion, f.motion, 2 * n, s);
+    if (m_layout.position)
+        uploadImage(m_position[m_slot], f.position, 3 * n, s);
+    if (m_layout.normal)
+        uploadImage(m_normal[m_slot], f.normal, 3 * n, s);
+    if (m_layout.depth)
+        uploadImage(m_depth[m_slot], f.depth, n, s);
+    AFN_CUDA_CHECK(cudaMemcpyAsync(
+        m_constants.data(), &constants, sizeof(FrameConstants), cudaMemcpyHostToDevice, s));
+    if (m_poison)
+        AFN_CUDA_CHECK(cudaMemsetAsync(m_output.data(), 0xff, m_output.bytes(), s));
+}
+
+void AfnPipeline::launch()
+{
+    useGpu(m_gpu);
+    AFN_CUDA_CHECK(cudaGraphLaunch(m_graphs[m_slot].get(), m_stream.get()));
+}
+
+void AfnPipeline::download(Image& out)
+{
+    useGpu(m_gpu);
+    out.resize(m_layout.width, m_layout.height, 3);
+    AFN_CUDA_CHECK(cudaMemcpyAsync(
+        out.data(), m_output.data(), m_output.bytes(), cudaMemcpyDeviceToHost, m_stream.get()));
+    AFN_CUDA_CHECK(cudaStreamSynchronize(m_stream.get()));
+}
+
+void AfnPipeline::run(const Frame& frame, const FrameConstants& constants, Image& out)
+{
+    configure(frame);
+    upload(frame, constants);
+    launch();
+    download(out);
+    m_lastSlot = m_slot;
+    advance();
+}
+
+std::size_t AfnPipeline::uploadBytes() const
+{
+    const FrameLayout& l = m_layout;
+    const std::size_t floatsPerPixel = 3 + (l.albedo ? 3 : 0) + (l.motion ? 2 : 0)
+        + (l.position ? 3 : 0) + (l.normal ? 3 : 0) + (l.depth ? 1 : 0);
+    return pixels(l.width, l.height) * floatsPerPixel * sizeof(float) + sizeof(FrameConstants);
+}
+
+std::size_t AfnPipeline::downloadBytes() const
+{
+    return m_output.bytes();
+}
+
+void AfnPipeline::downloadIntermediate(Intermediate which, Image& out)
+{
+    useGpu(m_gpu);
+    AFN_CUDA_CHECK(cudaStreamSynchronize(m_stream.get()));
+    auto floats = [&](const DeviceBuffer<float>& b, int w, int h, int c) {
+        if (b.size() != pixels(w, h) * c)
+            throwInvalidOperation("CUDA afn: that intermediate is not computed");
+        out.resize(w, h, c);
+        AFN_CUDA_CHECK(cudaMemcpyAsync(
+            out.data(), b.data(), b.bytes(), cudaMemcpyDeviceToHost, m_stream.get()));
+        AFN_CUDA_CHECK(cudaStreamSynchronize(m_stream.get()));
+    };
+    auto halves = [&](const Tensor& t, int c) {
+        std::vector<std::uint16_t> h(t.data.size());
+        AFN_CUDA_CHECK(cudaMemcpyAsync(
+            h.data(), t.data.data(), t.data.bytes(), cudaMemcpyDeviceToHost, m_stream.get()));
+        AFN_CUDA_CHECK(cudaStreamSynchronize(m_stream.get()));
+        out.resize(t.width, t.height, c);
+        for (std::size_t p = 0; p < pixels(t.width, t.height); ++p)
+            for (int k = 0; k < c; ++k)
+                out.data()[p * c + k] = halfToFloat(h[p * t.stride + k]);
+    };
+    const int w = m_layout.width, h = m_layout.height;
+    switch (which) {
+    case Intermediate::Irradiance:
+        return floats(m_irradiance, w, h, 3);
+    case Intermediate::Accumulated:
+        return floats(m_accumulated[m_lastSlot], w, h, 3);
+    case Intermediate::NetworkInput:
+        return halves(m_x, kInputChannels);
+    case Intermediate::DecoderOutput:
+        return halves(m_d1, m_layers[layerIndex(NetLayer::Dec1)].packed.outChannels);
+    case Intermediate::Fused:
+        return floats(m_fused, m_paddedWidth, m_paddedHeight, 3);
+    }
+}
+
+} // namespace afn::cuda

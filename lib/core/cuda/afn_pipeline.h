@@ -1,0 +1,131 @@
+// SPDX-License-Identifier: Apache-2.0
+// The whole afn filter on one GPU for a sequence: the device buffers of a frame size, the packed
+// network, and the per-frame work captured as CUDA graphs. Per frame (run()): upload the gathered
+// inputs, replay the graph, download the radiance. The temporal history (geometry, accumulated
+// colour, history length) lives in two slots that swap every frame; one graph is captured per
+// slot, so no buffer is copied between frames. Everything per frame that is not a buffer pointer
+// (history flag, cameras, settings) is uploaded as FrameConstants, so the graphs stay valid across
+// frames and are captured again only when the frame size, the set of inputs, the colour convention
+// or the network changes.
+//
+// Stages (kernels.h): TemporalFeatures (TA + network input), KernelPrediction (encoder-decoder),
+// FilteringFusion (heads, softmax, filtering, Eq. 3), Refinement (variant "full").
+#pragma once
+
+#include "base/image.h"
+#include "cuda/device_memory.h"
+#include "cuda/kernels.h"
+#include "filter/frame.h"
+#include "methods/afn/network.h"
+
+#include <array>
+#include <cstdint>
+
+namespace afn::cuda {
+
+/// What a frame looks like to the graphs.
+struct FrameLayout {
+    int width = 0;
+    int height = 0;
+    bool albedo = false;
+    bool normal = false;
+    bool depth = false;
+    bool position = false;
+    bool motion = false;
+    bool colorDemodulated = false;
+    bool operator==(const FrameLayout& o) const;
+    bool operator!=(const FrameLayout& o) const { return !(*this == o); }
+    static FrameLayout of(const Frame& frame);
+};
+
+class AfnPipeline {
+public:
+    enum class Stage { TemporalFeatures, KernelPrediction, FilteringFusion, Refinement };
+    enum class Intermediate { Irradiance, Accumulated, NetworkInput, DecoderOutput, Fused };
+
+    explicit AfnPipeline(int gpu);
+    AfnPipeline(const AfnPipeline&) = delete;
+    AfnPipeline& operator=(const AfnPipeline&) = delete;
+    ~AfnPipeline();
+
+    /// Pack and upload a loaded network (takes effect at the next frame).
+    void setNetwork(const afnet::Network& network);
+    /// Poison every device buffer with NaN when it is allocated and the output before every
+    /// frame, so that a value nothing wrote shows up (tests).
+    void setPoison(bool poison) { m_poison = poison; }
+
+    /// Denoise one gathered frame into `out` (3 channels, frame size).
+    void run(const Frame& frame, const FrameConstants& constants, Image& out);
+
+    // The pieces of run(), for the benchmark.
+    /// Allocate the buffers and capture the graphs for this frame's layout (when changed).
+    void configure(const Frame& frame);
+    /// Copy the frame's inputs and constants into the current slot.
+    void upload(const Frame& frame, const FrameConstants& constants);
+    /// Replay the current slot's graph.
+    void launch();
+    /// Copy the output into `out` and wait for the stream (reports errors of the frame's work).
+    void download(Image& out);
+    /// The next frame uses the other slot.
+    void advance() { m_slot ^= 1; }
+    /// Enqueue one stage for the current slot (also inside a graph capture).
+    void enqueue(Stage stage, cudaStream_t stream) const;
+    cudaStream_t stream() const { return m_stream.get(); }
+    /// Bytes uploaded and downloaded per frame with the configured layout.
+    std::size_t uploadBytes() const;
+    std::size_t downloadBytes() const;
+
+    /// An intermediate of the last frame, as floats (tests). Irradiance, Accumulated: frame size,
+    /// 3 ch; NetworkInput: padded size, 13 ch; DecoderOutput: half the padded size; Fused: padded
+    /// size, 3 ch (variant "full" only). Call after run().
+    void downloadIntermediate(Intermediate which, Image& out);
+
+private:
+    struct Layer {
+        PackedConv packed;
+        DeviceBuffer<std::uint32_t> weights;
+        DeviceBuffer<float> bias;
+    };
+    struct Tensor {
+        DeviceBuffer<std::uint16_t> data;
+        int width = 0, height = 0, stride = 0;
+        void allocate(int w, int h, int channels, bool poison, cudaStream_t stream);
+    };
+    void allocate(const FrameLayout& layout);
+    void captureGraphs();
+    ConvOperands operands(const Layer& layer, const Tensor* up, const Tensor& same) const;
+    FinalOutput finalOutput() const;
+    void enqueueTemporalFeatures(int slot, cudaStream_t stream) const;
+    void enqueueKernelPrediction(cudaStream_t stream) const;
+    void enqueueFilteringFusion(int slot, cudaStream_t stream) const;
+    void enqueueRefinement(cudaStream_t stream) const;
+    /// The colours the network filters (the variants "1spp" and "ta" use one for both).
+    const float* colorTaSource(int slot) const;
+    const float* color1Source(int slot) const;
+
+    int m_gpu;
+    Stream m_stream;
+    bool m_poison = false;
+    bool m_hasNetwork = false;
+    bool m_refine = false;
+    afnet::Variant m_variant = afnet::Variant::Full;
+    std::array<Layer, 10> m_layers; ///< in Network::Layer order
+    FrameLayout m_layout; ///< of the allocated buffers and captured graphs
+    bool m_graphsValid = false;
+    int m_slot = 0; ///< slot of the current frame; the previous frame's is 1 - m_slot
+    int m_lastSlot = 0; ///< slot of the last frame run()
+    std::array<GraphExec, 2> m_graphs;
+
+    // Frame-size buffers (floats, interleaved).
+    DeviceBuffer<float> m_color, m_albedo, m_motion, m_irradiance, m_output;
+    std::array<DeviceBuffer<float>, 2> m_position, m_normal, m_depth, m_accumulated, m_history;
+    DeviceBuffer<std::uint32_t> m_depthRange;
+    DeviceBuffer<FrameConstants> m_constants;
+    // Network tensors (padded frame and its levels).
+    int m_paddedWidth = 0, m_paddedHeight = 0;
+    Tensor m_x, m_xHalf, m_e1, m_e1Pool, m_e2, m_e2Pool, m_e3, m_d2, m_d1, m_refineInput, m_r1,
+        m_r2;
+    DeviceBuffer<float> m_color1Half, m_fused;
+};
+
+} // namespace afn::cuda

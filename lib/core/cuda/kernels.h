@@ -1,0 +1,47 @@
+// SPDX-License-Identifier: Apache-2.0
+// Launchers of the CUDA engine's kernels (one .cu file each), callable from plain C++. Each
+// enqueues its kernel on `stream` (also while the stream is being captured into a graph) and
+// throws afn::Exception when the launch is refused.
+//
+// Per frame, in stream order (afn_pipeline.cpp):
+//   resetDepthRange, temporal          TA: demodulate, reproject, accumulate; depth range
+//   prepare                            network input x, its 2 x 2 average, D(1-spp colour)
+//   conv / pool                        encoder-decoder at 1/2 .. 1/8 resolution (tensor cores)
+//   filterFuse                         heads, softmax, 7 x 7 filtering, Eq. 3
+//   conv x 3 (the last: convFinal)     refinement, residual, remodulation, crop
+#pragma once
+
+#include "cuda/conv_tile.h"
+#include "cuda/filter_fuse_lane.h"
+#include "cuda/prepare_block.h"
+#include "cuda/temporal_pixel.h"
+
+#include <cuda_runtime_api.h>
+
+namespace afn::cuda {
+
+/// Set the depth-range keys (2 words: min, max) to the empty range.
+void launchResetDepthRange(std::uint32_t* depthRange, cudaStream_t stream);
+
+/// First stage over the frame; also folds valid depths into `depthRange` (when there is depth).
+void launchTemporal(const TemporalBuffers& b, const FrameConstants* frame,
+    std::uint32_t* depthRange, cudaStream_t stream);
+
+/// Network input over the half-resolution grid of the padded frame.
+void launchPrepare(const PrepareBuffers& b, cudaStream_t stream);
+
+/// D: 2 x 2 average of a half-precision NHWC tensor (`stride` halves per pixel, even size) into
+/// `out` of half the size and the same stride.
+void launchPool(const std::uint16_t* in, int width, int height, int stride, std::uint16_t* out,
+    cudaStream_t stream);
+
+/// A hidden convolution layer (bias, ReLU, half-precision output).
+void launchConvRelu(const ConvOperands& op, const ReluOutput& out, cudaStream_t stream);
+
+/// The last refinement layer (3 output channels), writing the remodulated, cropped output.
+void launchConvFinal(const ConvOperands& op, const FinalOutput& out, cudaStream_t stream);
+
+/// Heads, softmax, filtering and Eq. 3 over the padded frame.
+void launchFilterFuse(const FilterFuseArgs& a, cudaStream_t stream);
+
+} // namespace afn::cuda

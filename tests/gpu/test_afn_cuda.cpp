@@ -1,0 +1,322 @@
+// SPDX-License-Identifier: Apache-2.0
+// The CUDA afn filter against the CPU afn filter in the same process, frame by frame, on
+// synthetic sequences generated here (afn_parity_cases.h: sizes from 1 x 1 to 1280 x 720, each
+// input set, the committed test archives and the shipped model). Per frame: the output within the
+// documented tolerance (afn_output_compare.h, docs/gpu.md), the first stage (demodulation,
+// reprojection, accumulation) equal to the CPU stages', the network input equal to half
+// precision. The GPU buffers are poisoned with NaN, so a value no kernel wrote fails the test.
+// Also: the C API, other methods refused, reset and new weights mid-sequence, concurrent filters.
+// Without a usable GPU every test is skipped with the reason.
+#include "afn_output_compare.h"
+#include "afn_parity_cases.h"
+#include "base/device.h"
+#include "base/exception.h"
+#include "cuda/afn_cuda_filter.h"
+#include "cuda/gpu.h"
+#include "filter/registry.h"
+#include "methods/afn/features.h"
+#include "methods/afn/weights_source.h"
+#include "stages/demodulate.h"
+
+#include "afn/afn.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <iostream>
+#include <limits>
+#include <memory>
+#include <thread>
+
+extern "C" const unsigned char afnTestWeightsFull[];
+extern "C" const unsigned long long afnTestWeightsFull_size;
+extern "C" const unsigned char afnTestWeightsFusion[];
+extern "C" const unsigned long long afnTestWeightsFusion_size;
+
+namespace {
+
+using afntest::ParityCase;
+using afntest::SequenceInputs;
+
+std::unique_ptr<afn::Device> g_cuda; ///< the CUDA device, when there is a usable GPU
+std::string g_noGpu; ///< why there is none
+
+/// Archive bytes of a case's weights; empty for "shipped" (the filters' built-in weights).
+std::vector<char> weightsBytes(const std::string& which)
+{
+    if (which == "full")
+        return { afnTestWeightsFull, afnTestWeightsFull + afnTestWeightsFull_size };
+    if (which == "fusion")
+        return { afnTestWeightsFusion, afnTestWeightsFusion + afnTestWeightsFusion_size };
+    return {};
+}
+
+bool hasShippedWeights()
+{
+    afn::afnet::Network net;
+    return afn::afnet::loadEmbeddedNetwork(net);
+}
+
+afn::cuda::AfnCudaFilter& cudaFilter(afn::Filter& f)
+{
+    auto* c = dynamic_cast<afn::cuda::AfnCudaFilter*>(&f);
+    if (!c)
+        throw std::runtime_error("the afn filter on the CUDA device is not the CUDA filter");
+    return *c;
+}
+
+void poison(afn::Image& img)
+{
+    img.fill(std::numeric_limits<float>::quiet_NaN());
+}
+
+class CudaAfn : public ::testing::Test {
+protected:
+    static void SetUpTestSuite()
+    {
+        if (g_cuda || !g_noGpu.empty())
+            return;
+        try {
+            auto device = std::make_unique<afn::Device>(AFN_DEVICE_TYPE_CUDA);
+            device->commit();
+            const afn::cuda::GpuInfo gpu = afn::cuda::findGpu();
+            std::cout << "[ gpu ] " << gpu.name << ", compute capability " << gpu.major << "."
+                      << gpu.minor << ", " << gpu.multiprocessors << " SMs, "
+                      << gpu.memoryBytes / (1024 * 1024) << " MiB\n";
+            g_cuda = std::move(device);
+        } catch (const afn::Exception& e) {
+            g_noGpu = e.what();
+        }
+    }
+    void SetUp() override
+    {
+        if (!g_cuda)
+            GTEST_SKIP() << "skipped (" << g_noGpu << ")";
+    }
+};
+
+/// One case: the CPU and CUDA filters side by side, every frame checked.
+void runParityCase(const ParityCase& c)
+{
+    SCOPED_TRACE(c.name());
+    const std::vector<char> weights = weightsBytes(c.weights);
+    auto cpu = afn::createFilter("afn");
+    cpu->params().setString(AFN_PARAM_AUX, "clean"); // the GPU has no aux prefilter yet
+    auto gpu = afn::createFilter("afn", *g_cuda);
+    afn::cuda::AfnCudaFilter& cuda = cudaFilter(*gpu);
+    cuda.setPoison(true);
+    if (!weights.empty()) {
+        cpu->setData(AFN_DATA_WEIGHTS, weights.data(), weights.size());
+        gpu->setData(AFN_DATA_WEIGHTS, weights.data(), weights.size());
+    }
+    // The CPU stages and network input, for the intermediates.
+    afn::afnet::Network net;
+    if (weights.empty())
+        afn::afnet::loadEmbeddedNetwork(net);
+    else
+        net = afn::afnet::networkFromData(weights.data(), weights.size());
+    afntest::FrameGatherer gatherer;
+    afn::Reprojector reprojector;
+    afn::TemporalAccumulator accumulator;
+    afn::Image irradiance, albedo, normal01, depth01, gpuIrr, gpuAcc, gpuX;
+
+    const afntest::SyntheticSequence seq(c.width, c.height, 11);
+    afn::Image cpuOut(c.width, c.height, 3), gpuOut(c.width, c.height, 3);
+    const afntest::Tolerance tolerance;
+    for (int k = 0; k < c.frames; ++k) {
+        afntest::SequenceFrame in = seq.frame(k, c.inputs);
+        poison(cpuOut);
+        poison(gpuOut);
+        afntest::runFrame(*cpu, in, cpuOut);
+        afntest::runFrame(*gpu, in, gpuOut);
+
+        const afn::Frame& f = gatherer.gather(in);
+        afn::demodulate(f, irradiance);
+        reprojector.compute(f);
+        accumulator.accumulate(reprojector, irradiance);
+        reprojector.storeGeometry(f);
+        albedo = f.hasAlbedo() ? f.albedo : afn::Image(f.width, f.height, 3, 1.0f);
+        afn::afnet::normalToUnitRange(f.normal, f.width, f.height, normal01);
+        afn::afnet::depthToUnitRange(f.depth, f.width, f.height, depth01);
+        net.prepare({ &irradiance, &accumulator.color(), &albedo, &normal01, &depth01 });
+        cuda.pipeline().downloadIntermediate(
+            afn::cuda::AfnPipeline::Intermediate::Irradiance, gpuIrr);
+        cuda.pipeline().downloadIntermediate(
+            afn::cuda::AfnPipeline::Intermediate::Accumulated, gpuAcc);
+        cuda.pipeline().downloadIntermediate(
+            afn::cuda::AfnPipeline::Intermediate::NetworkInput, gpuX);
+
+        const afntest::OutputDifference d = afntest::compareOutputs(gpuOut, cpuOut);
+        const double irrDiff = afntest::maxAbsDifference(gpuIrr, irradiance);
+        const double taDiff = afntest::maxAbsDifference(gpuAcc, accumulator.color());
+        const double xDiff = afntest::maxAbsDifference(gpuX, net.input());
+        std::cout << "[ parity ] " << c.name() << " frame " << k << ": " << d.text()
+                  << "; TA max|diff| " << taDiff << ", irradiance " << irrDiff << ", network input "
+                  << xDiff << "\n";
+        EXPECT_TRUE(d.within(tolerance)) << "frame " << k << ": " << d.text();
+        // The first stage repeats the CPU's arithmetic (temporal_pixel.h): equal up to rounding.
+        EXPECT_EQ(irrDiff, 0.0) << "frame " << k;
+        EXPECT_LE(taDiff, 1e-5) << "frame " << k;
+        // Values in [0, 1] stored as halves (one rounding, possibly on the other side of a tie).
+        EXPECT_LE(xDiff, 5e-4) << "frame " << k;
+    }
+}
+
+} // namespace
+
+TEST_F(CudaAfn, ParityWithTheCpuEngine)
+{
+    const bool shipped = hasShippedWeights();
+    for (const ParityCase& c : afntest::gpuParityCases()) {
+        if (c.weights == "shipped" && !shipped) {
+            std::cout << "[ parity ] " << c.name() << ": no shipped weights in this build\n";
+            continue;
+        }
+        runParityCase(c);
+    }
+}
+
+TEST_F(CudaAfn, OtherMethodsAreUnsupportedOnTheCudaDevice)
+{
+    for (const char* method : { "identity", "ta", "svgf", "bmfr" }) {
+        try {
+            afn::createFilter(method, *g_cuda);
+            ADD_FAILURE() << method << " was created on the CUDA device";
+        } catch (const afn::Exception& e) {
+            EXPECT_EQ(e.code(), AFN_ERROR_UNSUPPORTED) << method << ": " << e.what();
+        }
+    }
+}
+
+TEST_F(CudaAfn, ThroughTheCApi)
+{
+    AFNDevice cuda = afnNewDevice(AFN_DEVICE_TYPE_CUDA);
+    ASSERT_NE(cuda, nullptr);
+    EXPECT_EQ(afnGetDeviceInt(cuda, "type"), AFN_DEVICE_TYPE_CUDA);
+    afnCommitDevice(cuda);
+    EXPECT_EQ(afnNewFilter(cuda, "svgf"), nullptr);
+    const char* message = nullptr;
+    EXPECT_EQ(afnGetDeviceError(cuda, &message), AFN_ERROR_UNSUPPORTED);
+    AFNDevice cpu = afnNewDevice(AFN_DEVICE_TYPE_CPU);
+    afnCommitDevice(cpu);
+    const std::vector<char> weights = weightsBytes("full");
+    AFNFilter filters[2] = { afnNewFilter(cpu, "afn"), afnNewFilter(cuda, "afn") };
+    ASSERT_NE(filters[1], nullptr);
+    const int w = 70, h = 38;
+    const afntest::SyntheticSequence seq(w, h, 4);
+    afn::Image out[2] = { afn::Image(w, h, 4), afn::Image(w, h, 4) };
+    for (AFNFilter f : filters)
+        afnSetFilterData(f, AFN_DATA_WEIGHTS, weights.data(), weights.size());
+    afnSetFilterString(filters[0], AFN_PARAM_AUX, "clean"); // the GPU has no aux prefilter yet
+    for (int k = 0; k < 3; ++k) {
+        afntest::SequenceFrame in = seq.frame(k, SequenceInputs {});
+        for (int i = 0; i < 2; ++i) {
+            poison(out[i]);
+            AFNFilter f = filters[i];
+            afnSetFilterImage(
+                f, AFN_IMAGE_COLOR, in.color.data(), AFN_FORMAT_FLOAT3, w, h, 0, 0, 0);
+            afnSetFilterImage(
+                f, AFN_IMAGE_ALBEDO, in.albedo.data(), AFN_FORMAT_FLOAT3, w, h, 0, 0, 0);
+            afnSetFilterImage(
+                f, AFN_IMAGE_NORMAL, in.normal.data(), AFN_FORMAT_FLOAT3, w, h, 0, 0, 0);
+            afnSetFilterImage(f, AFN_IMAGE_DEPTH, in.depth.data(), AFN_FORMAT_FLOAT, w, h, 0, 0, 0);
+            afnSetFilterImage(
+                f, AFN_IMAGE_MOTION, in.motion.data(), AFN_FORMAT_FLOAT2, w, h, 0, 0, 0);
+            // Alpha from the first channel of the albedo, passed through to a FLOAT4 output.
+            afnSetFilterImage(
+                f, AFN_IMAGE_ALPHA, in.albedo.data(), AFN_FORMAT_FLOAT, w, h, 0, 12, 0);
+            afnSetFilterImage(f, AFN_IMAGE_OUTPUT, out[i].data(), AFN_FORMAT_FLOAT4, w, h, 0, 0, 0);
+            afnCommitFilter(f);
+            afnExecuteFilter(f);
+        }
+        for (AFNDevice d : { cpu, cuda }) {
+            const char* m = nullptr;
+            ASSERT_EQ(afnGetDeviceError(d, &m), AFN_ERROR_NONE) << (m ? m : "");
+        }
+        afn::Image rgb[2];
+        for (int i = 0; i < 2; ++i) {
+            rgb[i] = afn::Image(w, h, 3);
+            for (int y = 0; y < h; ++y)
+                for (int x = 0; x < w; ++x) {
+                    for (int c = 0; c < 3; ++c)
+                        rgb[i](x, y, c) = out[i](x, y, c);
+                    EXPECT_EQ(out[i](x, y, 3), in.albedo(x, y, 0)) << "alpha at " << x << "," << y;
+                }
+        }
+        const afntest::OutputDifference d = afntest::compareOutputs(rgb[1], rgb[0]);
+        std::cout << "[ api ] frame " << k << ": " << d.text() << "\n";
+        EXPECT_TRUE(d.within(afntest::Tolerance {})) << d.text();
+    }
+    for (AFNFilter f : filters)
+        afnReleaseFilter(f);
+    afnReleaseDevice(cpu);
+    afnReleaseDevice(cuda);
+}
+
+TEST_F(CudaAfn, ResetAndNewWeightsMidSequence)
+{
+    auto cpu = afn::createFilter("afn");
+    cpu->params().setString(AFN_PARAM_AUX, "clean"); // the GPU has no aux prefilter yet
+    auto gpu = afn::createFilter("afn", *g_cuda);
+    cudaFilter(*gpu).setPoison(true);
+    const std::vector<char> full = weightsBytes("full"), fusion = weightsBytes("fusion");
+    for (auto* f : { cpu.get(), gpu.get() })
+        f->setData(AFN_DATA_WEIGHTS, full.data(), full.size());
+    const afntest::SyntheticSequence seq(90, 50, 8);
+    afn::Image outs[2] = { afn::Image(90, 50, 3), afn::Image(90, 50, 3) };
+    for (int k = 0; k < 8; ++k) {
+        if (k == 3)
+            for (auto* f : { cpu.get(), gpu.get() })
+                f->reset();
+        if (k == 5)
+            for (auto* f : { cpu.get(), gpu.get() })
+                f->setData(AFN_DATA_WEIGHTS, fusion.data(), fusion.size());
+        afntest::SequenceFrame in = seq.frame(k, SequenceInputs {});
+        afntest::runFrame(*cpu, in, outs[0]);
+        afntest::runFrame(*gpu, in, outs[1]);
+        const afntest::OutputDifference d = afntest::compareOutputs(outs[1], outs[0]);
+        std::cout << "[ reset ] frame " << k << ": " << d.text() << "\n";
+        EXPECT_TRUE(d.within(afntest::Tolerance {})) << "frame " << k << ": " << d.text();
+        EXPECT_EQ(gpu->frameIndex(), cpu->frameIndex());
+    }
+}
+
+TEST_F(CudaAfn, ConcurrentFiltersOnOneDeviceGiveTheirSequentialResults)
+{
+    const std::vector<char> weights = weightsBytes("full");
+    const int w = 160, h = 90, frames = 4;
+    auto runSequence = [&](unsigned seed, std::vector<afn::Image>& outs) {
+        auto f = afn::createFilter("afn", *g_cuda);
+        f->setData(AFN_DATA_WEIGHTS, weights.data(), weights.size());
+        const afntest::SyntheticSequence seq(w, h, seed);
+        for (int k = 0; k < frames; ++k) {
+            afntest::SequenceFrame in = seq.frame(k, SequenceInputs {});
+            outs[k] = afn::Image(w, h, 3);
+            afntest::runFrame(*f, in, outs[k]);
+        }
+    };
+    std::vector<afn::Image> sequential[2], concurrent[2];
+    for (int i = 0; i < 2; ++i) {
+        sequential[i].resize(frames);
+        concurrent[i].resize(frames);
+        runSequence(20 + i, sequential[i]);
+    }
+    std::string errors[2];
+    std::thread threads[2];
+    for (int i = 0; i < 2; ++i)
+        threads[i] = std::thread([&, i] {
+            try {
+                g_cuda->run([&] { runSequence(20 + i, concurrent[i]); });
+            } catch (const std::exception& e) {
+                errors[i] = e.what();
+            }
+        });
+    for (auto& t : threads)
+        t.join();
+    for (int i = 0; i < 2; ++i) {
+        ASSERT_TRUE(errors[i].empty()) << errors[i];
+        for (int k = 0; k < frames; ++k)
+            EXPECT_EQ(afntest::maxAbsDifference(concurrent[i][k], sequential[i][k]), 0.0)
+                << "filter " << i << " frame " << k;
+    }
+}

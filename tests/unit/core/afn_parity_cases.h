@@ -1,0 +1,65 @@
+// SPDX-License-Identifier: Apache-2.0
+// The sequences on which the CUDA afn engine is compared with the CPU engine (tests/gpu), also
+// run through the host emulation of the kernels to calibrate the tolerance on machines without a
+// GPU (test_cuda_engine --gtest_also_run_disabled_tests --gtest_filter=*Calibration*).
+#pragma once
+
+#include "afn_synthetic_sequence.h"
+
+#include <string>
+#include <vector>
+
+namespace afntest {
+
+struct ParityCase {
+    std::string weights; ///< "full", "fusion" (tests/data/afn_parity) or "shipped" (weights/)
+    int width = 0;
+    int height = 0;
+    SequenceInputs inputs;
+    int frames = 3;
+    std::string name() const
+    {
+        return weights + " " + std::to_string(width) + "x" + std::to_string(height) + " "
+            + inputs.name();
+    }
+};
+
+/// Every input set the engines must agree on: all AOVs with motion; positions and cameras
+/// without motion; depth without positions; colour only; no albedo.
+inline std::vector<SequenceInputs> parityInputSets()
+{
+    SequenceInputs all;
+    SequenceInputs camera = all;
+    camera.motion = false;
+    camera.camera = true;
+    SequenceInputs depthOnly;
+    depthOnly.position = false;
+    depthOnly.motion = false;
+    SequenceInputs colorOnly { false, false, false, false, false, false };
+    SequenceInputs noAlbedo = all;
+    noAlbedo.albedo = false;
+    return { all, camera, depthOnly, colorOnly, noAlbedo };
+}
+
+/// The GPU parity cases: sizes from 1 x 1 to 1280 x 720 (odd ones included), each input set,
+/// both committed test archives (variants "full" and "fusion") and the shipped model.
+inline std::vector<ParityCase> gpuParityCases()
+{
+    std::vector<ParityCase> cases;
+    const SequenceInputs all;
+    for (const auto& [w, h] : std::vector<std::pair<int, int>> {
+             { 1, 1 }, { 8, 8 }, { 37, 21 }, { 64, 48 }, { 129, 67 }, { 256, 144 } })
+        cases.push_back({ "full", w, h, all, 3 });
+    for (const SequenceInputs& in : parityInputSets())
+        cases.push_back({ "full", 97, 61, in, 3 });
+    cases.push_back({ "fusion", 45, 27, all, 3 });
+    cases.push_back({ "fusion", 200, 120, all, 3 });
+    for (const SequenceInputs& in : parityInputSets())
+        cases.push_back({ "shipped", 161, 91, in, 3 });
+    cases.push_back({ "shipped", 333, 187, all, 4 });
+    cases.push_back({ "shipped", 640, 360, all, 3 });
+    cases.push_back({ "shipped", 1280, 720, all, 3 });
+    return cases;
+}
+
+} // namespace afntest

@@ -1,0 +1,33 @@
+// SPDX-License-Identifier: Apache-2.0
+// The CUDA afn kernels run on the CPU, for machines without a GPU: the kernels' own per-pixel,
+// per-block and per-lane code (lib/core/cuda/*_pixel.h, *_block.h, conv_tile.h,
+// filter_fuse_lane.h) driven by plain loops over warps and lanes, with the tensor-core instruction
+// and the quad shuffles emulated from their PTX definitions (independently of fragment.h).
+// emulated_pipeline.h wires them as cuda/afn_pipeline.cpp does; the tests compare it with the
+// CPU engine to check the kernels' index math and to measure the half-precision error.
+#pragma once
+
+#include "cuda/conv_tile.h"
+#include "cuda/filter_fuse_lane.h"
+#include "cuda/prepare_block.h"
+#include "cuda/temporal_pixel.h"
+
+#include <cstdint>
+
+namespace afntest {
+
+/// c[lane] += A * B for mma.m16n8k16 (f16 inputs, f32 accumulation), A, B and C given as the 32
+/// lanes' registers, laid out as the PTX ISA defines.
+void emulateMma(
+    const std::uint32_t (&a)[32][4], const std::uint32_t (&b)[32][2], float (&c)[32][4]);
+
+/// The kernels of kernels.h on the CPU (same arguments, host pointers).
+void emulateTemporal(const afn::cuda::TemporalBuffers& b, const afn::cuda::FrameConstants& f,
+    std::uint32_t* depthRange);
+void emulatePrepare(const afn::cuda::PrepareBuffers& b);
+void emulatePool(const std::uint16_t* in, int width, int height, int stride, std::uint16_t* out);
+void emulateConvRelu(const afn::cuda::ConvOperands& op, const afn::cuda::ReluOutput& out);
+void emulateConvFinal(const afn::cuda::ConvOperands& op, const afn::cuda::FinalOutput& out);
+void emulateFilterFuse(const afn::cuda::FilterFuseArgs& a);
+
+} // namespace afntest

@@ -1,0 +1,232 @@
+// SPDX-License-Identifier: Apache-2.0
+// The CUDA afn filter on the CPU (see emulated_pipeline.h): cuda/afn_pipeline.cpp's buffers and
+// stage order over the emulated kernels of cuda_emulator.h.
+#include "emulated_pipeline.h"
+
+#include "base/exception.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace afntest {
+
+using namespace afn::cuda;
+
+void EmulatedAfnPipeline::Tensor::allocate(int w, int h, int channels)
+{
+    width = w;
+    height = h;
+    stride = channelStride(channels);
+    // NaN halves: a value the kernels never wrote shows up in the results.
+    data.assign(static_cast<std::size_t>(w) * h * stride, 0xffffu);
+}
+
+afn::Image EmulatedAfnPipeline::Tensor::toImage(int channels) const
+{
+    afn::Image img(width, height, channels);
+    for (std::size_t p = 0; p < static_cast<std::size_t>(width) * height; ++p)
+        for (int c = 0; c < channels; ++c)
+            img.data()[p * channels + c] = halfToFloat(data[p * stride + c]);
+    return img;
+}
+
+EmulatedAfnPipeline::EmulatedAfnPipeline(const afn::afnet::Network& net)
+    : m_variant(net.variant())
+    , m_refine(net.variant() == afn::afnet::Variant::Full)
+{
+    using L = afn::afnet::Network::Layer;
+    for (int i = 0; i < 10; ++i) {
+        const auto which = static_cast<L>(i);
+        if (!m_refine && i >= static_cast<int>(L::Ref1))
+            continue;
+        int up = 0;
+        if (which == L::Dec2)
+            up = net.layer(L::Enc3).outChannels();
+        else if (which == L::Dec1)
+            up = net.layer(L::Dec2).outChannels();
+        else if (which == L::HeadTa)
+            up = net.layer(L::Dec1).outChannels();
+        m_layers[i].packed = packConv(net.layer(which), up);
+    }
+}
+
+ConvOperands EmulatedAfnPipeline::operands(
+    const Layer& layer, const Tensor* up, const Tensor& same) const
+{
+    const PackedConv& pc = layer.packed;
+    if ((up && (pc.upChunks() * kChunk != up->stride || 2 * up->width != same.width))
+        || (!up && pc.upChunks() != 0) || pc.sameChunks() * kChunk != same.stride)
+        afn::throwInvalidOperation("emulated CUDA afn: a layer does not match its inputs");
+    ConvOperands op;
+    op.up = up ? up->data.data() : nullptr;
+    op.upStride = up ? up->stride : 0;
+    op.upChunks = pc.upChunks();
+    op.upWidth = up ? up->width : 0;
+    op.same = same.data.data();
+    op.sameStride = same.stride;
+    op.sameChunks = pc.sameChunks();
+    op.width = same.width;
+    op.height = same.height;
+    op.ksize = pc.ksize;
+    op.weights = pc.weights.data();
+    op.bias = pc.bias.data();
+    op.tiles = pc.tiles();
+    return op;
+}
+
+void EmulatedAfnPipeline::allocate(const afn::Frame& f)
+{
+    using L = afn::afnet::Network::Layer;
+    if (f.width == m_width && f.height == m_height)
+        return;
+    m_width = f.width;
+    m_height = f.height;
+    m_paddedWidth = paddedSize(m_width);
+    m_paddedHeight = paddedSize(m_height);
+    const std::size_t n = static_cast<std::size_t>(m_width) * m_height;
+    const float nan = std::nanf("");
+    m_irradiance.assign(3 * n, nan);
+    m_output.assign(3 * n, nan);
+    for (int s = 0; s < 2; ++s) {
+        m_accumulated[s].assign(3 * n, nan);
+        m_history[s].assign(n, nan);
+    }
+    auto ch = [&](L l) { return m_layers[static_cast<int>(l)].packed.outChannels; };
+    const int wp = m_paddedWidth, hp = m_paddedHeight;
+    m_x.allocate(wp, hp, kInputChannels);
+    m_xHalf.allocate(wp / 2, hp / 2, kInputChannels);
+    m_e1.allocate(wp / 2, hp / 2, ch(L::Enc1));
+    m_e1Pool.allocate(wp / 4, hp / 4, ch(L::Enc1));
+    m_e2.allocate(wp / 4, hp / 4, ch(L::Enc2));
+    m_e2Pool.allocate(wp / 8, hp / 8, ch(L::Enc2));
+    m_e3.allocate(wp / 8, hp / 8, ch(L::Enc3));
+    m_d2.allocate(wp / 4, hp / 4, ch(L::Dec2));
+    m_d1.allocate(wp / 2, hp / 2, ch(L::Dec1));
+    m_color1Half.assign(3 * static_cast<std::size_t>(wp / 2) * (hp / 2), nan);
+    if (m_refine) {
+        m_fused.assign(3 * static_cast<std::size_t>(wp) * hp, nan);
+        m_refineInput.allocate(wp, hp, kRefineInputChannels);
+        m_r1.allocate(wp, hp, ch(L::Ref1));
+        m_r2.allocate(wp, hp, ch(L::Ref2));
+    }
+}
+
+void EmulatedAfnPipeline::run(const afn::Frame& f, const FrameConstants& c, afn::Image& out)
+{
+    using L = afn::afnet::Network::Layer;
+    allocate(f);
+    const int s = m_slot, p = s ^ 1;
+    // Upload.
+    m_color.assign(f.color.data(), f.color.data() + f.color.size());
+    m_albedo.assign(f.albedo.data(), f.albedo.data() + f.albedo.size());
+    m_motion.assign(f.motion.data(), f.motion.data() + f.motion.size());
+    m_position[s].assign(f.position.data(), f.position.data() + f.position.size());
+    m_normal[s].assign(f.normal.data(), f.normal.data() + f.normal.size());
+    m_depth[s].assign(f.depth.data(), f.depth.data() + f.depth.size());
+    auto ptr = [](std::vector<float>& v) { return v.empty() ? nullptr : v.data(); };
+
+    // TemporalFeatures.
+    std::uint32_t range[2] = { kEmptyRangeMin, kEmptyRangeMax };
+    TemporalBuffers b;
+    b.width = m_width;
+    b.height = m_height;
+    b.color = m_color.data();
+    b.albedo = ptr(m_albedo);
+    b.motion = ptr(m_motion);
+    b.position = ptr(m_position[s]);
+    b.prevPosition = f.hasPosition() ? m_position[p].data() : nullptr;
+    b.normal = ptr(m_normal[s]);
+    b.prevNormal = f.hasNormal() ? m_normal[p].data() : nullptr;
+    b.depth = ptr(m_depth[s]);
+    b.prevDepth = f.hasDepth() ? m_depth[p].data() : nullptr;
+    b.prevAccumulated = m_accumulated[p].data();
+    b.prevHistoryLength = m_history[p].data();
+    b.irradiance = m_irradiance.data();
+    b.accumulated = m_accumulated[s].data();
+    b.historyLength = m_history[s].data();
+    emulateTemporal(b, c, range);
+    const bool oneSpp = m_variant == afn::afnet::Variant::OneSpp;
+    const bool ta = m_variant == afn::afnet::Variant::Ta;
+    float* colorTa = oneSpp ? m_irradiance.data() : m_accumulated[s].data();
+    PrepareBuffers pb;
+    pb.width = m_width;
+    pb.height = m_height;
+    pb.paddedWidth = m_paddedWidth;
+    pb.paddedHeight = m_paddedHeight;
+    pb.color1 = ta ? m_accumulated[s].data() : m_irradiance.data();
+    pb.colorTa = colorTa;
+    pb.albedo = b.albedo;
+    pb.normal = b.normal;
+    pb.depth = b.depth;
+    pb.depthRange = range;
+    pb.x = m_x.data.data();
+    pb.xHalf = m_xHalf.data.data();
+    pb.color1Half = m_color1Half.data();
+    emulatePrepare(pb);
+
+    // KernelPrediction.
+    auto layer = [&](L l) -> const Layer& { return m_layers[static_cast<int>(l)]; };
+    auto conv = [&](L l, const Tensor* up, const Tensor& same, Tensor& o) {
+        emulateConvRelu(operands(layer(l), up, same), ReluOutput { o.data.data(), o.stride });
+    };
+    auto pool = [&](const Tensor& in, Tensor& o) {
+        emulatePool(in.data.data(), in.width, in.height, in.stride, o.data.data());
+    };
+    conv(L::Enc1, nullptr, m_xHalf, m_e1);
+    pool(m_e1, m_e1Pool);
+    conv(L::Enc2, nullptr, m_e1Pool, m_e2);
+    pool(m_e2, m_e2Pool);
+    conv(L::Enc3, nullptr, m_e2Pool, m_e3);
+    conv(L::Dec2, &m_e3, m_e2, m_d2);
+    conv(L::Dec1, &m_d2, m_e1, m_d1);
+
+    // FilteringFusion.
+    FinalOutput fo;
+    fo.fused = m_refine ? m_fused.data() : nullptr;
+    fo.albedo = b.albedo;
+    fo.plainAlbedo = c.colorDemodulated;
+    fo.data = m_output.data();
+    fo.width = m_width;
+    fo.height = m_height;
+    FilterFuseArgs a;
+    a.head1 = operands(layer(L::Head1), nullptr, m_d1);
+    a.headTa = operands(layer(L::HeadTa), &m_d1, m_x);
+    a.x = m_x.data.data();
+    a.colorTa = PaddedColor { colorTa, m_width, m_height, m_paddedWidth, m_paddedHeight };
+    a.color1Half = PlainColor { m_color1Half.data(), m_paddedWidth / 2, m_paddedHeight / 2 };
+    if (m_refine) {
+        a.fused = m_fused.data();
+        a.refineInput = m_refineInput.data.data();
+    } else {
+        a.output = fo;
+    }
+    emulateFilterFuse(a);
+
+    // Refinement.
+    if (m_refine) {
+        conv(L::Ref1, nullptr, m_refineInput, m_r1);
+        conv(L::Ref2, nullptr, m_r1, m_r2);
+        emulateConvFinal(operands(layer(L::Ref3), nullptr, m_r2), fo);
+    }
+
+    out = afn::Image(m_width, m_height, 3);
+    std::copy(m_output.begin(), m_output.end(), out.data());
+    m_irradianceImage = afn::Image(m_width, m_height, 3);
+    std::copy(m_irradiance.begin(), m_irradiance.end(), m_irradianceImage.data());
+    m_accumulatedImage = afn::Image(m_width, m_height, 3);
+    std::copy(m_accumulated[s].begin(), m_accumulated[s].end(), m_accumulatedImage.data());
+    m_slot ^= 1;
+}
+
+afn::Image EmulatedAfnPipeline::networkInput() const
+{
+    return m_x.toImage(kInputChannels);
+}
+
+afn::Image EmulatedAfnPipeline::decoderOutput() const
+{
+    return m_d1.toImage(
+        m_layers[static_cast<int>(afn::afnet::Network::Layer::Dec1)].packed.outChannels);
+}
+
+} // namespace afntest

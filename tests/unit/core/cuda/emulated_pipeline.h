@@ -1,0 +1,59 @@
+// SPDX-License-Identifier: Apache-2.0
+// The whole CUDA afn filter run on the CPU: cuda/afn_pipeline.cpp's wiring (buffers, history
+// slots, stage order) over the emulated kernels of cuda_emulator.h, so that its results are what
+// the GPU computes up to the order of the tensor cores' float additions.
+#pragma once
+
+#include "cuda_emulator.h"
+
+#include "base/image.h"
+#include "cuda/frame_constants.h"
+#include "filter/frame.h"
+#include "methods/afn/network.h"
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+namespace afntest {
+
+/// The whole CUDA afn filter on the CPU (cuda/afn_pipeline.cpp's wiring, host buffers).
+class EmulatedAfnPipeline {
+public:
+    explicit EmulatedAfnPipeline(const afn::afnet::Network& network);
+    /// Denoise a gathered frame (as AfnCudaFilter::denoise) into `out` (3 ch, frame size).
+    void run(const afn::Frame& frame, const afn::cuda::FrameConstants& constants, afn::Image& out);
+
+    // Intermediates of the last frame, as floats.
+    const afn::Image& irradiance() const { return m_irradianceImage; }
+    const afn::Image& accumulated() const { return m_accumulatedImage; }
+    afn::Image networkInput() const; ///< padded size, 13 ch
+    afn::Image decoderOutput() const; ///< half the padded size
+
+private:
+    struct Tensor {
+        std::vector<std::uint16_t> data;
+        int width = 0, height = 0, stride = 0;
+        void allocate(int w, int h, int channels);
+        afn::Image toImage(int channels) const;
+    };
+    struct Layer {
+        afn::cuda::PackedConv packed;
+    };
+    afn::cuda::ConvOperands operands(
+        const Layer& layer, const Tensor* up, const Tensor& same) const;
+    void allocate(const afn::Frame& frame);
+
+    afn::afnet::Variant m_variant;
+    bool m_refine;
+    std::array<Layer, 10> m_layers;
+    int m_width = 0, m_height = 0, m_paddedWidth = 0, m_paddedHeight = 0;
+    int m_slot = 0;
+    std::vector<float> m_color, m_albedo, m_motion, m_irradiance, m_output, m_color1Half, m_fused;
+    std::array<std::vector<float>, 2> m_position, m_normal, m_depth, m_accumulated, m_history;
+    Tensor m_x, m_xHalf, m_e1, m_e1Pool, m_e2, m_e2Pool, m_e3, m_d2, m_d1, m_refineInput, m_r1,
+        m_r2;
+    afn::Image m_irradianceImage, m_accumulatedImage;
+};
+
+} // namespace afntest
