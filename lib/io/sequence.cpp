@@ -37,8 +37,11 @@ bool printfSpec(const std::string& s, std::size_t pos, std::size_t& len, int& wi
         return false;
     std::size_t p = pos + 1;
     width = 0;
-    while (p < s.size() && std::isdigit(static_cast<unsigned char>(s[p])))
-        width = width * 10 + (s[p++] - '0');
+    // Digits beyond a width of 32 make the spec invalid; stop accumulating so that a long run of
+    // digits cannot overflow.
+    for (; p < s.size() && std::isdigit(static_cast<unsigned char>(s[p])); ++p)
+        if (width <= 32)
+            width = width * 10 + (s[p] - '0');
     if (p >= s.size() || s[p] != 'd' || width > 32)
         return false;
     len = p + 1 - pos;
