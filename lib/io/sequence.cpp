@@ -3,7 +3,6 @@
 #include "afn/io.hpp"
 
 #include <cctype>
-#include <cstdio>
 #include <filesystem>
 
 namespace afn::io {
@@ -51,9 +50,14 @@ bool printfSpec(const std::string& s, std::size_t pos, std::size_t& len, int& wi
 std::string padded(int frame, int width)
 {
     // printf semantics: the width includes the sign ("%04d" of -7 is "-007"), as oiiotool's fmt.
-    char buf[64];
-    std::snprintf(buf, sizeof buf, "%0*d", width, frame);
-    return buf;
+    // Built without a fixed buffer: a long run of '#' or '@' must not truncate the number.
+    const long long magnitude = frame < 0 ? -static_cast<long long>(frame) : frame;
+    const std::string digits = std::to_string(magnitude);
+    std::string out = frame < 0 ? "-" : "";
+    const std::size_t used = out.size() + digits.size();
+    if (width > 0 && static_cast<std::size_t>(width) > used)
+        out.append(static_cast<std::size_t>(width) - used, '0');
+    return out + digits;
 }
 
 } // namespace
