@@ -22,9 +22,9 @@ struct Guide {
     Image depth; ///< 1 ch, empty if no depth source
     Image gradient; ///< 2 ch depth gradient per pixel (dz/dx, dz/dy)
     const Image* normal = nullptr; ///< the frame's normals, or null
-    /// 1 for pixels whose colour was divided by the albedo floor (stages/demodulate.h); empty when
-    /// none.
-    /// They neither give to nor take from their neighbours, as BMFR leaves them out of its fit.
+    /// 1 for pixels whose colour was divided by the albedo floor (stages/demodulate.h), empty when
+    /// there are none. They neither give to nor take from their neighbours, as BMFR leaves them
+    /// out of its fit.
     std::vector<std::uint8_t> belowAlbedoFloor;
     int width = 0;
     float sigmaZ = 1.0f;
