@@ -21,16 +21,6 @@ constexpr float kAlbedoEpsilon = 1.0f / 1024.0f;
 /// Largest irradiance value kept (squares stay below FLT_MAX).
 constexpr float kMaxIrradiance = 1e15f;
 
-/// True when demodulate() divides the pixel's colour by the albedo floor in some channel (black or
-/// missing albedo: the irradiance is amplified up to 1024x and tells nothing about the lighting).
-inline bool dividedByAlbedoFloor(const Frame& f, int x, int y)
-{
-    if (!f.hasAlbedo() || f.colorDemodulated)
-        return false;
-    const float* a = f.albedo.at(x, y);
-    return a[0] < kAlbedoEpsilon || a[1] < kAlbedoEpsilon || a[2] < kAlbedoEpsilon;
-}
-
 /// Write the frame's demodulated colour (3 channels, frame size) into `irradiance`.
 void demodulate(const Frame& frame, Image& irradiance);
 

@@ -72,47 +72,15 @@ private:
         writeFeature("depth01", m_depth01);
         if (!outputBound())
             return; // only the network's inputs were asked for
-        const bool excluded = excludeBelowAlbedoFloor(in);
-        const Inputs net { excluded ? &m_netColor1 : &irradiance(),
-            excluded ? &m_netColorTa : &accumulator().color(), &m_albedo, &m_normal01, &m_depth01 };
+        const Inputs net { &irradiance(), &accumulator().color(), &m_albedo, &m_normal01,
+            &m_depth01 };
         m_net.run(net, m_result);
-        if (excluded)
-            for (int y = 0; y < in.height; ++y)
-                for (int x = 0; x < in.width; ++x)
-                    if (dividedByAlbedoFloor(in, x, y)) {
-                        const float* ta = accumulator().color().at(x, y);
-                        std::copy(ta, ta + 3, m_result.at(x, y));
-                    }
         reportProgress(0.95);
         remodulate(in, m_result, out);
     }
 
-    /// Pixels whose colour was divided by the albedo floor (stages/demodulate.h) are left out of
-    /// the network's filtering, as BMFR leaves them out of its fit: their irradiance (amplified up
-    /// to 1024x) is zero in the colour images the kernels gather, and they keep their accumulated
-    /// value. Fills m_netColor1 and m_netColorTa; false (nothing copied) when there are none. The
-    /// feature outputs (training inputs) are written before and stay unmasked.
-    bool excludeBelowAlbedoFloor(const Frame& in)
-    {
-        bool any = false;
-        for (int y = 0; y < in.height && !any; ++y)
-            for (int x = 0; x < in.width && !any; ++x)
-                any = dividedByAlbedoFloor(in, x, y);
-        if (!any)
-            return false;
-        m_netColor1 = irradiance();
-        m_netColorTa = accumulator().color();
-        for (int y = 0; y < in.height; ++y)
-            for (int x = 0; x < in.width; ++x)
-                if (dividedByAlbedoFloor(in, x, y)) {
-                    std::fill(m_netColor1.at(x, y), m_netColor1.at(x, y) + 3, 0.0f);
-                    std::fill(m_netColorTa.at(x, y), m_netColorTa.at(x, y) + 3, 0.0f);
-                }
-        return true;
-    }
-
     Network m_net;
-    Image m_albedo, m_normal01, m_depth01, m_result, m_netColor1, m_netColorTa;
+    Image m_albedo, m_normal01, m_depth01, m_result;
 };
 
 } // namespace

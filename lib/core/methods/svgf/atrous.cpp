@@ -41,10 +41,6 @@ void Denoiser::atrous(const Image& in, Image& out, int step) const
         for (int y = y0; y < y1; ++y)
             for (int x = 0; x < w; ++x) {
                 const float* cp = in.at(x, y);
-                if (m_guide.excluded(x, y)) {
-                    std::copy(cp, cp + 4, out.at(x, y));
-                    continue;
-                }
                 const float lp = luminance(cp);
                 const float invPhiL = 1.0f
                     / (sigmaL * std::sqrt(std::max(0.0f, blurredVariance(in, x, y))) + 1e-10f);
@@ -52,7 +48,7 @@ void Denoiser::atrous(const Image& in, Image& out, int step) const
                 for (int j = -2; j <= 2; ++j)
                     for (int i = -2; i <= 2; ++i) {
                         const int qx = x + i * step, qy = y + j * step;
-                        if (qx < 0 || qy < 0 || qx >= w || qy >= h || m_guide.excluded(qx, qy))
+                        if (qx < 0 || qy < 0 || qx >= w || qy >= h)
                             continue;
                         const float* cq = in.at(qx, qy);
                         float wq = kB3[std::abs(i)] * kB3[std::abs(j)];

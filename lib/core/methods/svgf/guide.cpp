@@ -3,7 +3,6 @@
 #include "methods/svgf/guide.h"
 
 #include "base/parallel.h"
-#include "stages/demodulate.h"
 
 namespace afn::svgf {
 
@@ -14,17 +13,6 @@ void Guide::build(const Frame& f, const Settings& s)
     integerSigmaN = sigmaN == std::floor(sigmaN) && sigmaN <= 65536.0f;
     normal = f.hasNormal() ? &f.normal : nullptr;
     const int w = f.width, h = f.height;
-    width = w;
-    belowAlbedoFloor.assign(static_cast<std::size_t>(w) * h, 0);
-    bool any = false;
-    for (int y = 0; y < h; ++y)
-        for (int x = 0; x < w; ++x)
-            if (dividedByAlbedoFloor(f, x, y)) {
-                belowAlbedoFloor[static_cast<std::size_t>(y) * w + x] = 1;
-                any = true;
-            }
-    if (!any)
-        belowAlbedoFloor.clear();
     if (f.hasDepth()) {
         depth = f.depth;
     } else if (f.hasPosition() && f.camera.valid) {

@@ -12,8 +12,6 @@
 #include "methods/svgf/settings.h"
 
 #include <cmath>
-#include <cstdint>
-#include <vector>
 
 namespace afn::svgf {
 
@@ -22,23 +20,12 @@ struct Guide {
     Image depth; ///< 1 ch, empty if no depth source
     Image gradient; ///< 2 ch depth gradient per pixel (dz/dx, dz/dy)
     const Image* normal = nullptr; ///< the frame's normals, or null
-    /// 1 for pixels whose colour was divided by the albedo floor (stages/demodulate.h), empty when
-    /// there are none. They neither give to nor take from their neighbours, as BMFR leaves them
-    /// out of its fit.
-    std::vector<std::uint8_t> belowAlbedoFloor;
-    int width = 0;
     float sigmaZ = 1.0f;
     float sigmaN = 128.0f;
     bool integerSigmaN = true;
 
     /// Build from the frame (depth source as in the file comment).
     void build(const Frame& f, const Settings& s);
-
-    bool excluded(int x, int y) const
-    {
-        return !belowAlbedoFloor.empty()
-            && belowAlbedoFloor[static_cast<std::size_t>(y) * width + x] != 0;
-    }
 
     /// exp() argument of the depth term and the normal factor for taps p -> q at offset (dx, dy).
     float depthTerm(int px, int py, int qx, int qy, int dx, int dy) const

@@ -74,8 +74,7 @@ void Denoiser::estimateVariance()
                 const float* m = m_moments.at(x, y);
                 const float len = m_len(x, y, 0);
                 float* o = m_cv.at(x, y);
-                if (len >= static_cast<float>(m_settings.varianceHistory)
-                    || m_guide.excluded(x, y)) {
+                if (len >= static_cast<float>(m_settings.varianceHistory)) {
                     o[0] = c[0];
                     o[1] = c[1];
                     o[2] = c[2];
@@ -88,7 +87,7 @@ void Denoiser::estimateVariance()
                 for (int dy = -3; dy <= 3; ++dy)
                     for (int dx = -3; dx <= 3; ++dx) {
                         const int qx = x + dx, qy = y + dy;
-                        if (qx < 0 || qy < 0 || qx >= w || qy >= h || m_guide.excluded(qx, qy))
+                        if (qx < 0 || qy < 0 || qx >= w || qy >= h)
                             continue;
                         const float* cq = m_color.at(qx, qy);
                         const float* mq = m_moments.at(qx, qy);
