@@ -5,8 +5,9 @@
 //     finite, in every frame, and stats.nonFinite / stats.negative count exactly the NaN/Inf values
 //     of all inputs and the negative colour values (the warning afntool prints);
 //   - the adversarial frame denoised on its own keeps its energy: the output mean is at most
-//     kEnergyFactor times the mean of the sanitised colour (NaN/Inf and negatives as 0), and at
-//     least that mean with every value capped at 1, divided by kEnergyFactor.
+//     kEnergyFactor times the mean of the sanitised colour (NaN/Inf and negatives as 0; adversarial
+//     albedo: times kAlbedoFloorAmplification as well), and at least that mean with every value
+//     capped at 1, divided by kEnergyFactor.
 #include "adversarial_cases.h"
 
 #include <gtest/gtest.h>
@@ -21,6 +22,12 @@ constexpr int kWidth = 33, kHeight = 19; // odd, more than one BMFR block, padde
 constexpr double kEnergyFactor = 4.0;
 /// Output means below this (linear; display white is 1) are not counted as created energy.
 constexpr double kEnergyFloor = 1e-3;
+/// Garbage albedo leaves some pixels below the albedo floor (2^-10) beside others above it: their
+/// colour, divided by the floor, may spread up to 1024x amplified into neighbours that are then
+/// remodulated with their own albedo (svgf and afn filter the demodulated colour). Such pixels are
+/// ordinary (sky, saturated materials), so the methods keep them; the bound is the floor's
+/// amplification (docs/reliability.md, known limitations).
+constexpr double kAlbedoFloorAmplification = 1024.0;
 
 class AdversarialValues : public ::testing::TestWithParam<std::string> { };
 
@@ -49,7 +56,9 @@ TEST_P(AdversarialValues, FiniteOutputCountedWarningsBoundedEnergy)
         const double mean = sanitisedColorMean(bad);
         const double capped = sanitisedColorMean(bad, 1.0);
         const double got = outputMean(single.at(0));
-        EXPECT_LE(got, kEnergyFactor * std::max(mean, kEnergyFloor))
+        const double factor
+            = c.role == "albedo" ? kEnergyFactor * kAlbedoFloorAmplification : kEnergyFactor;
+        EXPECT_LE(got, factor * std::max(mean, kEnergyFloor))
             << "input mean " << mean << " (capped at 1: " << capped << ")";
         EXPECT_GE(got, capped / kEnergyFactor - 1e-30)
             << "input mean " << mean << " (capped at 1: " << capped << ")";
