@@ -89,8 +89,12 @@ ClipSource makeSource(FuzzedDataProvider& in, const ClipSource* like)
         const int w = static_cast<int>(geometry.width * scale);
         const int h = static_cast<int>(geometry.height * scale);
         pixels.resize(static_cast<std::size_t>(w) * h * geometry.components);
+        // Mix the time's bits (a negative or huge time converted to an integer is undefined).
+        std::uint64_t timeBits = 0;
+        std::memcpy(&timeBits, &time, sizeof timeBits);
+        const std::uint32_t t = static_cast<std::uint32_t>(timeBits ^ (timeBits >> 32)) * 977u;
         for (std::size_t i = 0; i < pixels.size(); ++i)
-            pixels[i] = pixelValue(mode, seed ^ static_cast<std::uint32_t>(i * 31 + time * 977));
+            pixels[i] = pixelValue(mode, seed ^ t ^ static_cast<std::uint32_t>(i * 31));
         return true;
     };
     return s;
