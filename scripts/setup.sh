@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# Install the Debian packages afn needs (only what is missing). Usage: scripts/setup.sh [--blender] [--torch]
+# Install the Debian packages afn needs (only what is missing).
+# Usage: scripts/setup.sh [--blender] [--torch] [--sanitizers]
 set -euo pipefail
 pkgs=(cmake g++ make pkg-config libopenimageio-dev openimageio-tools libopencolorio-dev
       opencolorio-tools libopenexr-dev libimath-dev libtbb-dev libdnnl-dev libgtest-dev libgmock-dev
@@ -8,6 +9,7 @@ for arg in "$@"; do
   case "$arg" in
     --blender) pkgs+=(blender) ;;
     --torch) pkgs+=(python3-torch) ;;
+    --sanitizers) pkgs+=(clang libclang-rt-14-dev) ;; # ASan/UBSan build and libFuzzer targets
   esac
 done
 missing=()

@@ -229,7 +229,9 @@ struct WriteOptions {
 
 /// Write an image atomically: temporary file in the same directory, then rename. The format comes
 /// from the extension (.exr, .png, .tif, ...). `types` may give a per-channel "half"/"float" (empty
-/// = options.dataType). Throws IoError; on failure nothing is left at `path` or beside it.
+/// = options.dataType). In half channels, finite values beyond the half range are clamped to
+/// +-65504 (they would otherwise become +-Inf); NaN and Inf are written as they are.
+/// Throws IoError; on failure nothing is left at `path` or beside it.
 AFN_IO_API void writeImageAtomic(const std::string& path, int width, int height,
     const std::vector<std::string>& channels, const float* pixels, const WriteOptions& options = {},
     const std::vector<std::string>& types = {});

@@ -66,6 +66,13 @@ extern "C" {
 AFN_API AFNDevice afnNewDevice(AFNDeviceType type)
 {
     AFN_TRY
+    // A C caller may pass any int; an enum value outside the enumerators is undefined behaviour
+    // once C++ loads it (UBSan: "not a valid value for type 'AFNDeviceType'"), so check the bytes.
+    static_assert(sizeof(type) == sizeof(int), "AFNDeviceType is passed as an int");
+    int raw = 0;
+    std::memcpy(&raw, &type, sizeof raw);
+    if (raw != AFN_DEVICE_TYPE_DEFAULT && raw != AFN_DEVICE_TYPE_CPU && raw != AFN_DEVICE_TYPE_CUDA)
+        afn::throwInvalidArgument("unknown device type " + std::to_string(raw));
     return new AFNDeviceImpl(type);
     AFN_CATCH(nullptr)
     return nullptr;

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <cmath>
 #include <filesystem>
 #include <unistd.h>
 
@@ -51,6 +52,30 @@ OIIO::TypeDesc typeFromName(const std::string& t, const std::string& path)
     if (t == "float")
         return OIIO::TypeDesc::FLOAT;
     throw IoError("unknown data type '" + t + "' (half or float)", path);
+}
+
+/// Largest finite half value.
+constexpr float kHalfMax = 65504.0f;
+
+/// Finite values beyond the half range would be written as +-Inf: clamp them to +-kHalfMax in the
+/// channels stored as half (NaN and Inf are kept as they are). Returns `pixels` untouched when no
+/// channel is half, else the clamped copy in `storage`.
+const float* clampHalfChannels(const float* pixels, std::size_t nvalues, int nch,
+    const std::string& dataType, const std::vector<std::string>& types, std::vector<float>& storage)
+{
+    std::vector<bool> half(static_cast<std::size_t>(nch));
+    bool any = false;
+    for (int c = 0; c < nch; ++c) {
+        half[c] = (types.empty() ? dataType : types[c]) == "half";
+        any = any || half[c];
+    }
+    if (!any)
+        return pixels;
+    storage.assign(pixels, pixels + nvalues);
+    for (std::size_t i = 0; i < nvalues; ++i)
+        if (half[i % nch] && std::isfinite(storage[i]))
+            storage[i] = std::clamp(storage[i], -kHalfMax, kHalfMax);
+    return storage.data();
 }
 
 void checkArguments(const std::string& path, int width, int height,
@@ -126,6 +151,7 @@ void writeImageAtomic(const std::string& path, int width, int height,
             }
         }
         spec.attribute("compression", options.compression.empty() ? "zip" : options.compression);
+        data = clampHalfChannels(pixels, nvalues, nch, options.dataType, types, clamped);
     } else if (floatOnly) {
         spec.set_format(OIIO::TypeDesc::FLOAT);
     } else {

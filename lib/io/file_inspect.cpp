@@ -20,6 +20,7 @@ std::string inputError(OIIO::ImageInput* in)
 std::unique_ptr<OIIO::ImageInput> openInput(const std::string& path)
 {
     requireFile(path);
+    checkExrHeader(path);
     auto in = OIIO::ImageInput::open(path);
     if (!in)
         throw IoError("cannot read image: " + inputError(nullptr), path);

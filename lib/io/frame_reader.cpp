@@ -17,12 +17,29 @@ struct Decoded {
 
 /// One read_image call per subimage over the range of channels needed: OpenEXR decompresses whole
 /// scanline blocks, so one call per role would decode the same blocks again for each role.
+/// The channels are read in the file's own types and converted to float here: OpenImageIO's
+/// converting read stages every call through a 64 MB buffer, whatever the image size.
 Decoded decode(OIIO::ImageInput& in, int sub, const OIIO::ImageSpec& spec, int first, int end,
     const std::string& path)
 {
     Decoded d { spec.width, spec.height, first, end - first, {} };
-    d.pixels.resize(static_cast<std::size_t>(d.width) * d.height * d.nch);
-    if (!in.read_image(sub, 0, first, end, OIIO::TypeDesc::FLOAT, d.pixels.data()))
+    const std::size_t pixels = static_cast<std::size_t>(d.width) * d.height;
+    d.pixels.resize(pixels * d.nch);
+    const std::size_t nativePixel = spec.pixel_bytes(first, end, /*native=*/true);
+    std::vector<unsigned char> native(pixels * nativePixel);
+    bool ok = in.read_image(sub, 0, first, end, OIIO::TypeUnknown, native.data());
+    const OIIO::stride_t dstPixel = static_cast<OIIO::stride_t>(d.nch * sizeof(float));
+    std::size_t offset = 0;
+    for (int c = 0; ok && c < d.nch; ++c) {
+        const OIIO::TypeDesc type = spec.channelformat(first + c);
+        ok = OIIO::convert_image(1, d.width, d.height, 1, native.data() + offset, type,
+            static_cast<OIIO::stride_t>(nativePixel),
+            static_cast<OIIO::stride_t>(nativePixel) * d.width, OIIO::AutoStride,
+            d.pixels.data() + c, OIIO::TypeDesc::FLOAT, dstPixel, dstPixel * d.width,
+            OIIO::AutoStride);
+        offset += type.size();
+    }
+    if (!ok)
         throw IoError(
             "cannot read pixels (truncated or corrupt file?): " + detail::inputError(&in), path);
     return d;

@@ -48,6 +48,10 @@ std::string typeName(int basetype);
 /// Throw IoError if the path does not name an existing regular file.
 void requireFile(const std::string& path);
 
+/// Throw IoError when an OpenEXR file declares an attribute larger than the rest of the file
+/// (exr_header.cpp); other files pass.
+void checkExrHeader(const std::string& path);
+
 /// readFrame for a BMFR pseudo path ("<dir>#bmfr:N"); see bmfr_dataset.cpp.
 FrameImages readBmfrFrame(const std::string& dir, int frame, const ReadOptions& options);
 

@@ -124,7 +124,10 @@ std::optional<Match> matchCandidate(
     std::stable_sort(layers.begin(), layers.end(),
         [&](const auto& a, const auto& b) { return rank(a.second) < rank(b.second); });
 
-    for (const auto& [sub, layer] : layers) {
+    for (const auto& subLayer : layers) {
+        // Named copies: lambdas may not capture structured bindings in C++17.
+        const int sub = subLayer.first;
+        const std::string& layer = subLayer.second;
         for (const std::vector<std::string>& comps : cand.comps) {
             Match m { sub, layer, {}, {} };
             for (const std::string& c : comps) {

@@ -3,7 +3,6 @@
 #include "afn/io.hpp"
 
 #include <cctype>
-#include <cstdio>
 #include <filesystem>
 
 namespace afn::io {
@@ -37,8 +36,11 @@ bool printfSpec(const std::string& s, std::size_t pos, std::size_t& len, int& wi
         return false;
     std::size_t p = pos + 1;
     width = 0;
-    while (p < s.size() && std::isdigit(static_cast<unsigned char>(s[p])))
-        width = width * 10 + (s[p++] - '0');
+    // Digits beyond a width of 32 make the spec invalid; stop accumulating so that a long run of
+    // digits cannot overflow.
+    for (; p < s.size() && std::isdigit(static_cast<unsigned char>(s[p])); ++p)
+        if (width <= 32)
+            width = width * 10 + (s[p] - '0');
     if (p >= s.size() || s[p] != 'd' || width > 32)
         return false;
     len = p + 1 - pos;
@@ -48,9 +50,14 @@ bool printfSpec(const std::string& s, std::size_t pos, std::size_t& len, int& wi
 std::string padded(int frame, int width)
 {
     // printf semantics: the width includes the sign ("%04d" of -7 is "-007"), as oiiotool's fmt.
-    char buf[64];
-    std::snprintf(buf, sizeof buf, "%0*d", width, frame);
-    return buf;
+    // Built without a fixed buffer: a long run of '#' or '@' must not truncate the number.
+    const long long magnitude = frame < 0 ? -static_cast<long long>(frame) : frame;
+    const std::string digits = std::to_string(magnitude);
+    std::string out = frame < 0 ? "-" : "";
+    const std::size_t used = out.size() + digits.size();
+    if (width > 0 && static_cast<std::size_t>(width) > used)
+        out.append(static_cast<std::size_t>(width) - used, '0');
+    return out + digits;
 }
 
 } // namespace

@@ -9,6 +9,7 @@
 #include "cpu/target.h"
 
 #include <algorithm>
+#include <cfloat>
 #include <cmath>
 
 // Vector helpers are always inlined within one target clone: the AVX ABI note does not apply.
@@ -16,8 +17,22 @@
 
 namespace afn::afnet {
 
+namespace {
+
+/// A logit that overflowed (+-Inf) becomes +-FLT_MAX and a NaN one (Inf - Inf in a head) the lowest
+/// value, so that the softmax stays a distribution (the largest logits share the weight) and the
+/// sigmoid a weight in [0, 1]. Finite logits are unchanged.
+inline __attribute__((always_inline)) float finiteLogit(float v)
+{
+    return v != v ? -FLT_MAX : std::min(std::max(v, -FLT_MAX), FLT_MAX);
+}
+
+} // namespace
+
 void softmax(float* v, int n)
 {
+    for (int j = 0; j < n; ++j)
+        v[j] = finiteLogit(v[j]);
     float m = v[0];
     for (int j = 1; j < n; ++j)
         m = std::max(m, v[j]);
@@ -93,6 +108,8 @@ inline __attribute__((always_inline)) void head1x1(
 // Softmax over the 49 taps: 6 vectors of 8 plus one scalar tap.
 inline __attribute__((always_inline)) void softmax49(float* l)
 {
+    for (int j = 0; j < kKernelTaps; ++j)
+        l[j] = finiteLogit(l[j]);
     float m = l[0];
     for (int j = 1; j < kKernelTaps; ++j)
         m = std::max(m, l[j]);
@@ -130,7 +147,7 @@ AFN_CPU_CLONES void fuseRows(const FusionInputs& in, const FusionOutputs& out, i
             for (int q = 0; q < 4; ++q) {
                 const int px = 2 * xh + (q & 1), py = 2 * yh + (q >> 1);
                 head1x1(*in.headTa, feat, cd, x.at(px, py), cx, logits);
-                alpha[q] = 1.0f / (1.0f + std::exp(-logits[kKernelTaps]));
+                alpha[q] = 1.0f / (1.0f + std::exp(-finiteLogit(logits[kKernelTaps])));
                 softmax49(logits);
                 applyKernel(*in.colorTa, px, py, logits, dta[q]);
             }

@@ -2,7 +2,7 @@
 // Conversion of caller buffers into the canonical Frame (conventions in filter/frame.h).
 //
 // Sanitising rule (documented in the README, counted in InputStats):
-//   - NaN or +-Inf in any input is replaced by 0.
+//   - NaN or +-Inf in any input is replaced by 0 (in the albedo by 1: unknown, no demodulation).
 //   - Negative colour is clamped to 0 (radiance cannot be negative; renderers' negative lobes and
 //     filter ringing would otherwise feed the history).
 //   - Albedo is clamped to [0, 1]; normals are renormalised (a zero normal stays zero and then
@@ -24,10 +24,11 @@ struct Counters {
     std::atomic<std::int64_t> negative { 0 };
 };
 
-/// Copy `channels` channels of a binding into `dst`, replacing non-finite values by 0.
+/// Copy `channels` channels of a binding into `dst`, replacing non-finite values by `replacement`.
 /// `perPixel(float* px)` then converts one pixel in place.
 template <typename PerPixel>
-void gather(const ImageBinding& b, int channels, Image& dst, Counters& counts, PerPixel&& perPixel)
+void gather(const ImageBinding& b, int channels, Image& dst, Counters& counts, PerPixel&& perPixel,
+    float replacement = 0.0f)
 {
     const ImageView src = b.view();
     dst.resize(src.width, src.height, channels);
@@ -42,7 +43,7 @@ void gather(const ImageBinding& b, int channels, Image& dst, Counters& counts, P
                     if (std::isfinite(v)) {
                         d[c] = v;
                     } else {
-                        d[c] = 0.0f;
+                        d[c] = replacement;
                         ++bad;
                     }
                 }
@@ -79,11 +80,16 @@ void gatherFrame(const std::map<std::string, ImageBinding>& images,
             }
     });
 
+    // A non-finite albedo is unknown and becomes 1 (no demodulation): 0 would divide the colour by
+    // the albedo floor and carry it, amplified 1024x, into the filters and the history.
     if (const ImageBinding* b = find(images, AFN_IMAGE_ALBEDO))
-        gather(*b, 3, f.albedo, counts, [](float* p) {
-            for (int c = 0; c < 3; ++c)
-                p[c] = std::fmin(std::fmax(p[c], 0.0f), 1.0f);
-        });
+        gather(
+            *b, 3, f.albedo, counts,
+            [](float* p) {
+                for (int c = 0; c < 3; ++c)
+                    p[c] = std::fmin(std::fmax(p[c], 0.0f), 1.0f);
+            },
+            1.0f);
     else
         f.albedo = Image();
 

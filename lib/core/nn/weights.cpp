@@ -4,6 +4,7 @@
 
 #include "base/exception.h"
 
+#include <cmath>
 #include <cstring>
 #include <utility>
 
@@ -120,6 +121,8 @@ WeightsArchive WeightsArchive::parse(const void* data, std::size_t size, const s
         for (std::uint64_t i = 0; i < numel; ++i) {
             const std::uint32_t bits = r.read<std::uint32_t>(dpos, "tensor data");
             std::memcpy(&w.data[i], &bits, 4);
+            if (!std::isfinite(w.data[i]))
+                r.fail("tensor '" + name + "' holds a non-finite value at " + std::to_string(i));
         }
         a.m_tensors.emplace(name, std::move(w));
     }

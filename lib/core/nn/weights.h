@@ -3,7 +3,8 @@
 // (little-endian): "AFNW", u32 version (1), u32 tensor count, u32 metadata size, metadata
 // ("key=value\n" lines), then per tensor: u16 name size, name, u8 dtype (1 = float32), u8 rank
 // (1..4), u32 dims[rank], u64 data offset (from the file start), u64 data size; float32 data.
-// Every field is bounds-checked; any inconsistency throws "invalid or corrupted weights: ...".
+// Every field is bounds-checked and every value must be finite; any inconsistency throws
+// "invalid or corrupted weights: ...".
 #pragma once
 
 #include <cstddef>

@@ -29,6 +29,8 @@
 #include "base/params.h"
 #include "filter/frame.h"
 
+#include <cfloat>
+#include <cmath>
 #include <cstdint>
 #include <vector>
 
@@ -98,6 +100,15 @@ private:
     bool m_tapsHaveHistory = false; ///< the current taps were computed against it
     Image m_prevPosition, m_prevNormal, m_prevDepth;
 };
+
+/// prev + alpha * (cur - prev), the temporal blend of every method, with a result below FLT_MIN in
+/// magnitude flushed to 0: a history decaying to black would otherwise stop at the smallest
+/// denormal (alpha times it rounds to 0) and keep every later frame computing on denormals.
+inline float blendHistory(float prev, float cur, float alpha)
+{
+    const float v = prev + alpha * (cur - prev);
+    return std::fabs(v) < FLT_MIN ? 0.0f : v;
+}
 
 /// Renormalised history: out[c] = sum(w_k * prev(tap_k)[c]) / sum(w_k) over the accepted taps of
 /// `t` for the first C channels of `prev`. Returns sum(w_k); 0 means no history (out = 0).

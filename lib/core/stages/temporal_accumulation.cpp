@@ -47,7 +47,7 @@ void TemporalAccumulator::accumulate(const Reprojector& taps, const Image& irr)
                 if (ws > 0.0f) {
                     const float alpha = std::max(1.0f / (sppS + 1.0f), m_alphaMin);
                     for (int k = 0; k < 3; ++k)
-                        acc[k] = prev[k] + alpha * (c[k] - prev[k]);
+                        acc[k] = blendHistory(prev[k], c[k], alpha);
                     m_spp(x, y, 0) = alpha < 1.0f ? std::min(sppS + 1.0f, kMaxHistoryLength) : 1.0f;
                 } else {
                     for (int k = 0; k < 3; ++k)

@@ -7,6 +7,7 @@ afn_add_gtest(test_io
     unit/io/test_io_sequence.cpp
     unit/io/test_io_write.cpp
     unit/io/test_io_bmfr.cpp
+    unit/io/test_io_exr_header.cpp
   LIBS afn_io PkgConfig::OIIO)
 
 # The shared library exports only what include/afn/io.hpp declares.

@@ -39,7 +39,7 @@ void Denoiser::process(
                 if (ws > 0.0f && n > 1.0f) {
                     const float a = std::max(1.0f / n, m_settings.secondAlphaMin);
                     for (int k = 0; k < 3; ++k)
-                        o[k] = prev[k] + a * (c[k] - prev[k]);
+                        o[k] = blendHistory(prev[k], c[k], a);
                 } else {
                     for (int k = 0; k < 3; ++k)
                         o[k] = c[k];

@@ -209,7 +209,11 @@ void regression(
             float* sc = fr + 1 + L.normals;
             for (int k = 0; k < L.scaled; ++k) {
                 const float range = hi[k] - lo[k];
-                sc[k] = range > 1.0f ? (sc[k] - lo[k]) / range : sc[k] - lo[k];
+                if (std::isfinite(range))
+                    sc[k] = range > 1.0f ? (sc[k] - lo[k]) / range : sc[k] - lo[k];
+                else // hi - lo beyond FLT_MAX (values near +-3.4e38): scale in double
+                    sc[k] = static_cast<float>((static_cast<double>(sc[k]) - lo[k])
+                        / (static_cast<double>(hi[k]) - lo[k]));
                 sc[L.scaled + k] = sc[k] * sc[k];
             }
             for (int k = 1; k < nf; ++k)

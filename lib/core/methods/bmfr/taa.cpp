@@ -106,7 +106,7 @@ void taa(const Reprojector& taps, const Image& cur, const Image& history, float 
                 if (!inside)
                     fromYCoCg(hy, hist);
                 for (int k = 0; k < 3; ++k)
-                    o[k] = std::max(0.0f, hist[k] + alpha * (c[k] - hist[k]));
+                    o[k] = std::max(0.0f, blendHistory(hist[k], c[k], alpha));
             }
     });
 }

@@ -46,9 +46,9 @@ void Denoiser::integrate(const Image& irr, const Reprojector& taps)
                     const float a = std::max(m_settings.alpha, 1.0f / len);
                     const float am = std::max(m_settings.momentsAlpha, 1.0f / len);
                     for (int k = 0; k < 3; ++k)
-                        oc[k] = pc[k] + a * (c[k] - pc[k]);
+                        oc[k] = blendHistory(pc[k], c[k], a);
                     for (int k = 0; k < 2; ++k)
-                        om[k] = pm[k] + am * (m[k] - pm[k]);
+                        om[k] = blendHistory(pm[k], m[k], am);
                     m_len(x, y, 0) = len;
                 } else {
                     for (int k = 0; k < 3; ++k)

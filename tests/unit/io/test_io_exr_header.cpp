@@ -1,0 +1,97 @@
+// SPDX-License-Identifier: Apache-2.0
+// The bounds check of EXR headers (lib/io/exr_header.cpp): attributes declaring more bytes than
+// the file holds are rejected before OpenEXR allocates them; valid single- and multi-part files
+// pass.
+#include "afn/io.hpp"
+
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <fstream>
+#include <iterator>
+
+#include "test_io_util.h"
+
+using namespace afn::io;
+using afn_test::Part;
+using afn_test::ScratchDir;
+
+namespace {
+
+std::string readBytes(const std::string& path)
+{
+    std::ifstream f(path, std::ios::binary);
+    return { std::istreambuf_iterator<char>(f), std::istreambuf_iterator<char>() };
+}
+
+void writeBytes(const std::string& path, const std::string& bytes)
+{
+    std::ofstream(path, std::ios::binary) << bytes;
+}
+
+Part partWithFrame()
+{
+    Part p;
+    p.channels = { "R", "G", "B" };
+    p.attributes = { { "Frame", "7" } };
+    return p;
+}
+
+/// The message of the IoError that inspect() throws, or "(no IoError)".
+std::string inspectError(const std::string& path)
+{
+    try {
+        inspect(path);
+    } catch (const IoError& e) {
+        return e.what();
+    }
+    return "(no IoError)";
+}
+
+} // namespace
+
+TEST(IoExrHeader, ValidSingleAndMultiPartFilesPass)
+{
+    ScratchDir dir;
+    afn_test::writeExr(dir.file("one.exr"), { partWithFrame() });
+    EXPECT_NO_THROW(inspect(dir.file("one.exr")));
+    Part a = partWithFrame(), b = partWithFrame();
+    a.name = "beauty";
+    b.name = "aovs";
+    afn_test::writeExr(dir.file("two.exr"), { a, b });
+    EXPECT_EQ(inspect(dir.file("two.exr")).subimages.size(), 2u);
+}
+
+TEST(IoExrHeader, AttributeLargerThanTheFileIsRejectedAtOnce)
+{
+    ScratchDir dir;
+    const std::string path = dir.file("frame.exr");
+    afn_test::writeExr(path, { partWithFrame() });
+    std::string bytes = readBytes(path);
+    const std::string key = std::string("Frame") + '\0' + "string" + '\0';
+    const std::size_t at = bytes.find(key);
+    ASSERT_NE(at, std::string::npos);
+    bytes.replace(at + key.size(), 4, std::string("\x13\x00\x00\x6d", 4)); // 1.8 GB
+    writeBytes(path, bytes);
+    const auto start = std::chrono::steady_clock::now();
+    const std::string msg = inspectError(path);
+    EXPECT_LT(std::chrono::steady_clock::now() - start, std::chrono::seconds(2));
+    EXPECT_NE(msg.find("corrupt EXR header: attribute 'Frame' (string) declares 1828716563"),
+        std::string::npos)
+        << msg;
+}
+
+TEST(IoExrHeader, NegativeSizeAndTruncatedHeaderAreRejected)
+{
+    ScratchDir dir;
+    const std::string path = dir.file("frame.exr");
+    afn_test::writeExr(path, { partWithFrame() });
+    const std::string good = readBytes(path);
+    const std::string key = std::string("Frame") + '\0' + "string" + '\0';
+    std::string bytes = good;
+    bytes.replace(bytes.find(key) + key.size(), 4, std::string("\xff\xff\xff\xff", 4));
+    writeBytes(path, bytes);
+    EXPECT_NE(inspectError(path).find("declares -1 bytes"), std::string::npos);
+    writeBytes(path, good.substr(0, good.find(key) + 3));
+    EXPECT_NE(inspectError(path).find("the file ends inside the header"), std::string::npos);
+}
