@@ -6,6 +6,7 @@
 #include "param_table.h"
 #include "sequence_runner.h"
 
+#include <algorithm>
 #include <cmath>
 #include <memory>
 #include <mutex>
@@ -73,7 +74,8 @@ void describe(OfxImageEffectHandle effect)
 {
     Props p = effectProps(effect);
     p.set(kOfxPropLabel, "afn Denoise");
-    p.set(kOfxImageEffectPluginPropGrouping, "afn");
+    // Hosts file it under their filter menu (Nuke, Natron: Filter > Denoise > afn Denoise).
+    p.set(kOfxImageEffectPluginPropGrouping, "Filter/Denoise");
     p.set(kOfxPropPluginDescription,
         "Monte Carlo render denoiser (afn library): spatial and temporal methods over a noisy "
         "beauty with optional albedo, normal, depth and motion inputs.");
@@ -86,8 +88,14 @@ void describe(OfxImageEffectHandle effect)
     p.set(kOfxImageEffectPropSupportsMultipleClipDepths, 0);
     p.set(kOfxImageEffectPluginRenderThreadSafety, kOfxImageEffectRenderFullySafe);
     p.set(kOfxImageEffectPluginPropHostFrameThreading, 0); // the library threads each frame
-    // 2 = "prefers sequential": in-order renders only save time, results do not depend on it.
+    // 2 = "prefers sequential": in-order renders continue the history (see sequence_runner.h).
     p.trySet(kOfxImageEffectInstancePropSequentialRender, 2);
+    // Icon (SVG, PNG) relative to Contents/Resources; hosts also look for <identifier>.png there.
+    try {
+        p.setStrings(kOfxPropIcon, { "", std::string(kDenoiseIdentifier) + ".png" });
+    } catch (const OfxError&) {
+        // a host without icon support: nothing to do
+    }
 }
 
 void defineClip(OfxImageEffectHandle effect, const char* name, bool optional, bool alpha)
@@ -116,7 +124,8 @@ void describeInContext(OfxImageEffectHandle effect, OfxPropertySetHandle inArgs)
     if (general)
         for (const ClipRole& c : kAuxClips)
             defineClip(effect, c.clip, true, std::string(c.role) == "depth");
-    // The Filter context has only Source: frames are denoised on their own unless asked.
+    // The Filter context has only Source: frames are denoised on their own unless asked, and the
+    // parameters that need auxiliary inputs are hidden.
     defineParams(effect, general);
 }
 
@@ -136,8 +145,9 @@ void createInstance(OfxImageEffectHandle effect)
     if (inst->general)
         for (int i = 0; i < kNumAux; ++i)
             inst->aux[i] = clip(kAuxClips[i].clip);
+    const bool general = inst->general;
     p.setPointer(kOfxPropInstanceData, inst.release());
-    showCurrentMethod(effect);
+    updateParamStates(effect, general);
 }
 
 void destroyInstance(OfxImageEffectHandle effect)
@@ -147,11 +157,14 @@ void destroyInstance(OfxImageEffectHandle effect)
     delete inst;
 }
 
-double firstFrame(const Instance& inst)
+/// First frame the history may use: the Source clip's first frame, or the start frame when it is
+/// switched on and later.
+double historyStart(const Instance& inst, const Settings& s)
 {
     OfxPropertySetHandle props = nullptr;
     check(suites().effect->clipGetPropertySet(inst.source, &props), "getting Source properties");
-    return Props(props).getDouble(kOfxImageEffectPropFrameRange, 0);
+    const double first = Props(props).getDouble(kOfxImageEffectPropFrameRange, 0);
+    return s.useStartFrame ? std::max(first, double(s.startFrame)) : first;
 }
 
 /// Input clips that take part (Source plus the connected optional clips), with their names.
@@ -187,7 +200,7 @@ OfxStatus framesNeeded(
     Instance& inst = instanceOf(effect);
     const double t = Props(inArgs).getDouble(kOfxPropTime);
     const Settings s = readSettings(effect);
-    const double first = s.temporal && s.method != "identity" ? std::min(firstFrame(inst), t) : t;
+    const double first = s.method != "identity" ? t - replayFrames(t, s, historyStart(inst, s)) : t;
     Props out(outArgs);
     for (const auto& [name, in] : inputClips(inst))
         out.setDoubles((std::string(kOfxImageClipPropFrameRange) + name).c_str(), { first, t });
@@ -216,17 +229,28 @@ OfxStatus render(OfxImageEffectHandle effect, OfxPropertySetHandle inArgs)
     if (req.window.x2 <= req.window.x1 || req.window.y2 <= req.window.y1)
         throw OfxError(kOfxStatFailed, "the Source clip has an empty region of definition");
     req.renderScale = sx;
-    req.firstFrame = std::min(firstFrame(inst), time);
     for (const auto& [name, in] : inputClips(inst))
         req.inputs.push_back(in);
     const Settings settings = readSettings(effect);
+    req.historyStart = historyStart(inst, settings);
 
     ClipImage out(inst.output, time);
     if (!out.valid())
         throw OfxError(kOfxStatFailed, "the host gave no Output image");
+    // mix < 1: the tile of Source at this time, blended in after denoising (the cached denoised
+    // frames do not depend on the mix, so changing or animating it never replays the history).
+    const float mix = static_cast<float>(readMix(effect, time));
+    std::unique_ptr<ClipImage> source;
+    if (mix < 1.0f) {
+        const OfxRectD tile = { renderWindow.x1 / sx, renderWindow.y1 / sy, renderWindow.x2 / sx,
+            renderWindow.y2 / sy };
+        source = std::make_unique<ClipImage>(inst.source, time, &tile);
+        if (!source->valid())
+            throw OfxError(kOfxStatFailed, "no Source image at time " + std::to_string(time));
+    }
     std::lock_guard<std::mutex> lock(inst.mutex);
     const std::vector<float>& frame = inst.runner.frame(time, settings, req);
-    writeTile(out, renderWindow, frame.data(), req.window);
+    writeTile(out, renderWindow, frame.data(), req.window, source.get(), mix);
     return kOfxStatOK;
 }
 
@@ -264,8 +288,8 @@ OfxStatus denoiseAction(const std::string& action, OfxImageEffectHandle effect,
     if (action == kOfxActionInstanceChanged) {
         Props in(inArgs);
         if (in.getString(kOfxPropType) == kOfxTypeParameter
-            && in.getString(kOfxPropName) == kParamMethod)
-            showCurrentMethod(effect);
+            && affectsParamStates(in.getString(kOfxPropName)))
+            updateParamStates(effect, instanceOf(effect).general);
         return kOfxStatOK;
     }
     if (action == kOfxImageEffectActionGetRegionOfDefinition) {
@@ -279,11 +303,13 @@ OfxStatus denoiseAction(const std::string& action, OfxImageEffectHandle effect,
     if (action == kOfxImageEffectActionGetFramesNeeded)
         return framesNeeded(effect, inArgs, outArgs);
     if (action == kOfxImageEffectActionIsIdentity) {
-        if (readSettings(effect).method != "identity")
+        // The identity method, or a mix of 0: the host passes Source through.
+        const double time = Props(inArgs).getDouble(kOfxPropTime);
+        if (readSettings(effect).method != "identity" && readMix(effect, time) > 0.0)
             return kOfxStatReplyDefault;
         Props out(outArgs);
         out.set(kOfxPropName, kOfxImageEffectSimpleSourceClipName);
-        out.set(kOfxPropTime, Props(inArgs).getDouble(kOfxPropTime));
+        out.set(kOfxPropTime, time);
         return kOfxStatOK;
     }
     if (action == kOfxImageEffectActionRender) {

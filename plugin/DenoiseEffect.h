@@ -14,7 +14,7 @@ constexpr const char* kDenoiseIdentifier = "org.afn.Denoise";
 /// parameter removed or its meaning changed); the minor version grows with compatible additions
 /// (new methods or parameters, fixes).
 constexpr unsigned int kDenoiseVersionMajor = 1;
-constexpr unsigned int kDenoiseVersionMinor = 0;
+constexpr unsigned int kDenoiseVersionMinor = 1;
 
 /// Handle one OFX action of the effect; kOfxStatReplyDefault for actions it leaves to the host.
 /// Throws OfxError (and std::exception) for failures; Main.cpp reports them.

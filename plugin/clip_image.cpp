@@ -86,7 +86,26 @@ struct TileJob {
     OfxRectI rw;
     const float* frame;
     OfxRectI fw;
+    const ClipImage* source; ///< NULL: no mix
+    float mix;
 };
+
+bool inside(const OfxRectI& r, int x, int y)
+{
+    return x >= r.x1 && x < r.x2 && y >= r.y1 && y < r.y2;
+}
+
+/// mix * rgba + (1 - mix) * the source pixel at (x, y), in place.
+void blend(const TileJob& j, int x, int y, float* rgba)
+{
+    const ClipImage& s = *j.source;
+    const int sc = s.components();
+    const float* sp = inside(s.bounds(), x, y) ? s.pixel(x, y) : nullptr;
+    for (int i = 0; i < 4; ++i) {
+        const float src = sp ? (i < sc ? sp[i] : rgba[i]) : (i < sc ? 0.0f : rgba[i]);
+        rgba[i] = j.mix * rgba[i] + (1.0f - j.mix) * src;
+    }
+}
 
 void writeRows(const TileJob& j, int yBegin, int yEnd)
 {
@@ -99,6 +118,12 @@ void writeRows(const TileJob& j, int yBegin, int yEnd)
             if (rowInside && x >= j.fw.x1 && x < j.fw.x2) {
                 const float* src
                     = j.frame + (size_t(j.fw.y2 - 1 - y) * fwWidth + (x - j.fw.x1)) * 4;
+                float mixed[4];
+                if (j.source) {
+                    std::memcpy(mixed, src, sizeof(mixed));
+                    blend(j, x, y, mixed);
+                    src = mixed;
+                }
                 if (c == 1)
                     out[0] = src[3];
                 else
@@ -121,9 +146,9 @@ void writeSlice(unsigned int index, unsigned int count, void* arg)
 } // namespace
 
 void writeTile(const ClipImage& dst, const OfxRectI& renderWindow, const float* frameRgba,
-    const OfxRectI& frame)
+    const OfxRectI& frame, const ClipImage* source, float mix)
 {
-    TileJob job { &dst, renderWindow, frameRgba, frame };
+    TileJob job { &dst, renderWindow, frameRgba, frame, source, mix };
     const OfxRectI& b = dst.bounds();
     job.rw = { std::max(renderWindow.x1, b.x1), std::max(renderWindow.y1, b.y1),
         std::min(renderWindow.x2, b.x2), std::min(renderWindow.y2, b.y2) };

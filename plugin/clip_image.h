@@ -48,8 +48,10 @@ struct StridedView {
 StridedView viewWindow(const ClipImage& image, const OfxRectI& window, std::vector<float>& scratch);
 
 /// Write the pixels of `dst`'s `renderWindow` from a packed top-down RGBA frame covering `frame`
-/// (zeros outside it). Rows are split across the host's threads when it offers them.
+/// (zeros outside it). With a `source` image, write mix * frame + (1 - mix) * source instead
+/// (source zero outside its bounds; an RGB source leaves the frame's alpha). Rows are split
+/// across the host's threads when it offers them.
 void writeTile(const ClipImage& dst, const OfxRectI& renderWindow, const float* frameRgba,
-    const OfxRectI& frame);
+    const OfxRectI& frame, const ClipImage* source = nullptr, float mix = 1.0f);
 
 } // namespace afnofx

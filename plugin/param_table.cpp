@@ -2,12 +2,14 @@
 #include "param_table.h"
 
 #include "ofx_support.h"
+#include "param_display.h"
 
 #include <sys/stat.h>
 
 #include <afn/afn.hpp>
 
 #include <algorithm>
+#include <cmath>
 #include <cstring>
 #include <iterator>
 #include <sstream>
@@ -108,6 +110,46 @@ OfxPropertySetHandle defineFixed(OfxParamSetHandle set, const char* type, const 
     return p.handle();
 }
 
+/// The history controls and the mix (version 1.1; after every earlier parameter).
+void defineHistoryAndMix(OfxParamSetHandle set)
+{
+    Props g(define(set, kOfxParamTypeGroup, kGroupHistory));
+    g.set(kOfxPropLabel, "History");
+
+    Props frames(defineFixed(set, kOfxParamTypeInteger, kParamHistoryFrames, "History frames",
+        "a frame rendered after a jump (scrubbing, a farm chunk) replays at most this many "
+        "earlier frames; frames rendered in order continue the history. Above the shot's length: "
+        "every frame from the start, exactly as a sequential render"));
+    frames.set(kOfxParamPropParent, kGroupHistory);
+    frames.set(kOfxParamPropDefault, kDefaultHistoryFrames);
+    frames.set(kOfxParamPropMin, 0);
+    frames.set(kOfxParamPropMax, 1000000);
+    frames.set(kOfxParamPropDisplayMin, 0);
+    frames.set(kOfxParamPropDisplayMax, 32);
+
+    Props use(defineFixed(set, kOfxParamTypeBoolean, kParamUseStartFrame, "Limit start",
+        "never use frames before Start frame (e.g. a camera cut); off: the history may reach back "
+        "to the Source clip's first frame"));
+    use.set(kOfxParamPropParent, kGroupHistory);
+    use.set(kOfxParamPropDefault, 0);
+
+    Props start(defineFixed(set, kOfxParamTypeInteger, kParamStartFrame, "Start frame",
+        "first frame the history may use; frames before it are never read, and a frame before it "
+        "is denoised on its own"));
+    start.set(kOfxParamPropParent, kGroupHistory);
+    start.set(kOfxParamPropDefault, 1);
+
+    Props mix(define(set, kOfxParamTypeDouble, kParamMix));
+    mix.set(kOfxPropLabel, "Mix");
+    mix.set(kOfxParamPropHint, "blend of the denoised result (1) with Source (0)");
+    mix.set(kOfxParamPropDefault, 1.0);
+    mix.set(kOfxParamPropMin, 0.0);
+    mix.set(kOfxParamPropMax, 1.0);
+    mix.set(kOfxParamPropDisplayMin, 0.0);
+    mix.set(kOfxParamPropDisplayMax, 1.0);
+    mix.set(kOfxParamPropDoubleType, kOfxParamDoubleTypeScale);
+}
+
 } // namespace
 
 const ParamCatalog& paramCatalog()
@@ -116,21 +158,27 @@ const ParamCatalog& paramCatalog()
     return catalog;
 }
 
-void defineParams(OfxImageEffectHandle descriptor, bool temporalDefault)
+void defineParams(OfxImageEffectHandle descriptor, bool general)
 {
     const ParamCatalog& c = paramCatalog();
     OfxParamSetHandle set = nullptr;
     check(suites().effect->getParamSet(descriptor, &set), "getting the parameter set");
 
-    Props method(defineFixed(set, kOfxParamTypeChoice, kParamMethod, "Method",
-        "denoising method (options follow the library's method list)"));
-    method.setStrings(kOfxParamPropChoiceOption, c.methods);
+    std::vector<std::string> methodLabels;
+    std::string methodHint = "denoising method (options follow the library's method list):";
+    for (const std::string& m : c.methods) {
+        methodLabels.push_back(methodLabel(m));
+        const char* d = afnGetFilterTypeDescription(m.c_str());
+        methodHint += "\n" + m + ": " + (d ? d : "");
+    }
+    Props method(defineFixed(set, kOfxParamTypeChoice, kParamMethod, "Method", methodHint));
+    method.setStrings(kOfxParamPropChoiceOption, methodLabels);
     method.set(kOfxParamPropDefault, c.defaultMethod);
 
     Props temporal(defineFixed(set, kOfxParamTypeBoolean, kParamTemporal, "Temporal",
-        "use the history of every frame from the clip's first frame "
-        "(off: each frame is denoised on its own)"));
-    temporal.set(kOfxParamPropDefault, temporalDefault ? 1 : 0);
+        "use the history of earlier frames (see History frames and Start frame; off: each frame "
+        "is denoised on its own)"));
+    temporal.set(kOfxParamPropDefault, general ? 1 : 0);
 
     Props weights(defineFixed(set, kOfxParamTypeString, kParamWeights, "Weights file",
         "trained weights archive (.afnw) for learned methods such as "
@@ -141,11 +189,16 @@ void defineParams(OfxImageEffectHandle descriptor, bool temporalDefault)
 
     std::string group;
     for (const ParamSpec& p : c.params) {
+        const bool hidden = !general && needsAuxInputs(p.info.name, p.method.empty());
         const std::string wanted = p.method.empty() ? "inputs" : p.method;
         if (wanted != group) {
             group = wanted;
             Props g(define(set, kOfxParamTypeGroup, "group_" + group));
-            g.set(kOfxPropLabel, p.method.empty() ? std::string("Inputs") : p.method);
+            const std::string label = methodLabel(p.method);
+            g.set(kOfxPropLabel,
+                p.method.empty() ? std::string("Inputs") : label.substr(0, label.find(" (")));
+            if (p.method.empty() && !general)
+                g.set(kOfxParamPropSecret, 1);
         }
         const AFNParamInfo& i = p.info;
         const char* type = i.type == AFN_PARAM_BOOL ? kOfxParamTypeBoolean
@@ -154,20 +207,23 @@ void defineParams(OfxImageEffectHandle descriptor, bool temporalDefault)
                                                     : kOfxParamTypeChoice;
         Props d(defineFixed(set, type, p.ofxName, i.label, i.help));
         d.set(kOfxParamPropParent, "group_" + group);
+        if (hidden)
+            d.set(kOfxParamPropSecret, 1);
+        const DisplayRange shown = displayRange(i);
         if (i.type == AFN_PARAM_BOOL) {
             d.set(kOfxParamPropDefault, i.defaultValue != 0.0 ? 1 : 0);
         } else if (i.type == AFN_PARAM_INT) {
             d.set(kOfxParamPropDefault, static_cast<int>(i.defaultValue));
             d.set(kOfxParamPropMin, static_cast<int>(i.minValue));
             d.set(kOfxParamPropMax, static_cast<int>(i.maxValue));
-            d.set(kOfxParamPropDisplayMin, static_cast<int>(i.minValue));
-            d.set(kOfxParamPropDisplayMax, static_cast<int>(i.maxValue));
+            d.set(kOfxParamPropDisplayMin, static_cast<int>(std::floor(shown.min)));
+            d.set(kOfxParamPropDisplayMax, static_cast<int>(std::ceil(shown.max)));
         } else if (i.type == AFN_PARAM_FLOAT) {
             d.set(kOfxParamPropDefault, i.defaultValue);
             d.set(kOfxParamPropMin, i.minValue);
             d.set(kOfxParamPropMax, i.maxValue);
-            d.set(kOfxParamPropDisplayMin, i.minValue);
-            d.set(kOfxParamPropDisplayMax, i.maxValue);
+            d.set(kOfxParamPropDisplayMin, shown.min);
+            d.set(kOfxParamPropDisplayMax, shown.max);
             d.set(kOfxParamPropDoubleType, kOfxParamDoubleTypePlain);
         } else {
             const std::vector<std::string> options = afn::splitChoices(i.choices);
@@ -183,9 +239,13 @@ void defineParams(OfxImageEffectHandle descriptor, bool temporalDefault)
         "NVIDIA GPU of compute capability 9.0 or newer, in builds with CUDA; only afn runs there, "
         "in half precision within the documented tolerance of cpu), auto (cuda when there is one "
         "and the method runs there, else cpu with a note in the host's log)"));
-    device.setStrings(kOfxParamPropChoiceOption,
-        std::vector<std::string>(std::begin(kDeviceOptions), std::end(kDeviceOptions)));
+    std::vector<std::string> deviceLabels;
+    for (const char* d : kDeviceOptions)
+        deviceLabels.push_back(deviceLabel(d));
+    device.setStrings(kOfxParamPropChoiceOption, deviceLabels);
     device.set(kOfxParamPropDefault, 0);
+
+    defineHistoryAndMix(set);
 }
 
 static OfxParamHandle paramHandle(OfxParamSetHandle set, const std::string& name)
@@ -203,30 +263,41 @@ static int getIntValue(OfxParamSetHandle set, const std::string& name)
     return v;
 }
 
-void showCurrentMethod(OfxImageEffectHandle instance)
+void updateParamStates(OfxImageEffectHandle instance, bool general)
 {
     const ParamCatalog& c = paramCatalog();
     OfxParamSetHandle set = nullptr;
     check(suites().effect->getParamSet(instance, &set), "getting the parameter set");
     const int m = getIntValue(set, kParamMethod);
     const std::string current = m >= 0 && m < int(c.methods.size()) ? c.methods[m] : "";
-    auto hide = [&](const std::string& name, bool secret) {
+    auto props = [&](const std::string& name) {
         OfxParamHandle h = nullptr;
-        OfxPropertySetHandle props = nullptr;
-        check(suites().param->paramGetHandle(set, name.c_str(), &h, &props), "finding " + name);
-        Props(props).set(kOfxParamPropSecret, secret ? 1 : 0);
+        OfxPropertySetHandle p = nullptr;
+        check(suites().param->paramGetHandle(set, name.c_str(), &h, &p), "finding " + name);
+        return Props(p);
     };
     std::string group;
     for (const ParamSpec& p : c.params) {
-        if (p.method.empty())
-            continue;
-        const bool secret = p.method != current;
-        if (p.method != group) {
-            group = p.method;
-            hide("group_" + group, secret);
+        const bool otherMethod = !p.method.empty() && p.method != current;
+        const bool secret
+            = otherMethod || (!general && needsAuxInputs(p.info.name, p.method.empty()));
+        const std::string g = "group_" + (p.method.empty() ? std::string("inputs") : p.method);
+        if (g != group) {
+            group = g;
+            props(group).set(kOfxParamPropSecret, otherMethod || (!general && p.method.empty()));
         }
-        hide(p.ofxName, secret);
+        props(p.ofxName).set(kOfxParamPropSecret, secret ? 1 : 0);
     }
+    const bool temporal = getIntValue(set, kParamTemporal) != 0;
+    props(kParamHistoryFrames).set(kOfxParamPropEnabled, temporal ? 1 : 0);
+    props(kParamUseStartFrame).set(kOfxParamPropEnabled, temporal ? 1 : 0);
+    props(kParamStartFrame)
+        .set(kOfxParamPropEnabled, temporal && getIntValue(set, kParamUseStartFrame) ? 1 : 0);
+}
+
+bool affectsParamStates(const std::string& name)
+{
+    return name == kParamMethod || name == kParamTemporal || name == kParamUseStartFrame;
 }
 
 Settings readSettings(OfxImageEffectHandle instance)
@@ -245,6 +316,9 @@ Settings readSettings(OfxImageEffectHandle instance)
         throw OfxError(
             kOfxStatErrValue, "device index " + std::to_string(device) + " is out of range");
     s.device = kDeviceOptions[device];
+    s.historyFrames = std::max(0, getIntValue(set, kParamHistoryFrames));
+    s.useStartFrame = getIntValue(set, kParamUseStartFrame) != 0;
+    s.startFrame = getIntValue(set, kParamStartFrame);
     char* path = nullptr;
     check(suites().param->paramGetValue(paramHandle(set, kParamWeights), &path),
         "reading parameter weights");
@@ -277,10 +351,21 @@ std::string Settings::key() const
 {
     std::ostringstream os;
     os.precision(17);
-    os << method << ';' << temporal << ';' << weightsPath << ';' << weightsStamp << ';' << device;
+    os << method << ';' << temporal << ';' << weightsPath << ';' << weightsStamp << ';' << device
+       << ";history=" << historyFrames; // the start frame is in the runner's key (historyStart)
     for (const Value& v : values)
         os << ';' << v.spec->ofxName << '=' << v.number << v.choice;
     return os.str();
+}
+
+double readMix(OfxImageEffectHandle instance, double time)
+{
+    OfxParamSetHandle set = nullptr;
+    check(suites().effect->getParamSet(instance, &set), "getting the parameter set");
+    double mix = 1.0;
+    check(suites().param->paramGetValueAtTime(paramHandle(set, kParamMix), time, &mix),
+        "reading parameter mix");
+    return std::clamp(mix, 0.0, 1.0);
 }
 
 void applySettings(const Settings& settings, AFNFilter filter)

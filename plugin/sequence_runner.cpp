@@ -4,6 +4,7 @@
 #include "clip_image.h"
 #include "ofx_support.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <iterator>
@@ -35,13 +36,21 @@ std::string stateKey(const Settings& s, const FrameRequest& r)
     std::ostringstream os;
     os.precision(17);
     os << s.key() << '|' << r.window.x1 << ',' << r.window.y1 << ',' << r.window.x2 << ','
-       << r.window.y2 << '|' << r.renderScale << '|' << r.firstFrame << '|';
+       << r.window.y2 << '|' << r.renderScale << '|' << r.historyStart << '|';
     for (const InputClip& c : r.inputs)
         os << c.role << ',';
     return os.str();
 }
 
 } // namespace
+
+int replayFrames(double time, const Settings& settings, double historyStart)
+{
+    if (!settings.temporal || time < historyStart)
+        return 0;
+    const double available = std::floor(time - historyStart + 1e-9);
+    return static_cast<int>(std::min<double>(settings.historyFrames, available));
+}
 
 void SequenceRunner::clear()
 {
@@ -98,17 +107,14 @@ const std::vector<float>& SequenceRunner::frame(
     m_filter.setProgressMonitorFunction(abortRequested, req.instance);
 
     // Frames to run: only t without history; t alone when the filter stands at t-1 with the same
-    // key; otherwise every frame from the first one (the host may have scrubbed or changed a
-    // parameter). Times step by whole frames back from t.
-    int backSteps = 0;
-    if (settings.temporal) {
-        const bool continues = m_hasState && m_stateKey == key && m_stateTime == time - 1.0;
-        backSteps = continues ? 0 : std::max(0, int(std::floor(time - req.firstFrame + 1e-9)));
-        if (!continues)
-            m_filter.reset();
-    } else {
+    // key and t-1 may be used as history (frames rendered in order keep their whole history);
+    // otherwise at most historyFrames earlier frames, not before historyStart (the host may have
+    // scrubbed or changed a parameter). Times step by whole frames back from t.
+    const bool continues = settings.temporal && m_hasState && m_stateKey == key
+        && m_stateTime == time - 1.0 && time - 1.0 >= req.historyStart;
+    const int backSteps = continues ? 0 : replayFrames(time, settings, req.historyStart);
+    if (!continues)
         m_filter.reset();
-    }
     m_hasState = false;
     for (int n = backSteps; n >= 0; --n) {
         const double t = time - n;

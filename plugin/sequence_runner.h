@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: Apache-2.0
-// Per-instance frame cache that makes temporal results independent of the host's request order:
-// the result at t is the filter run over every frame from the clip's first frame to t.
+// Per-instance frame cache and history: a frame requested right after the one the filter stands
+// at continues the history; any other request replays a bounded window of earlier frames.
 #pragma once
 
 #include "param_table.h"
@@ -26,8 +26,16 @@ struct FrameRequest {
     OfxRectI window {}; ///< processed pixels (the Source RoD at render scale)
     OfxRectD windowCanonical {}; ///< the same in canonical coordinates (clipGetImage)
     double renderScale = 1.0; ///< x render scale (pixel vectors scale with it)
-    double firstFrame = 0.0; ///< first frame of the Source clip
+    /// First frame the history may use: the Source clip's first frame, or the start frame when
+    /// that is set and later.
+    double historyStart = 0.0;
 };
+
+/// Number of earlier frames the result at `time` replays after a jump: min(historyFrames, whole
+/// frames from `historyStart` to `time`); 0 without history (temporal off, or `time` before
+/// `historyStart`). Frames rendered in order continue the history instead (see
+/// SequenceRunner::frame).
+int replayFrames(double time, const Settings& settings, double historyStart);
 
 /// Thrown when the host asked to abort.
 struct Aborted { };

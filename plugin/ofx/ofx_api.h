@@ -97,6 +97,7 @@ typedef struct OfxRangeD {
 #define kOfxPropTime "OfxPropTime"
 #define kOfxPropInstanceData "OfxPropInstanceData"
 #define kOfxPropPluginDescription "OfxPropPluginDescription"
+#define kOfxPropIcon "OfxPropIcon"
 #define kOfxPropChangeReason "OfxPropChangeReason"
 #define kOfxTypeParameter "OfxTypeParameter"
 #define kOfxTypeClip "OfxTypeClip"
@@ -267,6 +268,7 @@ typedef struct OfxParameterSuiteV1 {
 #define kOfxParamPropEnabled "OfxParamPropEnabled"
 #define kOfxParamPropDoubleType "OfxParamPropDoubleType"
 #define kOfxParamDoubleTypePlain "OfxParamDoubleTypePlain"
+#define kOfxParamDoubleTypeScale "OfxParamDoubleTypeScale"
 
 // ---- Memory, multithread and message suites -------------------------------------------------
 

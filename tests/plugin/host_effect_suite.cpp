@@ -184,6 +184,10 @@ OfxStatus clipGetImage(
     }
     *image = makeImage(&pixels, rod, b, src->components, scale, host->layout());
     (*image)->imageHost = host;
+    {
+        std::lock_guard<std::mutex> lock(clip->framesMutex);
+        clip->fetched.push_back(time);
+    }
     ++host->m_liveImages;
     return kOfxStatOK;
 }
@@ -218,6 +222,14 @@ int abortRender(OfxImageEffectHandle e)
 } // namespace
 
 } // namespace ofxhost
+
+std::vector<double> OfxImageClipStruct::takeFetched()
+{
+    std::lock_guard<std::mutex> lock(framesMutex);
+    std::vector<double> out;
+    out.swap(fetched);
+    return out;
+}
 
 struct OfxImageMemoryStruct {
     std::vector<char> bytes;

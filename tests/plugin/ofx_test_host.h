@@ -80,6 +80,9 @@ struct OfxImageClipStruct {
     std::mutex framesMutex;
     std::vector<double> framesNeeded; ///< last GetFramesNeeded answer (for the tests to inspect)
     std::vector<double> lastRoI; ///< last GetRegionsOfInterest answer, empty = default
+    std::vector<double> fetched; ///< times of every image fetched from this input clip, in order
+    /// Fetched times since the last call, and forget them (guarded by framesMutex).
+    std::vector<double> takeFetched();
 };
 
 /// An effect descriptor or instance.

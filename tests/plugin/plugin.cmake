@@ -8,11 +8,25 @@ add_library(afn_ofx_test_host STATIC
 target_include_directories(afn_ofx_test_host PUBLIC ${PROJECT_SOURCE_DIR}/plugin)
 target_link_libraries(afn_ofx_test_host PUBLIC ${CMAKE_DL_LIBS} Threads::Threads)
 
-afn_add_gtest(test_plugin_host
-  SOURCES plugin/test_plugin_host.cpp plugin/synthetic_sequence.cpp
-  LIBS afn afn_ofx_test_host)
-target_compile_definitions(test_plugin_host PRIVATE AFN_OFX_BINARY="$<TARGET_FILE:afn_ofx>")
-add_dependencies(test_plugin_host afn_ofx)
+# Tests that drive the plugin over the synthetic sequence, one executable per subject.
+foreach(name test_plugin_host test_plugin_history test_plugin_presentation)
+  afn_add_gtest(${name}
+    SOURCES plugin/${name}.cpp plugin/plugin_session.cpp plugin/synthetic_sequence.cpp
+    LIBS afn afn_ofx_test_host)
+  target_compile_definitions(${name} PRIVATE AFN_OFX_BINARY="$<TARGET_FILE:afn_ofx>")
+  add_dependencies(${name} afn_ofx)
+endforeach()
+
+# The bundle around the binary: Info.plist and icon, in the build tree and installed.
+afn_add_gtest(test_plugin_bundle SOURCES plugin/test_plugin_bundle.cpp LIBS afn_ofx_test_host)
+target_compile_definitions(test_plugin_bundle PRIVATE AFN_OFX_BINARY="$<TARGET_FILE:afn_ofx>")
+add_dependencies(test_plugin_bundle afn_ofx)
+find_program(AFN_PYTHON3 NAMES python3)
+if(AFN_PYTHON3)
+  add_test(NAME plugin_bundle
+    COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/plugin/check_bundle.sh ${CMAKE_COMMAND}
+      ${PROJECT_BINARY_DIR} $<TARGET_FILE_DIR:afn_ofx>/../.. ${AFN_PYTHON3})
+endif()
 
 afn_add_gtest(test_plugin_param_names SOURCES plugin/test_plugin_param_names.cpp
   LIBS afn_ofx_test_host)

@@ -152,7 +152,7 @@ std::vector<std::vector<float>> referenceFrames(const Sequence& seq, const Refer
         filter.set("motion.scale", float(opt.scale));
         if (!opt.floatParam.empty())
             filter.set(opt.floatParam.c_str(), float(opt.floatValue));
-        if (!opt.temporal)
+        if (!opt.temporal || t <= opt.historyStart)
             filter.reset();
         filter.commit();
         filter.execute();

@@ -65,10 +65,17 @@ bool makeClip(const std::vector<afn::io::FrameImages>& in, Role role, int compon
     return true;
 }
 
+/// Index of the option whose id is `v` (an option's label starts with its id: "SVGF (...)").
 int choiceIndex(const OfxImageEffectStruct& inst, const std::string& param, const std::string& v)
 {
     const auto& options = inst.params.find(param)->props.getStrings(kOfxParamPropChoiceOption);
-    return int(std::find(options.begin(), options.end(), v) - options.begin());
+    for (size_t i = 0; i < options.size(); ++i) {
+        std::string id = options[i].substr(0, options[i].find(' '));
+        std::transform(id.begin(), id.end(), id.begin(), ::tolower);
+        if (id == v)
+            return int(i);
+    }
+    return int(options.size());
 }
 
 } // namespace
@@ -126,10 +133,7 @@ TEST(PluginExample, MatchesAfntoolOnTheExampleSequence)
         OfxStatus st = kOfxStatFailed;
         auto inst = host.createInstance(*general, kOfxImageEffectContextGeneral, inputs, &st);
         ASSERT_EQ(st, kOfxStatOK);
-        const auto& opts = inst->params.find("method")->props.getStrings(kOfxParamPropChoiceOption);
-        ASSERT_EQ(host.setParam(inst.get(), "method",
-                      int(std::find(opts.begin(), opts.end(), m) - opts.begin())),
-            kOfxStatOK);
+        ASSERT_EQ(host.setParam(inst.get(), "method", choiceIndex(*inst, "method", m)), kOfxStatOK);
         // The file's conventions, as afntool takes them from the role mapping.
         ASSERT_EQ(host.setParam(inst.get(), "normal_space",
                       choiceIndex(*inst, "normal_space", tag.normalSpace)),

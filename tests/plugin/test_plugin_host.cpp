@@ -3,8 +3,7 @@
 // directly through the C API over the same frames (whole frames, tiles, render scale 0.5,
 // out-of-order times, two threads), plus describe contracts, identity, abort, errors and the
 // device choice.
-#include "ofx_test_host.h"
-#include "synthetic_sequence.h"
+#include "plugin_session.h"
 
 #include <afn/afn.hpp>
 
@@ -18,109 +17,6 @@
 using namespace ofxhost;
 using namespace ofxtest;
 
-namespace {
-
-const std::vector<std::string> kAllAux = { "albedo", "normal", "depth", "position", "motion" };
-const char* const kClipOf[] = { "Albedo", "Normal", "Depth", "Position", "Motion" };
-
-std::vector<std::string> methodsUnderTest()
-{
-    std::vector<std::string> out;
-    for (const std::string& m : afn::filterTypes())
-        if (m != "identity")
-            out.push_back(m);
-    if (out.empty())
-        out.push_back("identity");
-    return out;
-}
-
-int methodIndex(const std::string& m)
-{
-    const std::vector<std::string> all = afn::filterTypes();
-    return int(std::find(all.begin(), all.end(), m) - all.begin());
-}
-
-/// |got - want| <= 1e-5 * max(|want|, 1e-3) everywhere (relative, with a floor near zero).
-::testing::AssertionResult nearlyEqual(
-    const std::vector<float>& got, const std::vector<float>& want)
-{
-    if (got.size() != want.size())
-        return ::testing::AssertionFailure() << "size " << got.size() << " vs " << want.size();
-    for (size_t i = 0; i < got.size(); ++i) {
-        const double tol = 1e-5 * std::max(std::abs(double(want[i])), 1e-3);
-        if (!(std::abs(double(got[i]) - want[i]) <= tol))
-            return ::testing::AssertionFailure()
-                << "value " << i << " (pixel " << i / 4 << ", channel " << i % 4 << "): plugin "
-                << got[i] << " vs C API " << want[i];
-    }
-    return ::testing::AssertionSuccess();
-}
-
-/// A loaded host with both context descriptors and a source per role.
-struct Session {
-    explicit Session(Layout layout = {})
-        : host(layout)
-    {
-        std::string error;
-        loaded = host.load(AFN_OFX_BINARY, &error);
-        EXPECT_TRUE(loaded) << error;
-        if (!loaded)
-            return;
-        EXPECT_EQ(host.describe(), kOfxStatOK);
-        EXPECT_EQ(host.describeInContext(kOfxImageEffectContextGeneral, general), kOfxStatOK);
-        EXPECT_EQ(host.describeInContext(kOfxImageEffectContextFilter, filter), kOfxStatOK);
-        for (const char* role : { "color", "albedo", "normal", "depth", "position", "motion" })
-            sources[role] = seq.source(role);
-    }
-    ~Session()
-    {
-        if (loaded)
-            EXPECT_EQ(host.unload(), kOfxStatOK);
-    }
-
-    /// An instance with Source and the given auxiliary roles connected, running `method`.
-    std::unique_ptr<OfxImageEffectStruct> instance(
-        const std::string& method, const std::vector<std::string>& aux, bool general = true)
-    {
-        std::map<std::string, const ClipSource*> inputs = { { "Source", &sources["color"] } };
-        for (const std::string& role : aux)
-            for (size_t i = 0; i < kAllAux.size(); ++i)
-                if (kAllAux[i] == role)
-                    inputs[kClipOf[i]] = &sources[role];
-        OfxStatus s = kOfxStatFailed;
-        auto inst = host.createInstance(general ? *this->general : *filter,
-            general ? kOfxImageEffectContextGeneral : kOfxImageEffectContextFilter, inputs, &s);
-        EXPECT_EQ(s, kOfxStatOK);
-        EXPECT_EQ(host.setParam(inst.get(), "method", methodIndex(method)), kOfxStatOK);
-        if (const std::string w = testWeightsFor(method); !w.empty())
-            EXPECT_EQ(host.setParam(inst.get(), "weights", w), kOfxStatOK);
-        return inst;
-    }
-
-    std::vector<float> render(
-        OfxImageEffectStruct* inst, double t, double scale = 1.0, int tiles = 1)
-    {
-        Frame f;
-        const OfxStatus s = host.renderFrame(inst, t, scale, tiles, f);
-        EXPECT_EQ(s, kOfxStatOK) << "time " << t;
-        return f.rgba;
-    }
-
-    Host host;
-    bool loaded = false;
-    Sequence seq;
-    std::map<std::string, ClipSource> sources;
-    std::unique_ptr<OfxImageEffectStruct> general, filter;
-};
-
-std::string ofxName(const OfxImageEffectStruct& desc, const std::string& method, std::string name)
-{
-    std::replace(name.begin(), name.end(), '.', '_');
-    return desc.params.find(method + "_" + name) ? method + "_" + name : name;
-}
-
-} // namespace
-
 TEST(PluginHost, LoadsDescribesAndUnloads)
 {
     Session s;
@@ -131,7 +27,7 @@ TEST(PluginHost, LoadsDescribesAndUnloads)
     EXPECT_EQ(p->apiVersion, 1);
     EXPECT_STREQ(p->pluginIdentifier, "org.afn.Denoise");
     EXPECT_EQ(p->pluginVersionMajor, 1u);
-    EXPECT_EQ(p->pluginVersionMinor, 0u);
+    EXPECT_EQ(p->pluginVersionMinor, 1u);
     ASSERT_NE(p->setHost, nullptr);
     ASSERT_NE(p->mainEntry, nullptr);
 
@@ -154,11 +50,18 @@ TEST(PluginHost, LoadsDescribesAndUnloads)
     }
     EXPECT_EQ(s.filter->clips.size(), 2u);
 
-    // Parameters: the method choice lists the library's methods; every library parameter except
-    // the two the plugin sets itself appears with the library's default.
+    // Parameters: the method choice lists the library's methods (each label starts with the id);
+    // every library parameter except the two the plugin sets itself appears with the library's
+    // default.
     const OfxParamStruct* method = s.general->params.find("method");
     ASSERT_NE(method, nullptr);
-    EXPECT_EQ(method->props.getStrings(kOfxParamPropChoiceOption), afn::filterTypes());
+    const auto& labels = method->props.getStrings(kOfxParamPropChoiceOption);
+    ASSERT_EQ(labels.size(), afn::filterTypes().size());
+    for (size_t i = 0; i < labels.size(); ++i) {
+        std::string id = labels[i].substr(0, labels[i].find(' '));
+        std::transform(id.begin(), id.end(), id.begin(), ::tolower);
+        EXPECT_EQ(id, afn::filterTypes()[i]) << labels[i];
+    }
     EXPECT_EQ(s.general->params.find("temporal")->props.getInt(kOfxParamPropDefault), 1);
     EXPECT_EQ(s.filter->params.find("temporal")->props.getInt(kOfxParamPropDefault), 0);
     for (const std::string& m : afn::filterTypes())
@@ -190,7 +93,8 @@ TEST(PluginHost, OnlyTheCurrentMethodsParametersAreShown)
         auto inst = s.instance(m, {});
         int groups = 0;
         for (const auto& p : inst->params.params) {
-            if (p->name.rfind("group_", 0) != 0 || p->name == "group_inputs")
+            if (p->name.rfind("group_", 0) != 0 || p->name == "group_inputs"
+                || p->name == "group_history")
                 continue;
             ++groups;
             const std::string owner = p->name.substr(6);
