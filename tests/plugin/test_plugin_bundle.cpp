@@ -32,7 +32,8 @@ std::string plistString(const std::string& plist, const std::string& key)
         return "";
     at = plist.find("<string>", at + k.size());
     const size_t end = plist.find("</string>", at);
-    return at == std::string::npos || end == std::string::npos ? "" : plist.substr(at + 8, end - at - 8);
+    return at == std::string::npos || end == std::string::npos ? ""
+                                                               : plist.substr(at + 8, end - at - 8);
 }
 
 uint32_t bigEndian(const std::string& s, size_t at)
@@ -62,7 +63,8 @@ TEST(PluginBundle, HasInfoPlistAndIconWhereHostsLookForThem)
     EXPECT_EQ(plistString(plist, "CFBundlePackageType"), "BNDL");
     EXPECT_EQ(plistString(plist, "CFBundleIdentifier"), plugin->pluginIdentifier);
     EXPECT_EQ(plistString(plist, "CFBundleShortVersionString"),
-        std::to_string(plugin->pluginVersionMajor) + "." + std::to_string(plugin->pluginVersionMinor));
+        std::to_string(plugin->pluginVersionMajor) + "."
+            + std::to_string(plugin->pluginVersionMinor));
 
     // Hosts look for Resources/<identifier>.png; the descriptor names it too (kOfxPropIcon).
     const std::string iconName = std::string(plugin->pluginIdentifier) + ".png";

@@ -19,7 +19,8 @@ namespace {
 std::string firstWordLower(const std::string& label)
 {
     std::string id = label.substr(0, label.find(' '));
-    std::transform(id.begin(), id.end(), id.begin(), [](unsigned char c) { return std::tolower(c); });
+    std::transform(
+        id.begin(), id.end(), id.begin(), [](unsigned char c) { return std::tolower(c); });
     return id;
 }
 
@@ -58,8 +59,8 @@ TEST(PluginPresentation, FiledUnderFilterDenoiseWithReadableChoiceLabels)
     EXPECT_EQ(d.getString(kOfxPropLabel), "afn Denoise");
     // Options are "ID (what it is)": the first word is the id saved projects rely on (by index),
     // the rest says what the method is.
-    const auto& methods = s.general->params.find("method")->props.getStrings(
-        kOfxParamPropChoiceOption);
+    const auto& methods
+        = s.general->params.find("method")->props.getStrings(kOfxParamPropChoiceOption);
     ASSERT_EQ(methods.size(), afn::filterTypes().size());
     for (size_t i = 0; i < methods.size(); ++i) {
         EXPECT_EQ(firstWordLower(methods[i]), afn::filterTypes()[i]) << methods[i];
