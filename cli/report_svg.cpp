@@ -143,6 +143,27 @@ void drawPanel(
               return false;
           };
 
+    std::vector<std::pair<double, double>> fp;
+    for (std::size_t i = 0; i < r.methods.size(); ++i)
+        if (front[i])
+            fp.emplace_back(r.methods[i].medianMs, r.methods[i].means.at(metric.name));
+    std::sort(fp.begin(), fp.end());
+    if (fp.size() > 1) {
+        s << "<polyline fill=\"none\" stroke=\"#d62728\" stroke-width=\"1.5\" points=\"";
+        for (const auto& [t, v] : fp)
+            s << num(X(t)) << "," << num(Y(v)) << " ";
+        s << "\"/>\n";
+        // The front's segments are obstacles too: small boxes every 3 pixels along them.
+        for (std::size_t k = 1; k < fp.size(); ++k) {
+            const double ax = X(fp[k - 1].first), ay = Y(fp[k - 1].second);
+            const double bx = X(fp[k].first), by = Y(fp[k].second);
+            const int n = 1 + static_cast<int>(std::hypot(bx - ax, by - ay) / 3.0);
+            for (int j = 0; j <= n; ++j) {
+                const double x = ax + (bx - ax) * j / n, y = ay + (by - ay) * j / n;
+                taken.push_back({ x - 1.5, y - 1.5, x + 1.5, y + 1.5 });
+            }
+        }
+    }
     const double noisy = r.noisy.label.empty() ? NAN : r.noisy.means.at(metric.name);
     if (std::isfinite(noisy)) {
         if (noisy >= yLo && noisy <= yHi) {
@@ -178,17 +199,6 @@ void drawPanel(
         }
     }
 
-    std::vector<std::pair<double, double>> fp;
-    for (std::size_t i = 0; i < r.methods.size(); ++i)
-        if (front[i])
-            fp.emplace_back(r.methods[i].medianMs, r.methods[i].means.at(metric.name));
-    std::sort(fp.begin(), fp.end());
-    if (fp.size() > 1) {
-        s << "<polyline fill=\"none\" stroke=\"#d62728\" stroke-width=\"1.5\" points=\"";
-        for (const auto& [t, v] : fp)
-            s << num(X(t)) << "," << num(Y(v)) << " ";
-        s << "\"/>\n";
-    }
     int skipped = 0;
     for (std::size_t i = 0; i < r.methods.size(); ++i) {
         const MethodResult& m = r.methods[i];
@@ -227,7 +237,7 @@ void drawPanel(
 std::string runtimeErrorSvg(const BenchmarkReport& r)
 {
     const std::vector<const MetricColumn*> metrics = panelMetrics(r);
-    const double panelW = 330, plotH = 250, left = 62, gapX = 30, top = 62;
+    const double panelW = 330, plotH = 250, left = 62, gapX = 72, top = 62;
     // Legend: a table under the panels, one row per method: number, name, median ms and the
     // panels' values, in columns placed after the longest name.
     const double legendTop = top + plotH + 76, rowH = 18;
