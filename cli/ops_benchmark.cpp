@@ -320,10 +320,11 @@ int runBenchmark(const Options& opts, const Action& action)
                 writeCrop(ctx, rgb, w, c, opts.report + "/" + file, inputPaths);
                 c.images.emplace_back(label, file);
             };
+            // The reference first (what the others are judged against), then the input.
+            add("reference", references[i].beauty);
             add("noisy input", frames[i].beauty);
             for (std::size_t s = 0; s < report.methods.size(); ++s)
                 add(report.methods[s].label, cropImages[s][k]);
-            add("reference", references[i].beauty);
             report.crops.push_back(c);
         }
         writeResultsJson(opts.report, report);

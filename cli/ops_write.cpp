@@ -3,6 +3,7 @@
 #include "ops.h"
 
 #include "cli_error.h"
+#include "contact_sheet_layers.h"
 
 #include <set>
 
@@ -161,36 +162,12 @@ void writeContactSheet(RunContext& ctx, const LoadedFrame& frame, const Action& 
             tiles.push_back(afn::color::makeTile(cm, afn::io::roleName(rc.role), label, r.width,
                 r.height, r.components, r.pixels.data(), display, view));
         }
-        // Every other layer of the file (up to its first 3 channels).
+        // Every layer no role reads, shown by what its channels look like.
         if (frame.images.all) {
             const afn::io::LayeredImage& all = *frame.images.all;
-            const std::set<std::string> used = roleChannelNames(frame.images, all, false);
-            std::map<std::string, std::vector<int>> layers;
-            std::vector<std::string> order;
-            for (std::size_t c = 0; c < all.channels.size(); ++c) {
-                const std::string& name = all.channels[c];
-                if (used.count(name))
-                    continue;
-                const std::size_t dot = name.rfind('.');
-                const std::string layer
-                    = dot == std::string::npos ? "(top level)" : name.substr(0, dot);
-                if (!layers.count(layer))
-                    order.push_back(layer);
-                layers[layer].push_back(static_cast<int>(c));
-            }
-            const std::size_t npx = static_cast<std::size_t>(all.width) * all.height;
-            for (const std::string& layer : order) {
-                const std::vector<int>& idx = layers[layer];
-                const int comps = idx.size() >= 3 ? 3 : 1;
-                std::vector<float> px(npx * comps);
-                for (std::size_t i = 0; i < npx; ++i)
-                    for (int c = 0; c < comps; ++c)
-                        px[i * comps + c] = all.pixels[i * all.channels.size() + idx[c]];
-                const std::string& first = all.channels[idx[0]];
-                const bool rgbLike = comps == 3 && first.size() >= 1 && first.back() == 'R';
-                tiles.push_back(afn::color::makeTile(cm, rgbLike ? "albedo" : "position", layer,
-                    all.width, all.height, comps, px.data(), display, view));
-            }
+            for (afn::color::Tile& t :
+                otherLayerTiles(cm, all, roleChannelNames(frame.images, all, false), display, view))
+                tiles.push_back(std::move(t));
         }
     } catch (const afn::color::ColorError& e) {
         throw CliError(std::string("--contact-sheet: ") + e.what(), path);

@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: Apache-2.0
-// runtime-vs-error.svg: median ms per frame (x) against the sequence mean of one error metric (y),
-// one point per method and setting, the Pareto front marked and joined. Hand-written SVG 1.1.
+// runtime-vs-error.svg: one panel per metric (the report's error metric, SSIM, the temporal
+// gradient error), each the median ms per frame (x, shared by the panels) against the sequence
+// mean of the metric (y, fitted to the methods' values), the Pareto front of that metric marked
+// and joined. Points are numbered; the legend under the panels names them. Hand-written SVG 1.1.
 #include "report.h"
 
 #include <algorithm>
@@ -39,74 +41,108 @@ std::string tickFormat(double step)
     return "%." + std::to_string(std::min(decimals, 6)) + "f";
 }
 
-} // namespace
+// Text boxes are estimated with a width of kCharWidth * font size per character: an upper bound
+// of the mean advance of sans-serif fonts (DejaVu Sans digits: 0.64 em), so boxes that do not
+// overlap here do not overlap on screen. tests/integration/test_afntool_report.cpp uses the same.
+constexpr double kCharWidth = 0.65, kLabelSize = 12.0;
 
-std::string runtimeErrorSvg(const BenchmarkReport& r)
+struct Box {
+    double x0, y0, x1, y1;
+    bool overlaps(const Box& o) const { return x0 < o.x1 && o.x0 < x1 && y0 < o.y1 && o.y0 < y1; }
+    bool inside(const Box& o) const { return x0 >= o.x0 && x1 <= o.x1 && y0 >= o.y0 && y1 <= o.y1; }
+};
+
+/// Box of a label drawn with text-anchor start at baseline (x, y).
+Box labelBox(double x, double y, const std::string& text)
 {
-    const MetricColumn& metric = metricColumn(r.errorMetric);
-    const std::vector<bool> front = paretoFront(r.methods, metric);
-    const double W = 820, H = 460, left = 80, right = 250, top = 40, bottom = 60;
-    const double pw = W - left - right, ph = H - top - bottom;
+    return { x, y - kLabelSize * 0.8, x + kCharWidth * kLabelSize * text.size(),
+        y + kLabelSize * 0.25 };
+}
 
-    // Axis ranges from the finite points (and the noisy input's error line).
-    double tMax = 0.0, eMin = INFINITY, eMax = -INFINITY;
-    for (const MethodResult& m : r.methods) {
-        const double e = m.means.at(metric.name);
-        if (!std::isfinite(e))
-            continue;
-        tMax = std::max(tMax, m.medianMs);
-        eMin = std::min(eMin, e);
-        eMax = std::max(eMax, e);
+/// The metrics with a panel: the report's error metric, SSIM and the temporal gradient error.
+std::vector<const MetricColumn*> panelMetrics(const BenchmarkReport& r)
+{
+    std::vector<const MetricColumn*> out;
+    for (const std::string& name : { r.errorMetric, std::string("ssim"), std::string("tge") }) {
+        const MetricColumn& c = metricColumn(name);
+        if (std::find(out.begin(), out.end(), &c) == out.end())
+            out.push_back(&c);
     }
-    const double noisyErr = r.noisy.label.empty() ? NAN : r.noisy.means.at(metric.name);
-    if (std::isfinite(noisyErr))
-        eMin = std::min(eMin, noisyErr), eMax = std::max(eMax, noisyErr);
-    if (!std::isfinite(eMin))
-        eMin = 0.0, eMax = 1.0;
-    if (eMax - eMin < 1e-9)
-        eMin -= 0.5 * std::max(1e-3, std::abs(eMin)), eMax += 0.5 * std::max(1e-3, std::abs(eMax));
-    const double ePad = 0.08 * (eMax - eMin);
-    eMin -= ePad, eMax += ePad;
-    const double xStep = niceStep(tMax > 0 ? tMax * 1.1 : 1.0, 6);
-    const double xMax = xStep * std::ceil((tMax > 0 ? tMax * 1.1 : 1.0) / xStep);
-    const double yStep = niceStep(eMax - eMin, 6);
-    const double yLo = yStep * std::floor(eMin / yStep), yHi = yStep * std::ceil(eMax / yStep);
-    auto X = [&](double t) { return left + pw * t / xMax; };
-    auto Y = [&](double e) { return top + ph * (1.0 - (e - yLo) / (yHi - yLo)); };
+    return out;
+}
 
-    std::ostringstream s;
-    s << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << W << "\" height=\"" << H
-      << "\" viewBox=\"0 0 " << W << " " << H << "\" font-family=\"sans-serif\" font-size=\"12\">\n"
-      << "<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n"
-      << "<text x=\"" << left << "\" y=\"22\" font-size=\"15\">Run time against error (" << r.width
-      << "x" << r.height << ", " << r.frameCount << " frames)</text>\n";
-    // Grid and ticks.
-    const std::string xf = tickFormat(xStep), yf = tickFormat(yStep);
-    for (double t = 0.0; t <= xMax + 1e-9 * xMax; t += xStep)
-        s << "<line x1=\"" << num(X(t)) << "\" y1=\"" << top << "\" x2=\"" << num(X(t))
-          << "\" y2=\"" << top + ph << "\" stroke=\"#e4e4e4\"/>\n<text x=\"" << num(X(t))
-          << "\" y=\"" << top + ph + 16 << "\" text-anchor=\"middle\">" << num(t, xf.c_str())
-          << "</text>\n";
-    for (double e = yLo; e <= yHi + 1e-9 * std::abs(yHi) + 1e-12; e += yStep)
-        s << "<line x1=\"" << left << "\" y1=\"" << num(Y(e)) << "\" x2=\"" << left + pw
-          << "\" y2=\"" << num(Y(e)) << "\" stroke=\"#e4e4e4\"/>\n<text x=\"" << left - 6
-          << "\" y=\"" << num(Y(e) + 4) << "\" text-anchor=\"end\">" << num(e, yf.c_str())
-          << "</text>\n";
-    s << "<rect x=\"" << left << "\" y=\"" << top << "\" width=\"" << pw << "\" height=\"" << ph
-      << "\" fill=\"none\" stroke=\"#444\"/>\n"
-      << "<text x=\"" << left + pw / 2 << "\" y=\"" << H - 18
-      << "\" text-anchor=\"middle\">median denoise time per frame (ms)</text>\n"
-      << "<text transform=\"translate(18," << top + ph / 2
-      << ") rotate(-90)\" text-anchor=\"middle\">" << escapeXml(metric.label)
+struct Frame {
+    double x, y, w, h; ///< plot area of a panel
+    double xMax, xStep; ///< shared time axis
+};
+
+void drawPanel(
+    std::ostringstream& s, const BenchmarkReport& r, const MetricColumn& metric, const Frame& f)
+{
+    const std::vector<bool> front = paretoFront(r.methods, metric);
+    // The y axis is fitted to the methods' finite values only: the noisy input, usually far off,
+    // is marked at the panel's edge instead of stretching the axis.
+    double lo = INFINITY, hi = -INFINITY;
+    for (const MethodResult& m : r.methods) {
+        const double v = m.means.at(metric.name);
+        if (std::isfinite(v))
+            lo = std::min(lo, v), hi = std::max(hi, v);
+    }
+    const bool any = std::isfinite(lo);
+    if (!any)
+        lo = 0.0, hi = 1.0;
+    if (hi - lo < 1e-9)
+        lo -= 0.5 * std::max(1e-3, std::abs(lo)), hi += 0.5 * std::max(1e-3, std::abs(hi));
+    const double pad = 0.08 * (hi - lo), step = niceStep(hi - lo + 2 * pad, 5);
+    const double yLo = step * std::floor((lo - pad) / step),
+                 yHi = step * std::ceil((hi + pad) / step);
+    auto X = [&](double t) { return f.x + f.w * t / f.xMax; };
+    auto Y = [&](double v) { return f.y + f.h * (1.0 - (v - yLo) / (yHi - yLo)); };
+
+    s << "<g class=\"panel\" data-metric=\"" << metric.name << "\" data-y-lo=\"" << num(yLo, "%.9g")
+      << "\" data-y-hi=\"" << num(yHi, "%.9g") << "\">\n<text x=\"" << f.x << "\" y=\"" << f.y - 10
+      << "\" font-size=\"14\" font-weight=\"bold\">" << escapeXml(metric.label)
       << (metric.higherIsBetter ? " (higher is better)" : " (lower is better)") << "</text>\n";
-    if (std::isfinite(noisyErr))
-        s << "<line x1=\"" << left << "\" y1=\"" << num(Y(noisyErr)) << "\" x2=\"" << left + pw
-          << "\" y2=\"" << num(Y(noisyErr))
-          << "\" stroke=\"#999\" stroke-dasharray=\"5,4\"/>\n<text x=\"" << left + pw - 4
-          << "\" y=\"" << num(Y(noisyErr) - 5)
-          << "\" text-anchor=\"end\" fill=\"#777\">noisy input</text>\n";
+    const std::string xf = tickFormat(f.xStep), yf = tickFormat(step);
+    for (double t = 0.0; t <= f.xMax * (1 + 1e-9); t += f.xStep)
+        s << "<line x1=\"" << num(X(t)) << "\" y1=\"" << f.y << "\" x2=\"" << num(X(t))
+          << "\" y2=\"" << f.y + f.h << "\" stroke=\"#e4e4e4\"/><text x=\"" << num(X(t))
+          << "\" y=\"" << f.y + f.h + 16 << "\" text-anchor=\"middle\">" << num(t, xf.c_str())
+          << "</text>\n";
+    for (double v = yLo; v <= yHi + 1e-9 * (yHi - yLo); v += step)
+        s << "<line x1=\"" << f.x << "\" y1=\"" << num(Y(v)) << "\" x2=\"" << f.x + f.w
+          << "\" y2=\"" << num(Y(v)) << "\" stroke=\"#e4e4e4\"/><text x=\"" << f.x - 6 << "\" y=\""
+          << num(Y(v) + 4) << "\" text-anchor=\"end\">" << num(v, yf.c_str()) << "</text>\n";
+    s << "<rect x=\"" << f.x << "\" y=\"" << f.y << "\" width=\"" << f.w << "\" height=\"" << f.h
+      << "\" fill=\"none\" stroke=\"#444\"/>\n<text x=\"" << f.x + f.w / 2 << "\" y=\""
+      << f.y + f.h + 34 << "\" text-anchor=\"middle\">median denoise time per frame (ms)</text>\n";
 
-    // Pareto front: its points joined in time order.
+    // Obstacles for the labels: every point; labels must stay inside the plot area.
+    const Box area { f.x + 2, f.y + 2, f.x + f.w - 2, f.y + f.h - 2 };
+    std::vector<Box> taken;
+    for (const MethodResult& m : r.methods) {
+        const double v = m.means.at(metric.name);
+        if (std::isfinite(v))
+            taken.push_back({ X(m.medianMs) - 6, Y(v) - 6, X(m.medianMs) + 6, Y(v) + 6 });
+    }
+    auto place
+        = [&](double px, double py, const std::string& text, Box& out, double& tx, double& ty) {
+              const double w = kCharWidth * kLabelSize * text.size();
+              const double cand[][2] = { { px + 9, py + 4 }, { px - 9 - w, py + 4 },
+                  { px - w / 2, py - 10 }, { px - w / 2, py + 19 }, { px + 9, py - 9 },
+                  { px + 9, py + 17 }, { px - 9 - w, py - 9 }, { px - 9 - w, py + 17 } };
+              for (const auto& c : cand) {
+                  const Box b = labelBox(c[0], c[1], text);
+                  if (!b.inside(area) || std::any_of(taken.begin(), taken.end(), [&](const Box& o) {
+                          return b.overlaps(o);
+                      }))
+                      continue;
+                  out = b, tx = c[0], ty = c[1];
+                  return true;
+              }
+              return false;
+          };
+
     std::vector<std::pair<double, double>> fp;
     for (std::size_t i = 0; i < r.methods.size(); ++i)
         if (front[i])
@@ -114,42 +150,138 @@ std::string runtimeErrorSvg(const BenchmarkReport& r)
     std::sort(fp.begin(), fp.end());
     if (fp.size() > 1) {
         s << "<polyline fill=\"none\" stroke=\"#d62728\" stroke-width=\"1.5\" points=\"";
-        for (const auto& [t, e] : fp)
-            s << num(X(t)) << "," << num(Y(e)) << " ";
+        for (const auto& [t, v] : fp)
+            s << num(X(t)) << "," << num(Y(v)) << " ";
         s << "\"/>\n";
+        // The front's segments are obstacles too: small boxes every 3 pixels along them.
+        for (std::size_t k = 1; k < fp.size(); ++k) {
+            const double ax = X(fp[k - 1].first), ay = Y(fp[k - 1].second);
+            const double bx = X(fp[k].first), by = Y(fp[k].second);
+            const int n = 1 + static_cast<int>(std::hypot(bx - ax, by - ay) / 3.0);
+            for (int j = 0; j <= n; ++j) {
+                const double x = ax + (bx - ax) * j / n, y = ay + (by - ay) * j / n;
+                taken.push_back({ x - 1.5, y - 1.5, x + 1.5, y + 1.5 });
+            }
+        }
     }
-    // Points and labels; the legend lists the methods with their numbers.
-    double ly = top + 14;
+    const double noisy = r.noisy.label.empty() ? NAN : r.noisy.means.at(metric.name);
+    if (std::isfinite(noisy)) {
+        if (noisy >= yLo && noisy <= yHi) {
+            s << "<line x1=\"" << f.x << "\" y1=\"" << num(Y(noisy)) << "\" x2=\"" << f.x + f.w
+              << "\" y2=\"" << num(Y(noisy)) << "\" stroke=\"#999\" stroke-dasharray=\"5,4\"/>\n";
+            Box b;
+            double tx, ty;
+            const std::string text = "noisy input";
+            if (place(f.x + f.w - 8 - kCharWidth * kLabelSize * text.size() - 9, Y(noisy), text, b,
+                    tx, ty)) {
+                taken.push_back(b);
+                s << "<text class=\"point-label\" x=\"" << num(tx) << "\" y=\"" << num(ty)
+                  << "\" fill=\"#777\">" << text << "</text>\n";
+            }
+        } else {
+            // Off the axis: a note at the edge it lies beyond (left or right, clear of points).
+            const bool above = noisy > yHi;
+            const std::string text = std::string("noisy input ") + num(noisy, "%.4g")
+                + (above ? " (above)" : " (below)");
+            const double ty = above ? f.y + 16 : f.y + f.h - 8;
+            const double tw = kCharWidth * kLabelSize * text.size();
+            for (const double tx : { f.x + 8, f.x + f.w - 8 - tw }) {
+                const Box b = labelBox(tx, ty, text);
+                if (!b.inside(area) || std::any_of(taken.begin(), taken.end(), [&](const Box& o) {
+                        return b.overlaps(o);
+                    }))
+                    continue;
+                taken.push_back(b);
+                s << "<text class=\"point-label\" x=\"" << num(tx) << "\" y=\"" << num(ty)
+                  << "\" fill=\"#777\">" << escapeXml(text) << "</text>\n";
+                break;
+            }
+        }
+    }
+
     int skipped = 0;
     for (std::size_t i = 0; i < r.methods.size(); ++i) {
         const MethodResult& m = r.methods[i];
-        const double e = m.means.at(metric.name);
-        const std::string label = escapeXml(m.label);
-        if (!std::isfinite(e)) {
+        const double v = m.means.at(metric.name);
+        if (!std::isfinite(v)) {
             ++skipped;
             continue;
         }
         const char* colour = front[i] ? "#d62728" : "#1f77b4";
-        s << "<circle cx=\"" << num(X(m.medianMs)) << "\" cy=\"" << num(Y(e))
-          << "\" r=\"5\" fill=\"" << colour << "\"><title>" << label << ": "
-          << num(m.medianMs, "%.2f") << " ms, " << num(e, "%.5g") << "</title></circle>\n<text x=\""
-          << num(X(m.medianMs) + 8) << "\" y=\"" << num(Y(e) - 6) << "\" fill=\"" << colour << "\">"
-          << label << "</text>\n";
-        s << "<text x=\"" << left + pw + 14 << "\" y=\"" << ly << "\" font-size=\"11\" fill=\""
-          << colour << "\">" << label << ": " << num(m.medianMs, "%.2f") << " ms, "
-          << num(e, "%.4g") << "</text>\n";
-        ly += 16;
+        s << "<circle cx=\"" << num(X(m.medianMs)) << "\" cy=\"" << num(Y(v))
+          << "\" r=\"5\" fill=\"" << colour << "\"><title>" << escapeXml(m.label) << ": "
+          << num(m.medianMs, "%.2f") << " ms, " << num(v, "%.5g") << "</title></circle>\n";
+        // The number of the legend entry; where it cannot be placed clear of everything else,
+        // the point stays unlabelled (its tooltip and the legend still name it).
+        Box b;
+        double tx, ty;
+        const std::string text = std::to_string(i + 1);
+        if (place(X(m.medianMs), Y(v), text, b, tx, ty)) {
+            taken.push_back(b);
+            s << "<text class=\"point-label\" x=\"" << num(tx) << "\" y=\"" << num(ty)
+              << "\" fill=\"" << colour << "\">" << text << "</text>\n";
+        }
     }
-    s << "<circle cx=\"" << left + pw + 18 << "\" cy=\"" << ly + 6
-      << "\" r=\"5\" fill=\"#d62728\"/>"
-      << "<text x=\"" << left + pw + 28 << "\" y=\"" << ly + 10 << "\">Pareto front</text>\n"
-      << "<circle cx=\"" << left + pw + 18 << "\" cy=\"" << ly + 24
-      << "\" r=\"5\" fill=\"#1f77b4\"/>"
-      << "<text x=\"" << left + pw + 28 << "\" y=\"" << ly + 28 << "\">dominated</text>\n";
     if (skipped)
-        s << "<text x=\"" << left + pw + 14 << "\" y=\"" << ly + 50 << "\" fill=\"#b00\">"
-          << skipped << " method(s) with NaN error not drawn</text>\n";
-    s << "</svg>\n";
+        s << "<text x=\"" << f.x + 8 << "\" y=\"" << f.y + f.h - 24 << "\" fill=\"#b00\">"
+          << skipped << " method(s) with NaN not drawn</text>\n";
+    if (!any)
+        s << "<text x=\"" << f.x + f.w / 2 << "\" y=\"" << f.y + f.h / 2
+          << "\" text-anchor=\"middle\" fill=\"#777\">no values"
+          << (metric.temporal ? " (one frame: no temporal metric)" : "") << "</text>\n";
+    s << "</g>\n";
+}
+
+} // namespace
+
+std::string runtimeErrorSvg(const BenchmarkReport& r)
+{
+    const std::vector<const MetricColumn*> metrics = panelMetrics(r);
+    const double panelW = 330, plotH = 250, left = 62, gapX = 72, top = 62;
+    // Legend: a table under the panels, one row per method: number, name, median ms and the
+    // panels' values, in columns placed after the longest name.
+    const double legendTop = top + plotH + 76, rowH = 18;
+    const double H = legendTop + rowH * (r.methods.size() + 1) + 6;
+    std::size_t longest = 6;
+    for (const MethodResult& m : r.methods)
+        longest = std::max(longest, m.label.size());
+    const double valuesX = left + 28 + kCharWidth * kLabelSize * longest + 16, valueW = 150;
+    const double W = std::max(
+        left + metrics.size() * (panelW + gapX), valuesX + (metrics.size() + 1) * valueW);
+
+    double tMax = 0.0;
+    for (const MethodResult& m : r.methods)
+        tMax = std::max(tMax, std::isfinite(m.medianMs) ? m.medianMs : 0.0);
+    const double span = tMax > 0 ? tMax * 1.1 : 1.0, xStep = niceStep(span, 4);
+    const double xMax = xStep * std::ceil(span / xStep);
+
+    std::ostringstream s;
+    s << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << W << "\" height=\"" << H
+      << "\" viewBox=\"0 0 " << W << " " << H << "\" font-family=\"sans-serif\" font-size=\"12\">\n"
+      << "<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n<text x=\"" << left
+      << "\" y=\"24\" font-size=\"16\">Run time against quality (" << r.width << "x" << r.height
+      << ", " << r.frameCount << " frames); red: Pareto front of each metric</text>\n";
+    for (std::size_t p = 0; p < metrics.size(); ++p)
+        drawPanel(
+            s, r, *metrics[p], { left + p * (panelW + gapX), top, panelW, plotH, xMax, xStep });
+
+    s << "<g class=\"legend\">\n<text x=\"" << left + 28 << "\" y=\"" << legendTop
+      << "\" font-weight=\"bold\">method / setting</text><text x=\"" << valuesX << "\" y=\""
+      << legendTop << "\" font-weight=\"bold\">median ms</text>\n";
+    for (std::size_t p = 0; p < metrics.size(); ++p)
+        s << "<text x=\"" << valuesX + (p + 1) * valueW << "\" y=\"" << legendTop
+          << "\" font-weight=\"bold\">" << escapeXml(metrics[p]->label) << "</text>\n";
+    for (std::size_t i = 0; i < r.methods.size(); ++i) {
+        const MethodResult& m = r.methods[i];
+        const double y = legendTop + rowH * (i + 1);
+        s << "<text x=\"" << left << "\" y=\"" << y << "\">" << i + 1 << "</text><text x=\""
+          << left + 28 << "\" y=\"" << y << "\">" << escapeXml(m.label) << "</text><text x=\""
+          << valuesX << "\" y=\"" << y << "\">" << num(m.medianMs, "%.1f") << "</text>\n";
+        for (std::size_t p = 0; p < metrics.size(); ++p)
+            s << "<text x=\"" << valuesX + (p + 1) * valueW << "\" y=\"" << y << "\">"
+              << num(m.means.at(metrics[p]->name), "%.4g") << "</text>\n";
+    }
+    s << "</g>\n</svg>\n";
     return s.str();
 }
 

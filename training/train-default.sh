@@ -10,9 +10,13 @@
 #                from eval-full's weights (the tensors it shares) and trained AFN_ABLATION_EPOCHS
 #                more epochs on the same scenes at lr 3e-4 (a learning-rate decay step): an equal
 #                budget per variant. ablation-full is the evaluation model of the tables.
-# 3. ship:       the shipped model, started from ablation/full and trained AFN_SHIP_MINUTES on every
-#                scene (the held-out ones included) at lr 3e-4, exported to ../weights/afn.afnw.
-# 4. the tables: docs/afn-evaluation.md from the held-out scenes (ablation/full is the AFN column).
+# 3. ship:       the model to ship, started from ablation/full and trained AFN_SHIP_MINUTES on every
+#                scene (the held-out ones included) at lr 3e-4, exported to RESULTS/ship/afn.afnw.
+# 4. the tables: RESULTS/afn-evaluation.md (+ .json) from the held-out scenes (ablation/full is the
+#                AFN column).
+# Nothing in the source tree is written: the shipped weights/afn.afnw and docs/afn-evaluation.*
+# change only when you copy the results over them (the script prints the commands at the end).
+# AFN_DRY_RUN=1 prints every command instead of running it.
 # A finished step is skipped when rerun (RESULTS/NAME/DONE); an interrupted one resumes from its
 # checkpoint. Logs: RESULTS/NAME.log (and RESULTS/NAME/log.csv per epoch).
 set -euo pipefail
@@ -23,11 +27,17 @@ HOLDOUT=${AFN_HOLDOUT:-moving_light,glass}
 PY=/usr/bin/python3
 THREADS=${AFN_THREADS:-0}
 common=(--data "$DATA" --threads "$THREADS")
-mkdir -p "$OUT"
+DRY=${AFN_DRY_RUN:-}
+# run CMD...: run it, or print it under AFN_DRY_RUN
+run() {
+  if [ -n "$DRY" ]; then printf '%q ' "$@"; echo; else "$@"; fi
+}
+run mkdir -p "$OUT"
 # step NAME ARGS...: train into $OUT/NAME unless it finished before ($OUT/NAME/DONE)
 step() {
   local name=$1; shift
   if [ -f "$OUT/$name/DONE" ]; then echo "   $name: done before"; return; fi
+  if [ -n "$DRY" ]; then run $PY -m afn.train "${common[@]}" --out "$OUT/$name" "$@"; return; fi
   $PY -m afn.train "${common[@]}" --out "$OUT/$name" "$@" 2>&1 | tee -a "$OUT/$name.log"
   touch "$OUT/$name/DONE"
 }
@@ -44,11 +54,15 @@ done
 
 echo "== 3. ship (all scenes)"
 step ship --init "$OUT/ablation-full/model.afnw" --minutes "${AFN_SHIP_MINUTES:-8}" --lr 3e-4
-$PY -m afn.export "$OUT/ship" -o ../weights/afn.afnw
+run $PY -m afn.export "$OUT/ship" -o "$OUT/ship/afn.afnw"
 
 echo "== 4. tables"
 AFNTOOL=${AFNTOOL:-../build/cli/afntool}
-$PY -m afn.evaluate --data "$DATA" --scenes "$HOLDOUT" --afntool "$AFNTOOL" \
+run $PY -m afn.evaluate --data "$DATA" --scenes "$HOLDOUT" --afntool "$AFNTOOL" \
     --weights "$OUT/ablation-full/model.afnw" \
     --ablation "full=$OUT/ablation-full/model.afnw,fusion=$OUT/ablation-fusion/model.afnw,1spp=$OUT/ablation-1spp/model.afnw,ta=$OUT/ablation-ta/model.afnw" \
-    --out ../docs/afn-evaluation.md --json ../docs/afn-evaluation.json
+    --out "$OUT/afn-evaluation.md" --json "$OUT/afn-evaluation.json"
+
+echo "== done. To ship these weights and tables (then rebuild: the weights are embedded):"
+echo "   cp $OUT/ship/afn.afnw ../weights/afn.afnw"
+echo "   cp $OUT/afn-evaluation.md $OUT/afn-evaluation.json ../docs/"

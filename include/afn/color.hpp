@@ -79,24 +79,34 @@ struct Tile {
 
 /// Turn a role's raw values into a viewable tile: colour-like roles through the display/view,
 /// normals as n*0.5+0.5, depth and position normalised by their finite range, motion as a
-/// direction/magnitude colour code. `kind` is a role name ("color", "albedo", "normal", ...).
+/// direction/magnitude colour code. `kind` is a role name ("color", "albedo", "normal", ...),
+/// "vector2" (any 2D vector, coded as motion) or anything else ("data": the first up-to-3
+/// channels normalised by their joint finite range, one channel as grey). Motion and vector2
+/// tiles get a direction legend (bottom-right disc, on tiles of 48 pixels or more) and
+/// " (max length M)" on their label; data tiles get their range " [lo, hi]".
 AFN_COLOR_API Tile makeTile(const ColorManager& cm, const std::string& kind,
     const std::string& label, int width, int height, int components, const float* pixels,
     const std::string& display = {}, const std::string& view = {});
 
 /// Arrange tiles in a grid with their labels drawn above them (built-in bitmap font), on a dark
 /// background; returns an RGB image of outWidth x outHeight in [0, 1].
-/// Layout: cells of the largest tile's size; `columns` <= 0 = ceil(sqrt(tiles)); a gap of
-/// kSheetGap pixels around every cell; a label band of kSheetLabelBand pixels above each tile.
-/// So outWidth = kSheetGap + columns * (cellW + kSheetGap) and
-/// outHeight = kSheetGap + rows * (kSheetLabelBand + cellH + kSheetGap). Throws ColorError on no
-/// tiles or a tile whose rgb size does not match width*height*3.
+/// Layout: cells as wide as the widest tile but at least kSheetMinCellWidth (so that a label of
+/// small tiles stays legible) and as high as the highest tile; `columns` <= 0 = ceil(sqrt(tiles));
+/// a gap of kSheetGap pixels around every cell; a label band of kSheetLabelBand pixels above each
+/// tile. So outWidth = kSheetGap + columns * (cellW + kSheetGap) and
+/// outHeight = kSheetGap + rows * (kSheetLabelBand + cellH + kSheetGap). A label is drawn in
+/// whole glyphs inside its cell: wrapped after '.', ' ', ':' etc. onto at most kSheetLabelLines
+/// lines, ending in "..." when it still does not fit. Throws ColorError on no tiles or a tile
+/// whose rgb size does not match width*height*3.
 AFN_COLOR_API std::vector<float> layoutContactSheet(
     const std::vector<Tile>& tiles, int columns, int& outWidth, int& outHeight);
 
 constexpr int kSheetGap = 6; ///< pixels between and around contact-sheet cells
-constexpr int kSheetLabelScale = 2; ///< label glyphs (5x7 font pixels) drawn at this scale
-constexpr int kSheetLabelBand = 22; ///< pixels of label band above each tile (7*2 + 8)
+constexpr int kSheetLabelScale = 2; ///< label glyphs (5x9 font pixels) drawn at this scale
+constexpr int kSheetLabelLines = 2; ///< lines of label text per tile at most
+constexpr int kSheetLineHeight = 20; ///< pixels per label line: (9 font rows + 1 gap) * scale
+constexpr int kSheetLabelBand = 46; ///< label band above each tile: 2 lines * 20 + 6 margin
+constexpr int kSheetMinCellWidth = 192; ///< narrowest cell: 16 characters at scale 2
 constexpr float kSheetBackground = 0.1f; ///< contact-sheet background grey (display-referred)
 
 /// Box-filter a tile down so that it fits in maxWidth x maxHeight, keeping its aspect ratio;

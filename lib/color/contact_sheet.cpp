@@ -1,12 +1,21 @@
 // SPDX-License-Identifier: Apache-2.0
-// layoutContactSheet and fitTile: labelled tiles on a grid, and box-filtered tile downscaling.
+// layoutContactSheet and fitTile: labelled tiles on a grid (labels fitted to their cell), and
+// box-filtered tile downscaling.
 #include "afn/color.hpp"
 #include "bitmap_font.h"
 
 #include <algorithm>
 #include <cmath>
+#include <string>
 
 namespace afn::color {
+
+static_assert(kSheetLineHeight == (font::kGlyphHeight + 1) * kSheetLabelScale,
+    "kSheetLineHeight must follow the font height");
+static_assert(kSheetLabelBand >= kSheetLabelLines * kSheetLineHeight,
+    "the label band must hold kSheetLabelLines lines");
+static_assert(kSheetMinCellWidth >= 16 * font::kAdvance * kSheetLabelScale - kSheetLabelScale,
+    "the narrowest cell must hold 16 characters");
 
 Tile fitTile(const Tile& tile, int maxWidth, int maxHeight)
 {
@@ -56,6 +65,7 @@ std::vector<float> layoutContactSheet(
                 "contact sheet: tile size does not match its pixels (tile '" + t.label + "')");
         cellW = std::max(cellW, t.width), cellH = std::max(cellH, t.height);
     }
+    cellW = std::max(cellW, kSheetMinCellWidth);
     const int n = static_cast<int>(tiles.size());
     if (columns <= 0)
         columns = static_cast<int>(std::ceil(std::sqrt(double(n))));
@@ -66,13 +76,21 @@ std::vector<float> layoutContactSheet(
 
     std::vector<float> sheet(static_cast<size_t>(outWidth) * outHeight * 3, kSheetBackground);
     const float ink[3] = { 0.92f, 0.92f, 0.92f };
-    const int textTop = (kSheetLabelBand - font::kGlyphHeight * kSheetLabelScale) / 2;
     for (int i = 0; i < n; ++i) {
         const Tile& t = tiles[i];
         const int x0 = kSheetGap + (i % columns) * (cellW + kSheetGap);
         const int y0 = kSheetGap + (i / columns) * (kSheetLabelBand + cellH + kSheetGap);
-        font::drawText(sheet.data(), outWidth, outHeight, x0, y0 + textTop, t.label,
-            kSheetLabelScale, ink, cellW);
+        const std::vector<std::string> lines
+            = font::fitLines(t.label, kSheetLabelScale, cellW, kSheetLabelLines);
+        // The lines centred vertically in the band (no gap row under the last one).
+        const int textHeight = static_cast<int>(lines.size()) * kSheetLineHeight
+            - (kSheetLineHeight - font::kGlyphHeight * kSheetLabelScale);
+        int textY = y0 + (kSheetLabelBand - textHeight) / 2;
+        for (const std::string& line : lines) {
+            font::drawText(
+                sheet.data(), outWidth, outHeight, x0, textY, line, kSheetLabelScale, ink, cellW);
+            textY += kSheetLineHeight;
+        }
         // Tiles smaller than the cell sit at its top-left, under their label.
         for (int y = 0; y < t.height; ++y) {
             const float* src = t.rgb.data() + static_cast<size_t>(y) * t.width * 3;

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 
 namespace afn::color {
@@ -64,6 +65,40 @@ float normalise(float v, float lo, float hi)
     return hi > lo ? (v - lo) / (hi - lo) : 0.5f;
 }
 
+std::string shortNumber(float v)
+{
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%.3g", double(v));
+    return buf;
+}
+
+/// Direction legend of the vector code in the bottom-right corner of a tile: a disc whose pixel
+/// at offset (dx, dy) from the centre shows the code of a vector pointing that way (+y drawn up),
+/// its magnitude growing to the maximum at the rim; a grey ring separates it from the picture.
+/// Drawn only on tiles of at least kLegendMinSide pixels on both sides.
+void drawDirectionLegend(float* rgb, int width, int height)
+{
+    constexpr int kLegendMinSide = 48;
+    if (std::min(width, height) < kLegendMinSide)
+        return;
+    const int radius = std::clamp(std::min(width, height) / 8, 8, 28);
+    const int cx = width - radius - 4, cy = height - radius - 4;
+    constexpr float kTwoPi = 6.2831853f;
+    for (int y = cy - radius - 2; y <= cy + radius + 2; ++y)
+        for (int x = cx - radius - 2; x <= cx + radius + 2; ++x) {
+            const float dx = float(x - cx), dy = float(cy - y);
+            const float r = std::hypot(dx, dy);
+            float* p = rgb + (static_cast<size_t>(y) * width + x) * 3;
+            if (r <= radius) {
+                float h = std::atan2(dy, dx) / kTwoPi;
+                h = h < 0.f ? h + 1.f : h;
+                hueValue(std::min(h, 0.99999f), r / radius, p);
+            } else if (r <= radius + 2.f) {
+                p[0] = p[1] = p[2] = 0.6f;
+            }
+        }
+}
+
 } // namespace
 
 Tile makeTile(const ColorManager& cm, const std::string& kind, const std::string& label, int width,
@@ -113,10 +148,11 @@ Tile makeTile(const ColorManager& cm, const std::string& kind, const std::string
             for (size_t i = 0; i < n; ++i)
                 out[i * 3 + k] = normalise(pixels[i * c + k], lo, hi);
         }
-    } else if (kind == "motion") {
-        // Hue = direction of (x, y) (0 deg = +x = red, counter-clockwise), value = magnitude over
-        // the largest finite magnitude in the image; no motion is black. Blender's 4-channel
-        // Vector pass: the first two channels (motion towards the previous frame) are used.
+    } else if (kind == "motion" || kind == "vector2") {
+        // Motion and any 2D vector (kind "vector2"): hue = direction of (x, y) (0 deg = +x = red,
+        // counter-clockwise), value = magnitude over the largest finite magnitude in the image; no
+        // motion is black. Blender's 4-channel Vector pass: the first two channels (motion towards
+        // the previous frame) are used.
         if (c < 2)
             throw ColorError("makeTile: motion needs 2 components" + what);
         float maxMag = 0.f;
@@ -134,12 +170,15 @@ Tile makeTile(const ColorManager& cm, const std::string& kind, const std::string
             h = h < 0.f ? h + 1.f : h;
             hueValue(std::min(h, 0.99999f), std::hypot(x, y) / maxMag, out + i * 3);
         }
+        drawDirectionLegend(out, width, height);
+        tile.label += " (max length " + shortNumber(maxMag) + ")";
     } else if (kind == "alpha" || kind == "mask") {
         for (size_t i = 0; i < n * 3; ++i)
             out[i] = clamp01(pixels[(i / 3) * c]);
     } else {
-        // Anything else (variance, unknown AOVs): every shown channel normalised by the joint
-        // finite range of the first min(c, 3) channels.
+        // Anything else (variance, unknown AOVs, kind "data"): every shown channel normalised by
+        // the joint finite range of the first min(c, 3) channels (one channel: grey); the range
+        // is appended to the label.
         float lo = std::numeric_limits<float>::max(), hi = std::numeric_limits<float>::lowest();
         for (int k = 0; k < std::min(c, 3); ++k) {
             float l, h;
@@ -148,6 +187,8 @@ Tile makeTile(const ColorManager& cm, const std::string& kind, const std::string
         }
         for (size_t i = 0; i < n * 3; ++i)
             out[i] = normalise(channel(i / 3, static_cast<int>(i % 3)), lo, hi);
+        if (lo <= hi)
+            tile.label += " [" + shortNumber(lo) + ", " + shortNumber(hi) + "]";
     }
     return tile;
 }

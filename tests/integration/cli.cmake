@@ -9,3 +9,15 @@ afn_add_gtest(test_afntool_compare SOURCES integration/test_afntool_compare.cpp
   integration/cli_runner.cpp LIBS afn)
 target_compile_definitions(test_afntool_compare PRIVATE AFNTOOL_PATH="$<TARGET_FILE:afntool>")
 add_dependencies(test_afntool_compare afntool)
+
+# afntool --contact-sheet end to end, measured on the written pixels.
+afn_add_gtest(test_afntool_sheet SOURCES integration/test_afntool_sheet.cpp
+  integration/cli_runner.cpp LIBS afn_io afn_color)
+target_compile_definitions(test_afntool_sheet PRIVATE AFNTOOL_PATH="$<TARGET_FILE:afntool>")
+add_dependencies(test_afntool_sheet afntool)
+
+# The --benchmark report's plot and page end to end.
+afn_add_gtest(test_afntool_report SOURCES integration/test_afntool_report.cpp
+  integration/cli_runner.cpp)
+target_compile_definitions(test_afntool_report PRIVATE AFNTOOL_PATH="$<TARGET_FILE:afntool>")
+add_dependencies(test_afntool_report afntool)

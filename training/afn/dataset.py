@@ -38,6 +38,12 @@ import torch
 from . import afntool, generated
 
 FRAME_RE = re.compile(r"frame\.(\d+)\.exr$")
+LAYOUT = ("a scene folder holds frame.NNNN.exr (the noisy render, any renderer's pass names that "
+          "afntool maps) and reference.NNNN.exr (the converged beauty)")
+
+
+class SceneError(ValueError):
+    """A scene folder cannot be read as training data (the message says why and what it holds)."""
 KEYS = ("c1", "cta", "albedo", "normal01", "depth01", "target")
 # Dataset key -> (feature layer written by afntool --features, channel suffixes).
 FEATURES = {"c1": ("irradiance", "RGB"), "cta": ("accumulated", "RGB"),
@@ -75,7 +81,30 @@ def frame_numbers(scene_dir):
     return sorted(nums)
 
 
-def load_scene(scene_dir, alpha_min=0.2, max_frames=None, tool=None, aux="auto"):
+def file_channels(path, tool=None):
+    """Channel names of an image as the C++ reader sees them (``afntool --info --json``); [] when
+    afntool cannot read it."""
+    try:
+        return json.loads(afntool.run(["--info", "--json", path], tool)).get("channels", [])
+    except (afntool.AfntoolError, ValueError):
+        return []
+
+
+def _prepare(scene_dir, nums, args, path, tool):
+    """Run afntool over a scene's frames; :class:`SceneError` with the file's channels on failure."""
+    try:
+        afntool.run(args, tool)
+    except afntool.AfntoolError as e:
+        first = os.path.join(scene_dir, f"{os.path.basename(path).split('.')[0]}.{nums[0]}.exr")
+        chans = file_channels(first, tool)
+        raise SceneError(
+            f"{scene_dir}: afntool cannot prepare these frames ({e}). Channels of "
+            f"{os.path.basename(first)}: {', '.join(chans) or '(unreadable)'}. Name the passes the "
+            f"automatic role mapping misses with --aov ROLE=CHANNELS (roles: color albedo normal "
+            f"depth position motion alpha), e.g. --aov color=diffuse.R,diffuse.G,diffuse.B") from e
+
+
+def load_scene(scene_dir, alpha_min=0.2, max_frames=None, tool=None, aux="auto", aov=()):
     """Prepare every frame of one scene through afntool (in order: TA needs the history).
 
     Args:
@@ -86,20 +115,31 @@ def load_scene(scene_dir, alpha_min=0.2, max_frames=None, tool=None, aux="auto")
             training data must be prepared as the filter will see it in use (default auto).
         max_frames: first frames only (None: all).
         tool: afntool path (None: :func:`afntool.find_afntool`).
+        aov: ``ROLE=CHANNELS`` mappings passed to afntool as ``--aov`` (for passes the automatic
+            role mapping of the C++ core does not find; the same option as afntool's).
+
+    Raises:
+        SceneError: no frames, or afntool cannot read them (names the file's channels).
 
     Returns:
         dict of numpy arrays, each (F, H, W, C) float32, keys :data:`KEYS`.
     """
     nums = frame_numbers(scene_dir)[:max_frames]
     if not nums:
-        raise FileNotFoundError(f"{scene_dir}: no frame.NNNN.exr with a reference.NNNN.exr")
+        raise SceneError(f"{scene_dir}: no frame.NNNN.exr with a reference.NNNN.exr ({LAYOUT}); "
+                         f"it holds: {', '.join(sorted(os.listdir(scene_dir))[:12]) or 'nothing'}")
     frames = afntool.frame_list(nums)
+    tool = tool or afntool.require_afntool()  # a missing afntool is its own error
+    overrides = [x for a in aov for x in ("--aov", a)]
     with tempfile.TemporaryDirectory(prefix="afn-features-") as cache:
-        afntool.run(["-q", "--frames", frames, os.path.join(scene_dir, "frame.####.exr"),
-                     f"--features:alphaMin={alpha_min}:aux={aux}",
-                     os.path.join(cache, "features.####.exr")], tool)
-        afntool.run(["-q", "--frames", frames, os.path.join(scene_dir, "reference.####.exr"),
-                     "-d", "float", "-o", os.path.join(cache, "target.####.exr")], tool)
+        frame_path = os.path.join(scene_dir, "frame.####.exr")
+        _prepare(scene_dir, nums, ["-q", "--frames", frames] + overrides
+                 + [frame_path, f"--features:alphaMin={alpha_min}:aux={aux}",
+                    os.path.join(cache, "features.####.exr")], frame_path, tool)
+        ref_path = os.path.join(scene_dir, "reference.####.exr")
+        _prepare(scene_dir, nums, ["-q", "--frames", frames] + overrides
+                 + [ref_path, "-d", "float", "-o", os.path.join(cache, "target.####.exr")],
+                 ref_path, tool)
         out = {k: [] for k in KEYS}
         for n in nums:
             n4 = f"{int(n):04d}"

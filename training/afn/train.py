@@ -22,7 +22,9 @@ import numpy as np
 import torch
 
 from . import color
-from .dataset import CropSampler, evaluation_scenes, find_scenes, load_scene, to_tensors
+from .afntool import AfntoolError
+from .dataset import (LAYOUT, CropSampler, SceneError, evaluation_scenes, find_scenes, load_scene,
+                      to_tensors)
 from .generated import expand
 from .loss import smape
 from .model import AFN, VARIANTS, AFNConfig
@@ -59,6 +61,9 @@ def parse_args(argv=None):
     ap.add_argument("--init", default="", help="start a new run from these weights (.afnw or a "
                     "checkpoint .pt; same architecture), e.g. to fine-tune the shipped model from an "
                     "evaluation model")
+    ap.add_argument("--aov", action="append", default=[], metavar="ROLE=CHANNELS",
+                    help="map a pass the C++ core's automatic role mapping misses, as afntool's "
+                    "--aov (e.g. albedo=diffuse.R,diffuse.G,diffuse.B); repeatable")
     return ap.parse_args(argv)
 
 
@@ -146,7 +151,9 @@ def resolve_scenes(args):
     if set(train_names) & evals:
         raise SystemExit("afn.train: evaluation scenes of a generated dataset are never trained on")
     if not train_names:
-        raise SystemExit("afn.train: no training scenes")
+        where = args.data if os.path.isdir(args.data) else f"{args.data} (not a folder)"
+        held = f" ({len(holdout)} held out)" if holdout else ""
+        raise SystemExit(f"afn.train: no training scenes in {where}{held}: {LAYOUT}")
     return all_scenes, train_names, holdout
 
 
@@ -234,8 +241,11 @@ def main(argv=None):
 
     mf = args.max_frames or None
     print(f"loading {len(train_names)} training and {len(holdout)} held-out scenes ...", flush=True)
-    train = [load_scene(all_scenes[s], max_frames=mf) for s in train_names]
-    val = [load_scene(all_scenes[s], max_frames=mf) for s in holdout]
+    try:
+        train = [load_scene(all_scenes[s], max_frames=mf, aov=args.aov) for s in train_names]
+        val = [load_scene(all_scenes[s], max_frames=mf, aov=args.aov) for s in holdout]
+    except (SceneError, AfntoolError) as e:
+        raise SystemExit(f"afn.train: {e}")
     sampler = CropSampler(train, args.crop, seed=args.seed)
     area = sum(s["c1"].shape[0] * s["c1"].shape[1] * s["c1"].shape[2] for s in train)
     steps = args.steps or max(1, area // (args.crop * args.crop) // args.batch)

@@ -93,9 +93,14 @@ TEST(Report, SvgHasOnePointPerFiniteMethodAndTheFront)
     const std::string svg = runtimeErrorSvg(r);
     EXPECT_EQ(svg.rfind("<svg", 0), 0u);
     EXPECT_NE(svg.find("</svg>"), std::string::npos);
-    EXPECT_EQ(count(svg, "<circle cx"), 2u + 2u); // two methods + two legend markers
-    EXPECT_EQ(count(svg, "<polyline"), 1u);
-    EXPECT_NE(svg.find("1 method(s) with NaN error not drawn"), std::string::npos);
+    // Panels: rmse, ssim, tge. "bad" has NaN rmse and tge (0.5 * rmse) but a finite SSIM (0).
+    EXPECT_EQ(count(svg, "<g class=\"panel\""), 3u);
+    EXPECT_EQ(count(svg, "<circle cx"), 2u + 3u + 2u);
+    // Fronts: rmse and tge join ta and svgf; in SSIM (all 0) the fastest alone is on it.
+    EXPECT_EQ(count(svg, "<polyline"), 2u);
+    EXPECT_EQ(count(svg, "1 method(s) with NaN not drawn"), 2u);
+    // The legend names every method once.
+    EXPECT_EQ(count(svg, ">svgf</text>"), 1u);
 }
 
 } // namespace

@@ -6,6 +6,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <string>
+#include <vector>
 
 using afn::color::ColorError;
 using afn::color::ColorManager;
@@ -124,6 +126,32 @@ TEST(ColorTiles, FontGlyphPixelCounts)
     EXPECT_EQ(font::drawText(small.data(), 40, 20, 37, 0, "H", 1, ink), 9);
 }
 
+TEST(ColorTiles, FontHasDescendersAndFitsLines)
+{
+    namespace font = afn::color::font;
+    // 'g' is not '9': it reaches below the baseline, '9' does not.
+    auto below = [](char c) {
+        const std::uint8_t* rows = font::glyph(c);
+        return rows[font::kAscent] | rows[font::kAscent + 1];
+    };
+    for (char c : std::string("gjpqy"))
+        EXPECT_NE(below(c), 0) << c;
+    for (char c : std::string("9aAZ0"))
+        EXPECT_EQ(below(c), 0) << c;
+    // Lines of whole glyphs within the width, broken after separators, ellipsised when too long.
+    const int w = font::textWidth("0123456789", 2); // 10 characters per line
+    auto lines = font::fitLines("albedo: ViewLayer.Denoising Albedo", 2, w, 2);
+    ASSERT_EQ(lines.size(), 2u);
+    EXPECT_EQ(lines[0], "albedo:");
+    EXPECT_EQ(lines[1], "ViewLay...");
+    for (const std::string& l : lines)
+        EXPECT_LE(font::textWidth(l, 2), w) << l;
+    EXPECT_EQ(font::fitLines("short", 2, w, 2), std::vector<std::string> { "short" });
+    EXPECT_EQ(font::fitLines("abcdefghijklmno", 2, w, 2),
+        (std::vector<std::string> { "abcdefghij", "klmno" }));
+    EXPECT_TRUE(font::fitLines("", 2, w, 2).empty());
+}
+
 TEST(ColorTiles, ContactSheetLayoutAndLabels)
 {
     using namespace afn::color;
@@ -131,34 +159,36 @@ TEST(ColorTiles, ContactSheetLayoutAndLabels)
         solid("A", 10, 8, 0.f) };
     int w = 0, h = 0;
     const std::vector<float> sheet = layoutContactSheet(tiles, 2, w, h);
-    // 2 columns, 2 rows of 10x8 cells: 6 + 2*(10+6) = 38 wide, 6 + 2*(22+8+6) = 78 high.
-    ASSERT_EQ(w, 38);
-    ASSERT_EQ(h, 78);
-    ASSERT_EQ(sheet.size(), size_t(38 * 78 * 3));
+    // 2 columns, 2 rows of cells kSheetMinCellWidth wide (the tiles are narrower) and 8 high.
+    const int cellW = kSheetMinCellWidth, rowH = kSheetLabelBand + 8 + kSheetGap;
+    ASSERT_EQ(w, kSheetGap + 2 * (cellW + kSheetGap));
+    ASSERT_EQ(h, kSheetGap + 2 * rowH);
+    ASSERT_EQ(sheet.size(), size_t(w) * h * 3);
     auto at = [&](int x, int y) { return sheet[(static_cast<size_t>(y) * w + x) * 3]; };
-    // Tile pixels: cell (col, row) starts at (6 + col*16, 6 + row*36 + 22).
-    EXPECT_EQ(at(6, 28), 1.f);
-    EXPECT_EQ(at(15, 35), 1.f);
-    EXPECT_EQ(at(22, 28), 0.5f);
-    EXPECT_EQ(at(27, 31), 0.5f);
-    EXPECT_EQ(at(28, 28), kSheetBackground); // right of the smaller tile
-    EXPECT_EQ(at(6, 64), 0.f);
+    const int col1 = kSheetGap + cellW + kSheetGap, tileY = kSheetGap + kSheetLabelBand;
+    EXPECT_EQ(at(kSheetGap, tileY), 1.f);
+    EXPECT_EQ(at(kSheetGap + 9, tileY + 7), 1.f);
+    EXPECT_EQ(at(kSheetGap + 10, tileY), kSheetBackground); // right of the tile, in its cell
+    EXPECT_EQ(at(col1, tileY), 0.5f);
+    EXPECT_EQ(at(col1 + 5, tileY + 3), 0.5f);
+    EXPECT_EQ(at(col1 + 6, tileY), kSheetBackground);
+    EXPECT_EQ(at(kSheetGap, tileY + rowH), 0.f);
     // Label bands: "A" lights exactly 72 pixels (18 glyph pixels at 2x2), the empty label none.
     auto inked = [&](int x0, int y0) {
         int count = 0;
         for (int y = y0; y < y0 + kSheetLabelBand; ++y)
-            for (int x = x0; x < x0 + 10; ++x)
+            for (int x = x0; x < x0 + cellW; ++x)
                 count += at(x, y) != kSheetBackground;
         return count;
     };
-    EXPECT_EQ(inked(6, 6), 72);
-    EXPECT_EQ(inked(22, 6), 0);
-    EXPECT_EQ(inked(6, 42), 72);
+    EXPECT_EQ(inked(kSheetGap, kSheetGap), 72);
+    EXPECT_EQ(inked(col1, kSheetGap), 0);
+    EXPECT_EQ(inked(kSheetGap, kSheetGap + rowH), 72);
     // Automatic columns: ceil(sqrt(5)) = 3.
     std::vector<Tile> five(5, solid("x", 4, 4, 0.f));
     layoutContactSheet(five, 0, w, h);
-    EXPECT_EQ(w, 6 + 3 * (4 + 6));
-    EXPECT_EQ(h, 6 + 2 * (22 + 4 + 6));
+    EXPECT_EQ(w, kSheetGap + 3 * (cellW + kSheetGap));
+    EXPECT_EQ(h, kSheetGap + 2 * (kSheetLabelBand + 4 + kSheetGap));
     EXPECT_THROW(layoutContactSheet({}, 2, w, h), ColorError);
     Tile broken = solid("b", 4, 4, 0.f);
     broken.rgb.pop_back();
