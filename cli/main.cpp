@@ -2,8 +2,10 @@
 // afntool: oiiotool-style command line over afn's public APIs (libafn, afn_io, afn_color).
 // Errors print "afntool ERROR: <what> (<file>)" on stderr and exit with 1; nothing half-written
 // is left behind (every output is written atomically).
+#include "arg_checks.h"
 #include "cli_error.h"
 #include "frame_loader.h"
+#include "help_text.h"
 #include "ops.h"
 #include "options.h"
 #include "progress.h"
@@ -27,8 +29,14 @@ bool needsAllChannels(const Options& opts)
 
 int run(const Options& opts)
 {
+    if (opts.usage) {
+        // No arguments: the usage lines on stdout and success, as oiiotool does.
+        std::fputs(usageText().c_str(), stdout);
+        return 0;
+    }
     if (opts.help) {
-        std::fputs(helpText().c_str(), stdout);
+        std::fputs(
+            (opts.helpTopic.empty() ? helpText() : topicHelpText(opts.helpTopic)).c_str(), stdout);
         return 0;
     }
     if (opts.methods) {
@@ -39,6 +47,7 @@ int run(const Options& opts)
         std::printf("afntool %d.%d.%d\n", AFN_VERSION_MAJOR, AFN_VERSION_MINOR, AFN_VERSION_PATCH);
         return 0;
     }
+    checkActionModifiers(opts);
     for (const Action& a : opts.actions)
         if (a.name == "benchmark")
             return runBenchmark(opts, a);
@@ -106,7 +115,7 @@ int run(const Options& opts)
         }
     }
     progress.update(static_cast<int>(frames.size()), "done");
-    progress.clear();
+    progress.finish();
     if (comparer)
         comparer->finish();
     return 0;

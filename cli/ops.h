@@ -47,7 +47,8 @@ public:
 
 private:
     void run(LoadedFrame& frame, Progress* progress);
-    /// The per-frame log line of the aux decision and speckle shares (methods that demodulate).
+    /// The per-frame log line of the aux decision and speckle shares (methods that demodulate),
+    /// and the inputs the method uses that the frame lacks (a warning when that changes).
     void logAux(const LoadedFrame& frame, Progress* progress);
     void check(const std::string& what, const std::string& file);
     /// --device cuda|auto: the filter on the CUDA device; with auto, nothing (the CPU is used)
@@ -63,6 +64,7 @@ private:
     afn::DeviceRef m_device;
     afn::FilterRef m_filter;
     std::vector<float> m_output;
+    std::string m_missingWarned; ///< the missing inputs last warned about (warned once per change)
 };
 
 /// --compare REF: per-frame and mean metrics of the current beauty against the reference frames

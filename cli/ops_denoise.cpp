@@ -1,9 +1,11 @@
 // SPDX-License-Identifier: Apache-2.0
 #include "ops.h"
 
+#include "arg_checks.h"
 #include "cli_error.h"
 #include "progress.h"
 #include "sample_count.h"
+#include "text.h"
 
 #include <cstdio>
 
@@ -66,6 +68,8 @@ SequenceDenoiser::SequenceDenoiser(const Options& opts, const Action& action)
     m_method = it == m_params.end() ? "afn" : it->second;
     if (it != m_params.end())
         m_params.erase(it);
+    checkMethodName(m_flag, m_method);
+    checkMethodParameters(m_flag, m_method, m_params, { "weights" });
     // Feature outputs are computed on the CPU: auto stays there, cuda reports the device's error.
     if (opts.device == "cuda" || (opts.device == "auto" && !m_features))
         openOnCuda(opts.device);
@@ -208,6 +212,24 @@ void SequenceDenoiser::run(LoadedFrame& frame, Progress* progress)
 
 void SequenceDenoiser::logAux(const LoadedFrame& frame, Progress* progress)
 {
+    // Inputs the method reads but the file does not have: warned about clearly (once, and again
+    // when it changes), and named in every frame's log line.
+    const std::string missing = m_filter.get<std::string>(AFN_STAT_MISSING_INPUTS);
+    if (!missing.empty() && missing != m_missingWarned)
+        warn(m_flag + ": " + m_method + " runs without " + missing
+                + ". Map the AOVs with --aov ROLE=CHANNELS (see afntool --info " + frame.ref.path
+                + ")",
+            m_opts.quiet, progress);
+    m_missingWarned = missing;
+    std::string missingShort;
+    for (const std::string& item : splitList(missing, ';')) {
+        const std::string name = item.substr(item.find_first_not_of(' '));
+        missingShort += (missingShort.empty() ? "" : ", ") + name.substr(0, name.find(" ("));
+    }
+    if (!missingShort.empty())
+        note(m_flag + ": " + m_method + " without " + missingShort + " " + frame.ref.path,
+            m_opts.quiet, progress);
+
     bool hasAux = false;
     for (const AFNParamInfo& p : afn::filterTypeParams(m_method.c_str()))
         hasAux = hasAux || std::string(p.name) == AFN_PARAM_AUX;

@@ -4,6 +4,7 @@
 #include "cli_error.h"
 #include "json_writer.h"
 
+#include <algorithm>
 #include <cstdio>
 #include <optional>
 #include <sstream>
@@ -118,7 +119,10 @@ void printText(const FileReport& r)
                 c < si.types.size() ? si.types[c].c_str() : "?");
         std::printf("\n");
     }
-    std::printf("  roles:\n");
+    if (r.mapping.presetsTried.empty())
+        std::printf("  roles:\n");
+    else
+        std::printf("  roles (%s names):\n", join(r.mapping.presetsTried, " names, then ").c_str());
     for (int i = 0; i < afn::io::kNumRoles; ++i) {
         const Role role = static_cast<Role>(i);
         const afn::io::RoleChannels* rc = r.mapping.find(role);
@@ -136,9 +140,25 @@ void printText(const FileReport& r)
                 std::printf("              noise: speckle %.2f %% of pixels (%s)\n",
                     100.0 * nz->second.speckle, nz->second.noisy ? "noisy" : "clean");
         } else {
+            // One short line: the names actually tried (the file's own channels are listed
+            // above), at most kMaxNames of them.
+            constexpr std::size_t kMaxNames = 6;
             auto lf = r.mapping.lookedFor.find(role);
-            std::printf("    %-9s (not found; looked for %s)\n", afn::io::roleName(role),
-                lf == r.mapping.lookedFor.end() ? "-" : join(lf->second).c_str());
+            std::vector<std::string> names;
+            if (lf != r.mapping.lookedFor.end())
+                names = lf->second;
+            const std::size_t more = names.size() > kMaxNames ? names.size() - kMaxNames : 0;
+            names.resize(std::min(names.size(), kMaxNames));
+            if (names.empty()) {
+                std::printf("    %-9s (not found; name it with --aov %s=CHANNELS)\n",
+                    afn::io::roleName(role), afn::io::roleName(role));
+                continue;
+            }
+            std::string tried = join(names);
+            if (more)
+                tried += ", ... (" + std::to_string(more) + " more)";
+            std::printf(
+                "    %-9s (not found; looked for %s)\n", afn::io::roleName(role), tried.c_str());
         }
     }
     std::printf("  aux=auto: %s\n", autoNoisy(r) ? "noisy" : "clean");
@@ -193,6 +213,7 @@ void writeJson(JsonWriter& j, const FileReport& r)
     for (const auto& rc : r.mapping.roles)
         j.key(afn::io::roleName(rc.role)).value(rc.channels);
     j.endObject();
+    j.key("presetsTried").value(r.mapping.presetsTried);
     j.key("missingRoles").beginObject();
     for (const auto& [role, looked] : r.mapping.lookedFor)
         j.key(afn::io::roleName(role)).value(looked);

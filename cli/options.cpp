@@ -1,11 +1,9 @@
 // SPDX-License-Identifier: Apache-2.0
 #include "options.h"
 
+#include "arg_checks.h"
 #include "cli_error.h"
-
-#include "afn/afn.hpp"
-
-#include <sstream>
+#include "near_match.h"
 
 namespace afntool {
 
@@ -51,11 +49,21 @@ int parseInt(const std::string& text, const std::string& flag)
     }
 }
 
+/// Every flag the parser below accepts (for "did you mean" suggestions).
+std::vector<std::string> knownFlags()
+{
+    return { "--help", "--methods", "--version", "--frames", "--colorconfig", "--incolorspace",
+        "--outcolorspace", "--aov", "--threads", "--device", "--weights", "-d", "--compression",
+        "--keep-aovs", "--json", "--quiet", "--info", "--denoise", "--features", "--preview",
+        "--contact-sheet", "--compare", "--benchmark", "--report" };
+}
+
 } // namespace
 
 Options parseCommandLine(int argc, const char* const* argv)
 {
     Options o;
+    o.usage = argc <= 1; // no arguments: usage, as oiiotool does
     for (int i = 1; i < argc; ++i) {
         const std::string raw = argv[i];
         if (raw.size() < 2 || raw[0] != '-') {
@@ -66,6 +74,9 @@ Options parseCommandLine(int argc, const char* const* argv)
         const std::string flag = splitModifiers(raw, mods);
         if (flag == "-h" || flag == "--help") {
             o.help = true;
+            if (i + 1 < argc && argv[i + 1][0] != '-')
+                o.helpTopic = argv[++i]; // --help METHOD
+
         } else if (flag == "--methods") {
             o.methods = true;
         } else if (flag == "--version") {
@@ -79,11 +90,7 @@ Options parseCommandLine(int argc, const char* const* argv)
         } else if (flag == "--outcolorspace") {
             o.outColorSpace = needValue(i, argc, argv, flag);
         } else if (flag == "--aov") {
-            try {
-                afn::io::parseOverride(needValue(i, argc, argv, flag), o.overrides);
-            } catch (const afn::io::IoError& e) {
-                throw CliError(std::string("--aov: ") + e.what());
-            }
+            parseAovArgument(needValue(i, argc, argv, flag), o.overrides);
         } else if (flag == "--threads") {
             o.threads = parseInt(needValue(i, argc, argv, flag), flag);
             if (o.threads < 0)
@@ -125,127 +132,11 @@ Options parseCommandLine(int argc, const char* const* argv)
         } else if (flag == "-o") {
             o.actions.push_back({ "output", needValue(i, argc, argv, flag), mods });
         } else {
-            throw CliError("unknown argument '" + raw + "' (see afntool --help)");
+            throw CliError("unknown argument '" + raw + "'" + didYouMean(flag, knownFlags())
+                + " (see afntool --help)");
         }
     }
     return o;
-}
-
-static std::string paramLine(const AFNParamInfo& p)
-{
-    std::ostringstream os;
-    os << "        " << p.name << "=";
-    switch (p.type) {
-    case AFN_PARAM_BOOL:
-        os << (p.defaultValue != 0.0 ? "1" : "0") << "  (bool)";
-        break;
-    case AFN_PARAM_INT:
-        os << p.defaultValue << "  (int " << p.minValue << ".." << p.maxValue << ")";
-        break;
-    case AFN_PARAM_FLOAT:
-        os << p.defaultValue << "  (float " << p.minValue << ".." << p.maxValue << ")";
-        break;
-    case AFN_PARAM_STRING:
-        os << p.defaultString << "  (" << p.choices << ")";
-        break;
-    }
-    os << "\n            " << p.help << "\n";
-    return os.str();
-}
-
-std::string methodsText()
-{
-    std::ostringstream os;
-    for (const std::string& type : afn::filterTypes()) {
-        const char* desc = afnGetFilterTypeDescription(type.c_str());
-        os << type << (afn::isFilterTypeReady(type.c_str()) ? " ready " : " needs-weights ")
-           << (desc ? desc : "") << "\n";
-    }
-    return os.str();
-}
-
-std::string helpText()
-{
-    std::ostringstream os;
-    os << "afntool " << AFN_VERSION_MAJOR << "." << AFN_VERSION_MINOR << "." << AFN_VERSION_PATCH
-       << " -- denoise path-traced renders (AFN, SVGF, BMFR, ...)\n\n"
-       << "Usage: afntool [settings] INPUT [actions]\n"
-       << "  INPUT is a file or a frame pattern (shot.####.exr: # = 4 digits, @ = 1 digit, %04d).\n"
-       << "  Actions run per frame in the order given; ':key=value' modifiers follow an action.\n\n"
-       << "Settings:\n"
-       << "  --frames A-B            frame range for patterns (1-10, 1-10x2, 3,5,7)\n"
-       << "  --aov ROLE=CHANNELS     map a role by hand: albedo=diffuse.R,diffuse.G,diffuse.B or\n"
-       << "                          albedo=diffuse; conventions too: normal.space=camera\n"
-       << "                          (roles: color albedo normal depth position motion alpha)\n"
-       << "  --colorconfig FILE      OpenColorIO config (default: $OCIO, else afn's own)\n"
-       << "  --incolorspace NAME     colour space of the input beauty (default: the file's, else\n"
-       << "                          the working space)\n"
-       << "  --outcolorspace NAME    colour space of written images (default: the input's)\n"
-       << "  --threads N             worker threads (0 = all cores)\n"
-       << "  --device cpu|cuda|auto  where --denoise runs (default cpu: the reference results,\n"
-       << "                          the same on every machine). cuda: an NVIDIA GPU of compute\n"
-       << "                          capability 9.0+ in builds with CUDA; only afn runs there\n"
-       << "                          (half precision, within docs/gpu.md's tolerance of cpu).\n"
-       << "                          auto: cuda when there is one and the method runs there,\n"
-       << "                          else cpu with a note on stderr\n"
-       << "  --weights FILE          network weights (.afnw) for learned methods such as afn,\n"
-       << "                          instead of the ones built in (also :weights=FILE on "
-          "--denoise)\n"
-       << "  -d half|float           output data type (default: the input's)\n"
-       << "  --compression NAME      EXR compression (zip, piz, dwaa, none, ...; default: "
-          "input's)\n"
-       << "  --keep-aovs             copy every other input layer into -o outputs\n"
-       << "  --json                  machine-readable --info\n"
-       << "  --methods               list the methods, each 'ready' or 'needs-weights'\n"
-       << "  -q, --quiet             no progress bar and no warnings\n\n"
-       << "Actions:\n"
-       << "  --info                  layers, channels, windows, role mapping, per-role statistics\n"
-       << "  --denoise:method=NAME[:param=value...]\n"
-       << "                          denoise the sequence in frame order (history kept)\n"
-       << "  --features[:method=afn] OUT.exr\n"
-       << "                          the learned method's network inputs as it prepares them\n"
-       << "                          (one float layer per feature; no weights needed)\n"
-       << "  --preview OUT.png       display-referred beauty (:display=NAME:view=NAME)\n"
-       << "  --contact-sheet OUT.png every AOV of the frame as a labelled tile\n"
-       << "                          (:columns=4:tilesize=480)\n"
-       << "  -o OUT                  write the beauty as top-level R,G,B[,A] (atomic)\n"
-       << "  --compare REF           metrics of the current beauty against REF (file or pattern):\n"
-       << "                          per frame and mean; table, or JSON with --json\n"
-       << "  --benchmark:methods=ta,svgf/iterations=2,...  (with --compare REF [--report DIR])\n"
-       << "                          time and score each method on the sequence; report folder "
-          "with\n"
-       << "                          results.json/.csv, runtime-vs-error.svg, index.html\n"
-       << "                          (:repeat=N :error=rmse|psnr|ssim|smape|... :crop=X,Y,W,H\n"
-       << "                          :crop-frames=F,G)\n"
-       << "  --benchmark:size=1280x720,1920x1080,...  time the denoise stage on generated inputs\n"
-       << "                          (:methods=a,b :frames=N :warmup=W; --json, --report DIR)\n"
-       << "  --report DIR            folder for --benchmark's report files\n\n"
-       << "Denoising methods and their parameters (name=default (type range)):\n";
-    for (const std::string& type : afn::filterTypes()) {
-        const char* desc = afnGetFilterTypeDescription(type.c_str());
-        os << "  " << type << ": " << (desc ? desc : "")
-           << (afn::isFilterTypeReady(type.c_str()) ? "" : " [needs weights: --weights FILE]")
-           << "\n";
-        for (const AFNParamInfo& p : afn::filterTypeParams(type.c_str())) {
-            const std::string name = p.name;
-            // Input conventions are set from the role mapping; list them once below.
-            if (name.find('.') != std::string::npos)
-                continue;
-            os << paramLine(p);
-        }
-    }
-    os << "  Input conventions (every method; set automatically from the role mapping,\n"
-       << "  override with --aov or as modifiers):\n";
-    if (!afn::filterTypes().empty()) {
-        for (const AFNParamInfo& p : afn::filterTypeParams(afn::filterTypes().front().c_str()))
-            if (std::string(p.name).find('.') != std::string::npos)
-                os << paramLine(p);
-    }
-    os << "\nExamples:\n"
-       << "  afntool --info --json render.exr\n"
-       << "  afntool --frames 0-59 shot.####.exr --denoise:method=svgf -o out.####.exr\n"
-       << "  afntool shot.0001.exr --contact-sheet aovs.png --preview beauty.png\n";
-    return os.str();
 }
 
 } // namespace afntool

@@ -36,6 +36,8 @@ struct Options {
     std::string report; ///< --report DIR (with --benchmark): report folder
     bool quiet = false; ///< --quiet: no progress, no warnings
     bool help = false;
+    std::string helpTopic; ///< --help METHOD
+    bool usage = false; ///< no arguments: print the usage lines
     bool methods = false; ///< --methods: one line per method with its readiness
     bool version = false;
     std::vector<Action> actions;
@@ -43,11 +45,6 @@ struct Options {
 
 /// Parse argv; throws CliError with a message naming the bad argument.
 Options parseCommandLine(int argc, const char* const* argv);
-
-/// Full help text, listing every denoising method and its parameters with defaults.
-std::string helpText();
-/// The --methods listing: "NAME ready|needs-weights DESCRIPTION" per line.
-std::string methodsText();
 
 /// Split "--name:key=value:key2=value2" into the name and its modifiers.
 std::string splitModifiers(const std::string& arg, std::map<std::string, std::string>& mods);

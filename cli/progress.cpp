@@ -8,7 +8,9 @@ namespace afntool {
 
 Progress::Progress(int total, bool quiet)
     : m_total(total)
-    , m_enabled(!quiet && isatty(2))
+    , m_quiet(quiet)
+    , m_bar(!quiet && isatty(2))
+    , m_start(std::chrono::steady_clock::now())
 {
 }
 
@@ -20,8 +22,16 @@ Progress::~Progress()
 
 void Progress::update(int done, const std::string& label)
 {
-    if (!m_enabled)
+    if (m_quiet)
         return;
+    if (!m_bar) {
+        // One line per finished item, so that a log that is not a terminal still shows where a
+        // run is (an error in the first item comes first); a single item only gets the summary.
+        if (done > 0 && m_total > 1)
+            std::fprintf(stderr, "afntool: [%d/%d] %s\n", done, m_total, m_label.c_str());
+        m_label = label;
+        return;
+    }
     const int width = 30;
     const int filled = m_total > 0 ? done * width / m_total : width;
     std::string bar(static_cast<std::size_t>(filled), '#');
@@ -37,6 +47,28 @@ void Progress::clear()
         std::fprintf(stderr, "\r\033[K");
         m_drawn = false;
     }
+}
+
+void Progress::finish()
+{
+    clear();
+    if (m_quiet)
+        return;
+    const double seconds
+        = std::chrono::duration<double>(std::chrono::steady_clock::now() - m_start).count();
+    std::fprintf(stderr, "afntool: %s\n", summaryText(m_total, seconds).c_str());
+}
+
+std::string summaryText(int frames, double seconds)
+{
+    char text[128];
+    if (seconds > 0.0)
+        std::snprintf(text, sizeof text, "%d frame%s in %.2f s (%.2f fps)", frames,
+            frames == 1 ? "" : "s", seconds, frames / seconds);
+    else
+        std::snprintf(
+            text, sizeof text, "%d frame%s in %.2f s", frames, frames == 1 ? "" : "s", seconds);
+    return text;
 }
 
 void warn(const std::string& message, bool quiet, Progress* progress)

@@ -128,6 +128,10 @@ typedef enum AFNDeviceType {
 #define AFN_STAT_ALBEDO_SPECKLE "stats.albedoSpeckle"
 #define AFN_STAT_NORMAL_SPECKLE "stats.normalSpeckle"
 #define AFN_STAT_DEPTH_SPECKLE "stats.depthSpeckle"
+/// The inputs the method reads that the last frame lacked, with what each is for, e.g.
+/// "normal (edge-stopping); motion or position with a camera (reprojection: ...)"; "" when none
+/// (afnGetFilterString). The method still runs, with less to go on.
+#define AFN_STAT_MISSING_INPUTS "stats.missingInputs"
 
 /// Types of filter parameters, as reported by afnGetFilterTypeParam().
 typedef enum AFNParamType {
@@ -252,7 +256,8 @@ AFN_API void afnSetFilterData(
 AFN_API bool afnGetFilterBool(AFNFilter filter, const char* name);
 AFN_API int afnGetFilterInt(AFNFilter filter, const char* name);
 AFN_API float afnGetFilterFloat(AFNFilter filter, const char* name);
-/// The string is owned by the filter and valid until the parameter changes.
+/// The string is owned by the filter and valid until the parameter changes (or the next execute,
+/// for AFN_STAT_MISSING_INPUTS).
 AFN_API const char* afnGetFilterString(AFNFilter filter, const char* name);
 
 /// Register a progress callback (NULL to remove).

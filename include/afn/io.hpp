@@ -85,8 +85,13 @@ struct RoleMapping {
         = "generic"; ///< blender | arnold | renderman | vray | redshift | karma | bmfr | generic
     std::vector<RoleChannels> roles; ///< roles found, in Role order
     SpaceTag tag; ///< conventions of normal, depth and motion as found
-    /// For every role not found: the channel names that were looked for (for error messages).
+    /// For every role not found: the names actually tried, as --aov would spell them (layers such
+    /// as "albedo" or "ViewLayer.DiffCol", top-level channels such as "R,G,B"): the chosen
+    /// preset's, then the generic ones (a colour found nowhere: every preset's).
     std::map<Role, std::vector<std::string>> lookedFor;
+    /// Labels of the naming conventions applied, in order: the chosen preset ("Blender Cycles"),
+    /// then "generic" for roles the preset left unmapped.
+    std::vector<std::string> presetsTried;
     /// Things the user should know (e.g. "Vector pass is all zero: motion blur was on").
     std::vector<std::string> warnings;
 
@@ -138,7 +143,10 @@ AFN_IO_API std::optional<int> samplesPerPixel(
     const FileInfo& info, const std::string& colorChannel = {});
 
 /// Map channels to roles (automatic for Blender Cycles, Arnold, RenderMan, V-Ray, Redshift, Karma,
-/// generic R,G,B), then apply overrides. Never throws for a missing role: see lookedFor.
+/// generic R,G,B), then apply overrides. A preset is chosen by the header (e.g. Blender's
+/// attributes) or by the names it explains; roles it leaves unmapped fall back to the generic
+/// names ("albedo", "N", "P", "Z", "motionvector", ...). Never throws for a missing role (see
+/// lookedFor); throws IoError when an override names channels the file does not have.
 AFN_IO_API RoleMapping mapRoles(const FileInfo& info, const MappingOverrides& overrides = {});
 
 // ---- Reading frames -----------------------------------------------------------------------------

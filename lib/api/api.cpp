@@ -383,7 +383,9 @@ AFN_API const char* afnGetFilterString(AFNFilter f, const char* name)
     AFN_TRY
     checkFilter(f);
     std::lock_guard<std::mutex> lock(f->mutex);
-    f->stringResult = f->filter->params().getString(checkName(name));
+    const std::string key = checkName(name);
+    f->stringResult = key == AFN_STAT_MISSING_INPUTS ? f->filter->lastMissingInputs()
+                                                     : f->filter->params().getString(key);
     return f->stringResult.c_str();
     AFN_CATCH(deviceOf(f))
     return nullptr;

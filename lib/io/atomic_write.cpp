@@ -45,6 +45,19 @@ fs::path tempPathFor(const fs::path& target)
     return target.parent_path() / name;
 }
 
+/// OpenImageIO's messages name the file it was given, the temporary one: report the user's path
+/// instead, so that no ".<name>.afn-tmp-<pid>-<n>" name ever reaches the user.
+std::string userMessage(std::string message, const fs::path& tmp, const std::string& path)
+{
+    const std::pair<std::string, std::string> swaps[] = { { tmp.string(), path },
+        { tmp.filename().string(), fs::path(path).filename().string() } };
+    for (const auto& [from, to] : swaps)
+        for (std::size_t at = message.find(from); !from.empty() && at != std::string::npos;
+             at = message.find(from, at + to.size()))
+            message.replace(at, from.size(), to);
+    return message;
+}
+
 OIIO::TypeDesc typeFromName(const std::string& t, const std::string& path)
 {
     if (t == "half")
@@ -129,7 +142,9 @@ void writeImageAtomic(const std::string& path, int width, int height,
     TempFile tmp(tempPathFor(path));
     auto out = OIIO::ImageOutput::create(tmp.path().string());
     if (!out)
-        throw IoError("no writer for this file type: " + detail::inputError(nullptr), path);
+        throw IoError(userMessage("no writer for this file type: " + detail::inputError(nullptr),
+                          tmp.path(), path),
+            path);
     const std::string format = out->format_name();
     const bool exr = format == "openexr";
     const bool floatOnly = format == "hdr" || format == "pfm";
@@ -171,14 +186,15 @@ void writeImageAtomic(const std::string& path, int width, int height,
             spec.attribute(k, v);
 
     if (!out->open(tmp.path().string(), spec))
-        throw IoError("cannot write: " + out->geterror(), path);
+        throw IoError(userMessage("cannot write: " + out->geterror(), tmp.path(), path), path);
     if (!out->write_image(OIIO::TypeDesc::FLOAT, data)) {
         const std::string err = out->geterror();
         out->close();
-        throw IoError("cannot write pixels: " + err, path);
+        throw IoError(userMessage("cannot write pixels: " + err, tmp.path(), path), path);
     }
     if (!out->close())
-        throw IoError("cannot finish writing: " + out->geterror(), path);
+        throw IoError(
+            userMessage("cannot finish writing: " + out->geterror(), tmp.path(), path), path);
     out.reset();
     std::error_code ec;
     fs::rename(tmp.path(), path, ec);

@@ -207,7 +207,7 @@ FrameImages readBmfrFrame(const std::string& dir, int frame, const ReadOptions& 
     }
     for (Role r : options.required)
         if (!out.mapping.find(r))
-            throw IoError(missingRoleMessage(r, out.mapping), out.path);
+            throw IoError(missingRoleMessage(r, out.mapping, ""), out.path);
     for (const auto& [key, value] : options.overrides.tags)
         if (!applyTag(out.mapping.tag, key, value))
             throw IoError("--aov: invalid tag " + key + "=" + value, out.path);

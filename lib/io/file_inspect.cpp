@@ -38,6 +38,13 @@ std::vector<OIIO::ImageSpec> readSpecs(OIIO::ImageInput& in, const std::string& 
     in.geterror(); // seeking past the last subimage records an error: drop it
     if (specs.empty() || specs.front().nchannels <= 0)
         throw IoError("image has no channels", path);
+    // Deep images hold a variable number of samples per pixel; reading them as flat pixels fails
+    // deep inside OpenImageIO with a message about a truncated or corrupt file.
+    for (const OIIO::ImageSpec& spec : specs)
+        if (spec.deep)
+            throw IoError("deep EXR is not supported: afn reads flat images (flatten it first, "
+                          "e.g. oiiotool in.exr --flatten -o flat.exr)",
+                path);
     return specs;
 }
 

@@ -136,23 +136,6 @@ bool allZero(const RoleImage& img)
 
 } // namespace
 
-namespace detail {
-
-std::string missingRoleMessage(Role role, const RoleMapping& mapping)
-{
-    std::string msg = std::string("no ") + roleName(role) + " channels found";
-    auto it = mapping.lookedFor.find(role);
-    if (it != mapping.lookedFor.end() && !it->second.empty()) {
-        msg += "; looked for: ";
-        for (std::size_t i = 0; i < it->second.size(); ++i)
-            msg += (i ? "; " : "") + it->second[i];
-    }
-    msg += " (use --aov " + std::string(roleName(role)) + "=<channels> to name them)";
-    return msg;
-}
-
-} // namespace detail
-
 FrameImages readFrame(const std::string& path, const ReadOptions& options)
 {
     if (const auto at = path.rfind(kBmfrTag); at != std::string::npos) {
@@ -178,7 +161,8 @@ FrameImages readFrame(const std::string& path, const ReadOptions& options)
     out.mapping = mapRoles(info, options.overrides);
     for (Role r : options.required)
         if (!out.mapping.find(r))
-            throw IoError(detail::missingRoleMessage(r, out.mapping), path);
+            throw IoError(
+                detail::missingRoleMessage(r, out.mapping, detail::channelSummary(info)), path);
 
     // All roles share the colour's data window (the first part's when there is no colour).
     const RoleChannels* color = out.mapping.find(Role::Color);

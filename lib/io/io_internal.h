@@ -55,7 +55,17 @@ void checkExrHeader(const std::string& path);
 /// readFrame for a BMFR pseudo path ("<dir>#bmfr:N"); see bmfr_dataset.cpp.
 FrameImages readBmfrFrame(const std::string& dir, int frame, const ReadOptions& options);
 
-/// The IoError message for a required role that was not found.
-std::string missingRoleMessage(Role role, const RoleMapping& mapping);
+/// Append the names `preset` tries for `role` to `out` (once each), as --aov would spell them:
+/// layers ("albedo", "ViewLayer.Denoising Albedo") or top-level channels ("R,G,B").
+void addTriedNames(
+    const Preset& preset, Role role, const RoleMapping& mapping, std::vector<std::string>& out);
+
+/// The file's channels grouped by layer ("ViewLayer.Combined (R,G,B,A), Z"), at most `maxLayers`
+/// layers ("... (N more layers)").
+std::string channelSummary(const FileInfo& info, std::size_t maxLayers = 24);
+
+/// The IoError message for a required role that was not found: what was tried (lookedFor) and
+/// the file's channels (`channels`, e.g. channelSummary(); may be empty).
+std::string missingRoleMessage(Role role, const RoleMapping& mapping, const std::string& channels);
 
 } // namespace afn::io::detail

@@ -203,48 +203,57 @@ std::string join(const std::vector<std::string>& v, const std::string& sep)
     return out;
 }
 
-/// The channel lists a candidate stands for, as an override would spell them.
-void describe(
-    const Candidate& cand, Role role, const std::string& base, std::vector<std::string>& out)
+/// Roles the chosen preset left unmapped, filled from the generic preset's names ("albedo",
+/// "N", "P", top-level "Z", "motionvector", ...). A hinted preset (e.g. a file Blender wrote)
+/// may hold passes a compositor or a script named generically; without this fallback such a
+/// file mapped nothing but the colour. The chosen preset's conventions stay in effect (the
+/// generic names carry none); mapRoles warns that they are assumed. Returns the roles added.
+std::vector<Role> addGenericFallback(
+    const std::vector<Entry>& entries, const Preset& chosen, RoleMapping& mapping)
 {
-    auto add = [&](const std::string& s) {
-        if (std::find(out.begin(), out.end(), s) == out.end())
-            out.push_back(s);
-    };
-    if (!cand.layer.empty() && roleComponents(role) == 1)
-        add(base);
-    for (const auto& comps : cand.comps) {
-        std::vector<std::string> names;
-        for (const std::string& c : comps)
-            names.push_back(base.empty() ? c : base + "." + c);
-        add(join(names, ","));
+    std::vector<Role> added;
+    const Preset& generic = detail::presets().back();
+    if (&chosen == &generic)
+        return added;
+    const Evaluated ev = evaluate(entries, generic);
+    for (const RoleChannels& rc : ev.mapping.roles) {
+        if (mapping.find(rc.role))
+            continue;
+        // A channel already given to another role is not taken twice.
+        bool taken = false;
+        for (const RoleChannels& have : mapping.roles)
+            for (int i : have.indices)
+                taken = taken
+                    || (have.subimage == rc.subimage
+                        && std::find(rc.indices.begin(), rc.indices.end(), i) != rc.indices.end());
+        if (taken)
+            continue;
+        mapping.roles.push_back(rc);
+        added.push_back(rc.role);
     }
+    return added;
 }
 
-std::vector<std::string> lookedForRole(Role role, const Preset& chosen, const RoleMapping& mapping)
+/// The names tried for each role left unmapped: the chosen preset's, then the generic ones; a
+/// colour nobody found was looked for under every preset's names.
+void recordLookedFor(const Preset& chosen, RoleMapping& mapping)
 {
-    std::string viewLayer = "<view layer>";
-    if (const RoleChannels* c = mapping.find(Role::Color); c && mapping.renderer == "blender") {
-        const std::string layer = detail::splitLast(c->channels.front()).first;
-        viewLayer = detail::splitLast(layer).first;
-        if (viewLayer.empty())
-            viewLayer = "<view layer>";
+    const Preset& generic = detail::presets().back();
+    for (int r = 0; r < kNumRoles; ++r) {
+        const Role role = static_cast<Role>(r);
+        if (mapping.find(role))
+            continue;
+        std::vector<std::string> tried;
+        if (role == Role::Color) {
+            for (const Preset& p : detail::presets())
+                detail::addTriedNames(p, role, mapping, tried);
+        } else {
+            detail::addTriedNames(chosen, role, mapping, tried);
+            detail::addTriedNames(generic, role, mapping, tried);
+        }
+        if (!tried.empty())
+            mapping.lookedFor[role] = tried;
     }
-    std::vector<std::string> out;
-    std::vector<const Preset*> order { &chosen };
-    for (const Preset& p : detail::presets())
-        if (&p != &chosen)
-            order.push_back(&p);
-    for (const Preset* p : order)
-        for (const detail::RoleCandidates& rc : p->roles)
-            if (rc.role == role)
-                for (const Candidate& cand : rc.candidates) {
-                    std::string base = cand.layer;
-                    if (p->renderer == "blender" && !viewLayer.empty())
-                        base = viewLayer + "." + base;
-                    describe(cand, role, base, out);
-                }
-    return out;
 }
 
 const detail::Preset& choosePreset(
@@ -275,7 +284,8 @@ const detail::Preset& choosePreset(
     return all[pick];
 }
 
-void applyChannelOverride(const std::vector<Entry>& entries, const Preset& preset, Role role,
+/// Map `role` to the channels the user named; false when the file has no such channels.
+bool applyChannelOverride(const std::vector<Entry>& entries, const Preset& preset, Role role,
     const std::vector<std::string>& names, RoleMapping& mapping)
 {
     auto& roles = mapping.roles;
@@ -325,8 +335,7 @@ void applyChannelOverride(const std::vector<Entry>& entries, const Preset& prese
     }
     if (!m) {
         mapping.lookedFor[role] = { join(names, ",") };
-        mapping.warnings.push_back("--aov " + spelled + ": channels not found");
-        return;
+        return false;
     }
     mapping.lookedFor.erase(role);
     roles.push_back({ role, m->sub, m->names, m->indices, "--aov " + spelled });
@@ -339,8 +348,9 @@ void applyChannelOverride(const std::vector<Entry>& entries, const Preset& prese
                 if (!cand.layer.empty() && layerMatches(layer, cand.layer)) {
                     for (const auto& [k, v] : cand.tags)
                         detail::applyTag(mapping.tag, k, v);
-                    return;
+                    return true;
                 }
+    return true;
 }
 
 } // namespace
@@ -351,19 +361,38 @@ RoleMapping mapRoles(const FileInfo& info, const MappingOverrides& overrides)
     Evaluated ev;
     const Preset& chosen = choosePreset(entries, info, ev);
     RoleMapping mapping = ev.mapping;
-    for (int r = 0; r < kNumRoles; ++r)
-        if (!mapping.find(static_cast<Role>(r)))
-            mapping.lookedFor[static_cast<Role>(r)]
-                = lookedForRole(static_cast<Role>(r), chosen, mapping);
+    mapping.presetsTried = { chosen.label };
+    if (&chosen != &detail::presets().back())
+        mapping.presetsTried.push_back(detail::presets().back().label);
+    const std::vector<Role> generic = addGenericFallback(entries, chosen, mapping);
+    recordLookedFor(chosen, mapping);
 
+    // A mistyped --aov is an error, not a warning: the run would otherwise go on without the
+    // role the user asked for.
     for (const auto& [role, names] : overrides.channels)
-        applyChannelOverride(entries, chosen, role, names, mapping);
+        if (!applyChannelOverride(entries, chosen, role, names, mapping))
+            throw IoError("--aov " + std::string(roleName(role)) + "=" + join(names, ",")
+                    + ": no such channels or layer; the file has: " + detail::channelSummary(info),
+                info.path);
     for (const auto& [key, value] : overrides.tags)
         if (!detail::applyTag(mapping.tag, key, value))
             throw IoError("--aov: invalid tag " + key + "=" + value, info.path);
     std::stable_sort(mapping.roles.begin(), mapping.roles.end(),
         [](const RoleChannels& a, const RoleChannels& b) { return a.role < b.role; });
 
+    // Generic names carry no conventions: say which of the preset's are assumed for them.
+    std::vector<std::string> assumed;
+    for (Role r : generic) {
+        const RoleChannels* rc = mapping.find(r);
+        if (!rc || rc->source.rfind("--aov", 0) == 0)
+            continue;
+        for (const auto& [name, value] : mapping.tag.parameters())
+            if (name.rfind(std::string(roleName(r)) + ".", 0) == 0 && !overrides.tags.count(name))
+                assumed.push_back(name + "=" + value);
+    }
+    if (!assumed.empty())
+        mapping.warnings.push_back("generic channel names in a " + chosen.label + " file: assuming "
+            + join(assumed, ", ") + " (set --aov <name>=<value> if wrong)");
     const RoleChannels* color = mapping.find(Role::Color);
     if (color && color->source.find("'Noisy Image'") != std::string::npos)
         mapping.warnings.push_back("using Blender 'Noisy Image' as colour: Combined is denoised");
@@ -372,8 +401,10 @@ RoleMapping mapRoles(const FileInfo& info, const MappingOverrides& overrides)
         mapping.warnings.push_back("V-Ray zDepth is normalised unless written raw");
     const bool motionTagged = overrides.tags.count("motion.direction")
         || overrides.tags.count("motion.yUp") || overrides.tags.count("motion.units");
-    if (mapping.find(Role::Motion) && !motionTagged && mapping.renderer != "blender"
-        && mapping.renderer != "generic")
+    const bool motionGeneric = std::find(generic.begin(), generic.end(), Role::Motion)
+        != generic.end(); // already in the warning above
+    if (mapping.find(Role::Motion) && !motionTagged && !motionGeneric
+        && mapping.renderer != "blender" && mapping.renderer != "generic")
         mapping.warnings.push_back("motion conventions of " + mapping.renderer + " are assumed ("
             + mapping.tag.motionDirection + ", y " + (mapping.tag.motionYUp ? "up" : "down")
             + "); set --aov motion.direction=..., motion.yUp=... if wrong");

@@ -262,6 +262,7 @@ void Filter::execute()
     m_frame.camera = m_camera;
     m_frame.prevCamera = m_frameIndex > 0 ? m_prevCamera : Camera {};
     m_frame.frameIndex = m_frameIndex;
+    m_missingInputs = missingInputs(m_type, m_frame);
     runStages();
     m_output.resize(m_frame.width, m_frame.height, 3);
     denoise(m_frame, m_output);

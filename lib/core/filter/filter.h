@@ -49,6 +49,18 @@ struct FeatureOutput {
     std::string help;
 };
 
+/// An input a method reads besides the colour (FilterType::inputs). Methods run without it, at a
+/// cost the caller should hear about (afnGetFilterString(filter, AFN_STAT_MISSING_INPUTS)).
+struct InputUse {
+    std::vector<std::string> anyOf; ///< image names, any of which serves ("depth", "position")
+    std::string purpose; ///< what it is for / what happens without it, one short phrase
+    bool positionNeedsCamera = false; ///< "position" in anyOf serves only with a camera
+};
+
+/// The inputs of `type` that `frame` lacks, e.g. "normal (edge-stopping); motion (reprojection:
+/// without it the camera is taken as static)"; "" when nothing is missing (input_uses.cpp).
+std::string missingInputs(const FilterType& type, const Frame& frame);
+
 /// The shared stages a method composes; the Filter base runs them before denoise().
 struct StageNeeds {
     /// Reprojection of the previous frame's geometry onto this one.
@@ -80,6 +92,8 @@ public:
 
     int frameIndex() const { return m_frameIndex; }
     const InputStats& lastStats() const { return m_stats; }
+    /// The method's inputs the last frame lacked (missingInputs(); "" when none).
+    const std::string& lastMissingInputs() const { return m_missingInputs; }
     /// What the aux prefilter measured and decided on the last frame (methods that demodulate).
     const AuxReport& auxReport() const { return m_aux.report(); }
     int width() const { return m_frame.width; }
@@ -135,6 +149,7 @@ private:
     Frame m_frame; ///< reused across frames: allocated once per resolution
     Image m_output;
     InputStats m_stats;
+    std::string m_missingInputs;
     Image m_irradiance;
     AuxPrefilter m_aux;
     Reprojector m_reprojector;

@@ -28,6 +28,17 @@ FilterType registered(FilterType t)
         append(table, auxBinding().descriptors());
     append(table, conventionsBinding().descriptors());
     t.params = std::move(table);
+
+    std::vector<InputUse> uses;
+    if (t.stages.demodulate)
+        uses.push_back({ { AFN_IMAGE_ALBEDO },
+            "demodulation: texture detail is filtered together with the lighting" });
+    for (InputUse& u : t.inputs)
+        uses.push_back(std::move(u));
+    if (t.stages.reproject != StageNeeds::Reproject::None)
+        uses.push_back({ { AFN_IMAGE_MOTION, AFN_IMAGE_POSITION },
+            "reprojection: without it the camera is taken as static", true });
+    t.inputs = std::move(uses);
     return t;
 }
 

@@ -28,6 +28,9 @@ struct FilterType {
     std::vector<ParamDesc> params;
     StageNeeds stages;
     std::vector<FeatureOutput> features; ///< feature outputs the method can write
+    /// Inputs it reads besides the colour: the method's own; the registry adds those of the
+    /// stages (albedo for demodulation, motion or position + camera for reprojection).
+    std::vector<InputUse> inputs;
     bool ready = true; ///< runs as created: needs no data, or the build embeds its weights
     std::vector<AFNDeviceType> devices { AFN_DEVICE_TYPE_CPU }; ///< devices it runs on
     FilterFactory create;

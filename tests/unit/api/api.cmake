@@ -2,3 +2,4 @@
 # The C API's contract (every call's error state) and the metrics through the C API.
 afn_add_gtest(test_api SOURCES unit/api/test_api.cpp LIBS afn)
 afn_add_gtest(test_metrics_api SOURCES unit/api/test_metrics_api.cpp LIBS afn)
+afn_add_gtest(test_api_missing_inputs SOURCES unit/api/test_api_missing_inputs.cpp LIBS afn)

@@ -3,6 +3,8 @@
 afn_add_gtest(test_io
   SOURCES
     unit/io/test_io_roles.cpp
+    unit/io/test_io_role_fallback.cpp
+    unit/io/test_io_diagnostics.cpp
     unit/io/test_io_read.cpp
     unit/io/test_io_sequence.cpp
     unit/io/test_io_write.cpp

@@ -119,6 +119,8 @@ FilterType filterType()
 #endif
     t.stages = { true, StageNeeds::Reproject::Bilinear, true };
     t.params = settingsBinding().descriptors();
+    t.inputs = { { { AFN_IMAGE_NORMAL }, "network features" },
+        { { AFN_IMAGE_DEPTH }, "network features" } };
     t.features = {
         { "irradiance", 3, "1-spp colour divided by max(albedo, 2^-10), linear HDR, >= 0" },
         { "accumulated", 3, "BMFR temporal accumulation of the irradiance (TA-1spp), linear HDR" },

@@ -36,6 +36,8 @@ FilterType filterType()
                     "accumulations and TAA";
     t.params = settingsBinding().descriptors();
     t.stages = { true, StageNeeds::Reproject::Bilinear, true };
+    t.inputs = { { { AFN_IMAGE_NORMAL }, "regression features" },
+        { { AFN_IMAGE_POSITION, AFN_IMAGE_DEPTH }, "regression features" } };
     t.create = factoryOf<BmfrFilter>();
     return t;
 }

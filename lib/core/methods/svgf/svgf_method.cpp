@@ -39,6 +39,8 @@ FilterType filterType()
         = "spatiotemporal variance-guided filtering (Schied et al. 2017), paper parameters";
     t.params = settingsBinding().descriptors();
     t.stages = { true, StageNeeds::Reproject::BilinearWithBoxFallback, false };
+    t.inputs = { { { AFN_IMAGE_NORMAL }, "edge-stopping" },
+        { { AFN_IMAGE_DEPTH, AFN_IMAGE_POSITION }, "edge-stopping", true } };
     t.create = factoryOf<SvgfFilter>();
     return t;
 }
