@@ -96,8 +96,9 @@ Options parseCommandLine(int argc, const char* const* argv)
             o.weights = needValue(i, argc, argv, flag);
         } else if (flag == "-d") {
             o.dataType = needValue(i, argc, argv, flag);
-            if (o.dataType != "half" && o.dataType != "float")
-                throw CliError("-d expects half or float, got '" + o.dataType + "'");
+            if (o.dataType != "uint8" && o.dataType != "uint16" && o.dataType != "half"
+                && o.dataType != "float")
+                throw CliError("-d expects uint8, uint16, half or float, got '" + o.dataType + "'");
         } else if (flag == "--compression") {
             o.compression = needValue(i, argc, argv, flag);
         } else if (flag == "--keep-aovs") {
@@ -191,9 +192,10 @@ std::string helpText()
        << "  --weights FILE          network weights (.afnw) for learned methods such as afn,\n"
        << "                          instead of the ones built in (also :weights=FILE on "
           "--denoise)\n"
-       << "  -d half|float           output data type (default: the input's)\n"
-       << "  --compression NAME      EXR compression (zip, piz, dwaa, none, ...; default: "
-          "input's)\n"
+       << "  -d uint8|uint16|half|float  output data type (default: the input's, in the\n"
+       << "                          nearest type the output format stores)\n"
+       << "  --compression NAME      output compression, checked against the format (EXR: zip,\n"
+       << "                          piz, dwaa, none, ...; default: the input's EXR compression)\n"
        << "  --keep-aovs             copy every other input layer into -o outputs\n"
        << "  --json                  machine-readable --info\n"
        << "  --methods               list the methods, each 'ready' or 'needs-weights'\n"
