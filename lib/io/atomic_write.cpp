@@ -64,12 +64,18 @@ constexpr float kHalfMax = 65504.0f;
 /// in integer channels (NaN -> 0) before quantising.
 void clampForTypes(std::vector<float>& px, int nch, const std::vector<std::string>& types)
 {
+    enum class Kind { Half, Integer, Other };
+    std::vector<Kind> kind(static_cast<std::size_t>(nch), Kind::Other);
+    for (int c = 0; c < nch; ++c)
+        kind[c] = types[c] == "half"                      ? Kind::Half
+            : types[c] == "uint8" || types[c] == "uint16" ? Kind::Integer
+                                                          : Kind::Other;
     for (std::size_t i = 0; i < px.size(); ++i) {
-        const std::string& t = types[i % nch];
         float& v = px[i];
-        if (t == "half" && std::isfinite(v))
+        const Kind k = kind[i % nch];
+        if (k == Kind::Half && std::isfinite(v))
             v = std::clamp(v, -kHalfMax, kHalfMax);
-        else if (t == "uint8" || t == "uint16")
+        else if (k == Kind::Integer)
             v = v > 0.0f ? std::min(v, 1.0f) : 0.0f;
     }
 }
