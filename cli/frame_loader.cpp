@@ -33,7 +33,7 @@ std::vector<FrameRef> resolveFrames(const Options& opts)
             if (frames.empty())
                 throw CliError("a BMFR dataset folder needs --frames", input);
             for (int f : frames)
-                refs.push_back({ afn::io::bmfrFramePath(input, f), f });
+                refs.push_back({ afn::io::bmfrFramePath(input, f), f, true });
         } else if (afn::io::hasFramePattern(input)) {
             if (frames.empty())
                 throw CliError("a frame pattern needs --frames A-B", input);
@@ -44,10 +44,16 @@ std::vector<FrameRef> resolveFrames(const Options& opts)
                 throw CliError(e.what(), e.file());
             }
             for (std::size_t i = 0; i < paths.size(); ++i)
-                refs.push_back({ paths[i], frames[i] });
+                refs.push_back({ paths[i], frames[i], true });
         } else {
             if (!fs::exists(input, ec))
                 throw CliError("no such file", input);
+            // Not silently ignored: the user meant a sequence (oiiotool errors the same way).
+            if (!frames.empty())
+                throw CliError("--frames " + opts.frames
+                        + " needs a frame pattern in the input name (shot.####.exr, "
+                          "shot.%04d.exr) or a dataset folder; this is a single file",
+                    input);
             refs.push_back({ input, -1 });
         }
     }
@@ -58,7 +64,7 @@ std::string outputPath(const std::string& pattern, const FrameRef& ref, std::siz
     const std::string& flag)
 {
     if (afn::io::hasFramePattern(pattern)) {
-        if (ref.frame < 0)
+        if (!ref.numbered)
             throw CliError(flag + " has a frame pattern but the input is a single file", pattern);
         return afn::io::expandFramePattern(pattern, ref.frame);
     }
@@ -79,10 +85,35 @@ afn::color::ColorManager& RunContext::color()
     return *m_color;
 }
 
-static bool isPseudoPath(const std::string& p)
+namespace {
+
+/// The colour space of the input beauty: --incolorspace; else the file's colorInteropID or
+/// oiio:ColorSpace when the config knows it; else, for integer files without a tag, the space
+/// the config gives such files (integerFileSpace: sRGB-encoded); else the working space.
+std::string inputColorSpace(const afn::color::ColorManager& cm, const Options& opts,
+    const afn::io::FrameHeader& header, const std::string& type, const std::string& path)
 {
-    return p.find("#bmfr:") != std::string::npos;
+    if (!opts.inColorSpace.empty()) {
+        if (!cm.hasColorSpace(opts.inColorSpace))
+            throw CliError(
+                "--incolorspace '" + opts.inColorSpace + "' is not in the colour config");
+        return opts.inColorSpace;
+    }
+    if (const std::string s = cm.spaceFromInteropId(header.colorInteropId); !s.empty())
+        return s;
+    if (cm.hasColorSpace(header.colorSpace))
+        return header.colorSpace;
+    if (!header.colorSpace.empty())
+        warn("input colour space '" + header.colorSpace
+                + "' is unknown to the colour config; treating the beauty as " + cm.workingSpace()
+                + " (" + path + ")",
+            opts.quiet);
+    else if (type == "uint8" || type == "uint16")
+        return cm.integerFileSpace(type == "uint8" ? 8 : 16);
+    return cm.workingSpace();
 }
+
+} // namespace
 
 LoadedFrame loadFrame(RunContext& ctx, const FrameRef& ref, bool keepAll)
 {
@@ -93,46 +124,17 @@ LoadedFrame loadFrame(RunContext& ctx, const FrameRef& ref, bool keepAll)
     ro.overrides = opts.overrides;
     ro.keepAll = keepAll;
     ro.required = { afn::io::Role::Color };
-    std::string fileSpace;
     try {
         lf.images = afn::io::readFrame(ref.path, ro);
-        if (!isPseudoPath(ref.path)) {
-            const afn::io::FileInfo info = afn::io::inspect(ref.path);
-            auto it = info.attributes.find("oiio:ColorSpace");
-            if (it != info.attributes.end())
-                fileSpace = it->second;
-            const afn::io::RoleChannels* c = lf.images.mapping.find(afn::io::Role::Color);
-            if (c && c->subimage < static_cast<int>(info.subimages.size())) {
-                const afn::io::SubimageInfo& si = info.subimages[c->subimage];
-                lf.compression = si.compression;
-                if (!c->indices.empty() && c->indices[0] < static_cast<int>(si.types.size()))
-                    lf.beautyType = si.types[c->indices[0]];
-            }
-        }
     } catch (const afn::io::IoError& e) {
         throw CliError(e.what(), e.file().empty() ? ref.path : e.file());
     }
-    if (lf.beautyType != "half")
+    const afn::io::FrameHeader& header = lf.images.header;
+    lf.beautyType = header.colorType;
+    if (lf.beautyType != "half" && lf.beautyType != "uint8" && lf.beautyType != "uint16")
         lf.beautyType = "float";
-
     afn::color::ColorManager& cm = ctx.color();
-    const std::string working = cm.workingSpace();
-    if (!opts.inColorSpace.empty()) {
-        if (!cm.hasColorSpace(opts.inColorSpace))
-            throw CliError(
-                "--incolorspace '" + opts.inColorSpace + "' is not in the colour config");
-        lf.colorSpace = opts.inColorSpace;
-    } else if (!fileSpace.empty() && cm.hasColorSpace(fileSpace)) {
-        lf.colorSpace = fileSpace;
-    } else {
-        if (!fileSpace.empty())
-            warn("input colour space '" + fileSpace
-                    + "' is unknown to the colour config; "
-                      "treating the beauty as "
-                    + working + " (" + ref.path + ")",
-                opts.quiet);
-        lf.colorSpace = working;
-    }
+    lf.colorSpace = inputColorSpace(cm, opts, header, lf.beautyType, ref.path);
 
     afn::io::RoleImage& color = lf.images.roles.at(afn::io::Role::Color);
     try {

@@ -14,10 +14,12 @@
 
 namespace afntool {
 
-/// One input frame to process: its path (or BMFR pseudo path) and frame number (-1 = none).
+/// One input frame to process: its path (or BMFR pseudo path) and frame number (-1 for a single
+/// file; frame numbers may be negative, so `numbered` says whether there is one).
 struct FrameRef {
     std::string path;
     int frame = -1;
+    bool numbered = false; ///< from a frame pattern or a dataset folder (--frames)
 };
 
 /// The frames named by the inputs and --frames; throws CliError (missing frame named).
@@ -31,9 +33,11 @@ struct LoadedFrame {
     FrameRef ref;
     afn::io::FrameImages images;
     std::string colorSpace; ///< colour space the beauty was read in (converted to working)
-    std::string beautyType; ///< "half" | "float": stored type of the beauty
-    std::string compression;
+    std::string beautyType; ///< stored type of the beauty: uint8 | uint16 | half | float
     std::vector<float> beauty; ///< current beauty, RGB, working space (replaced by --denoise)
+    /// What was done to the beauty so far, one afntool argument per step (--denoise:method=...
+    /// with every parameter), for the outputs' history attribute.
+    std::vector<std::string> history;
 };
 
 /// Shared state of a run: options and the lazily loaded colour config.

@@ -9,6 +9,7 @@
 #include "ops.h"
 #include "options.h"
 #include "progress.h"
+#include "run_checks.h"
 
 #include <cstdio>
 #include <memory>
@@ -85,6 +86,11 @@ int run(const Options& opts)
                 throw CliError("--compare given twice");
             comparer = std::make_unique<SequenceComparer>(ctx, a);
         }
+
+    // Before anything is read or written: nothing is overwritten that the run reads, outputs
+    // can hold -d and --compression, temporal methods run forward in time.
+    checkOutputs(opts, frames, filesRead(opts, frames));
+    checkFrameOrder(opts, frames);
 
     Progress progress(static_cast<int>(frames.size()), opts.quiet);
     const bool keepAll = needsAllChannels(opts);

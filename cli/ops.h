@@ -44,6 +44,9 @@ public:
     void writeFeatures(LoadedFrame& frame, const std::string& path,
         const std::vector<std::string>& inputs, Progress* progress);
     const std::string& method() const { return m_method; }
+    /// The action with every parameter as the filter has it ("--denoise:method=svgf:alpha=0.2:
+    /// ..."; ":weights=FILE" when given), for the outputs' history.
+    std::string describe() const;
 
 private:
     void run(LoadedFrame& frame, Progress* progress);
@@ -60,6 +63,7 @@ private:
     bool m_features = false; ///< --features: bind the feature outputs instead of "output"
     bool m_hasSpp = false; ///< the method has an "spp" parameter (set from the file's header)
     std::string m_method;
+    std::string m_weights; ///< --weights or :weights= file ("" = built in)
     std::map<std::string, std::string> m_params;
     afn::DeviceRef m_device;
     afn::FilterRef m_filter;

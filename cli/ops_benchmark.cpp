@@ -195,7 +195,7 @@ int runBenchmark(const Options& opts, const Action& action)
         inputPaths.push_back(f.path);
         std::string rp = refPattern;
         if (afn::io::hasFramePattern(refPattern)) {
-            if (f.frame < 0)
+            if (!f.numbered)
                 throw CliError("--compare has a frame pattern but the input is a single file", rp);
             rp = afn::io::expandFramePattern(refPattern, f.frame);
         }

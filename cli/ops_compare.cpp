@@ -78,7 +78,7 @@ void SequenceComparer::process(const LoadedFrame& frame, Progress* progress)
     Impl& s = *m_impl;
     std::string refPath = s.pattern;
     if (afn::io::hasFramePattern(s.pattern)) {
-        if (frame.ref.frame < 0)
+        if (!frame.ref.numbered)
             throw CliError(
                 "--compare has a frame pattern but the input is a single file", s.pattern);
         refPath = afn::io::expandFramePattern(s.pattern, frame.ref.frame);

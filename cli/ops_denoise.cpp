@@ -3,11 +3,13 @@
 
 #include "arg_checks.h"
 #include "cli_error.h"
+#include "output_header.h"
 #include "progress.h"
 #include "sample_count.h"
 #include "text.h"
 
 #include <cstdio>
+#include <cstdlib>
 
 #include <iostream>
 
@@ -94,6 +96,7 @@ SequenceDenoiser::SequenceDenoiser(const Options& opts, const Action& action)
         weights = w->second;
         m_params.erase(w);
     }
+    m_weights = weights;
     if (!weights.empty()) {
         std::vector<char> data;
         if (!afn::readFile(weights, data))
@@ -244,10 +247,46 @@ void SequenceDenoiser::logAux(const LoadedFrame& frame, Progress* progress)
         m_opts.quiet, progress);
 }
 
+std::string SequenceDenoiser::describe() const
+{
+    std::string text = m_flag + ":method=" + m_method;
+    for (const AFNParamInfo& p : afn::filterTypeParams(m_method.c_str())) {
+        std::string value;
+        switch (p.type) {
+        case AFN_PARAM_BOOL:
+            value = m_filter.get<bool>(p.name) ? "1" : "0";
+            break;
+        case AFN_PARAM_INT:
+            value = std::to_string(m_filter.get<int>(p.name));
+            break;
+        case AFN_PARAM_FLOAT: {
+            // The shortest text that reads back as the same float (0.2, not 0.200000003).
+            const float v = m_filter.get<float>(p.name);
+            char buf[32];
+            for (int digits = 6; digits <= 9; ++digits) {
+                std::snprintf(buf, sizeof buf, "%.*g", digits, v);
+                if (std::strtof(buf, nullptr) == v)
+                    break;
+            }
+            value = buf;
+            break;
+        }
+        case AFN_PARAM_STRING:
+            value = m_filter.get<std::string>(p.name);
+            break;
+        }
+        text += std::string(":") + p.name + "=" + value;
+    }
+    if (!m_weights.empty())
+        text += ":weights=" + m_weights;
+    return text;
+}
+
 void SequenceDenoiser::process(LoadedFrame& frame, Progress* progress)
 {
     run(frame, progress);
     frame.beauty.swap(m_output);
+    frame.history.push_back(describe());
 }
 
 void SequenceDenoiser::writeFeatures(LoadedFrame& frame, const std::string& path,
@@ -264,6 +303,9 @@ void SequenceDenoiser::writeFeatures(LoadedFrame& frame, const std::string& path
     afn::io::WriteOptions wo;
     wo.dataType = "float"; // features are read back exactly
     wo.inputs = inputs;
+    wo.attributes["Software"] = softwareName();
+    wo.attributes["Exif:ImageHistory"]
+        = softwareName() + ": " + frame.ref.path + " " + describe() + " " + path;
     wo.attributes["afn:method"] = m_method;
     afn::io::writeImageAtomic(path, color.width, color.height, channels, m_output.data(), wo);
 }

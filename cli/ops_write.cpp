@@ -4,6 +4,7 @@
 
 #include "cli_error.h"
 #include "contact_sheet_layers.h"
+#include "output_header.h"
 
 #include <set>
 
@@ -51,6 +52,15 @@ int componentsOf(const afn::io::RoleImage& r)
     return r.components;
 }
 
+afn::io::OutputFormat formatOf(const std::string& path)
+{
+    try {
+        return afn::io::outputFormat(path);
+    } catch (const afn::io::IoError& e) {
+        throw CliError(e.what(), path);
+    }
+}
+
 } // namespace
 
 void writeOutput(RunContext& ctx, const LoadedFrame& frame, const std::string& path,
@@ -61,10 +71,13 @@ void writeOutput(RunContext& ctx, const LoadedFrame& frame, const std::string& p
     const int w = color.width, h = color.height;
     auto alpha = frame.images.roles.find(Role::Alpha);
     const bool hasAlpha = alpha != frame.images.roles.end();
+    const afn::io::OutputFormat format = formatOf(path);
 
-    // Beauty back into the output colour space.
+    // Beauty into the output colour space: scene-linear for float files, display-referred
+    // (sRGB-encoded) for integer ones, unless --outcolorspace says otherwise.
+    const std::string beautyType = outputDataType(opts, frame, format);
+    const std::string outSpace = outputColorSpace(ctx, frame, beautyType);
     std::vector<float> rgb = frame.beauty;
-    const std::string outSpace = opts.outColorSpace.empty() ? frame.colorSpace : opts.outColorSpace;
     try {
         ctx.color().convert(rgb.data(), w, h, 3, ctx.color().workingSpace(), outSpace);
     } catch (const afn::color::ColorError& e) {
@@ -74,7 +87,6 @@ void writeOutput(RunContext& ctx, const LoadedFrame& frame, const std::string& p
     std::vector<std::string> channels = { "R", "G", "B" };
     if (hasAlpha)
         channels.push_back("A");
-    const std::string beautyType = opts.dataType.empty() ? frame.beautyType : opts.dataType;
     std::vector<std::string> types(channels.size(), beautyType);
 
     std::vector<int> extra; // indices into the layered image
@@ -87,7 +99,8 @@ void writeOutput(RunContext& ctx, const LoadedFrame& frame, const std::string& p
                 continue;
             extra.push_back(static_cast<int>(c));
             channels.push_back(name);
-            types.push_back(opts.dataType.empty() ? all->types[c] : opts.dataType);
+            types.push_back(
+                format.storedType(opts.dataType.empty() ? all->types[c] : opts.dataType));
         }
     }
 
@@ -107,10 +120,13 @@ void writeOutput(RunContext& ctx, const LoadedFrame& frame, const std::string& p
 
     afn::io::WriteOptions wo;
     wo.dataType = beautyType;
-    wo.compression = opts.compression.empty() ? frame.compression : opts.compression;
-    if (all)
-        wo.attributes = all->attributes;
-    wo.attributes["oiio:ColorSpace"] = outSpace;
+    // The input's compression carries over between EXRs; --compression was checked up front.
+    wo.compression = !opts.compression.empty() ? opts.compression
+        : format.name == frame.images.header.format
+            && format.acceptsCompression(frame.images.header.compression)
+        ? frame.images.header.compression
+        : std::string();
+    describeOutput(ctx, frame, "-o " + path, outSpace, format, wo);
     wo.inputs = inputs;
     writeChecked(path, w, h, channels, pixels, wo, types);
 }
@@ -131,6 +147,10 @@ void writePreview(RunContext& ctx, const LoadedFrame& frame, const Action& actio
         throw CliError(std::string("--preview: ") + e.what(), path);
     }
     afn::io::WriteOptions wo;
+    std::string step = "--preview";
+    for (const auto& [k, v] : action.mods)
+        step += ":" + k + "=" + v;
+    describeOutput(ctx, frame, step + " " + path, {}, formatOf(path), wo);
     wo.inputs = inputs;
     writeChecked(path, color.width, color.height, { "R", "G", "B" }, rgb, wo);
 }
@@ -192,6 +212,9 @@ void writeContactSheet(RunContext& ctx, const LoadedFrame& frame, const Action& 
     int w = 0, h = 0;
     const std::vector<float> sheet = afn::color::layoutContactSheet(tiles, columns, w, h);
     afn::io::WriteOptions wo;
+    wo.attributes["Software"] = softwareName();
+    wo.attributes["Exif:ImageHistory"]
+        = softwareName() + ": " + frame.ref.path + " --contact-sheet " + path;
     wo.inputs = inputs;
     writeChecked(path, w, h, { "R", "G", "B" }, sheet, wo);
 }

@@ -103,8 +103,9 @@ Options parseCommandLine(int argc, const char* const* argv)
             o.weights = needValue(i, argc, argv, flag);
         } else if (flag == "-d") {
             o.dataType = needValue(i, argc, argv, flag);
-            if (o.dataType != "half" && o.dataType != "float")
-                throw CliError("-d expects half or float, got '" + o.dataType + "'");
+            if (o.dataType != "uint8" && o.dataType != "uint16" && o.dataType != "half"
+                && o.dataType != "float")
+                throw CliError("-d expects uint8, uint16, half or float, got '" + o.dataType + "'");
         } else if (flag == "--compression") {
             o.compression = needValue(i, argc, argv, flag);
         } else if (flag == "--keep-aovs") {

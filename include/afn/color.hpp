@@ -54,6 +54,27 @@ public:
     std::string defaultView(const std::string& display) const;
     /// True if the name (or alias or role) is a colour space of the config.
     bool hasColorSpace(const std::string& name) const;
+    /// The colour space's own name for a name, alias or role ("" when unknown).
+    std::string canonicalName(const std::string& name) const;
+    /// A colour space's aliases (OCIO 2), e.g. ACEScg: acescg, lin_ap1, ...; empty when unknown.
+    std::vector<std::string> aliases(const std::string& name) const;
+
+    /// How `space` is recorded in an output's header (color_interop.cpp).
+    struct FileTag {
+        /// The Color Interop Forum id ("lin_ap1_scene", "lin_rec709_scene",
+        /// "srgb_rec709_display", ...), "" when the space is not one of the known ones.
+        std::string interopId;
+        /// Red, green, blue and white CIE xy (the OpenEXR chromaticities attribute); empty when
+        /// unknown or not an RGB space.
+        std::vector<float> chromaticities;
+    };
+    FileTag fileTag(const std::string& space) const;
+    /// The config's colour space for a Color Interop Forum id ("" when it has none).
+    std::string spaceFromInteropId(const std::string& id) const;
+    /// The colour space for 8-bit (bits 8) or 16-bit integer image files, as Nuke picks them in
+    /// an OCIO config: role matte_paint for 8-bit, texture_paint for 16-bit, else a space named
+    /// or aliased "sRGB", else role color_picking, else the working space.
+    std::string integerFileSpace(int bits) const;
 
     /// Convert the first 3 channels of each pixel in place, from one colour space to another.
     /// `stride` = floats per pixel (>= 3); other channels are left untouched.

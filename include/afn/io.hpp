@@ -183,8 +183,36 @@ struct FrameCamera {
     float normalLimitSquared;
 };
 
+/// A header attribute, kept with its type so that outputs carry it over unchanged.
+struct Attribute {
+    std::string name;
+    std::string
+        type; ///< OpenImageIO type name: "string", "int", "float", "matrix", "float[8]", ...
+    std::string text; ///< the value of a "string" attribute
+    std::vector<unsigned char> data; ///< the raw value of any other type (native byte order)
+};
+
+/// What an output needs to be faithful to its input: windows, types, header metadata.
+struct FrameHeader {
+    std::string format; ///< "openexr", "png", "tiff", ... ("" for the BMFR layout)
+    Box dataWindow; ///< of the part the colour was read from (the pixels of every role)
+    Box displayWindow; ///< (the "format" of Nuke, full window of OpenImageIO)
+    std::string colorType; ///< stored type of the colour channels: uint8 | uint16 | half | float...
+    std::string compression; ///< "" when the format has none
+    std::string colorSpace; ///< oiio:ColorSpace as OpenImageIO reports it ("" = none)
+    std::string colorInteropId; ///< the colorInteropID attribute ("" = none)
+    /// Every attribute worth carrying to an output (Camera, worldToCamera, Frame, RenderTime,
+    /// cycles.*, PixelAspectRatio, ...), in file order. File structure (compression, part names,
+    /// tiles, chunkCount), format-specific (oiio:, openexr:, png:, tiff:, ...), DateTime
+    /// (restamped), Software and the colour-space tags (oiio:ColorSpace, colorInteropID,
+    /// chromaticities: the writer sets them for the output) are left out; so are types OpenImageIO
+    /// cannot name back.
+    std::vector<Attribute> attributes;
+};
+
 struct FrameImages {
     std::string path;
+    FrameHeader header;
     RoleMapping mapping;
     std::map<Role, RoleImage> roles; ///< every mapped role
     std::optional<LayeredImage> all; ///< filled when ReadOptions::keepAll
@@ -228,17 +256,45 @@ AFN_IO_API std::vector<FrameCamera> parseCameraMatrices(const std::string& heade
 
 // ---- Writing ------------------------------------------------------------------------------------
 
+/// What a file format (chosen by the output's extension) can store.
+struct OutputFormat {
+    std::string name; ///< OpenImageIO format name: "openexr", "png", "tiff", "jpeg", ...
+    std::vector<std::string> dataTypes; ///< storable types, e.g. {"half", "float", "uint"}
+    std::vector<std::string> compressions; ///< accepted --compression names ("" = none accepted)
+    bool windows = false; ///< stores data and display windows (else cropped/padded to display)
+
+    /// The type to store when `wanted` is not storable: integers in a float-only format become
+    /// half (uint8) or float (wider), floats in an integer-only format uint8 (as OpenImageIO).
+    AFN_IO_API std::string storedType(const std::string& wanted) const;
+    /// True when `compression` (its name before any ':level') is in `compressions`.
+    AFN_IO_API bool acceptsCompression(const std::string& compression) const;
+};
+
+/// The format an output path would be written in (by its extension); throws IoError when no
+/// writer exists for it.
+AFN_IO_API OutputFormat outputFormat(const std::string& path);
+
 struct WriteOptions {
-    std::string dataType = "half"; ///< "half" | "float" (EXR); PNG is always 8-bit
-    std::string compression; ///< "" = zip (or the input's, when the caller passes it)
-    std::map<std::string, std::string> attributes; ///< extra header attributes
+    /// "uint8" | "uint16" | "half" | "float" (and "uint" per channel in EXR); must be storable in
+    /// the format (OutputFormat::dataTypes), else IoError. "" = the format's usual: uint8 where
+    /// the format stores it (PNG, TIFF, JPEG), else half (EXR), else float (HDR, PFM).
+    std::string dataType;
+    std::string compression; ///< "" = the format's default (zip for EXR); else validated
+    std::map<std::string, std::string> attributes; ///< extra string attributes (win over metadata)
+    std::vector<Attribute> metadata; ///< typed attributes carried from an input (FrameHeader)
+    /// Where the pixels lie (size must equal the image's) and the display window; empty = at
+    /// (0, 0) with display window = data window. Formats without windows get the display window:
+    /// pixels outside the data window are 0, data outside the display window is cropped
+    /// (oiiotool's autocrop, Nuke's Write).
+    std::optional<Box> dataWindow, displayWindow;
     std::vector<std::string> inputs; ///< paths that must never be overwritten (refuse if equal)
 };
 
 /// Write an image atomically: temporary file in the same directory, then rename. The format comes
-/// from the extension (.exr, .png, .tif, ...). `types` may give a per-channel "half"/"float" (empty
-/// = options.dataType). In half channels, finite values beyond the half range are clamped to
-/// +-65504 (they would otherwise become +-Inf); NaN and Inf are written as they are.
+/// from the extension (.exr, .png, .tif, ...). `types` may give a per-channel type (empty =
+/// options.dataType). In half channels, finite values beyond the half range are clamped to
+/// +-65504 (they would otherwise become +-Inf); NaN and Inf are written as they are. Integer
+/// channels hold [0, 1] (values clamped, NaN -> 0).
 /// Throws IoError; on failure nothing is left at `path` or beside it.
 AFN_IO_API void writeImageAtomic(const std::string& path, int width, int height,
     const std::vector<std::string>& channels, const float* pixels, const WriteOptions& options = {},

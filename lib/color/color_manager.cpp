@@ -163,6 +163,23 @@ bool ColorManager::hasColorSpace(const std::string& name) const
     return !name.empty() && m_impl->config->getColorSpace(name.c_str()) != nullptr;
 }
 
+std::string ColorManager::canonicalName(const std::string& name) const
+{
+    OCIO::ConstColorSpaceRcPtr cs
+        = name.empty() ? nullptr : m_impl->config->getColorSpace(name.c_str());
+    return cs ? cs->getName() : std::string();
+}
+
+std::vector<std::string> ColorManager::aliases(const std::string& name) const
+{
+    std::vector<std::string> out;
+    OCIO::ConstColorSpaceRcPtr cs
+        = name.empty() ? nullptr : m_impl->config->getColorSpace(name.c_str());
+    for (std::size_t i = 0; cs && i < cs->getNumAliases(); ++i)
+        out.emplace_back(cs->getAlias(i));
+    return out;
+}
+
 static void checkBuffer(const float* pixels, int width, int height, int stride)
 {
     if (width < 0 || height < 0)

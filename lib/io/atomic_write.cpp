@@ -58,37 +58,64 @@ std::string userMessage(std::string message, const fs::path& tmp, const std::str
     return message;
 }
 
-OIIO::TypeDesc typeFromName(const std::string& t, const std::string& path)
+OIIO::TypeDesc typeFromName(const std::string& t)
 {
-    if (t == "half")
-        return OIIO::TypeDesc::HALF;
-    if (t == "float")
-        return OIIO::TypeDesc::FLOAT;
-    throw IoError("unknown data type '" + t + "' (half or float)", path);
+    static const std::pair<const char*, OIIO::TypeDesc> kTypes[] = { { "uint8", OIIO::TypeUInt8 },
+        { "uint16", OIIO::TypeUInt16 }, { "uint", OIIO::TypeUInt }, { "half", OIIO::TypeHalf },
+        { "float", OIIO::TypeFloat } };
+    for (const auto& [name, type] : kTypes)
+        if (t == name)
+            return type;
+    return OIIO::TypeUnknown;
 }
 
 /// Largest finite half value.
 constexpr float kHalfMax = 65504.0f;
 
-/// Finite values beyond the half range would be written as +-Inf: clamp them to +-kHalfMax in the
-/// channels stored as half (NaN and Inf are kept as they are). Returns `pixels` untouched when no
-/// channel is half, else the clamped copy in `storage`.
-const float* clampHalfChannels(const float* pixels, std::size_t nvalues, int nch,
-    const std::string& dataType, const std::vector<std::string>& types, std::vector<float>& storage)
+/// Values as each channel's type can hold them: finite values beyond the half range clamped to
+/// +-kHalfMax in half channels (they would otherwise become +-Inf; NaN and Inf are kept), [0, 1]
+/// in integer channels (NaN -> 0) before quantising.
+void clampForTypes(std::vector<float>& px, int nch, const std::vector<std::string>& types)
 {
-    std::vector<bool> half(static_cast<std::size_t>(nch));
-    bool any = false;
-    for (int c = 0; c < nch; ++c) {
-        half[c] = (types.empty() ? dataType : types[c]) == "half";
-        any = any || half[c];
+    enum class Kind { Half, Integer, Other };
+    std::vector<Kind> kind(static_cast<std::size_t>(nch), Kind::Other);
+    for (int c = 0; c < nch; ++c)
+        kind[c] = types[c] == "half"                      ? Kind::Half
+            : types[c] == "uint8" || types[c] == "uint16" ? Kind::Integer
+                                                          : Kind::Other;
+    for (std::size_t i = 0; i < px.size(); ++i) {
+        float& v = px[i];
+        const Kind k = kind[i % nch];
+        if (k == Kind::Half && std::isfinite(v))
+            v = std::clamp(v, -kHalfMax, kHalfMax);
+        else if (k == Kind::Integer)
+            v = v > 0.0f ? std::min(v, 1.0f) : 0.0f;
     }
-    if (!any)
-        return pixels;
-    storage.assign(pixels, pixels + nvalues);
-    for (std::size_t i = 0; i < nvalues; ++i)
-        if (half[i % nch] && std::isfinite(storage[i]))
-            storage[i] = std::clamp(storage[i], -kHalfMax, kHalfMax);
-    return storage.data();
+}
+
+/// The pixels of the display window: data inside it copied, the rest 0 (for formats that store
+/// no windows; oiiotool's autocrop).
+std::vector<float> toDisplayWindow(
+    const float* pixels, const Box& data, const Box& display, int nch)
+{
+    std::vector<float> out(static_cast<std::size_t>(display.width) * display.height * nch, 0.0f);
+    const int x0 = std::max(data.x, display.x),
+              x1 = std::min(data.x + data.width, display.x + display.width);
+    const int y0 = std::max(data.y, display.y),
+              y1 = std::min(data.y + data.height, display.y + display.height);
+    for (int y = y0; y < y1 && x0 < x1; ++y)
+        std::copy_n(
+            pixels + ((static_cast<std::size_t>(y - data.y) * data.width) + (x0 - data.x)) * nch,
+            static_cast<std::size_t>(x1 - x0) * nch,
+            out.data()
+                + ((static_cast<std::size_t>(y - display.y) * display.width) + (x0 - display.x))
+                    * nch);
+    return out;
+}
+
+bool sameBox(const Box& a, const Box& b)
+{
+    return a.x == b.x && a.y == b.y && a.width == b.width && a.height == b.height;
 }
 
 void checkArguments(const std::string& path, int width, int height,
@@ -101,6 +128,12 @@ void checkArguments(const std::string& path, int width, int height,
         throw IoError("no channels to write", path);
     if (!types.empty() && types.size() != channels.size())
         throw IoError("one type per channel expected", path);
+    if (options.dataWindow
+        && (options.dataWindow->width != width || options.dataWindow->height != height))
+        throw IoError("data window size does not match the image size", path);
+    if (options.displayWindow
+        && (options.displayWindow->width <= 0 || options.displayWindow->height <= 0))
+        throw IoError("display window size must be positive", path);
     for (const std::string& in : options.inputs)
         if (samePath(path, in))
             throw IoError("refusing to overwrite an input file", path);
@@ -139,55 +172,63 @@ void writeImageAtomic(const std::string& path, int width, int height,
     const std::vector<std::string>& types)
 {
     checkArguments(path, width, height, channels, pixels, options, types);
+    const OutputFormat format = outputFormat(path);
+    const int nch = static_cast<int>(channels.size());
+    std::string dataType = options.dataType;
+    if (dataType.empty())
+        dataType = format.storedType(format.name == "openexr" ? "half" : "uint8");
+    detail::checkWritable(format, dataType, types, options.compression, path);
+    const std::vector<std::string> chTypes
+        = types.empty() ? std::vector<std::string>(channels.size(), dataType) : types;
+
+    // Windows: kept where the format stores them, else the display window is written.
+    Box data = options.dataWindow.value_or(Box { 0, 0, width, height });
+    const Box display = options.displayWindow.value_or(data);
+    std::vector<float> values;
+    if (!format.windows && !sameBox(data, display)) {
+        values = toDisplayWindow(pixels, data, display, nch);
+        data = display;
+    } else {
+        values.assign(pixels, pixels + static_cast<std::size_t>(width) * height * nch);
+    }
+    clampForTypes(values, nch, chTypes);
+
     TempFile tmp(tempPathFor(path));
     auto out = OIIO::ImageOutput::create(tmp.path().string());
     if (!out)
         throw IoError(userMessage("no writer for this file type: " + detail::inputError(nullptr),
                           tmp.path(), path),
             path);
-    const std::string format = out->format_name();
-    const bool exr = format == "openexr";
-    const bool floatOnly = format == "hdr" || format == "pfm";
-    const int nch = static_cast<int>(channels.size());
-    const std::size_t nvalues = static_cast<std::size_t>(width) * height * nch;
-
-    OIIO::ImageSpec spec(width, height, nch, OIIO::TypeDesc::UINT8);
-    std::vector<float> clamped;
-    const float* data = pixels;
-    if (exr) {
-        spec.set_format(typeFromName(options.dataType, path));
-        if (!types.empty()) {
-            for (const std::string& t : types)
-                spec.channelformats.push_back(typeFromName(t, path));
-            if (std::all_of(
-                    types.begin(), types.end(), [&](const auto& t) { return t == types[0]; })) {
-                spec.set_format(spec.channelformats[0]);
-                spec.channelformats.clear();
-            }
-        }
-        spec.attribute("compression", options.compression.empty() ? "zip" : options.compression);
-        data = clampHalfChannels(pixels, nvalues, nch, options.dataType, types, clamped);
-    } else if (floatOnly) {
-        spec.set_format(OIIO::TypeDesc::FLOAT);
-    } else {
-        // 8-bit outputs (PNG, TIFF, JPEG, ...): clamp to [0, 1] (NaN -> 0) before quantising.
-        clamped.assign(pixels, pixels + nvalues);
-        for (float& v : clamped)
-            v = v > 0.0f ? std::min(v, 1.0f) : 0.0f;
-        data = clamped.data();
+    OIIO::ImageSpec spec(data.width, data.height, nch, typeFromName(chTypes[0]));
+    if (std::any_of(chTypes.begin(), chTypes.end(), [&](const auto& t) { return t != chTypes[0]; }))
+        for (const std::string& t : chTypes)
+            spec.channelformats.push_back(typeFromName(t));
+    if (format.windows) {
+        spec.x = data.x;
+        spec.y = data.y;
+        spec.full_x = display.x;
+        spec.full_y = display.y;
+        spec.full_width = display.width;
+        spec.full_height = display.height;
     }
     spec.channelnames = channels;
     spec.alpha_channel = -1;
     for (int c = 0; c < nch; ++c)
         if (channels[c] == "A")
             spec.alpha_channel = c;
+    detail::applyMetadata(spec, options.metadata);
     for (const auto& [k, v] : options.attributes)
         if (k != "compression")
             spec.attribute(k, v);
+    if (format.name == "openexr")
+        spec.attribute("compression", options.compression.empty() ? "zip" : options.compression);
+    else if (!options.compression.empty())
+        spec.attribute("compression", options.compression);
+    const float* stored = values.data();
 
     if (!out->open(tmp.path().string(), spec))
         throw IoError(userMessage("cannot write: " + out->geterror(), tmp.path(), path), path);
-    if (!out->write_image(OIIO::TypeDesc::FLOAT, data)) {
+    if (!out->write_image(OIIO::TypeDesc::FLOAT, stored)) {
         const std::string err = out->geterror();
         out->close();
         throw IoError(userMessage("cannot write pixels: " + err, tmp.path(), path), path);

@@ -216,6 +216,10 @@ FrameImages readBmfrFrame(const std::string& dir, int frame, const ReadOptions& 
         if (ref && (img.width != ref->width || img.height != ref->height))
             throw IoError(std::string("BMFR ") + roleName(role) + " buffer size differs from color",
                 out.path);
+    if (ref) {
+        out.header.dataWindow = out.header.displayWindow = { 0, 0, ref->width, ref->height };
+        out.header.colorType = "float";
+    }
     const fs::path refFile = base / ("reference" + n + ".exr");
     std::error_code ec;
     if (fs::exists(refFile, ec))

@@ -169,6 +169,8 @@ FrameImages readFrame(const std::string& path, const ReadOptions& options)
     out.samples
         = samplesPerPixel(info, color && !color->channels.empty() ? color->channels[0] : "");
     const int ref = color ? color->subimage : 0;
+    out.header = detail::readHeader(
+        specs[ref], in->format_name(), color && !color->indices.empty() ? color->indices[0] : 0);
     std::vector<RoleChannels> kept;
     for (const RoleChannels& rc : out.mapping.roles) {
         if (sameWindow(specs[rc.subimage], specs[ref])) {

@@ -23,6 +23,18 @@ std::string partName(const OIIO::ImageSpec& spec);
 FileInfo infoFromSpecs(
     const std::string& path, const std::string& format, const std::vector<OIIO::ImageSpec>& specs);
 
+/// The header an output should carry over (header_metadata.cpp): the part's windows, the type of
+/// channel `colorChannel`, the compression (EXR) and the attributes worth keeping.
+FrameHeader readHeader(const OIIO::ImageSpec& spec, const std::string& format, int colorChannel);
+
+/// Set typed attributes (FrameHeader::attributes) on a spec; unknown types are skipped.
+void applyMetadata(OIIO::ImageSpec& spec, const std::vector<Attribute>& attributes);
+
+/// Throw IoError (with the valid choices) when a data type or compression cannot be written in
+/// the format (output_format.cpp).
+void checkWritable(const OutputFormat& format, const std::string& dataType,
+    const std::vector<std::string>& types, const std::string& compression, const std::string& path);
+
 /// The OIIO error text of an input (or the global one), never empty.
 std::string inputError(OIIO::ImageInput* in);
 

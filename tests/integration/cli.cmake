@@ -21,8 +21,20 @@ afn_add_gtest(test_afntool_report SOURCES integration/test_afntool_report.cpp
   integration/cli_runner.cpp)
 target_compile_definitions(test_afntool_report PRIVATE AFNTOOL_PATH="$<TARGET_FILE:afntool>")
 add_dependencies(test_afntool_report afntool)
+
 # afntool's diagnostics: role fallback, missing-AOV warnings, strict checks, help, progress.
 afn_add_gtest(test_afntool_diagnostics SOURCES integration/test_afntool_diagnostics.cpp
   integration/cli_runner.cpp LIBS afn_io PkgConfig::OIIO)
 target_compile_definitions(test_afntool_diagnostics PRIVATE AFNTOOL_PATH="$<TARGET_FILE:afntool>")
 add_dependencies(test_afntool_diagnostics afntool)
+
+# Faithful outputs (windows, metadata, bit depths, colour encodings) and safe files / frame
+# ranges, end to end; test images are made and read with OpenImageIO directly.
+afn_add_gtest(test_afntool_outputs SOURCES integration/test_afntool_outputs.cpp
+  integration/cli_runner.cpp LIBS PkgConfig::OIIO)
+target_compile_definitions(test_afntool_outputs PRIVATE AFNTOOL_PATH="$<TARGET_FILE:afntool>")
+add_dependencies(test_afntool_outputs afntool)
+afn_add_gtest(test_afntool_safety SOURCES integration/test_afntool_safety.cpp
+  integration/cli_runner.cpp LIBS afn_io)
+target_compile_definitions(test_afntool_safety PRIVATE AFNTOOL_PATH="$<TARGET_FILE:afntool>")
+add_dependencies(test_afntool_safety afntool)

@@ -207,7 +207,8 @@ TEST(Afntool, UnknownArgumentsAndMethods)
     expectCleanError(runAfntool({ "--frobnicate" }), "--frobnicate");
     expectCleanError(runAfntool({ kBlender, "--denoise:method=nope", "-o", "/tmp/x.exr" }), "nope");
     expectCleanError(runAfntool({ kBlender, "--denoise", "-o", "/tmp/x.exr" }), "method");
-    expectCleanError(runAfntool({ kBlender, "-d", "int8", "-o", "/tmp/x.exr" }), "half or float");
+    expectCleanError(
+        runAfntool({ kBlender, "-d", "int8", "-o", "/tmp/x.exr" }), "uint8, uint16, half or float");
 }
 
 TEST(Afntool, DeviceChoice)

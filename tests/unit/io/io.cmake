@@ -8,6 +8,7 @@ afn_add_gtest(test_io
     unit/io/test_io_read.cpp
     unit/io/test_io_sequence.cpp
     unit/io/test_io_write.cpp
+    unit/io/test_io_write_header.cpp
     unit/io/test_io_bmfr.cpp
     unit/io/test_io_exr_header.cpp
   LIBS afn_io PkgConfig::OIIO)
