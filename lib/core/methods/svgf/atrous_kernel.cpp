@@ -21,9 +21,9 @@ struct Sums {
     V8 ws = {}, vsum = {}, dc[3] = {};
 };
 
-/// Add the taps of row qy (offset j) to the sums of pixels x .. x + 7 of row y; kNormal, kDepth:
-/// the guide has that buffer.
-template <bool kNormal, bool kDepth>
+/// Add the taps of row qy (offset j) to the sums of pixels x .. x + 7 of row y; kHasNormal,
+/// kHasDepth: the guide has that buffer.
+template <bool kHasNormal, bool kHasDepth>
 AFN_SVGF_INLINE void addTapRow(const AtrousArgs& a, const GuideCentre& gc, const V8* cp, V8 lp,
     V8 invPhi, int x, int qy, int j, Sums& s)
 {
@@ -33,9 +33,9 @@ AFN_SVGF_INLINE void addTapRow(const AtrousArgs& a, const GuideCentre& gc, const
     const float* rows[kColorPlanes];
     for (int k = 0; k < kColorPlanes; ++k)
         rows[k] = in.row(k, qy);
-    const float* zRow = kDepth ? g.planes.row(kDepth, qy) : nullptr;
+    const float* zRow = kHasDepth ? g.planes.row(kDepth, qy) : nullptr;
     const float* nRows[3] = {};
-    if (kNormal)
+    if (kHasNormal)
         for (int k = 0; k < 3; ++k)
             nRows[k] = g.planes.row(kNormalX + k, qy);
     for (int i = -2; i <= 2; ++i) {
@@ -50,12 +50,12 @@ AFN_SVGF_INLINE void addTapRow(const AtrousArgs& a, const GuideCentre& gc, const
             wq = cpu::splat8(h);
         } else {
             V8 e = absV(lp - loadTap(rows[kLuminance], t, w)) * invPhi;
-            if (kDepth)
+            if (kHasDepth)
                 e = depthTerm(g, gc, loadTap(zRow, t, w), static_cast<float>(i * step),
                         static_cast<float>(j * step))
                     + e;
             V8 wn = cpu::splat8(1.0f);
-            if (kNormal) {
+            if (kHasNormal) {
                 V8 nq[3];
                 for (int k = 0; k < 3; ++k)
                     nq[k] = loadTap(nRows[k], t, w);
@@ -73,7 +73,7 @@ AFN_SVGF_INLINE void addTapRow(const AtrousArgs& a, const GuideCentre& gc, const
     }
 }
 
-template <bool kNormal, bool kDepth>
+template <bool kHasNormal, bool kHasDepth>
 AFN_SVGF_INLINE void atrousRowsOf(const AtrousArgs& a, int y0, int y1)
 {
     const Planes& in = *a.in;
@@ -91,7 +91,7 @@ AFN_SVGF_INLINE void atrousRowsOf(const AtrousArgs& a, int y0, int y1)
             for (int j = -2; j <= 2; ++j) {
                 const int qy = y + j * a.step;
                 if (qy >= 0 && qy < h)
-                    addTapRow<kNormal, kDepth>(a, gc, cp, lp, invPhi, x, qy, j, s);
+                    addTapRow<kHasNormal, kHasDepth>(a, gc, cp, lp, invPhi, x, qy, j, s);
             }
             const V8 inv = 1.0f / s.ws; // ws >= centre weight (3/8)^2 > 0 on in-image lanes
             V8 o[3];
