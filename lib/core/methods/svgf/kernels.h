@@ -5,8 +5,11 @@
 // results are independent of the thread count.
 //
 // Accuracy against the former scalar code (libm expf per tap): the weights use cpu/simd.h's exp8
-// (Cephes polynomial, about 2 ulp) and FMA contraction on AVX2 machines. Measured on
-// examples/sequence frames 0-7 against the scalar build's output: see atrous_kernel.cpp.
+// (Cephes polynomial, about 2 ulp), FMA contraction on AVX2/AVX-512 machines, and denormals are
+// flushed inside the kernels. Measured with afntool --denoise:method=svgf on examples/sequence
+// frames 0-7 (320x180, float output) against the scalar build (main at 15a2fd3), AVX-512
+// clone: max |difference| 7.2e-5 (on a value of 3.08, i.e. 2.3e-5 relative), PSNR >= 159.6 dB
+// on every frame (peak = the scalar output's maximum).
 #pragma once
 
 #include "methods/svgf/guide.h"
