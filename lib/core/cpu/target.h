@@ -7,6 +7,11 @@
 
 #if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__)) && !defined(AFN_NO_CPU_CLONES)
 #define AFN_CPU_CLONES __attribute__((target_clones("arch=x86-64-v3", "default")))
+// Kernels that gain from AVX-512's 32 vector registers (and mask compares) even at 8 lanes also get
+// an x86-64-v4 clone (AVX-512 F/BW/CD/DQ/VL), chosen at load time like the others.
+#define AFN_CPU_KERNEL_CLONES                                                                      \
+    __attribute__((target_clones("arch=x86-64-v4", "arch=x86-64-v3", "default")))
 #else
 #define AFN_CPU_CLONES
+#define AFN_CPU_KERNEL_CLONES
 #endif

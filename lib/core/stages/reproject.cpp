@@ -146,22 +146,24 @@ void Reprojector::compute(const Frame& f)
 {
     m_width = f.width;
     m_height = f.height;
-    m_taps.assign(static_cast<std::size_t>(m_width) * m_height, PixelTaps {});
+    const std::size_t n = static_cast<std::size_t>(m_width) * m_height;
     m_tapsHaveHistory = m_hasPrev;
-    if (!m_hasPrev)
-        return;
     // History geometry of another size cannot be used (the base rejects size changes anyway).
     const bool sameSize = (m_prevPosition.empty() || m_prevPosition.width() == f.width)
         && (m_prevNormal.empty() || m_prevNormal.width() == f.width)
         && (m_prevDepth.empty() || m_prevDepth.width() == f.width);
-    if (!sameSize)
+    if (!m_hasPrev || !sameSize) {
+        m_taps.assign(n, PixelTaps {});
         return;
+    }
+    m_taps.resize(n); // every pixel's taps are rewritten below: no fill pass
     const bool usePosition
         = f.hasPosition() && !m_prevPosition.empty() && !(m_settings.positionLimitSquared > 0.0f);
     parallelRows(f.height, [&](int y0, int y1) {
         for (int y = y0; y < y1; ++y)
             for (int x = 0; x < f.width; ++x) {
                 PixelTaps& t = m_taps[static_cast<std::size_t>(y) * m_width + x];
+                t = PixelTaps {};
                 float px = 0.0f, py = 0.0f;
                 bool ok = false;
                 previousPosition(f, x, y, px, py, ok);

@@ -81,6 +81,9 @@ inline bool unreliable(const Frame& f, int x, int y)
     return a[0] < kAlbedoEpsilon || a[1] < kAlbedoEpsilon || a[2] < kAlbedoEpsilon;
 }
 
+/// Most features of a Layout: 1 + 3 normals + 2 * 3 scaled.
+constexpr int kMaxFeatures = 10;
+
 struct Layout {
     int normals = 0; ///< 0 or 3 unscaled normal features
     int scaled = 0; ///< 2 or 3 scaled features (position, or x, y [, depth])
@@ -108,7 +111,8 @@ inline void scaledRaw(const Frame& f, int x, int y, int count, float* v)
 void solveBlock(std::vector<double>& a, int n, int nf, double* w)
 {
     const int cols = nf + 3;
-    std::vector<double> v(static_cast<std::size_t>(n));
+    thread_local std::vector<double> v;
+    v.resize(static_cast<std::size_t>(n));
     for (int k = 0; k < nf; ++k) {
         double* ak = &a[static_cast<std::size_t>(k) * n];
         double norm2 = 0.0;
@@ -170,8 +174,12 @@ void regression(
 
     parallelFor(nbx * nby, [&](int blockIndex) {
         const int bx0 = sx + (blockIndex % nbx) * B, by0 = sy + (blockIndex / nbx) * B;
-        std::vector<double> a(static_cast<std::size_t>(n) * (nf + 3));
-        std::vector<float> feat(static_cast<std::size_t>(n) * nf);
+        // Per-thread scratch, reused from block to block: a fresh 130 KB matrix per block was an
+        // mmap, page faults and munmap each time. Every element read below is written first.
+        thread_local std::vector<double> a;
+        thread_local std::vector<float> feat;
+        a.resize(static_cast<std::size_t>(n) * (nf + 3));
+        feat.resize(static_cast<std::size_t>(n) * nf);
         // Load raw features and colour.
         float lo[3] = { 0, 0, 0 }, hi[3] = { 0, 0, 0 };
         double mean[3] = { 0, 0, 0 };
@@ -226,8 +234,8 @@ void regression(
             for (int k = 0; k < 3; ++k)
                 a[static_cast<std::size_t>(nf + k) * n + r] = static_cast<double>(c[k]) - meanF[k];
         }
-        std::vector<double> w(static_cast<std::size_t>(nf) * 3, 0.0);
-        solveBlock(a, n, nf, w.data());
+        double w[kMaxFeatures * 3] = {};
+        solveBlock(a, n, nf, w);
         // Weighted sum for the block's in-image pixels.
         for (int r = 0; r < n; ++r) {
             const int x = bx0 + r % B, y = by0 + r / B;

@@ -1,79 +1,25 @@
 // SPDX-License-Identifier: Apache-2.0
-// One SVGF à-trous iteration on colour + variance (see methods/svgf/denoiser.h).
-#include "methods/svgf/denoiser.h"
-
+// One SVGF à-trous iteration on colour + variance (see methods/svgf/denoiser.h; the per-row
+// kernels are in atrous_kernel.cpp) and the method's parameter table.
 #include "base/parallel.h"
-
-#include <algorithm>
+#include "methods/svgf/denoiser.h"
+#include "methods/svgf/kernels.h"
 
 namespace afn::svgf {
 
-namespace {
-
-constexpr float kMaxExponent = 40.0f; ///< taps with exp(-e) below exp(-40) are skipped
-constexpr float kB3[3] = { 3.0f / 8.0f, 1.0f / 4.0f, 1.0f / 16.0f }; ///< by |offset|
-
-/// 3x3 Gaussian of the variance channel (1/4 centre, 1/8 edges, 1/16 corners), in-image taps.
-float blurredVariance(const Image& cv, int x, int y)
-{
-    static constexpr float k[2] = { 0.5f, 0.25f };
-    float sum = 0.0f, wsum = 0.0f;
-    for (int dy = -1; dy <= 1; ++dy)
-        for (int dx = -1; dx <= 1; ++dx) {
-            const int qx = x + dx, qy = y + dy;
-            if (qx < 0 || qy < 0 || qx >= cv.width() || qy >= cv.height())
-                continue;
-            const float wq = (dx == 0 ? k[0] : k[1]) * (dy == 0 ? k[0] : k[1]);
-            sum += wq * cv(qx, qy, 3);
-            wsum += wq;
-        }
-    return sum / wsum;
-}
-
-} // namespace
-
-void Denoiser::atrous(const Image& in, Image& out, int step) const
+void Denoiser::atrous(const Planes& in, Planes& out, int step)
 {
     const int w = in.width(), h = in.height();
-    out.resize(w, h, 4);
-    const float sigmaL = m_settings.sigmaL;
-    parallelRows(h, [&](int y0, int y1) {
-        for (int y = y0; y < y1; ++y)
-            for (int x = 0; x < w; ++x) {
-                const float* cp = in.at(x, y);
-                const float lp = luminance(cp);
-                const float invPhiL = 1.0f
-                    / (sigmaL * std::sqrt(std::max(0.0f, blurredVariance(in, x, y))) + 1e-10f);
-                float ws = 0.0f, vsum = 0.0f, dc[3] = { 0, 0, 0 };
-                for (int j = -2; j <= 2; ++j)
-                    for (int i = -2; i <= 2; ++i) {
-                        const int qx = x + i * step, qy = y + j * step;
-                        if (qx < 0 || qy < 0 || qx >= w || qy >= h)
-                            continue;
-                        const float* cq = in.at(qx, qy);
-                        float wq = kB3[std::abs(i)] * kB3[std::abs(j)];
-                        if (i != 0 || j != 0) {
-                            const float wn = m_guide.normalFactor(x, y, qx, qy);
-                            const float e = m_guide.depthTerm(x, y, qx, qy, i * step, j * step)
-                                + std::fabs(lp - luminance(cq)) * invPhiL;
-                            // exp(-40) < 5e-18: such taps are negligible; skipping them saves the
-                            // exp().
-                            if (!(wn > 0.0f) || !(e < kMaxExponent))
-                                continue;
-                            wq *= std::exp(-e) * wn;
-                        }
-                        ws += wq;
-                        vsum += wq * wq * cq[3];
-                        for (int k = 0; k < 3; ++k)
-                            dc[k] += wq * (cq[k] - cp[k]);
-                    }
-                float* o = out.at(x, y);
-                const float inv = 1.0f / ws; // ws >= centre weight (3/8)^2 > 0
-                for (int k = 0; k < 3; ++k)
-                    o[k] = std::max(0.0f, cp[k] + dc[k] * inv);
-                o[3] = vsum * inv * inv;
-            }
-    });
+    out.resize(w, h, kColorPlanes);
+    m_invPhiL.resize(w, h, 1);
+    parallelRows(h, [&](int y0, int y1) { invPhiRows(in, m_settings.sigmaL, m_invPhiL, y0, y1); });
+    AtrousArgs a;
+    a.in = &in;
+    a.invPhiL = &m_invPhiL;
+    a.guide = &m_guide;
+    a.out = &out;
+    a.step = step;
+    parallelRows(h, [&](int y0, int y1) { atrousRows(a, y0, y1); });
 }
 
 const ParamBinding<Settings>& settingsBinding()

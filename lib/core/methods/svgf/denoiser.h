@@ -13,10 +13,12 @@
 //      methods/svgf/guide.h with phiL = sigmaL * sqrt(g3x3(var)) + 1e-10; variance filtered with
 //      squared weights; the output of iteration feedbackTap is the next frame's colour history.
 // Filtered values are written as c_p + sum(w (c_q - c_p)) / sum(w), identical in exact arithmetic
-// to sum(w c_q) / sum(w), so a constant image stays bit-exactly constant.
+// to sum(w c_q) / sum(w), so a constant image stays bit-exactly constant. The variance estimate and
+// the à-trous passes run 8 pixels at a time on planes (methods/svgf/kernels.h).
 #pragma once
 
 #include "methods/svgf/guide.h"
+#include "methods/svgf/planes.h"
 #include "stages/reproject.h"
 
 namespace afn::svgf {
@@ -35,14 +37,16 @@ public:
 private:
     void integrate(const Image& irradiance, const Reprojector& taps);
     void estimateVariance();
-    void atrous(const Image& in, Image& out, int step) const;
+    void atrous(const Planes& in, Planes& out, int step);
 
     Settings m_settings;
     Guide m_guide;
     bool m_hasHistory = false;
     Image m_color, m_moments, m_len; ///< this frame: integrated colour, moments, length
     Image m_prevColor, m_prevMoments, m_prevLen; ///< history
-    Image m_cv, m_cvTmp; ///< colour + variance (4 ch) ping-pong
+    Planes m_integrated; ///< this frame's integration as planes (kernels.h IntegratedPlane)
+    Planes m_cv, m_cvTmp; ///< colour, variance, luminance ping-pong (kernels.h ColorPlane)
+    Planes m_invPhiL; ///< per-iteration luminance scale (1 plane)
 };
 
 } // namespace afn::svgf

@@ -11,30 +11,40 @@ void Guide::build(const Frame& f, const Settings& s)
     sigmaZ = s.sigmaZ;
     sigmaN = s.sigmaN;
     integerSigmaN = sigmaN == std::floor(sigmaN) && sigmaN <= 65536.0f;
-    normal = f.hasNormal() ? &f.normal : nullptr;
+    hasNormal = f.hasNormal();
+    hasDepth = f.hasDepth() || (f.hasPosition() && f.camera.valid);
     const int w = f.width, h = f.height;
-    if (f.hasDepth()) {
-        depth = f.depth;
-    } else if (f.hasPosition() && f.camera.valid) {
-        depth.resize(w, h, 1);
-        const auto& M = f.camera.viewProjection;
-        parallelRows(h, [&](int y0, int y1) {
-            for (int y = y0; y < y1; ++y)
-                for (int x = 0; x < w; ++x) {
+    planes.resize(w, h, kGuidePlanes);
+    const auto& M = f.camera.viewProjection;
+    parallelRows(h, [&](int y0, int y1) {
+        for (int y = y0; y < y1; ++y) {
+            if (hasNormal) {
+                float* n[3]
+                    = { planes.row(kNormalX, y), planes.row(kNormalY, y), planes.row(kNormalZ, y) };
+                for (int x = 0; x < w; ++x)
+                    for (int k = 0; k < 3; ++k)
+                        n[k][x] = f.normal(x, y, k);
+            }
+            if (!hasDepth)
+                continue;
+            float* z = planes.row(kDepth, y);
+            for (int x = 0; x < w; ++x) {
+                if (f.hasDepth()) {
+                    z[x] = f.depth(x, y, 0);
+                } else {
                     const float* p = f.position.at(x, y);
-                    depth(x, y, 0) = p[0] * M[3] + p[1] * M[7] + p[2] * M[11] + M[15];
+                    z[x] = p[0] * M[3] + p[1] * M[7] + p[2] * M[11] + M[15];
                 }
-        });
-    } else {
-        depth = Image();
-        gradient = Image();
+            }
+        }
+    });
+    if (!hasDepth)
         return;
-    }
-    gradient.resize(w, h, 2);
+    auto depth = [&](int x, int y) { return planes.row(kDepth, y)[x]; };
     parallelRows(h, [&](int y0, int y1) {
         for (int y = y0; y < y1; ++y)
             for (int x = 0; x < w; ++x) {
-                const float z = depth(x, y, 0);
+                const float z = depth(x, y);
                 auto axis = [&](int dx, int dy) {
                     float best = 0.0f;
                     bool any = false;
@@ -42,15 +52,15 @@ void Guide::build(const Frame& f, const Settings& s)
                         const int nx = x + sgn * dx, ny = y + sgn * dy;
                         if (nx < 0 || ny < 0 || nx >= w || ny >= h)
                             continue;
-                        const float d = sgn * (depth(nx, ny, 0) - z);
+                        const float d = sgn * (depth(nx, ny) - z);
                         if (!any || std::fabs(d) < std::fabs(best))
                             best = d;
                         any = true;
                     }
                     return best;
                 };
-                gradient(x, y, 0) = axis(1, 0);
-                gradient(x, y, 1) = axis(0, 1);
+                planes.row(kDepthDx, y)[x] = axis(1, 0);
+                planes.row(kDepthDy, y)[x] = axis(0, 1);
             }
     });
 }

@@ -4,6 +4,7 @@
 #include "methods/svgf/denoiser.h"
 
 #include "base/parallel.h"
+#include "methods/svgf/kernels.h"
 
 #include <algorithm>
 #include <utility>
@@ -24,6 +25,7 @@ void Denoiser::integrate(const Image& irr, const Reprojector& taps)
     m_color.resize(w, h, 3);
     m_moments.resize(w, h, 2);
     m_len.resize(w, h, 1);
+    m_integrated.resize(w, h, kIntegratedPlanes);
     const bool history = m_hasHistory && taps.hasHistory() && m_prevColor.width() == w
         && m_prevColor.height() == h;
     parallelRows(h, [&](int y0, int y1) {
@@ -57,6 +59,12 @@ void Denoiser::integrate(const Image& irr, const Reprojector& taps)
                     om[1] = m[1];
                     m_len(x, y, 0) = 1.0f;
                 }
+                for (int k = 0; k < 3; ++k)
+                    m_integrated.row(kIntRed + k, y)[x] = oc[k];
+                m_integrated.row(kIntLuminance, y)[x] = luminance(oc);
+                m_integrated.row(kMoment1, y)[x] = om[0];
+                m_integrated.row(kMoment2, y)[x] = om[1];
+                m_integrated.row(kHistoryLength, y)[x] = m_len(x, y, 0);
             }
     });
     m_hasHistory = true;
@@ -65,48 +73,14 @@ void Denoiser::integrate(const Image& irr, const Reprojector& taps)
 void Denoiser::estimateVariance()
 {
     const int w = m_color.width(), h = m_color.height();
-    m_cv.resize(w, h, 4);
-    const float phiL = m_settings.sigmaL;
-    parallelRows(h, [&](int y0, int y1) {
-        for (int y = y0; y < y1; ++y)
-            for (int x = 0; x < w; ++x) {
-                const float* c = m_color.at(x, y);
-                const float* m = m_moments.at(x, y);
-                const float len = m_len(x, y, 0);
-                float* o = m_cv.at(x, y);
-                if (len >= static_cast<float>(m_settings.varianceHistory)) {
-                    o[0] = c[0];
-                    o[1] = c[1];
-                    o[2] = c[2];
-                    o[3] = std::max(0.0f, m[1] - m[0] * m[0]);
-                    continue;
-                }
-                // 7x7 cross-bilateral estimate (radius 3), delta form around the centre.
-                const float lp = luminance(c);
-                float ws = 0.0f, dc[3] = { 0, 0, 0 }, dm[2] = { 0, 0 };
-                for (int dy = -3; dy <= 3; ++dy)
-                    for (int dx = -3; dx <= 3; ++dx) {
-                        const int qx = x + dx, qy = y + dy;
-                        if (qx < 0 || qy < 0 || qx >= w || qy >= h)
-                            continue;
-                        const float* cq = m_color.at(qx, qy);
-                        const float* mq = m_moments.at(qx, qy);
-                        const float e = m_guide.depthTerm(x, y, qx, qy, dx, dy)
-                            + std::fabs(lp - luminance(cq)) / (phiL + 1e-10f);
-                        const float wq = std::exp(-e) * m_guide.normalFactor(x, y, qx, qy);
-                        ws += wq;
-                        for (int k = 0; k < 3; ++k)
-                            dc[k] += wq * (cq[k] - c[k]);
-                        for (int k = 0; k < 2; ++k)
-                            dm[k] += wq * (mq[k] - m[k]);
-                    }
-                const float inv = ws > 0.0f ? 1.0f / ws : 0.0f;
-                for (int k = 0; k < 3; ++k)
-                    o[k] = c[k] + dc[k] * inv;
-                const float m0 = m[0] + dm[0] * inv, m1 = m[1] + dm[1] * inv;
-                o[3] = std::max(0.0f, m1 - m0 * m0) * (4.0f / len);
-            }
-    });
+    m_cv.resize(w, h, kColorPlanes);
+    VarianceArgs a;
+    a.in = &m_integrated;
+    a.guide = &m_guide;
+    a.out = &m_cv;
+    a.phiL = m_settings.sigmaL;
+    a.varianceHistory = static_cast<float>(m_settings.varianceHistory);
+    parallelRows(h, [&](int y0, int y1) { varianceRows(a, y0, y1); });
 }
 
 void Denoiser::process(const Frame& f, const Image& irr, const Reprojector& taps, Image& filtered)
@@ -123,18 +97,22 @@ void Denoiser::process(const Frame& f, const Image& irr, const Reprojector& taps
             const int w = m_cv.width(), h = m_cv.height();
             parallelRows(h, [&](int y0, int y1) {
                 for (int y = y0; y < y1; ++y)
-                    for (int x = 0; x < w; ++x)
-                        for (int k = 0; k < 3; ++k)
-                            m_color(x, y, k) = m_cv(x, y, k);
+                    for (int k = 0; k < 3; ++k) {
+                        const float* c = m_cv.row(kRed + k, y);
+                        for (int x = 0; x < w; ++x)
+                            m_color(x, y, k) = c[x];
+                    }
             });
         }
     }
     filtered.resize(f.width, f.height, 3);
     parallelRows(f.height, [&](int y0, int y1) {
         for (int y = y0; y < y1; ++y)
-            for (int x = 0; x < f.width; ++x)
-                for (int k = 0; k < 3; ++k)
-                    filtered(x, y, k) = m_cv(x, y, k);
+            for (int k = 0; k < 3; ++k) {
+                const float* c = m_cv.row(kRed + k, y);
+                for (int x = 0; x < f.width; ++x)
+                    filtered(x, y, k) = c[x];
+            }
     });
 }
 

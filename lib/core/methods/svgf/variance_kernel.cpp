@@ -1,0 +1,109 @@
+// SPDX-License-Identifier: Apache-2.0
+// SVGF's variance estimate, 8 pixels at a time (see methods/svgf/kernels.h): the temporal variance
+// max(0, m2 - m1^2) where the history is long enough, else the 7x7 cross-bilateral estimate of
+// colour and moments (weights exp(-e) * max(0, n.n')^sigmaN, delta form around the centre) boosted
+// by 4 / length (methods/svgf/denoiser.h). A vector whose 8 pixels all have a long history skips
+// the 7x7 loop. Weights of exp(-e) with e >= 87 (below 1.7e-38) are taken as 0: the scalar expf
+// gave denormals there.
+#include "cpu/target.h"
+#include "methods/svgf/kernels.h"
+#include "methods/svgf/tap_vector.h"
+
+#pragma GCC diagnostic ignored "-Wpsabi"
+
+namespace afn::svgf {
+
+namespace {
+
+constexpr float kExpFloor = 87.0f;
+
+struct Estimate {
+    V8 c[3], m[2];
+};
+
+/// The 7x7 cross-bilateral estimate of pixels x .. x + 7 of row y.
+AFN_SVGF_INLINE Estimate crossBilateral(
+    const VarianceArgs& a, int x, int y, const V8* cp, const V8* mp, V8 lp)
+{
+    const Planes& in = *a.in;
+    const Guide& g = *a.guide;
+    const int w = in.width(), h = in.height();
+    const GuideCentre gc = guideCentre(g, x, y);
+    const float phi = a.phiL + 1e-10f;
+    V8 ws = {}, dc[3] = {}, dm[2] = {};
+    for (int dy = -3; dy <= 3; ++dy) {
+        const int qy = y + dy;
+        if (qy < 0 || qy >= h)
+            continue;
+        for (int dx = -3; dx <= 3; ++dx) {
+            const TapColumns t = tapColumns(x + dx, w);
+            V8 e = absV(lp - loadTap(in.row(kIntLuminance, qy), t, w)) / phi;
+            if (g.hasDepth)
+                e = depthTerm(g, gc, loadTap(g.planes.row(kDepth, qy), t, w),
+                        static_cast<float>(dx), static_cast<float>(dy))
+                    + e;
+            V8 wn = cpu::splat8(1.0f);
+            if (g.hasNormal) {
+                V8 nq[3];
+                for (int k = 0; k < 3; ++k)
+                    nq[k] = loadTap(g.planes.row(kNormalX + k, qy), t, w);
+                wn = normalFactor(g, gc, nq);
+            }
+            const V8 ec = e < kExpFloor ? e : cpu::splat8(kExpFloor); // exp of masked-out lanes
+            const V8 wq = (t.inImage & (e < kExpFloor)) ? cpu::exp8(-ec) * wn : V8 {};
+            ws += wq;
+            for (int k = 0; k < 3; ++k)
+                dc[k] += wq * (loadTap(in.row(kIntRed + k, qy), t, w) - cp[k]);
+            for (int k = 0; k < 2; ++k)
+                dm[k] += wq * (loadTap(in.row(kMoment1 + k, qy), t, w) - mp[k]);
+        }
+    }
+    const V8 inv = ws > 0.0f ? 1.0f / ws : V8 {};
+    Estimate r;
+    for (int k = 0; k < 3; ++k)
+        r.c[k] = cp[k] + dc[k] * inv;
+    for (int k = 0; k < 2; ++k)
+        r.m[k] = mp[k] + dm[k] * inv;
+    return r;
+}
+
+} // namespace
+
+AFN_CPU_KERNEL_CLONES void varianceRows(const VarianceArgs& a, int y0, int y1)
+{
+    const FlushDenormals flush;
+    const Planes& in = *a.in;
+    Planes& out = *a.out;
+    const int w = in.width();
+    for (int y = y0; y < y1; ++y)
+        for (int x = 0; x < w; x += kLanes) {
+            V8 c[3], m[2];
+            for (int k = 0; k < 3; ++k)
+                c[k] = cpu::load8(in.row(kIntRed + k, y) + x);
+            for (int k = 0; k < 2; ++k)
+                m[k] = cpu::load8(in.row(kMoment1 + k, y) + x);
+            const V8 len = cpu::load8(in.row(kHistoryLength, y) + x);
+            const V8 temporal = m[1] - m[0] * m[0];
+            V8 var = temporal > 0.0f ? temporal : V8 {};
+            // Tail lanes (x + l >= width) read length 0 from the padding: they count as short.
+            const I8 shortHistory = len < a.varianceHistory;
+            bool any = false;
+            for (int l = 0; l < kLanes && x + l < w; ++l)
+                any = any || shortHistory[l];
+            if (any) {
+                const V8 lp = cpu::load8(in.row(kIntLuminance, y) + x);
+                const Estimate e = crossBilateral(a, x, y, c, m, lp);
+                const V8 spatial = e.m[1] - e.m[0] * e.m[0];
+                const V8 boosted = (spatial > 0.0f ? spatial : V8 {}) * (4.0f / len);
+                var = shortHistory ? boosted : var;
+                for (int k = 0; k < 3; ++k)
+                    c[k] = shortHistory ? e.c[k] : c[k];
+            }
+            for (int k = 0; k < 3; ++k)
+                storeLanes(out.row(kRed + k, y), x, w, c[k]);
+            storeLanes(out.row(kVariance, y), x, w, var);
+            storeLanes(out.row(kLuminance, y), x, w, luminance8(c[0], c[1], c[2]));
+        }
+}
+
+} // namespace afn::svgf
