@@ -44,6 +44,8 @@ public:
     void writeFeatures(LoadedFrame& frame, const std::string& path,
         const std::vector<std::string>& inputs, Progress* progress);
     const std::string& method() const { return m_method; }
+    /// A statistic of the last frame (afnGetFilterFloat), e.g. "stats.afn.prediction.ms".
+    double statistic(const char* name) const { return m_filter.get<float>(name); }
 
 private:
     void run(LoadedFrame& frame, Progress* progress);

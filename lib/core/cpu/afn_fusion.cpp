@@ -133,9 +133,10 @@ AFN_CPU_CLONES void fuseRows(const FusionInputs& in, const FusionOutputs& out, i
         }
     };
     for (int yh = y0; yh < y1; ++yh) {
-        in.head1->runRows(nullptr, d1, yh, yh + 1, rows1.data(), static_cast<long>(wh) * s1, s1);
+        in.head1->runRows(
+            nullptr, d1, yh, yh + 1, rows1.data(), static_cast<long>(wh) * s1, s1, false);
         in.headTa->runRows(
-            &d1, x, 2 * yh, 2 * yh + 2, rowsTa.data(), static_cast<long>(w) * sTa, sTa);
+            &d1, x, 2 * yh, 2 * yh + 2, rowsTa.data(), static_cast<long>(w) * sTa, sTa, false);
         for (int xh = 0; xh < wh; ++xh) {
             // 1-spp branch at half resolution.
             float* logits = rows1.data() + static_cast<std::size_t>(xh) * s1;

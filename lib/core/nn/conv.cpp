@@ -94,9 +94,9 @@ void Conv::run(const Image* up, const Image& same, Image& out, bool relu) const
 }
 
 void Conv::runRows(const Image* up, const Image& same, int y0, int y1, float* dst, long rowStride,
-    int pixelStride) const
+    int pixelStride, bool relu) const
 {
-    cpu::ConvArgs a = args(up, same, false);
+    cpu::ConvArgs a = args(up, same, relu);
     a.dst = dst;
     a.dstRow = rowStride;
     a.dstPix = pixelStride;

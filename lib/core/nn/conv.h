@@ -38,11 +38,11 @@ public:
     /// the others read `same` (out's size). `up` may be null. `out` is resized to same's size.
     void run(const Image* up, const Image& same, Image& out, bool relu) const;
 
-    /// Rows [y0, y1) of the same convolution (no ReLU) on the calling thread, for callers that
-    /// keep only a few rows (the fused AFN heads): row y at dst + (y - y0) * rowStride, pixels
-    /// pixelStride (>= outChannels()) floats apart.
+    /// Rows [y0, y1) of the same convolution on the calling thread, for callers that keep only a
+    /// few rows (the fused AFN heads, the refinement strips): row y at dst + (y - y0) * rowStride,
+    /// pixels pixelStride (>= outChannels()) floats apart.
     void runRows(const Image* up, const Image& same, int y0, int y1, float* dst, long rowStride,
-        int pixelStride) const;
+        int pixelStride, bool relu) const;
 
     /// Multiply-adds x 2 per output pixel (the layer's FLOP per pixel, without padding).
     double flopPerPixel() const { return 2.0 * m_k * m_k * m_in * m_out; }
