@@ -2,7 +2,10 @@
 // AFN inference speed per 1280x720 frame (paper Table 10 stages): kernel prediction (padding, tone
 // map, encoder-decoder), filtering + fusion (heads, softmax, 7x7 filters, Eq. 3), refinement, and
 // the whole forward pass. Random weights of the shipped architecture: timings do not depend on the
-// values. Run: afnBenchmarkAfn [--benchmark_filter=...]; report the medians.
+// values. Each case reports GFLOP/s (counter "GFLOPs": Network::stageFlop over real time); the
+// yardstick, oneDNN's dnnl_sgemm on 1024^3 at the same thread counts, runs in the same program
+// (sgemm.1024, built with oneDNN). Run: afnBenchmarkAfn [--benchmark_filter=...]; report the
+// medians. The kernels are chosen at run time (AFN_CPU_ISA=portable forces the portable ones).
 #include "methods/afn/network.h"
 #include "methods/afn/random_weights.h"
 
@@ -10,8 +13,14 @@
 #include <tbb/global_control.h>
 
 #include <memory>
-
 #include <random>
+#include <vector>
+
+#ifdef AFN_HAS_DNNL
+#include <dnnl.h>
+#include <omp.h>
+#include <thread>
+#endif
 
 namespace {
 
@@ -61,6 +70,15 @@ std::unique_ptr<tbb::global_control> threads(const benchmark::State& state)
         tbb::global_control::max_allowed_parallelism, static_cast<std::size_t>(state.range(0)));
 }
 
+using Stage = afn::afnet::Network::Stage;
+
+void setFlops(benchmark::State& state, double flopPerIteration)
+{
+    state.counters["GFLOPs"]
+        = benchmark::Counter(flopPerIteration * 1e-9 * static_cast<double>(state.iterations()),
+            benchmark::Counter::kIsRate);
+}
+
 void BM_AfnKernelPrediction(benchmark::State& state)
 {
     Setup& s = setup720();
@@ -69,6 +87,7 @@ void BM_AfnKernelPrediction(benchmark::State& state)
         s.net.prepare(s.in);
         s.net.predict();
     }
+    setFlops(state, s.net.stageFlop(Stage::Prediction));
 }
 BENCHMARK(BM_AfnKernelPrediction)->Name("afn.kernel_prediction.1280x720")->Apply(configure);
 
@@ -78,6 +97,7 @@ void BM_AfnFilterFuse(benchmark::State& state)
     const auto limit = threads(state);
     for (auto _ : state)
         s.net.filterAndFuse();
+    setFlops(state, s.net.stageFlop(Stage::Filtering));
 }
 BENCHMARK(BM_AfnFilterFuse)->Name("afn.filtering_fusion.1280x720")->Apply(configure);
 
@@ -87,6 +107,7 @@ void BM_AfnRefine(benchmark::State& state)
     const auto limit = threads(state);
     for (auto _ : state)
         s.net.refine();
+    setFlops(state, s.net.stageFlop(Stage::Refinement));
 }
 BENCHMARK(BM_AfnRefine)->Name("afn.refinement.1280x720")->Apply(configure);
 
@@ -96,8 +117,38 @@ void BM_AfnWhole(benchmark::State& state)
     const auto limit = threads(state);
     for (auto _ : state)
         s.net.run(s.in, s.out);
+    setFlops(state,
+        s.net.stageFlop(Stage::Prediction) + s.net.stageFlop(Stage::Filtering)
+            + s.net.stageFlop(Stage::Refinement));
 }
 BENCHMARK(BM_AfnWhole)->Name("afn.whole.1280x720")->Apply(configure);
+
+#ifdef AFN_HAS_DNNL
+// The yardstick: dnnl_sgemm, C = A B with M = N = K = 1024 (oneDNN threads on OpenMP).
+void BM_DnnlSgemm(benchmark::State& state)
+{
+    const int n = 1024;
+    const int t = state.range(0) > 0 ? static_cast<int>(state.range(0))
+                                     : static_cast<int>(std::thread::hardware_concurrency());
+    omp_set_num_threads(t);
+    std::vector<float> a(std::size_t(n) * n, 0.5f), b(std::size_t(n) * n, 0.25f),
+        c(std::size_t(n) * n);
+    dnnl_sgemm('N', 'N', n, n, n, 1.0f, a.data(), n, b.data(), n, 0.0f, c.data(), n); // warm-up
+    for (auto _ : state)
+        dnnl_sgemm('N', 'N', n, n, n, 1.0f, a.data(), n, b.data(), n, 0.0f, c.data(), n);
+    setFlops(state, 2.0 * n * n * double(n));
+}
+BENCHMARK(BM_DnnlSgemm)
+    ->Name("sgemm.1024")
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(10)
+    ->Repetitions(5)
+    ->ReportAggregatesOnly(true)
+    ->ArgName("threads")
+    ->Arg(1)
+    ->Arg(0)
+    ->UseRealTime();
+#endif
 
 } // namespace
 

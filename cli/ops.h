@@ -47,6 +47,8 @@ public:
     /// The action with every parameter as the filter has it ("--denoise:method=svgf:alpha=0.2:
     /// ..."; ":weights=FILE" when given), for the outputs' history.
     std::string describe() const;
+    /// A statistic of the last frame (afnGetFilterFloat), e.g. "stats.afn.prediction.ms".
+    double statistic(const char* name) const { return m_filter.get<float>(name); }
 
 private:
     void run(LoadedFrame& frame, Progress* progress);

@@ -2,11 +2,16 @@
 // --benchmark:size=1280x720,1920x1080,...: time the denoise stage alone on generated inputs of each
 // size, for scaling curves (time against pixel count). Modifiers: methods=a,b (default: every type
 // but "identity"), frames=N timed frames (default 5) after warmup=W untimed ones (default 2).
+// Per point also the peak heap of the run (heap_counter.h: every operator new of the process,
+// filter creation to the last frame; the generated input frame, allocated before, is left out),
+// and for afn the engine report (engine_report.h: GFLOP/s per stage beside dnnl_sgemm).
 // The inputs are plain fills plus hashed per-pixel noise (no rendering): a lit plane facing the
 // camera, static camera, zero motion. Written by hand here; they carry no product pixel math.
 #include "ops.h"
 
 #include "cli_error.h"
+#include "engine_report.h"
+#include "heap_counter.h"
 #include "json_writer.h"
 #include "progress.h"
 #include "report.h"
@@ -30,6 +35,7 @@ struct SizePoint {
     double msPerMegapixel = 0.0;
     double medianCpuMs = 0.0; ///< process CPU time, all threads
     double cpuMsPerMegapixel = 0.0;
+    double heapPeakMiB = 0.0; ///< peak heap of the run above what was live before it
 };
 
 std::pair<int, int> parseSize(const std::string& text)
@@ -131,15 +137,27 @@ int runSizeBenchmark(const Options& opts, const Action& action)
         throw CliError("--benchmark: frames and warmup expect integers");
     }
 
+    // The yardstick first (afn only), so that its threads are idle again when afn runs.
+    const bool engine = std::find(methods.begin(), methods.end(), "afn") != methods.end()
+        && opts.device != "cuda";
+    EngineYardstick yardstick;
+    if (engine)
+        yardstick = measureYardstick(opts.threads);
+    std::vector<EnginePoint> enginePoints;
+
     std::vector<SizePoint> points;
     Progress progress(static_cast<int>(sizes.size() * methods.size()), opts.quiet);
     int done = 0;
     for (const auto& [w, h] : sizes) {
         LoadedFrame frame;
+        makeFrame(frame, w, h, 0); // allocated before the heap baseline of each run
         for (const std::string& m : methods) {
             progress.update(done++, m + " " + std::to_string(w) + "x" + std::to_string(h));
             Action denoise { "denoise", "", { { "method", m } } };
             std::vector<double> times, cpuTimes;
+            EngineCollector collector;
+            heap::resetPeak();
+            const std::size_t heapBase = heap::liveBytes();
             try {
                 SequenceDenoiser denoiser(opts, denoise);
                 for (int i = 0; i < warmup + timed; ++i) {
@@ -154,6 +172,8 @@ int runSizeBenchmark(const Options& opts, const Action& action)
                         continue;
                     times.push_back(ms);
                     cpuTimes.push_back(processCpuMs() - cpu0);
+                    if (m == "afn" && engine)
+                        collector.add([&](const char* s) { return denoiser.statistic(s); });
                 }
             } catch (const CliError& e) {
                 // One method failing (e.g. "afn" without weights) does not end the benchmark.
@@ -163,6 +183,9 @@ int runSizeBenchmark(const Options& opts, const Action& action)
                 continue;
             }
             SizePoint p { m, w, h, median(times), 0.0, median(cpuTimes), 0.0 };
+            p.heapPeakMiB = static_cast<double>(heap::peakBytes() - heapBase) / (1 << 20);
+            if (m == "afn" && engine)
+                enginePoints.push_back(collector.finish(w, h));
             p.msPerMegapixel = p.medianMs / (static_cast<double>(w) * h / 1e6);
             p.cpuMsPerMegapixel = p.medianCpuMs / (static_cast<double>(w) * h / 1e6);
             points.push_back(p);
@@ -186,40 +209,46 @@ int runSizeBenchmark(const Options& opts, const Action& action)
     j.key("points").beginArray();
     std::ostringstream csv;
     csv << "method,width,height,megapixels,medianMs,msPerMegapixel,relativeToFirst,medianCpuMs,"
-           "cpuMsPerMegapixel,cpuRelativeToFirst\n";
+           "cpuMsPerMegapixel,cpuRelativeToFirst,heapPeakMiB,heapMiBPerMegapixel\n";
     if (!opts.json)
-        std::printf("%-8s %11s %6s %11s %9s %6s %11s %9s %6s\n", "method", "size", "MP", "ms/frame",
-            "ms/MP", "rel.", "cpu ms", "cpu ms/MP", "rel.");
+        std::printf("%-8s %11s %6s %11s %9s %6s %11s %9s %6s %9s %9s\n", "method", "size", "MP",
+            "ms/frame", "ms/MP", "rel.", "cpu ms", "cpu ms/MP", "rel.", "heap MiB", "MiB/MP");
     for (const SizePoint& p : points) {
         const double mp = static_cast<double>(p.width) * p.height / 1e6;
         const double rel = p.msPerMegapixel / base(p.method).msPerMegapixel;
         const double relCpu = p.cpuMsPerMegapixel / base(p.method).cpuMsPerMegapixel;
         if (!opts.json)
-            std::printf("%-8s %5dx%-5d %6.2f %11.2f %9.2f %6.3f %11.2f %9.2f %6.3f\n",
+            std::printf("%-8s %5dx%-5d %6.2f %11.2f %9.2f %6.3f %11.2f %9.2f %6.3f %9.1f %9.1f\n",
                 p.method.c_str(), p.width, p.height, mp, p.medianMs, p.msPerMegapixel, rel,
-                p.medianCpuMs, p.cpuMsPerMegapixel, relCpu);
+                p.medianCpuMs, p.cpuMsPerMegapixel, relCpu, p.heapPeakMiB, p.heapPeakMiB / mp);
         j.beginObject().field("method", p.method).field("width", p.width).field("height", p.height);
         j.field("megapixels", mp)
             .field("medianMs", p.medianMs)
             .field("msPerMegapixel", p.msPerMegapixel);
         j.field("relativeToFirst", rel).field("medianCpuMs", p.medianCpuMs);
-        j.field("cpuMsPerMegapixel", p.cpuMsPerMegapixel)
-            .field("cpuRelativeToFirst", relCpu)
-            .endObject();
+        j.field("cpuMsPerMegapixel", p.cpuMsPerMegapixel).field("cpuRelativeToFirst", relCpu);
+        j.field("heapPeakMiB", p.heapPeakMiB).field("heapMiBPerMegapixel", p.heapPeakMiB / mp);
+        j.endObject();
         char line[320];
-        std::snprintf(line, sizeof line, "%s,%d,%d,%.6f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f\n",
+        std::snprintf(line, sizeof line, "%s,%d,%d,%.6f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.2f,%.2f\n",
             p.method.c_str(), p.width, p.height, mp, p.medianMs, p.msPerMegapixel, rel,
-            p.medianCpuMs, p.cpuMsPerMegapixel, relCpu);
+            p.medianCpuMs, p.cpuMsPerMegapixel, relCpu, p.heapPeakMiB, p.heapPeakMiB / mp);
         csv << line;
     }
-    j.endArray().endObject();
+    j.endArray();
+    if (engine)
+        writeEngineJson(j, yardstick, enginePoints);
+    j.endObject();
     if (opts.json)
         std::printf("%s\n", j.str().c_str());
     else
         std::printf("(median of %d timed frames after %d warm-up frames on --device %s; rel. = "
                     "per-megapixel time against the method's first size: 1.0 = linear in pixel "
-                    "count; cpu = process CPU time of all threads)\n",
+                    "count; cpu = process CPU time of all threads; heap = peak operator-new bytes "
+                    "of the run, input frame excluded)\n",
             timed, warmup, opts.device.c_str());
+    if (!opts.json && engine)
+        printEngineReport(yardstick, enginePoints);
     if (!opts.report.empty()) {
         std::error_code ec;
         std::filesystem::create_directories(opts.report, ec);
@@ -227,6 +256,8 @@ int runSizeBenchmark(const Options& opts, const Action& action)
             throw CliError("cannot create the report folder: " + ec.message(), opts.report);
         writeTextAtomic(opts.report + "/scaling.json", j.str() + "\n");
         writeTextAtomic(opts.report + "/scaling.csv", csv.str());
+        if (engine)
+            writeTextAtomic(opts.report + "/engine.csv", engineCsv(yardstick, enginePoints));
     }
     return 0;
 }

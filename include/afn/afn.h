@@ -132,6 +132,18 @@ typedef enum AFNDeviceType {
 /// "normal (edge-stopping); motion or position with a camera (reprojection: ...)"; "" when none
 /// (afnGetFilterString). The method still runs, with less to go on.
 #define AFN_STAT_MISSING_INPUTS "stats.missingInputs"
+/// The "afn" method on the CPU, last execute (afnGetFilterFloat): wall-clock milliseconds and GFLOP
+/// (2 x multiply-adds of the layers and 7x7 filters at the padded size; softmax, pooling and tone
+/// map not counted) of the network's stages: prediction (input preparation + encoder-decoder),
+/// filtering (kernel heads, softmax, 7x7 filtering, fusion), refinement. "stats.afn.avx512" is 1
+/// when the AVX-512 kernels ran (chosen at run time), 0 for the portable ones.
+#define AFN_STAT_AFN_PREDICTION_MS "stats.afn.prediction.ms"
+#define AFN_STAT_AFN_PREDICTION_GFLOP "stats.afn.prediction.gflop"
+#define AFN_STAT_AFN_FILTERING_MS "stats.afn.filtering.ms"
+#define AFN_STAT_AFN_FILTERING_GFLOP "stats.afn.filtering.gflop"
+#define AFN_STAT_AFN_REFINEMENT_MS "stats.afn.refinement.ms"
+#define AFN_STAT_AFN_REFINEMENT_GFLOP "stats.afn.refinement.gflop"
+#define AFN_STAT_AFN_AVX512 "stats.afn.avx512"
 
 /// Types of filter parameters, as reported by afnGetFilterTypeParam().
 typedef enum AFNParamType {

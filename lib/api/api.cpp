@@ -345,6 +345,9 @@ static double filterNumber(AFNFilterImpl* f, const std::string& name)
         return flt.auxReport().normalSpeckle;
     if (name == AFN_STAT_DEPTH_SPECKLE)
         return flt.auxReport().depthSpeckle;
+    double value = 0.0;
+    if (flt.statistic(name, value))
+        return value;
     return flt.params().getNumber(name);
 }
 

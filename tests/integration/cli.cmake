@@ -38,3 +38,7 @@ afn_add_gtest(test_afntool_safety SOURCES integration/test_afntool_safety.cpp
   integration/cli_runner.cpp LIBS afn_io)
 target_compile_definitions(test_afntool_safety PRIVATE AFNTOOL_PATH="$<TARGET_FILE:afntool>")
 add_dependencies(test_afntool_safety afntool)
+
+if(AFN_HAS_DNNL) # the engine report then includes the dnnl_sgemm yardstick
+  target_compile_definitions(test_afntool_compare PRIVATE AFN_HAS_DNNL)
+endif()

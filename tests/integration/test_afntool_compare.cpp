@@ -145,4 +145,27 @@ TEST(AfntoolCompare, SizeBenchmarkTimesGeneratedFrames)
         runAfntool({ "--benchmark:size=64by36" }).err.find("WIDTHxHEIGHT"), std::string::npos);
 }
 
+// afn's engine report: GFLOP/s per stage beside the dnnl_sgemm yardstick, heap per megapixel.
+TEST(AfntoolCompare, SizeBenchmarkReportsEngineAndHeap)
+{
+    const CliResult r
+        = runAfntool({ "--benchmark:size=64x36:methods=afn,ta:frames=1:warmup=0", "--json", "-q" });
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    const std::vector<double> heap = jsonNumbers(r.out, "heapMiBPerMegapixel");
+    ASSERT_EQ(heap.size(), 2u) << r.out;
+    for (double v : heap)
+        EXPECT_GT(v, 0.0);
+    if (r.out.find("\"engine\"") == std::string::npos)
+        GTEST_SKIP() << "afn has no weights in this build: no engine report";
+    const std::vector<double> gflop = jsonNumbers(r.out, "gflopPerFrame");
+    ASSERT_EQ(gflop.size(), 4u) << r.out; // prediction, filtering, refinement, network
+    EXPECT_NEAR(gflop[3], gflop[0] + gflop[1] + gflop[2], 1e-9);
+    for (double v : jsonNumbers(r.out, "gflops"))
+        EXPECT_GT(v, 0.0);
+#ifdef AFN_HAS_DNNL
+    for (double v : jsonNumbers(r.out, "peakGflops"))
+        EXPECT_GT(v, 0.0);
+#endif
+}
+
 } // namespace

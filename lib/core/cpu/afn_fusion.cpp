@@ -5,12 +5,15 @@
 #include "methods/afn/fusion.h"
 
 #include "base/parallel.h"
+#include "cpu/afn_filter_avx512.h"
+#include "cpu/isa.h"
 #include "cpu/simd.h"
 #include "cpu/target.h"
 
 #include <algorithm>
 #include <cfloat>
 #include <cmath>
+#include <vector>
 
 // Vector helpers are always inlined within one target clone: the AVX ABI note does not apply.
 #pragma GCC diagnostic ignored "-Wpsabi"
@@ -85,26 +88,6 @@ void applyKernel(const Image& img, int x, int y, const float* k, float* rgb)
 
 namespace {
 
-// 1x1 head on one pixel with 8-wide vectors: acc[0..cp) = bias + W * concat(a, b).
-inline __attribute__((always_inline)) void head1x1(
-    const nn::Conv& conv, const float* a, int na, const float* b, int nb, float* acc)
-{
-    const int cp = conv.paddedOutChannels();
-    const float* wt = conv.paddedWeights();
-    cpu::V8 v[nn::kMaxChannels / 8];
-    const int nv = cp / 8;
-    for (int j = 0; j < nv; ++j)
-        v[j] = cpu::load8(conv.paddedBias() + 8 * j);
-    for (int ci = 0; ci < na; ++ci, wt += cp)
-        for (int j = 0; j < nv; ++j)
-            v[j] += a[ci] * cpu::load8(wt + 8 * j);
-    for (int ci = 0; ci < nb; ++ci, wt += cp)
-        for (int j = 0; j < nv; ++j)
-            v[j] += b[ci] * cpu::load8(wt + 8 * j);
-    for (int j = 0; j < nv; ++j)
-        cpu::store8(acc + 8 * j, v[j]);
-}
-
 // Softmax over the 49 taps: 6 vectors of 8 plus one scalar tap.
 inline __attribute__((always_inline)) void softmax49(float* l)
 {
@@ -127,29 +110,45 @@ inline __attribute__((always_inline)) void softmax49(float* l)
         l[j] *= inv;
 }
 
-// Rows [y0, y1) of half-resolution blocks.
+// Rows [y0, y1) of half-resolution blocks. The heads run per row through nn::Conv::runRows (the
+// engine's conv kernels) into thread-local row buffers: one half-res row of head1 logits and the
+// two full-res rows of headTA logits, then the softmax, filtering and fusion per 2x2 block.
 AFN_CPU_CLONES void fuseRows(const FusionInputs& in, const FusionOutputs& out, int y0, int y1)
 {
     const Image& d1 = *in.d1;
     const Image& x = *in.x;
-    const int wh = d1.width(), cd = d1.channels(), cx = x.channels();
-    alignas(32) float logits[nn::kMaxChannels];
-    for (int yh = y0; yh < y1; ++yh)
-        for (int xh = 0; xh < wh; ++xh) {
-            const float* feat = d1.at(xh, yh);
-            // 1-spp branch at half resolution.
-            head1x1(*in.head1, feat, cd, nullptr, 0, logits);
+    const int wh = d1.width(), w = x.width();
+    const int s1 = (in.head1->outChannels() + 15) / 16 * 16; // floats per pixel of the buffers
+    const int sTa = (in.headTa->outChannels() + 15) / 16 * 16;
+    thread_local std::vector<float> rows1, rowsTa;
+    rows1.resize(static_cast<std::size_t>(wh) * s1);
+    rowsTa.resize(static_cast<std::size_t>(2 * w) * sTa);
+    const bool avx512 = cpu::activeIsa() == cpu::Isa::Avx512;
+    auto filter = [avx512](float* logits, const Image& img, int px, int py, float* rgb) {
+        if (avx512) {
+            cpu::softmaxApplyAvx512(logits, img, px, py, rgb);
+        } else {
             softmax49(logits);
+            applyKernel(img, px, py, logits, rgb);
+        }
+    };
+    for (int yh = y0; yh < y1; ++yh) {
+        in.head1->runRows(
+            nullptr, d1, yh, yh + 1, rows1.data(), static_cast<long>(wh) * s1, s1, false);
+        in.headTa->runRows(
+            &d1, x, 2 * yh, 2 * yh + 2, rowsTa.data(), static_cast<long>(w) * sTa, sTa, false);
+        for (int xh = 0; xh < wh; ++xh) {
+            // 1-spp branch at half resolution.
+            float* logits = rows1.data() + static_cast<std::size_t>(xh) * s1;
             float* d1s = out.filtered1Half->at(xh, yh);
-            applyKernel(*in.color1Half, xh, yh, logits, d1s);
+            filter(logits, *in.color1Half, xh, yh, d1s);
             // TA branch on the four full-resolution pixels of this block.
             float dta[4][3], alpha[4];
             for (int q = 0; q < 4; ++q) {
                 const int px = 2 * xh + (q & 1), py = 2 * yh + (q >> 1);
-                head1x1(*in.headTa, feat, cd, x.at(px, py), cx, logits);
+                logits = rowsTa.data() + (static_cast<std::size_t>(q >> 1) * w + px) * sTa;
                 alpha[q] = 1.0f / (1.0f + std::exp(-finiteLogit(logits[kKernelTaps])));
-                softmax49(logits);
-                applyKernel(*in.colorTa, px, py, logits, dta[q]);
+                filter(logits, *in.colorTa, px, py, dta[q]);
             }
             // Eq. 3 on the block; D sums in row order then divides by 4 (as avg_pool2d).
             for (int c = 0; c < 3; ++c) {
@@ -163,6 +162,7 @@ AFN_CPU_CLONES void fuseRows(const FusionInputs& in, const FusionOutputs& out, i
             for (int q = 0; q < 4; ++q)
                 (*out.alpha)(2 * xh + (q & 1), 2 * yh + (q >> 1), 0) = alpha[q];
         }
+    }
 }
 
 } // namespace

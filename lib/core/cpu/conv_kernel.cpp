@@ -66,7 +66,8 @@ AFN_CPU_CLONES void convRows(const ConvArgs& a, int y0, int y1)
                 }
                 const int nc = std::min(kLanes, a.outC - cb);
                 for (int p = 0; p < np; ++p) {
-                    float* dst = a.out->at(x + p, y) + cb;
+                    float* dst = a.dst + (y - a.dstY0) * a.dstRow
+                        + static_cast<long>(x + p) * a.dstPix + cb;
                     for (int o = 0; o < nc; ++o)
                         dst[o] = a.relu ? std::max(acc[p][o], 0.0f) : acc[p][o];
                 }

@@ -11,14 +11,24 @@ namespace afn::cpu {
 struct ConvArgs {
     const Image* up; ///< half-size input read through nearest 2x upsampling, or null
     const Image* same; ///< full-size input
-    Image* out; ///< output, already sized
     const float* wp; ///< weights [ky][kx][ci][cp]
     const float* bp; ///< bias [cp]
     int in, k, cp, outC, nu, ns;
     bool relu;
+    const float* wp16 = nullptr; ///< weights [ky][kx][ci][cp16] (AVX-512 kernels)
+    const float* bp16 = nullptr; ///< bias [cp16]
+    int cp16 = 0; ///< output channels rounded up to 16
+    float* dst = nullptr; ///< output row dstY0 (outC channels of each pixel are written)
+    long dstRow = 0; ///< floats from one output row to the next
+    int dstPix = 0; ///< floats from one output pixel to the next (>= outC)
+    int dstY0 = 0; ///< the row that dst points to
 };
 
-/// Output rows [y0, y1).
+/// Output rows [y0, y1) with the portable kernel.
 void convRows(const ConvArgs& a, int y0, int y1);
+
+/// Output rows [y0, y1) with the AVX-512 micro-kernels (cpu/conv_avx512.cpp; call only where
+/// activeIsa() is Avx512).
+void convRowsAvx512(const ConvArgs& a, int y0, int y1);
 
 } // namespace afn::cpu

@@ -98,6 +98,9 @@ public:
     const AuxReport& auxReport() const { return m_aux.report(); }
     int width() const { return m_frame.width; }
     int height() const { return m_frame.height; }
+    /// A method's own statistic of the last execute ("stats.afn.*"); false when it has none of
+    /// that name.
+    virtual bool statistic(const std::string& name, double& value) const { return false; }
 
 protected:
     /// A filter of `type` (parameter table, stages, feature outputs); the type outlives it.

@@ -5,6 +5,7 @@
 #include "base/exception.h"
 #include "base/parallel.h"
 #include "cpu/conv_kernel.h"
+#include "cpu/isa.h"
 
 #include <algorithm>
 
@@ -56,19 +57,54 @@ void Conv::load(const WeightsArchive& a, const std::string& name, int expectedIn
             for (int t = 0; t < k * k; ++t)
                 m_wp[(static_cast<std::size_t>(t) * in + ci) * m_outPadded + co]
                     = w.data[(static_cast<std::size_t>(co) * in + ci) * k * k + t];
+    m_outPadded16 = (out + 15) / 16 * 16;
+    m_bp16.assign(m_outPadded16, 0.0f);
+    std::copy(b.data.begin(), b.data.end(), m_bp16.begin());
+    m_wp16.assign(static_cast<std::size_t>(k) * k * in * m_outPadded16, 0.0f);
+    for (std::size_t row = 0; row < static_cast<std::size_t>(k) * k * in; ++row)
+        std::copy_n(&m_wp[row * m_outPadded], out, &m_wp16[row * m_outPadded16]);
+}
+
+cpu::ConvArgs Conv::args(const Image* up, const Image& same, bool relu) const
+{
+    const int nu = up ? up->channels() : 0, ns = same.channels();
+    if (nu + ns != m_in)
+        throwInvalidOperation("AFN conv: input has " + std::to_string(nu + ns) + " channels, layer "
+            + "expects " + std::to_string(m_in));
+    cpu::ConvArgs a { up, &same, m_wp.data(), m_bp.data(), m_in, m_k, m_outPadded, m_out, nu, ns,
+        relu };
+    a.wp16 = m_wp16.data();
+    a.bp16 = m_bp16.data();
+    a.cp16 = m_outPadded16;
+    return a;
 }
 
 void Conv::run(const Image* up, const Image& same, Image& out, bool relu) const
 {
     const int w = same.width(), h = same.height();
-    const int nu = up ? up->channels() : 0, ns = same.channels();
-    if (nu + ns != m_in)
-        throwInvalidOperation("AFN conv: input has " + std::to_string(nu + ns) + " channels, layer "
-            + "expects " + std::to_string(m_in));
+    cpu::ConvArgs a = args(up, same, relu);
     out.resize(w, h, m_out);
-    const cpu::ConvArgs args { up, &same, &out, m_wp.data(), m_bp.data(), m_in, m_k, m_outPadded,
-        m_out, nu, ns, relu };
-    parallelRows(h, [&](int y0, int y1) { cpu::convRows(args, y0, y1); });
+    a.dst = out.data();
+    a.dstRow = static_cast<long>(w) * m_out;
+    a.dstPix = m_out;
+    if (cpu::activeIsa() == cpu::Isa::Avx512)
+        parallelRows(h, [&](int y0, int y1) { cpu::convRowsAvx512(a, y0, y1); });
+    else
+        parallelRows(h, [&](int y0, int y1) { cpu::convRows(a, y0, y1); });
+}
+
+void Conv::runRows(const Image* up, const Image& same, int y0, int y1, float* dst, long rowStride,
+    int pixelStride, bool relu) const
+{
+    cpu::ConvArgs a = args(up, same, relu);
+    a.dst = dst;
+    a.dstRow = rowStride;
+    a.dstPix = pixelStride;
+    a.dstY0 = y0;
+    if (cpu::activeIsa() == cpu::Isa::Avx512)
+        cpu::convRowsAvx512(a, y0, y1);
+    else
+        cpu::convRows(a, y0, y1);
 }
 
 void down2(const Image& in, Image& out)

@@ -1,11 +1,14 @@
 // SPDX-License-Identifier: Apache-2.0
 // Convolution layers of the AFN engine: direct (im2col-free) k x k convolutions, stride 1, zero
-// padding k/2, on interleaved (H, W, C) images, with oneTBB over rows. The inner loop runs over
-// blocks of 8 output channels x 4 output pixels (weights stored [tap][in][out padded to 8]);
-// the row loop is compiled for x86-64-v3 (AVX2+FMA) and baseline x86-64, chosen at load time.
+// padding k/2, on interleaved (H, W, C) images, with oneTBB over rows. Two kernel families, chosen
+// at run time (cpu/isa.h): AVX-512 micro-kernels (cpu/conv_avx512.cpp: zero-padded input band,
+// up to 14 pixels x 64 channels of register blocking, weights [tap][in][out padded to 16]) where
+// the CPU has AVX-512F, else the portable kernel (cpu/conv_kernel.cpp: 4 pixels x 8 channels,
+// weights [tap][in][out padded to 8], cloned for x86-64-v3 and baseline).
 #pragma once
 
 #include "base/image.h"
+#include "cpu/conv_kernel.h"
 #include "nn/weights.h"
 
 #include <string>
@@ -35,6 +38,15 @@ public:
     /// the others read `same` (out's size). `up` may be null. `out` is resized to same's size.
     void run(const Image* up, const Image& same, Image& out, bool relu) const;
 
+    /// Rows [y0, y1) of the same convolution on the calling thread, for callers that keep only a
+    /// few rows (the fused AFN heads, the refinement strips): row y at dst + (y - y0) * rowStride,
+    /// pixels pixelStride (>= outChannels()) floats apart.
+    void runRows(const Image* up, const Image& same, int y0, int y1, float* dst, long rowStride,
+        int pixelStride, bool relu) const;
+
+    /// Multiply-adds x 2 per output pixel (the layer's FLOP per pixel, without padding).
+    double flopPerPixel() const { return 2.0 * m_k * m_k * m_in * m_out; }
+
     /// Output channels rounded up to 8; the padded weights [ky][kx][ci][co] and bias are zero
     /// there.
     int paddedOutChannels() const { return m_outPadded; }
@@ -42,10 +54,15 @@ public:
     const float* paddedBias() const { return m_bp.data(); }
 
 private:
+    cpu::ConvArgs args(const Image* up, const Image& same, bool relu) const;
+
     int m_in = 0, m_out = 0, m_k = 0;
     int m_outPadded = 0; ///< output channels rounded up to 8 (vector lanes)
     std::vector<float> m_wp; ///< [ky][kx][ci][co padded to 8], zero padding
     std::vector<float> m_bp; ///< [co padded to 8]
+    int m_outPadded16 = 0; ///< output channels rounded up to 16 (AVX-512 lanes)
+    std::vector<float> m_wp16; ///< [ky][kx][ci][co padded to 16], zero padding
+    std::vector<float> m_bp16; ///< [co padded to 16]
 };
 
 /// D: 2x2 average pooling of an image with even size into `out` (half size).

@@ -23,6 +23,7 @@ afn_add_gtest(test_afn
     unit/core/nn/test_afn_layers.cpp
     unit/core/methods/afn/test_afn_parity.cpp
     unit/core/methods/afn/test_afn_filter.cpp
+    unit/core/methods/afn/test_afn_engine.cpp
     unit/core/stages/test_afn_ta_parity.cpp
   LIBS afn_core)
 target_include_directories(test_afn PRIVATE ${AFN_CORE_TESTS})

@@ -12,6 +12,7 @@
 // the GPU instead (cuda/afn_cuda_filter.h). It has no aux prefilter yet: it refuses aux=noisy and
 // runs aux=auto as clean (docs/gpu.md).
 #include "base/exception.h"
+#include "cpu/isa.h"
 #include "filter/registry.h"
 #include "methods/afn/features.h"
 #include "methods/afn/network.h"
@@ -44,6 +45,30 @@ public:
         m_net = networkFromData(data, size); // only valid weights replace the current ones
         markDirty();
         reset();
+    }
+
+    bool statistic(const std::string& name, double& value) const override
+    {
+        const std::string prefix = "stats.afn.";
+        if (name.rfind(prefix, 0) != 0)
+            return false;
+        const std::string rest = name.substr(prefix.size());
+        if (rest == "avx512") {
+            value = cpu::activeIsa() == cpu::Isa::Avx512 ? 1.0 : 0.0;
+            return true;
+        }
+        for (int k = 0; k < Network::kStages; ++k) {
+            const auto s = static_cast<Network::Stage>(k);
+            const std::string stage = Network::stageName(s);
+            if (rest == stage + ".ms")
+                value = m_net.stageMs(s);
+            else if (rest == stage + ".gflop")
+                value = m_net.stageFlop(s) * 1e-9;
+            else
+                continue;
+            return true;
+        }
+        return false;
     }
 
 private:

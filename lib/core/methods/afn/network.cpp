@@ -7,6 +7,7 @@
 #include "methods/afn/fusion.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 
 namespace afn::afnet {
@@ -168,35 +169,6 @@ void Network::filterAndFuse()
     afnet::filterAndFuse(in, out);
 }
 
-void Network::refine()
-{
-    const int wp = m_fused.width(), hp = m_fused.height();
-    m_out.resize(wp, hp, 3);
-    if (m_variant != Variant::Full) {
-        std::copy(m_fused.data(), m_fused.data() + m_fused.size(), m_out.data());
-        return;
-    }
-    m_refIn.resize(wp, hp, kRefineChannels);
-    parallelRows(hp, [&](int y0, int y1) {
-        for (int y = y0; y < y1; ++y)
-            for (int x = 0; x < wp; ++x) {
-                const float* i = m_fused.at(x, y);
-                const float* f = m_x.at(x, y);
-                float* o = m_refIn.at(x, y);
-                for (int c = 0; c < 3; ++c)
-                    o[c] = toneMap(i[c]);
-                for (int c = 0; c < 7; ++c)
-                    o[3 + c] = f[6 + c]; // albedo, normal01, depth01
-            }
-    });
-    m_ref1.run(nullptr, m_refIn, m_r1, true);
-    m_ref2.run(nullptr, m_r1, m_r2, true);
-    m_ref3.run(nullptr, m_r2, m_r3, false);
-    const std::size_t n = m_out.size();
-    for (std::size_t k = 0; k < n; ++k)
-        m_out.data()[k] = m_fused.data()[k] + m_r3.data()[k];
-}
-
 void Network::crop(Image& out) const
 {
     out.resize(m_width, m_height, 3);
@@ -204,13 +176,51 @@ void Network::crop(Image& out) const
         std::copy(m_out.at(0, y), m_out.at(0, y) + 3 * m_width, out.at(0, y));
 }
 
+const char* Network::stageName(Stage s)
+{
+    return s == Stage::Prediction ? "prediction"
+        : s == Stage::Filtering   ? "filtering"
+                                  : "refinement";
+}
+
+double Network::stageFlop(Stage s) const
+{
+    const double full = static_cast<double>(padded(m_width)) * padded(m_height);
+    const double half = full / 4, quarter = full / 16, eighth = full / 64;
+    switch (s) {
+    case Stage::Prediction:
+        return m_enc1.flopPerPixel() * half + m_enc2.flopPerPixel() * quarter
+            + m_enc3.flopPerPixel() * eighth + m_dec2.flopPerPixel() * quarter
+            + m_dec1.flopPerPixel() * half;
+    case Stage::Filtering: // heads + two 7x7 x 3-channel filters (half and full resolution)
+        return m_head1.flopPerPixel() * half + m_headTa.flopPerPixel() * full
+            + 2.0 * kKernelTaps * 3 * (full + half);
+    case Stage::Refinement:
+        break;
+    }
+    return m_variant != Variant::Full
+        ? 0.0
+        : (m_ref1.flopPerPixel() + m_ref2.flopPerPixel() + m_ref3.flopPerPixel()) * full;
+}
+
 void Network::run(const Inputs& in, Image& out)
 {
+    using Clock = std::chrono::steady_clock;
+    auto ms = [](Clock::time_point a, Clock::time_point b) {
+        return std::chrono::duration<double, std::milli>(b - a).count();
+    };
+    const Clock::time_point t0 = Clock::now();
     prepare(in);
     predict();
+    const Clock::time_point t1 = Clock::now();
     filterAndFuse();
+    const Clock::time_point t2 = Clock::now();
     refine();
+    const Clock::time_point t3 = Clock::now();
     crop(out);
+    m_stageMs[0] = ms(t0, t1);
+    m_stageMs[1] = ms(t1, t2);
+    m_stageMs[2] = ms(t2, t3);
 }
 
 } // namespace afn::afnet

@@ -8,7 +8,8 @@
 // with T(x) = clip(max(x, 0)^(1/2.2), 0, 1), D = 2x2 average pooling, U = nearest 2x upsampling.
 // Odd sizes: every input is padded at the right/bottom to a multiple of 8 by edge replication,
 // the graph runs on the padded frame and the output is cropped (same rule as PyTorch).
-// Buffers are allocated once per resolution and reused.
+// Buffers are allocated once per resolution and reused. The refinement runs in row strips with
+// thread-local buffers (network_refine.cpp), so its 45 channels are never stored at frame size.
 #pragma once
 
 #include "base/image.h"
@@ -51,6 +52,16 @@ public:
     void refine(); ///< refinement (copy of i when the variant has none)
     void crop(Image& out) const; ///< o cropped to the input size
 
+    /// The stages as timed by run() (the benchmark's and afntool's GFLOP/s).
+    enum class Stage { Prediction, Filtering, Refinement };
+    static constexpr int kStages = 3;
+    static const char* stageName(Stage s); ///< "prediction", "filtering", "refinement"
+    /// FLOP of `s` for one frame at the last run's size: 2 x multiply-adds of its conv layers and
+    /// 7x7 filters over the padded pixels they compute (softmax, pooling, tone map not counted).
+    double stageFlop(Stage s) const;
+    /// Wall-clock milliseconds of `s` in the last run().
+    double stageMs(Stage s) const { return m_stageMs[static_cast<int>(s)]; }
+
     /// The layers, for engines that pack them in their own layout (lib/core/cuda).
     enum class Layer { Enc1, Enc2, Enc3, Dec2, Dec1, Head1, HeadTa, Ref1, Ref2, Ref3 };
     const nn::Conv& layer(Layer which) const;
@@ -69,9 +80,10 @@ private:
     Variant m_variant = Variant::Full;
     nn::Conv m_enc1, m_enc2, m_enc3, m_dec2, m_dec1, m_head1, m_headTa, m_ref1, m_ref2, m_ref3;
     int m_width = 0, m_height = 0;
+    double m_stageMs[kStages] = {};
     // Buffers, reused across frames of one size.
     Image m_x, m_colorTa, m_color1, m_color1Half, m_xHalf, m_e1, m_e1Pool, m_e2, m_e2Pool, m_e3;
-    Image m_d2, m_d1, m_fused, m_dTa, m_alpha, m_d1Half, m_refIn, m_r1, m_r2, m_r3, m_out;
+    Image m_d2, m_d1, m_fused, m_dTa, m_alpha, m_d1Half, m_out;
 };
 
 } // namespace afn::afnet

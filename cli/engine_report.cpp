@@ -1,0 +1,109 @@
+// SPDX-License-Identifier: Apache-2.0
+// The afn engine report of --benchmark:size (see engine_report.h).
+#include "engine_report.h"
+
+#include "report.h"
+
+#ifdef AFN_HAS_DNNL
+#include "sgemm_peak.h"
+#endif
+
+#include <cstdio>
+#include <thread>
+
+namespace afntool {
+
+EnginePoint EngineCollector::finish(int width, int height) const
+{
+    EnginePoint p;
+    p.width = width, p.height = height, p.avx512 = m_avx512;
+    static const char* names[] = { "prediction", "filtering", "refinement" };
+    EngineStage total { "network" };
+    for (int k = 0; k < 3; ++k) {
+        EngineStage s { names[k], m_gflop[k], median(m_ms[k]) };
+        total.gflop += s.gflop, total.ms += s.ms;
+        p.stages.push_back(s);
+    }
+    p.stages.push_back(total);
+    return p;
+}
+
+EngineYardstick measureYardstick(int threads)
+{
+    EngineYardstick y;
+    y.threads = threads > 0 ? threads : static_cast<int>(std::thread::hardware_concurrency());
+#ifdef AFN_HAS_DNNL
+    const SgemmPeak one = measureSgemmPeak(1);
+    const SgemmPeak all = measureSgemmPeak(y.threads);
+    y.available = true;
+    y.n = one.n;
+    y.peak1 = one.bestGflops, y.median1 = one.medianGflops;
+    y.peakN = all.bestGflops, y.medianN = all.medianGflops;
+#endif
+    return y;
+}
+
+void printEngineReport(const EngineYardstick& y, const std::vector<EnginePoint>& points)
+{
+    if (points.empty())
+        return;
+    if (y.available)
+        std::printf("\nsgemm yardstick (oneDNN dnnl_sgemm, %d^3, fp32, best/median of 7 calls): "
+                    "1 thread %.1f / %.1f GFLOP/s, %d threads %.1f / %.1f GFLOP/s\n",
+            y.n, y.peak1, y.median1, y.threads, y.peakN, y.medianN);
+    else
+        std::printf("\nsgemm yardstick: not measured (afntool was built without oneDNN)\n");
+    std::printf("%-11s %11s %-8s %11s %10s %9s %14s\n", "afn stage", "size", "kernels",
+        "GFLOP/frame", "ms/frame", "GFLOP/s", "% sgemm peak");
+    for (const EnginePoint& p : points)
+        for (const EngineStage& s : p.stages) {
+            char pct[32] = "-";
+            if (y.available && y.peakN > 0.0)
+                std::snprintf(pct, sizeof pct, "%.0f %%", 100.0 * s.gflops() / y.peakN);
+            std::printf("%-11s %5dx%-5d %-8s %11.2f %10.2f %9.1f %14s\n", s.name.c_str(), p.width,
+                p.height, p.avx512 ? "avx512" : "portable", s.gflop, s.ms, s.gflops(), pct);
+        }
+    std::printf("(afn stage times: median wall-clock ms of the timed frames, from the filter's "
+                "stats.afn.*; %% of the best %d-thread dnnl_sgemm call of this run)\n",
+        y.threads);
+}
+
+void writeEngineJson(
+    JsonWriter& j, const EngineYardstick& y, const std::vector<EnginePoint>& points)
+{
+    j.key("engine").beginObject();
+    j.key("sgemm").beginObject().field("available", y.available).field("n", y.n);
+    j.field("threads", y.threads).field("peak1Gflops", y.peak1).field("median1Gflops", y.median1);
+    j.field("peakGflops", y.peakN).field("medianGflops", y.medianN).endObject();
+    j.key("points").beginArray();
+    for (const EnginePoint& p : points) {
+        j.beginObject().field("width", p.width).field("height", p.height);
+        j.field("kernels", p.avx512 ? "avx512" : "portable");
+        j.key("stages").beginArray();
+        for (const EngineStage& s : p.stages) {
+            j.beginObject().field("stage", s.name).field("gflopPerFrame", s.gflop);
+            j.field("msPerFrame", s.ms).field("gflops", s.gflops());
+            j.field("fractionOfSgemmPeak", y.peakN > 0.0 ? s.gflops() / y.peakN : 0.0).endObject();
+        }
+        j.endArray().endObject();
+    }
+    j.endArray().endObject();
+}
+
+std::string engineCsv(const EngineYardstick& y, const std::vector<EnginePoint>& points)
+{
+    std::string csv = "stage,width,height,kernels,gflopPerFrame,msPerFrame,gflops,"
+                      "sgemmThreads,sgemmPeakGflops,sgemmPeak1Gflops,fractionOfSgemmPeak\n";
+    for (const EnginePoint& p : points)
+        for (const EngineStage& s : p.stages) {
+            char line[256];
+            std::snprintf(line, sizeof line, "%s,%d,%d,%s,%.4f,%.3f,%.2f,%d,%.2f,%.2f,%.4f\n",
+                s.name.c_str(), p.width, p.height, p.avx512 ? "avx512" : "portable", s.gflop, s.ms,
+                s.gflops(), y.threads, y.peakN, y.peak1,
+                y.peakN > 0.0 ? s.gflops() / y.peakN : 0.0);
+            csv += line;
+        }
+    return csv;
+}
+
+} // namespace afntool

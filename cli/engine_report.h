@@ -1,0 +1,73 @@
+// SPDX-License-Identifier: Apache-2.0
+// The afn engine's part of --benchmark:size: achieved GFLOP/s per network stage (from the filter's
+// "stats.afn.*" statistics, afn.h) beside the machine's dnnl_sgemm rate at 1 thread and at the
+// run's thread count, measured in the same run (sgemm_peak.h).
+#pragma once
+
+#include "json_writer.h"
+
+#include <string>
+#include <vector>
+
+namespace afntool {
+
+/// One network stage at one size: medians over the timed frames.
+struct EngineStage {
+    std::string name; ///< prediction | filtering | refinement | network (their sum)
+    double gflop = 0.0; ///< per frame
+    double ms = 0.0; ///< median wall-clock ms per frame
+    double gflops() const { return ms > 0.0 ? gflop / ms * 1e3 : 0.0; }
+};
+
+/// afn at one size.
+struct EnginePoint {
+    int width = 0, height = 0;
+    bool avx512 = false; ///< the AVX-512 kernels ran (else the portable ones)
+    std::vector<EngineStage> stages;
+};
+
+/// The yardstick: dnnl_sgemm at 1 thread and at the run's thread count (absent without oneDNN).
+struct EngineYardstick {
+    bool available = false;
+    int threads = 0; ///< the run's thread count
+    double peak1 = 0.0, median1 = 0.0; ///< GFLOP/s on 1 thread: fastest and median call
+    double peakN = 0.0, medianN = 0.0; ///< on `threads` threads
+    int n = 0; ///< M = N = K
+};
+
+/// Collects afn's per-frame stage statistics (call add() after each timed frame).
+class EngineCollector {
+public:
+    /// `stat(name)` reads a filter statistic (afnGetFilterFloat).
+    template <typename Stat> void add(Stat&& stat)
+    {
+        static const char* names[] = { "prediction", "filtering", "refinement" };
+        for (int k = 0; k < 3; ++k) {
+            const std::string base = std::string("stats.afn.") + names[k];
+            m_ms[k].push_back(stat((base + ".ms").c_str()));
+            m_gflop[k] = stat((base + ".gflop").c_str());
+        }
+        m_avx512 = stat("stats.afn.avx512") != 0.0;
+    }
+    EnginePoint finish(int width, int height) const;
+
+private:
+    std::vector<double> m_ms[3];
+    double m_gflop[3] = {};
+    bool m_avx512 = false;
+};
+
+/// Measure the yardstick (oneDNN threads: 1 and `threads`, 0 = all hardware threads).
+EngineYardstick measureYardstick(int threads);
+
+/// Text table of every point against the yardstick.
+void printEngineReport(const EngineYardstick& y, const std::vector<EnginePoint>& points);
+
+/// "engine": { "sgemm": {...}, "points": [...] } into an open JSON object.
+void writeEngineJson(
+    JsonWriter& j, const EngineYardstick& y, const std::vector<EnginePoint>& points);
+
+/// engine.csv: one row per size and stage.
+std::string engineCsv(const EngineYardstick& y, const std::vector<EnginePoint>& points);
+
+} // namespace afntool

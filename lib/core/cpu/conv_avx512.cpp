@@ -1,0 +1,209 @@
+// SPDX-License-Identifier: Apache-2.0
+// AVX-512 micro-kernels of nn::Conv (cpu/conv_kernel.h), used only where the CPU has AVX-512F
+// (cpu/isa.h: chosen at run time; the functions carry their own target attribute, the build has
+// no -march).
+//
+// Design (measured on a 2-core AMD EPYC with AVX-512, docs in README "Results"):
+// - Implicit GEMM without im2col: M = output pixels of a row, N = output channels, K = taps x
+//   input channels. A task of rows first copies its input rows (plus the k/2-row halo) into a
+//   zero-padded band: concat(U(up), same) per pixel, channels padded to a multiple of 16, one
+//   zero pixel left and right. The micro-kernel then needs no border tests, no upsampling
+//   arithmetic, and reads pixel p's channel c at a compile-time displacement p * C + c.
+// - Register blocking: P output pixels x NV vectors of 16 output channels = 24 (NV 2..4) or 14
+//   (NV 1) zmm accumulators; per input channel NV weight loads and P broadcast FMAs. Enough
+//   independent accumulators to cover the FMA latency of two pipes; weights [tap][ci][co16] stream
+//   from L1/L2, inputs are broadcast from the band (embedded broadcast operands).
+// - Summation order per output: bias, then taps (ky, kx), then input channels (up, same), one FMA
+//   each, the same order as the portable kernel, and independent of how rows are split among
+//   threads: results are bit-identical for every thread count.
+#include "cpu/conv_kernel.h"
+
+#include <algorithm>
+#include <cstring>
+#include <vector>
+
+#if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__))
+#include <immintrin.h>
+#define AFN_HAVE_AVX512_KERNELS 1
+#define AFN_AVX512 __attribute__((target("avx512f,avx2,fma")))
+#endif
+
+namespace afn::cpu {
+
+namespace {
+
+constexpr int kMaxPixels = 16; // largest P below: the band's zeroed slack after its last row
+
+/// Band rows [y0 - r, y1 + r) of concat(U(up), same), (width + 2r) pixels of `c` floats each.
+void fillBand(const ConvArgs& a, int y0, int y1, int c, std::vector<float>& band)
+{
+    const int w = a.same->width(), h = a.same->height(), r = a.k / 2, bw = w + 2 * r;
+    const int rows = y1 - y0 + 2 * r;
+    const std::size_t rowFloats = static_cast<std::size_t>(bw) * c;
+    const std::size_t slack = static_cast<std::size_t>(kMaxPixels + 2) * c;
+    if (band.size() < rows * rowFloats + slack)
+        band.resize(rows * rowFloats + slack);
+    const std::size_t nuBytes = sizeof(float) * a.nu, nsBytes = sizeof(float) * a.ns;
+    const std::size_t padBytes = sizeof(float) * (c - a.nu - a.ns);
+    for (int i = 0; i < rows; ++i) {
+        const int yy = y0 - r + i;
+        float* row = band.data() + i * rowFloats;
+        if (yy < 0 || yy >= h) {
+            std::memset(row, 0, sizeof(float) * rowFloats);
+            continue;
+        }
+        for (int bx = 0; bx < bw; ++bx) {
+            const int x = bx - r;
+            float* d = row + static_cast<std::size_t>(bx) * c;
+            if (x < 0 || x >= w) {
+                std::memset(d, 0, sizeof(float) * c);
+                continue;
+            }
+            if (a.nu)
+                std::memcpy(d, a.up->at(x >> 1, yy >> 1), nuBytes);
+            std::memcpy(d + a.nu, a.same->at(x, yy), nsBytes);
+            std::memset(d + a.nu + a.ns, 0, padBytes);
+        }
+    }
+    std::memset(band.data() + rows * rowFloats, 0, sizeof(float) * slack);
+}
+
+#ifdef AFN_HAVE_AVX512_KERNELS
+
+/// Operands of one row pass over one group of NV output vectors.
+struct RowPass {
+    const float* band; ///< band row of output row y0, pixel -r
+    long bandRow; ///< floats per band row
+    int c; ///< floats per band pixel (runtime stride when the template's C is 0)
+    const float* w; ///< weights [tap][ci][cp16] + first output channel of the group
+    const float* bias; ///< bias + first output channel of the group
+    int in, k, cp16, nOut, width, pixStride;
+    bool relu;
+    float* dst; ///< output row y0 + first output channel of the group
+    long dstRow;
+};
+
+/// P output pixels (np of them stored) x NV x 16 output channels.
+template <int NV, int P, int C>
+AFN_AVX512 inline __attribute__((always_inline)) void block(
+    const RowPass& r, const float* src, float* dst, int np)
+{
+    const int cs = C ? C : r.c;
+    __m512 acc[P][NV];
+    for (int j = 0; j < NV; ++j) {
+        const __m512 b = _mm512_loadu_ps(r.bias + 16 * j);
+        for (int p = 0; p < P; ++p)
+            acc[p][j] = b;
+    }
+    const float* wt = r.w;
+    for (int ky = 0; ky < r.k; ++ky)
+        for (int kx = 0; kx < r.k; ++kx) {
+            const float* s = src + ky * r.bandRow + kx * cs;
+            for (int ci = 0; ci < r.in; ++ci, wt += r.cp16) {
+                __m512 wv[NV];
+                for (int j = 0; j < NV; ++j)
+                    wv[j] = _mm512_loadu_ps(wt + 16 * j);
+                for (int p = 0; p < P; ++p) {
+                    const __m512 x = _mm512_set1_ps(s[p * cs + ci]);
+                    for (int j = 0; j < NV; ++j)
+                        acc[p][j] = _mm512_fmadd_ps(x, wv[j], acc[p][j]);
+                }
+            }
+        }
+    const __m512 zero = _mm512_set1_ps(0.0f); // not setzero: GCC 12 -Wmaybe-uninitialized
+    for (int p = 0; p < P; ++p) {
+        if (p >= np)
+            break;
+        float* d = dst + static_cast<long>(p) * r.pixStride;
+        for (int j = 0; j < NV; ++j) {
+            // max(0, v) keeps NaN (as std::max(v, 0.0f) in the portable kernel).
+            const __m512 v
+                = r.relu ? _mm512_mask_max_ps(acc[p][j], 0xFFFF, zero, acc[p][j]) : acc[p][j];
+            const int n = r.nOut - 16 * j;
+            if (n >= 16)
+                _mm512_storeu_ps(d + 16 * j, v);
+            else if (n > 0)
+                _mm512_mask_storeu_ps(d + 16 * j, static_cast<__mmask16>((1u << n) - 1u), v);
+        }
+    }
+}
+
+template <int NV, int P, int C> AFN_AVX512 void rows(const RowPass& r, int nRows)
+{
+    const int cs = C ? C : r.c;
+    for (int i = 0; i < nRows; ++i) {
+        const float* src = r.band + i * r.bandRow;
+        float* dst = r.dst + i * r.dstRow;
+        int x = 0;
+        for (; x + P <= r.width; x += P)
+            block<NV, P, C>(
+                r, src + static_cast<long>(x) * cs, dst + static_cast<long>(x) * r.pixStride, P);
+        if (x < r.width)
+            block<NV, P, C>(r, src + static_cast<long>(x) * cs,
+                dst + static_cast<long>(x) * r.pixStride, r.width - x);
+    }
+}
+
+// Pixels per block for NV vectors: 24 accumulators (14 for one vector: the broadcasts, one load
+// per FMA there, bound it).
+template <int NV> constexpr int pixelsFor()
+{
+    return NV == 1 ? 14 : NV == 2 ? 12 : NV == 3 ? 8 : 6;
+}
+
+template <int NV> void rowsForWidth(const RowPass& r, int nRows)
+{
+    constexpr int P = pixelsFor<NV>();
+    switch (r.c) {
+    case 16:
+        return rows<NV, P, 16>(r, nRows);
+    case 32:
+        return rows<NV, P, 32>(r, nRows);
+    case 48:
+        return rows<NV, P, 48>(r, nRows);
+    case 64:
+        return rows<NV, P, 64>(r, nRows);
+    case 96:
+        return rows<NV, P, 96>(r, nRows);
+    default:
+        return rows<NV, P, 0>(r, nRows);
+    }
+}
+
+#endif // AFN_HAVE_AVX512_KERNELS
+
+} // namespace
+
+void convRowsAvx512(const ConvArgs& a, int y0, int y1)
+{
+#ifdef AFN_HAVE_AVX512_KERNELS
+    const int c = (a.in + 15) / 16 * 16;
+    thread_local std::vector<float> band;
+    fillBand(a, y0, y1, c, band);
+    const int w = a.same->width();
+    for (int cb = 0; cb < a.cp16; cb += 64) {
+        const int nv = std::min(4, (a.cp16 - cb) / 16);
+        const RowPass r { band.data(), static_cast<long>(w + 2 * (a.k / 2)) * c, c, a.wp16 + cb,
+            a.bp16 + cb, a.in, a.k, a.cp16, a.outC - cb, w, a.dstPix, a.relu,
+            a.dst + (y0 - a.dstY0) * a.dstRow + cb, a.dstRow };
+        switch (nv) {
+        case 1:
+            rowsForWidth<1>(r, y1 - y0);
+            break;
+        case 2:
+            rowsForWidth<2>(r, y1 - y0);
+            break;
+        case 3:
+            rowsForWidth<3>(r, y1 - y0);
+            break;
+        default:
+            rowsForWidth<4>(r, y1 - y0);
+            break;
+        }
+    }
+#else
+    (void)a, (void)y0, (void)y1;
+#endif
+}
+
+} // namespace afn::cpu

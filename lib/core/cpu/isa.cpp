@@ -1,0 +1,56 @@
+// SPDX-License-Identifier: Apache-2.0
+// Run-time kernel choice (see cpu/isa.h).
+#include "cpu/isa.h"
+
+#include <atomic>
+#include <cstdlib>
+#include <cstring>
+
+namespace afn::cpu {
+
+namespace {
+
+bool cpuHasAvx512()
+{
+#if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__))
+    __builtin_cpu_init();
+    return __builtin_cpu_supports("avx512f");
+#else
+    return false;
+#endif
+}
+
+Isa detect()
+{
+    const char* env = std::getenv("AFN_CPU_ISA");
+    if (env && std::strcmp(env, "portable") == 0)
+        return Isa::Portable;
+    return cpuHasAvx512() ? Isa::Avx512 : Isa::Portable;
+}
+
+std::atomic<int>& current()
+{
+    static std::atomic<int> isa { static_cast<int>(detect()) };
+    return isa;
+}
+
+} // namespace
+
+Isa activeIsa()
+{
+    return static_cast<Isa>(current().load(std::memory_order_relaxed));
+}
+
+const char* isaName(Isa isa)
+{
+    return isa == Isa::Avx512 ? "avx512" : "portable";
+}
+
+void forceIsa(Isa isa)
+{
+    if (isa == Isa::Avx512 && !cpuHasAvx512())
+        isa = Isa::Portable;
+    current().store(static_cast<int>(isa), std::memory_order_relaxed);
+}
+
+} // namespace afn::cpu
