@@ -6,6 +6,7 @@
 #include "frame_loader.h"
 #include "ops.h"
 #include "options.h"
+#include "preroll.h"
 #include "progress.h"
 
 #include <cstdio>
@@ -39,6 +40,7 @@ int run(const Options& opts)
         std::printf("afntool %d.%d.%d\n", AFN_VERSION_MAJOR, AFN_VERSION_MINOR, AFN_VERSION_PATCH);
         return 0;
     }
+    checkPrerollUse(opts);
     for (const Action& a : opts.actions)
         if (a.name == "benchmark")
             return runBenchmark(opts, a);
@@ -77,10 +79,12 @@ int run(const Options& opts)
             comparer = std::make_unique<SequenceComparer>(ctx, a);
         }
 
-    Progress progress(static_cast<int>(frames.size()), opts.quiet);
+    const std::vector<FrameRef> preroll = resolvePrerollFrames(opts, frames);
+    Progress progress(static_cast<int>(preroll.size() + frames.size()), opts.quiet);
+    runPreroll(ctx, preroll, denoiser.get(), featureWriter.get(), progress);
     const bool keepAll = needsAllChannels(opts);
     for (std::size_t i = 0; i < frames.size(); ++i) {
-        progress.update(static_cast<int>(i), frames[i].path);
+        progress.update(static_cast<int>(preroll.size() + i), frames[i].path);
         LoadedFrame frame = loadFrame(ctx, frames[i], keepAll);
         for (const std::string& w : frame.images.mapping.warnings)
             warn(w + " (" + frames[i].path + ")", opts.quiet, &progress);
@@ -105,7 +109,7 @@ int run(const Options& opts)
             }
         }
     }
-    progress.update(static_cast<int>(frames.size()), "done");
+    progress.update(static_cast<int>(preroll.size() + frames.size()), "done");
     progress.clear();
     if (comparer)
         comparer->finish();

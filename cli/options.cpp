@@ -88,6 +88,10 @@ Options parseCommandLine(int argc, const char* const* argv)
             o.threads = parseInt(needValue(i, argc, argv, flag), flag);
             if (o.threads < 0)
                 throw CliError("--threads must be >= 0");
+        } else if (flag == "--preroll") {
+            o.preroll = parseInt(needValue(i, argc, argv, flag), flag);
+            if (o.preroll < 0)
+                throw CliError("--preroll must be >= 0, got " + std::to_string(o.preroll));
         } else if (flag == "--device") {
             o.device = needValue(i, argc, argv, flag);
             if (o.device != "cpu" && o.device != "cuda" && o.device != "auto")
@@ -174,6 +178,9 @@ std::string helpText()
        << "  Actions run per frame in the order given; ':key=value' modifiers follow an action.\n\n"
        << "Settings:\n"
        << "  --frames A-B            frame range for patterns (1-10, 1-10x2, 3,5,7)\n"
+       << "  --preroll N             first run the N frames before the first of --frames through\n"
+       << "                          --denoise/--features, unwritten, to rebuild their history\n"
+       << "                          (farm chunks; stops at the sequence start; docs/farm.md)\n"
        << "  --aov ROLE=CHANNELS     map a role by hand: albedo=diffuse.R,diffuse.G,diffuse.B or\n"
        << "                          albedo=diffuse; conventions too: normal.space=camera\n"
        << "                          (roles: color albedo normal depth position motion alpha)\n"

@@ -9,3 +9,9 @@ afn_add_gtest(test_afntool_compare SOURCES integration/test_afntool_compare.cpp
   integration/cli_runner.cpp LIBS afn)
 target_compile_definitions(test_afntool_compare PRIVATE AFNTOOL_PATH="$<TARGET_FILE:afntool>")
 add_dependencies(test_afntool_compare afntool)
+
+# afntool --preroll: farm chunks match a sequential run (docs/farm.md).
+afn_add_gtest(test_afntool_preroll SOURCES integration/test_afntool_preroll.cpp
+  integration/cli_runner.cpp LIBS afn afn_io)
+target_compile_definitions(test_afntool_preroll PRIVATE AFNTOOL_PATH="$<TARGET_FILE:afntool>")
+add_dependencies(test_afntool_preroll afntool)
