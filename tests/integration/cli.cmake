@@ -15,3 +15,12 @@ afn_add_gtest(test_afntool_preroll SOURCES integration/test_afntool_preroll.cpp
   integration/cli_runner.cpp LIBS afn afn_io)
 target_compile_definitions(test_afntool_preroll PRIVATE AFNTOOL_PATH="$<TARGET_FILE:afntool>")
 add_dependencies(test_afntool_preroll afntool)
+
+# The Slurm job template against a real single-node Slurm the test starts itself (docs/farm.md);
+# skipped (exit 77, reason printed) where Slurm is not installed or cannot start. The script
+# bounds itself at AFN_SLURM_TEST_LIMIT (100 s); ctest's timeout is a backstop above that.
+add_test(NAME slurm_farm_job_array
+  COMMAND bash ${PROJECT_SOURCE_DIR}/tests/farm/slurm_farm_test.sh $<TARGET_FILE:afntool>
+    ${PROJECT_SOURCE_DIR})
+set_tests_properties(slurm_farm_job_array PROPERTIES SKIP_RETURN_CODE 77 TIMEOUT 150
+  LABELS farm ENVIRONMENT "OCIO=")
