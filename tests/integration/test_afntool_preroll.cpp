@@ -15,6 +15,7 @@
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
+#include <tuple>
 
 namespace fs = std::filesystem;
 
@@ -134,6 +135,32 @@ TEST_P(TemporalMethod, ChunksWithPrerollMatchSequential)
 INSTANTIATE_TEST_SUITE_P(AfntoolPreroll, TemporalMethod,
     ::testing::Values("ta", "svgf", "bmfr", "afn"),
     [](const ::testing::TestParamInfo<std::string>& info) { return info.param; });
+
+TEST(AfntoolPreroll, FeaturesFollowThePreroll)
+{
+    if (!haveExample())
+        GTEST_SKIP() << "examples/sequence not rendered";
+    TempDir dir;
+    const std::string seq = dir.file("seq.####.exr"), chunked = dir.file("chunk.####.exr");
+    for (const auto& [frames, preroll, out] : { std::tuple { "0-3", "0", seq },
+             std::tuple { "2-3", "2", chunked } }) {
+        const CliResult r = runAfntool(
+            { "-q", "--frames", frames, kFrames, "--preroll", preroll, "--features", out });
+        ASSERT_EQ(r.exitCode, 0) << r.err;
+    }
+    EXPECT_FALSE(fs::exists(afn::io::expandFramePattern(chunked, 1)));
+    afn::io::ReadOptions all;
+    all.keepAll = true;
+    all.required = {};
+    for (int f : { 2, 3 }) {
+        const auto a = afn::io::readFrame(afn::io::expandFramePattern(chunked, f), all).all;
+        const auto b = afn::io::readFrame(afn::io::expandFramePattern(seq, f), all).all;
+        ASSERT_TRUE(a && b);
+        ASSERT_EQ(a->channels, b->channels);
+        ASSERT_FALSE(a->pixels.empty());
+        EXPECT_EQ(a->pixels, b->pixels) << "features of frame " << f << " differ";
+    }
+}
 
 TEST(AfntoolPreroll, BadCountsAreRefused)
 {
