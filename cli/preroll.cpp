@@ -64,8 +64,8 @@ std::vector<FrameRef> resolvePrerollFrames(const Options& opts, const std::vecto
         }
         // The first missing file is the sequence start, unless an older frame exists: a hole.
         if (f - step >= -9999999 && frameExists(pattern, frame - step))
-            throw CliError("--preroll: frame " + std::to_string(frame)
-                    + " is missing but frame " + std::to_string(frame - step)
+            throw CliError("--preroll: frame " + std::to_string(frame) + " is missing but frame "
+                    + std::to_string(frame - step)
                     + " exists (a hole in the sequence, not its start)",
                 afn::io::expandFramePattern(pattern, frame));
         note("--preroll: " + std::to_string(frames.size()) + " of " + std::to_string(opts.preroll)

@@ -59,7 +59,8 @@ struct Difference {
     double minPsnr = INFINITY; ///< worst frame's PSNR (afn's metric: on T(x), docs/metrics.md)
 };
 
-Difference difference(const std::string& chunked, const std::string& sequential, int first, int last)
+Difference difference(
+    const std::string& chunked, const std::string& sequential, int first, int last)
 {
     afn::DeviceRef device = afn::newDevice(afn::DeviceType::CPU);
     device.commit();
@@ -75,11 +76,12 @@ Difference difference(const std::string& chunked, const std::string& sequential,
             d.meanAbs += e;
         }
         count += a.size();
-        const afn::io::FrameImages img = afn::io::readFrame(afn::io::expandFramePattern(chunked, f));
+        const afn::io::FrameImages img
+            = afn::io::readFrame(afn::io::expandFramePattern(chunked, f));
         const afn::io::RoleImage& c = img.roles.at(afn::io::Role::Color);
         AFNMetrics m {};
-        EXPECT_TRUE(afn::computeMetrics(
-            device, a.data(), b.data(), c.width, c.height, c.components, m));
+        EXPECT_TRUE(
+            afn::computeMetrics(device, a.data(), b.data(), c.width, c.height, c.components, m));
         d.minPsnr = std::min(d.minPsnr, m.psnr);
     }
     d.meanAbs /= static_cast<double>(std::max<std::size_t>(count, 1));
@@ -87,7 +89,8 @@ Difference difference(const std::string& chunked, const std::string& sequential,
 }
 
 /// True when every written frame first..last has exactly the same pixel data in both runs.
-void expectBitIdentical(const std::string& chunked, const std::string& sequential, int first, int last)
+void expectBitIdentical(
+    const std::string& chunked, const std::string& sequential, int first, int last)
 {
     for (int f = first; f <= last; ++f) {
         const std::vector<float> a = beauty(afn::io::expandFramePattern(chunked, f));
@@ -142,8 +145,8 @@ TEST(AfntoolPreroll, FeaturesFollowThePreroll)
         GTEST_SKIP() << "examples/sequence not rendered";
     TempDir dir;
     const std::string seq = dir.file("seq.####.exr"), chunked = dir.file("chunk.####.exr");
-    for (const auto& [frames, preroll, out] : { std::tuple { "0-3", "0", seq },
-             std::tuple { "2-3", "2", chunked } }) {
+    for (const auto& [frames, preroll, out] :
+        { std::tuple { "0-3", "0", seq }, std::tuple { "2-3", "2", chunked } }) {
         const CliResult r = runAfntool(
             { "-q", "--frames", frames, kFrames, "--preroll", preroll, "--features", out });
         ASSERT_EQ(r.exitCode, 0) << r.err;
@@ -176,12 +179,11 @@ TEST(AfntoolPreroll, RefusedWhereMeaningless)
     const std::string out = dir.file("o.####.exr");
     expectCleanError(runAfntool({ "--frames", "4-5", kFrames, "--preroll", "2", "-o", out }),
         "--preroll needs --denoise or --features");
-    expectCleanError(
-        runAfntool({ "--frames", "4-5", kFrames, "--preroll", "2", "--benchmark:methods=ta",
-            "--compare", kDir + "/reference.####.exr" }),
+    expectCleanError(runAfntool({ "--frames", "4-5", kFrames, "--preroll", "2",
+                         "--benchmark:methods=ta", "--compare", kDir + "/reference.####.exr" }),
         "--preroll does not apply to --benchmark");
-    expectCleanError(runAfntool({ kDir + "/frame.0004.exr", "--preroll", "2",
-                         "--denoise:method=ta", "-o", dir.file("one.exr") }),
+    expectCleanError(runAfntool({ kDir + "/frame.0004.exr", "--preroll", "2", "--denoise:method=ta",
+                         "-o", dir.file("one.exr") }),
         "--preroll needs a frame pattern input");
     EXPECT_TRUE(dir.entries().empty());
 }
