@@ -11,6 +11,9 @@ namespace afntool {
 
 namespace {
 
+/// Below any frame number a file name holds: the walk back stops there (and cannot overflow).
+constexpr long long kLowestFrame = -9999999;
+
 bool hasAction(const Options& opts, const std::string& name)
 {
     for (const Action& a : opts.actions)
@@ -43,7 +46,7 @@ std::vector<FrameRef> resolvePrerollFrames(const Options& opts, const std::vecto
 {
     if (opts.preroll == 0 || chunk.empty())
         return {};
-    if (opts.inputs.size() != 1 || !afn::io::hasFramePattern(opts.inputs[0]) || chunk[0].frame < 0)
+    if (opts.inputs.size() != 1 || !afn::io::hasFramePattern(opts.inputs[0]) || opts.frames.empty())
         throw CliError("--preroll needs a frame pattern input with --frames (e.g. shot.####.exr "
                        "--frames 40-79)");
     const std::string& pattern = opts.inputs[0];
@@ -55,7 +58,7 @@ std::vector<FrameRef> resolvePrerollFrames(const Options& opts, const std::vecto
     std::vector<FrameRef> frames; // newest first while walking back
     for (int k = 1; k <= opts.preroll; ++k) {
         const long long f = static_cast<long long>(first) - static_cast<long long>(k) * step;
-        if (f < -9999999) // far past any frame number a pattern holds
+        if (f < kLowestFrame)
             break;
         const int frame = static_cast<int>(f);
         if (frameExists(pattern, frame)) {
@@ -63,7 +66,7 @@ std::vector<FrameRef> resolvePrerollFrames(const Options& opts, const std::vecto
             continue;
         }
         // The first missing file is the sequence start, unless an older frame exists: a hole.
-        if (f - step >= -9999999 && frameExists(pattern, frame - step))
+        if (f - step >= kLowestFrame && frameExists(pattern, frame - step))
             throw CliError("--preroll: frame " + std::to_string(frame) + " is missing but frame "
                     + std::to_string(frame - step)
                     + " exists (a hole in the sequence, not its start)",
