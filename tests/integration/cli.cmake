@@ -18,9 +18,9 @@ add_dependencies(test_afntool_preroll afntool)
 
 # The Slurm job template against a real single-node Slurm the test starts itself (docs/farm.md);
 # skipped (exit 77, reason printed) where Slurm is not installed or cannot start. The script
-# bounds itself at AFN_SLURM_TEST_LIMIT (100 s); ctest's timeout is a backstop above that.
+# bounds itself at AFN_SLURM_TEST_LIMIT (180 s); ctest's timeout is a backstop above that.
 add_test(NAME slurm_farm_job_array
   COMMAND bash ${PROJECT_SOURCE_DIR}/tests/farm/slurm_farm_test.sh $<TARGET_FILE:afntool>
     ${PROJECT_SOURCE_DIR})
-set_tests_properties(slurm_farm_job_array PROPERTIES SKIP_RETURN_CODE 77 TIMEOUT 150
+set_tests_properties(slurm_farm_job_array PROPERTIES SKIP_RETURN_CODE 77 TIMEOUT 240
   LABELS farm ENVIRONMENT "OCIO=")
