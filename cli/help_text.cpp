@@ -79,6 +79,8 @@ std::string helpText()
        << "                          or :size=1920x1080 on generated frames)\n"
        << "Settings:\n"
        << "  --frames A-B            frames of a pattern (1-10, 1-10x2, 3,5,7)\n"
+       << "  --preroll N             rerun the N frames before --frames' first, unwritten, to\n"
+       << "                          rebuild the history (farm chunks; docs/farm.md)\n"
        << "  --aov ROLE=CHANNELS     name a role's channels (albedo=diffuse, or\n"
        << "                          albedo=d.R,d.G,d.B) or a convention (normal.space=world)\n"
        << "  --colorconfig FILE      OpenColorIO config (default: $OCIO, else afn's own)\n"

@@ -8,6 +8,7 @@
 #include "help_text.h"
 #include "ops.h"
 #include "options.h"
+#include "preroll.h"
 #include "progress.h"
 #include "run_checks.h"
 
@@ -49,6 +50,7 @@ int run(const Options& opts)
         return 0;
     }
     checkActionModifiers(opts);
+    checkPrerollUse(opts);
     for (const Action& a : opts.actions)
         if (a.name == "benchmark")
             return runBenchmark(opts, a);
@@ -92,10 +94,12 @@ int run(const Options& opts)
     checkOutputs(opts, frames, filesRead(opts, frames));
     checkFrameOrder(opts, frames);
 
-    Progress progress(static_cast<int>(frames.size()), opts.quiet);
+    const std::vector<FrameRef> preroll = resolvePrerollFrames(opts, frames);
+    Progress progress(static_cast<int>(preroll.size() + frames.size()), opts.quiet);
+    runPreroll(ctx, preroll, denoiser.get(), featureWriter.get(), progress);
     const bool keepAll = needsAllChannels(opts);
     for (std::size_t i = 0; i < frames.size(); ++i) {
-        progress.update(static_cast<int>(i), frames[i].path);
+        progress.update(static_cast<int>(preroll.size() + i), frames[i].path);
         LoadedFrame frame = loadFrame(ctx, frames[i], keepAll);
         for (const std::string& w : frame.images.mapping.warnings)
             warn(w + " (" + frames[i].path + ")", opts.quiet, &progress);
@@ -120,7 +124,7 @@ int run(const Options& opts)
             }
         }
     }
-    progress.update(static_cast<int>(frames.size()), "done");
+    progress.update(static_cast<int>(preroll.size() + frames.size()), "done");
     progress.finish();
     if (comparer)
         comparer->finish();

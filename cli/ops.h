@@ -43,6 +43,8 @@ public:
     /// left as it is and the network does not run.
     void writeFeatures(LoadedFrame& frame, const std::string& path,
         const std::vector<std::string>& inputs, Progress* progress);
+    /// --preroll: run the filter on the frame to advance its history; nothing is kept or written.
+    void advance(LoadedFrame& frame, Progress* progress) { run(frame, progress); }
     const std::string& method() const { return m_method; }
     /// The action with every parameter as the filter has it ("--denoise:method=svgf:alpha=0.2:
     /// ..."; ":weights=FILE" when given), for the outputs' history.

@@ -52,7 +52,7 @@ int parseInt(const std::string& text, const std::string& flag)
 /// Every flag the parser below accepts (for "did you mean" suggestions).
 std::vector<std::string> knownFlags()
 {
-    return { "--help", "--methods", "--version", "--frames", "--colorconfig", "--incolorspace",
+    return { "--help", "--methods", "--version", "--frames", "--preroll", "--colorconfig", "--incolorspace",
         "--outcolorspace", "--aov", "--threads", "--device", "--weights", "-d", "--compression",
         "--keep-aovs", "--json", "--quiet", "--info", "--denoise", "--features", "--preview",
         "--contact-sheet", "--compare", "--benchmark", "--report" };
@@ -95,6 +95,10 @@ Options parseCommandLine(int argc, const char* const* argv)
             o.threads = parseInt(needValue(i, argc, argv, flag), flag);
             if (o.threads < 0)
                 throw CliError("--threads must be >= 0");
+        } else if (flag == "--preroll") {
+            o.preroll = parseInt(needValue(i, argc, argv, flag), flag);
+            if (o.preroll < 0)
+                throw CliError("--preroll must be >= 0, got " + std::to_string(o.preroll));
         } else if (flag == "--device") {
             o.device = needValue(i, argc, argv, flag);
             if (o.device != "cpu" && o.device != "cuda" && o.device != "auto")

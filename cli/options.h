@@ -27,6 +27,7 @@ struct Options {
     std::string outColorSpace; ///< --outcolorspace ("" = the input's colour space)
     afn::io::MappingOverrides overrides;
     int threads = 0; ///< --threads (0 = all cores)
+    int preroll = 0; ///< --preroll N: frames before the first one run to rebuild history (farm.md)
     std::string device = "cpu"; ///< --device cpu|cuda|auto: where --denoise runs
     std::string weights; ///< --weights FILE: network weights for afn (and :weights=)
     std::string dataType; ///< -d half|float ("" = keep the input's)

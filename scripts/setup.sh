@@ -4,7 +4,8 @@
 set -euo pipefail
 pkgs=(cmake g++ make pkg-config libopenimageio-dev openimageio-tools libopencolorio-dev
       opencolorio-tools libopenexr-dev libimath-dev libtbb-dev libdnnl-dev libgtest-dev libgmock-dev
-      libbenchmark-dev clang-format python3-numpy python3-openimageio python3-pytest python3-skimage)
+      libbenchmark-dev clang-format python3-numpy python3-openimageio python3-pytest python3-skimage
+      slurmctld slurmd slurm-client) # Slurm: the farm job template's test (tests/farm, docs/farm.md)
 for arg in "$@"; do
   case "$arg" in
     --blender) pkgs+=(blender) ;;

@@ -42,3 +42,18 @@ add_dependencies(test_afntool_safety afntool)
 if(AFN_HAS_DNNL) # the engine report then includes the dnnl_sgemm yardstick
   target_compile_definitions(test_afntool_compare PRIVATE AFN_HAS_DNNL)
 endif()
+
+# afntool --preroll: farm chunks match a sequential run (docs/farm.md).
+afn_add_gtest(test_afntool_preroll SOURCES integration/test_afntool_preroll.cpp
+  integration/cli_runner.cpp LIBS afn afn_io)
+target_compile_definitions(test_afntool_preroll PRIVATE AFNTOOL_PATH="$<TARGET_FILE:afntool>")
+add_dependencies(test_afntool_preroll afntool)
+
+# The Slurm job template against a real single-node Slurm the test starts itself (docs/farm.md);
+# skipped (exit 77, reason printed) where Slurm is not installed or cannot start. The script
+# bounds itself at AFN_SLURM_TEST_LIMIT (180 s); ctest's timeout is a backstop above that.
+add_test(NAME slurm_farm_job_array
+  COMMAND bash ${PROJECT_SOURCE_DIR}/tests/farm/slurm_farm_test.sh $<TARGET_FILE:afntool>
+    ${PROJECT_SOURCE_DIR})
+set_tests_properties(slurm_farm_job_array PROPERTIES SKIP_RETURN_CODE 77 TIMEOUT 240
+  LABELS farm ENVIRONMENT "OCIO=")
