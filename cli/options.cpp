@@ -52,10 +52,10 @@ int parseInt(const std::string& text, const std::string& flag)
 /// Every flag the parser below accepts (for "did you mean" suggestions).
 std::vector<std::string> knownFlags()
 {
-    return { "--help", "--methods", "--version", "--frames", "--preroll", "--colorconfig", "--incolorspace",
-        "--outcolorspace", "--aov", "--threads", "--device", "--weights", "-d", "--compression",
-        "--keep-aovs", "--json", "--quiet", "--info", "--denoise", "--features", "--preview",
-        "--contact-sheet", "--compare", "--benchmark", "--report" };
+    return { "--help", "--methods", "--version", "--frames", "--preroll", "--colorconfig",
+        "--incolorspace", "--outcolorspace", "--aov", "--threads", "--device", "--weights", "-d",
+        "--compression", "--keep-aovs", "--json", "--quiet", "--info", "--denoise", "--features",
+        "--preview", "--contact-sheet", "--compare", "--benchmark", "--report" };
 }
 
 } // namespace
