@@ -121,8 +121,9 @@ AFN_CPU_KERNEL_CLONES void atrousRows(const AtrousArgs& a, int y0, int y1)
         atrousRowsOf<false, false>(a, y0, y1);
 }
 
-AFN_CPU_KERNEL_CLONES void invPhiRows(
-    const Planes& in, float sigmaL, Planes& invPhiL, int y0, int y1)
+/// invPhiRows' body, always inlined into each clone: clang refuses 8-float vector calls in a
+/// clone's own body for its baseline ("default") version, but not inside an always-inlined helper.
+AFN_SVGF_INLINE void invPhiRowsOf(const Planes& in, float sigmaL, Planes& invPhiL, int y0, int y1)
 {
     const int w = in.width(), h = in.height();
     for (int y = y0; y < y1; ++y)
@@ -153,6 +154,12 @@ AFN_CPU_KERNEL_CLONES void invPhiRows(
                 r[l] = std::sqrt(blurred[l]);
             storeLanes(invPhiL.row(0, y), x, w, 1.0f / (sigmaL * r + 1e-10f));
         }
+}
+
+AFN_CPU_KERNEL_CLONES void invPhiRows(
+    const Planes& in, float sigmaL, Planes& invPhiL, int y0, int y1)
+{
+    invPhiRowsOf(in, sigmaL, invPhiL, y0, y1);
 }
 
 } // namespace afn::svgf

@@ -69,7 +69,9 @@ AFN_SVGF_INLINE Estimate crossBilateral(
 
 } // namespace
 
-AFN_CPU_KERNEL_CLONES void varianceRows(const VarianceArgs& a, int y0, int y1)
+/// varianceRows' body, always inlined into each clone (see invPhiRowsOf in atrous_kernel.cpp: clang
+/// refuses 8-float vector calls in a clone's own baseline body).
+AFN_SVGF_INLINE void varianceRowsOf(const VarianceArgs& a, int y0, int y1)
 {
     const FlushDenormals flush;
     const Planes& in = *a.in;
@@ -104,6 +106,11 @@ AFN_CPU_KERNEL_CLONES void varianceRows(const VarianceArgs& a, int y0, int y1)
             storeLanes(out.row(kVariance, y), x, w, var);
             storeLanes(out.row(kLuminance, y), x, w, luminance8(c[0], c[1], c[2]));
         }
+}
+
+AFN_CPU_KERNEL_CLONES void varianceRows(const VarianceArgs& a, int y0, int y1)
+{
+    varianceRowsOf(a, y0, y1);
 }
 
 } // namespace afn::svgf
