@@ -145,7 +145,13 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size)
     check(!info.subimages.empty(), "inspect returned no subimage");
     for (const afn::io::SubimageInfo& s : info.subimages)
         check(s.types.size() == s.channels.size(), "one type per channel");
-    const afn::io::RoleMapping mapping = afn::io::mapRoles(info, ro.overrides);
+    // An --aov override naming channels the file lacks is an error (IoError), as for afntool.
+    afn::io::RoleMapping mapping;
+    try {
+        mapping = afn::io::mapRoles(info, ro.overrides);
+    } catch (const afn::io::IoError&) {
+        return 0;
+    }
     for (const afn::io::RoleChannels& rc : mapping.roles) {
         check(rc.subimage >= 0 && rc.subimage < static_cast<int>(info.subimages.size()),
             "a role in a subimage that does not exist");
