@@ -70,5 +70,11 @@ FilterType filterType();
 namespace afnet {
 FilterType filterType();
 }
+namespace wskpn {
+FilterType filterType();
+}
+namespace nbgd {
+FilterType filterType();
+}
 
 } // namespace afn

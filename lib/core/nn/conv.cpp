@@ -35,8 +35,8 @@ void Conv::load(const WeightsArchive& a, const std::string& name, int expectedIn
         bad("expected (out, in, k, k)");
     const int out = static_cast<int>(w.dims[0]), in = static_cast<int>(w.dims[1]);
     const int k = static_cast<int>(w.dims[2]);
-    if (k != 1 && k != 3)
-        bad("kernel size must be 1 or 3");
+    if (k != 1 && k != 3 && k != 5)
+        bad("kernel size must be 1, 3 or 5");
     if (out < 1 || out > kMaxChannels)
         bad("output channels out of range");
     if (in != expectedIn)

@@ -22,10 +22,13 @@ afn_add_gtest(test_afn
   SOURCES
     unit/core/nn/test_afn_weights.cpp
     unit/core/nn/test_afn_layers.cpp
+    unit/core/nn/test_conv5.cpp
     unit/core/methods/afn/test_afn_parity.cpp
     unit/core/methods/afn/test_afn_filter.cpp
     unit/core/methods/afn/test_afn_engine.cpp
     unit/core/stages/test_afn_ta_parity.cpp
+    unit/core/methods/baselines/test_baselines_parity.cpp
+    unit/core/methods/baselines/test_baselines_filters.cpp
   LIBS afn_core)
 target_include_directories(test_afn PRIVATE ${AFN_CORE_TESTS})
 # The embedding mechanism of the shipped weights, exercised on a committed parity file.
