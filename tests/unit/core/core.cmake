@@ -9,6 +9,7 @@ afn_add_gtest(test_methods
   SOURCES
     unit/core/stages/test_methods_reproject.cpp
     unit/core/stages/test_aux_prefilter.cpp
+    unit/core/stages/test_reproject_identity.cpp
     unit/core/methods/test_methods_ta.cpp
     unit/core/methods/test_methods_filters.cpp
     unit/core/methods/test_methods_blender.cpp
