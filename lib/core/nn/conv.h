@@ -69,5 +69,7 @@ private:
 
 /// D: 2x2 average pooling of an image with even size into `out` (half size).
 void down2(const Image& in, Image& out);
+/// Rows [y0, y1) of the same into `out`, already of half size, on the calling thread.
+void down2Rows(const Image& in, Image& out, int y0, int y1);
 
 } // namespace afn::nn
