@@ -35,11 +35,11 @@ struct ReferenceOptions {
         aux; ///< bound auxiliary roles (albedo, normal, depth, position, motion)
     std::string floatParam; ///< a float parameter to override ("" = none)
     double floatValue = 0.0;
-    std::string stringParam; ///< a string (choice) parameter to override ("" = none)
-    std::string stringValue;
     /// First frame the history may use: the filter restarts there, and frames before it are
     /// denoised on their own (the plugin's bounded window and start frame).
     double historyStart = -1e9;
+    std::string stringParam; ///< a string (choice) parameter to override ("" = none)
+    std::string stringValue;
 };
 
 /// The weights file the tests give `method`: "" when it runs without one, else the committed
