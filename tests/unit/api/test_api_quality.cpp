@@ -49,7 +49,8 @@ std::vector<float> runAfn(afn::DeviceRef& device, const std::string& quality)
     std::vector<float> out(Sequence::kW * Sequence::kH * 3);
     for (int frame = 0; frame < 3; ++frame) {
         Sequence s(frame);
-        f.setImage(AFN_IMAGE_COLOR, s.color.data(), afn::Format::Float3, Sequence::kW, Sequence::kH);
+        f.setImage(
+            AFN_IMAGE_COLOR, s.color.data(), afn::Format::Float3, Sequence::kW, Sequence::kH);
         f.setImage(
             AFN_IMAGE_ALBEDO, s.albedo.data(), afn::Format::Float3, Sequence::kW, Sequence::kH);
         f.setImage(
