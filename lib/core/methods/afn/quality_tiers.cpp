@@ -89,9 +89,8 @@ void TierRunner::runHigh(Network& net, const Inputs& in, Image& out)
     for (int pass = 0; pass < kPasses; ++pass) {
         const bool fx = (pass & 1) != 0, fy = (pass & 2) != 0;
         Inputs flipped = in;
-        const Image** slots[5]
-            = { &flipped.color1, &flipped.colorTa, &flipped.albedo, &flipped.normal01,
-                  &flipped.depth01 };
+        const Image** slots[5] = { &flipped.color1, &flipped.colorTa, &flipped.albedo,
+            &flipped.normal01, &flipped.depth01 };
         if (pass > 0)
             for (int k = 0; k < 5; ++k) {
                 flipImage(*given[k], fx, fy, m_flipped[k]);
