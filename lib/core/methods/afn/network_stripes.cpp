@@ -189,8 +189,8 @@ void Network::run(const Inputs& given, Image& out, const Image* work)
         for (int s = 0; s < stripes; ++s) {
             const int y0 = s * kStripeRows, y1 = std::min(h, y0 + kStripeRows);
             const float* m = work->at(0, y0);
-            skip[s] = std::none_of(m, m + static_cast<std::size_t>(y1 - y0) * w,
-                [](float v) { return v != 0.0f; });
+            skip[s] = std::none_of(
+                m, m + static_cast<std::size_t>(y1 - y0) * w, [](float v) { return v != 0.0f; });
         }
     parallelFor(stripes, [&](int s) {
         const int y0 = s * kStripeRows, y1 = std::min(hp, y0 + kStripeRows);

@@ -198,14 +198,14 @@ AFN_SVGF_AVX512_INLINE __m512 invPhiLog2e(
     const __m512i px = _mm512_add_epi32(_mm512_set1_epi32(x),
         _mm512_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15));
     __m512 wx = _mm512_set1_ps(1.0f);
-    wx = _mm512_mask_sub_ps(wx, _mm512_cmpeq_epi32_mask(px, _mm512_setzero_si512()), wx,
-        _mm512_set1_ps(0.25f));
-    wx = _mm512_mask_sub_ps(wx, _mm512_cmpeq_epi32_mask(px, _mm512_set1_epi32(w - 1)), wx,
-        _mm512_set1_ps(0.25f));
+    wx = _mm512_mask_sub_ps(
+        wx, _mm512_cmpeq_epi32_mask(px, _mm512_setzero_si512()), wx, _mm512_set1_ps(0.25f));
+    wx = _mm512_mask_sub_ps(
+        wx, _mm512_cmpeq_epi32_mask(px, _mm512_set1_epi32(w - 1)), wx, _mm512_set1_ps(0.25f));
     const __m512 blurred = _mm512_max_ps(
         _mm512_div_ps(sum, _mm512_mul_ps(wx, _mm512_set1_ps(wy))), _mm512_setzero_ps());
-    const __m512 phi = _mm512_fmadd_ps(
-        _mm512_set1_ps(sigmaL), _mm512_sqrt_ps(blurred), _mm512_set1_ps(1e-10f));
+    const __m512 phi
+        = _mm512_fmadd_ps(_mm512_set1_ps(sigmaL), _mm512_sqrt_ps(blurred), _mm512_set1_ps(1e-10f));
     return _mm512_div_ps(_mm512_set1_ps(kLog2e), phi);
 }
 
@@ -224,9 +224,9 @@ AFN_SVGF_AVX512_INLINE void addTaps(const NormalPower& np, const Centre& c, cons
         __m512 rz = _mm512_setzero_ps();
         if (kHasDepth) {
             // sigmaZ |grad z . o| + 1e-4 |z|: the same for o and -o.
-            const __m512 grad = _mm512_fmadd_ps(c.dzdx,
-                _mm512_set1_ps(static_cast<float>(i * step)),
-                _mm512_mul_ps(c.dzdy, _mm512_set1_ps(static_cast<float>(j * step))));
+            const __m512 grad
+                = _mm512_fmadd_ps(c.dzdx, _mm512_set1_ps(static_cast<float>(i * step)),
+                    _mm512_mul_ps(c.dzdy, _mm512_set1_ps(static_cast<float>(j * step))));
             const __m512 denom = _mm512_fmadd_ps(_mm512_set1_ps(sigmaZ), absv(grad), c.zEps);
             rz = _mm512_div_ps(_mm512_set1_ps(kLog2e), denom);
         }
@@ -285,14 +285,14 @@ AFN_SVGF_AVX512 void atrousRows16(const AtrousArgs& a, int y0, int y1, const Nor
                 c.z = _mm512_maskz_loadu_ps(m0, centre.z + x);
                 c.dzdx = _mm512_maskz_loadu_ps(m0, g.planes.row(kDepthDx, y) + x);
                 c.dzdy = _mm512_maskz_loadu_ps(m0, g.planes.row(kDepthDy, y) + x);
-                c.zEps = _mm512_add_ps(_mm512_mul_ps(_mm512_set1_ps(1e-4f), absv(c.z)),
-                    _mm512_set1_ps(1e-30f));
+                c.zEps = _mm512_add_ps(
+                    _mm512_mul_ps(_mm512_set1_ps(1e-4f), absv(c.z)), _mm512_set1_ps(1e-30f));
             }
             const float hc = kB3[0] * kB3[0];
             Sums s;
             s.ws = _mm512_set1_ps(hc);
-            s.vsum = _mm512_mul_ps(_mm512_set1_ps(hc * hc),
-                _mm512_maskz_loadu_ps(m0, centre.c[kVariance] + x));
+            s.vsum = _mm512_mul_ps(
+                _mm512_set1_ps(hc * hc), _mm512_maskz_loadu_ps(m0, centre.c[kVariance] + x));
             for (int k = 0; k < 3; ++k)
                 s.dc[k] = _mm512_setzero_ps();
             addTaps<kHasNormal, kHasDepth, kSquarings>(
