@@ -14,9 +14,9 @@
 #include "cuda/afn_cuda_filter.h"
 #include "cuda/gpu.h"
 #include "filter/registry.h"
-#include "methods/afn/features.h"
 #include "methods/afn/weights_source.h"
 #include "stages/demodulate.h"
+#include "stages/feature_scaling.h"
 
 #include "afn/afn.h"
 
@@ -136,8 +136,8 @@ void runParityCase(const ParityCase& c)
         accumulator.accumulate(reprojector, irradiance);
         reprojector.storeGeometry(f);
         albedo = f.hasAlbedo() ? f.albedo : afn::Image(f.width, f.height, 3, 1.0f);
-        afn::afnet::normalToUnitRange(f.normal, f.width, f.height, normal01);
-        afn::afnet::depthToUnitRange(f.depth, f.width, f.height, depth01);
+        afn::normalToUnitRange(f.normal, f.width, f.height, normal01);
+        afn::depthToUnitRange(f.depth, f.width, f.height, depth01);
         net.prepare({ &irradiance, &accumulator.color(), &albedo, &normal01, &depth01 });
         cuda.pipeline().downloadIntermediate(
             afn::cuda::AfnPipeline::Intermediate::Irradiance, gpuIrr);

@@ -1,8 +1,9 @@
 # SPDX-License-Identifier: Apache-2.0
 """Colour and feature transforms shared by the network, the dataset and the C++ core.
 
-The C++ core (lib/core/methods/afn/features.cpp, lib/core/stages/demodulate.h) uses the same constants; they are
-kept in agreement by the parity test (tests/data/afn_parity) and tests/unit/test_afn_*.cpp.
+The C++ core (lib/core/stages/feature_scaling.cpp, lib/core/stages/demodulate.h) uses the same
+constants; they are kept in agreement by the parity test (tests/data/afn_parity) and
+tests/unit/test_afn_*.cpp.
 
 Conventions:
   * tone map for network inputs (NBGD/WSKPN, Lee et al. Sec. III-A):

@@ -104,7 +104,7 @@ AFN_HD float loadFloat(const float* p)
 
 constexpr float kAlbedoEpsilonDevice = 1.0f / 1024.0f; ///< stages/demodulate.h kAlbedoEpsilon
 constexpr float kMaxIrradianceDevice = 1e15f; ///< stages/demodulate.h kMaxIrradiance
-constexpr float kDepthSkyDevice = 1e9f; ///< methods/afn/features.h kDepthSky
+constexpr float kDepthSkyDevice = 1e9f; ///< stages/feature_scaling.h kDepthSky
 
 /// Divisor/multiplier of one albedo value (plain: the colour was demodulated by the renderer).
 AFN_HD float albedoFactor(float albedo, bool plain)

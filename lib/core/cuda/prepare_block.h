@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: Apache-2.0
 // The network input of one 2 x 2 block of the padded frame (methods/afn/network.cpp prepare() and
-// the first pooling of predict(), methods/afn/features.cpp): for each of the four pixels, read
+// the first pooling of predict(), stages/feature_scaling.cpp): for each of the four pixels, read
 // with edge replication from the frame, x = [T(c1), T(cTA), albedo, normal01, depth01] (13
 // channels, stored as halves with 3 zero channels); the block's 2 x 2 average of x (the encoder's
 // input) and of the 1-spp colour (filtered at half resolution), both averaged in float before any
@@ -29,7 +29,8 @@ AFN_HD float fromOrderedKey(std::uint32_t k)
 constexpr std::uint32_t kEmptyRangeMin = 0xffffffffu;
 constexpr std::uint32_t kEmptyRangeMax = 0u;
 
-/// A depth that counts for the per-frame range (features.h: finite and closer than the sky).
+/// A depth that counts for the per-frame range (stages/feature_scaling.h: finite and closer than
+/// the sky).
 AFN_HD bool isValidDepth(float z)
 {
     return isFiniteFloat(z) && fabsf(z) < kDepthSkyDevice;
@@ -41,7 +42,7 @@ struct DepthScale {
     float scale = 0.0f;
 };
 
-/// The scale of a range given as ordered keys (features.cpp depthToUnitRange).
+/// The scale of a range given as ordered keys (stages/feature_scaling.cpp depthToUnitRange).
 AFN_HD DepthScale depthScale(std::uint32_t minKey, std::uint32_t maxKey)
 {
     DepthScale s;

@@ -2,7 +2,7 @@
 #include "nn/baseline_input.h"
 
 #include "base/parallel.h"
-#include "methods/afn/features.h"
+#include "stages/feature_scaling.h"
 
 #include <algorithm>
 #include <cmath>
@@ -16,8 +16,8 @@ void BaselineFeatures::compute(const Frame& in)
         std::copy(in.albedo.data(), in.albedo.data() + in.albedo.size(), albedo.data());
     else
         albedo.fill(1.0f);
-    afnet::normalToUnitRange(in.normal, in.width, in.height, normal01);
-    afnet::depthToUnitRange(in.depth, in.width, in.height, depth01);
+    normalToUnitRange(in.normal, in.width, in.height, normal01);
+    depthToUnitRange(in.depth, in.width, in.height, depth01);
 }
 
 void baselineInput(const Image& cta, const BaselineFeatures& f, Image& out)

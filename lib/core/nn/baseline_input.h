@@ -2,7 +2,7 @@
 // The input of the learned baselines WSKPN and NBGD (training/afn/baselines/inputs.py): 10
 // channels [T(cta) 3, albedo 3, normal01 3, depth01 1] with T(x) = clip(max(x, 0)^(1/2.2), 0, 1).
 // cta is the BMFR temporal accumulation of the demodulated 1-spp colour (the shared stages), and
-// albedo, normal01 and depth01 are afn's features (methods/afn/features.h: the same scaling the
+// albedo, normal01 and depth01 are afn's features (stages/feature_scaling.h: the same scaling the
 // training data was prepared with through afntool --features, reused so the two cannot drift).
 #pragma once
 

@@ -2,8 +2,8 @@
 // "afn": the Adaptive Fusion Network denoiser (Lee et al.). Per frame, after the shared stages
 // (aux prefilter, demodulation of the 1-spp colour, BMFR temporal accumulation for TA-1spp; the
 // albedo, normal and depth seen here are the prefiltered ones): scale normal and
-// depth (features.h), run the network (network.h) and remodulate. The network output is clamped
-// to >= 0 by the remodulation (stages/demodulate.h). Weights: weights_source.h.
+// depth (stages/feature_scaling.h), run the network (network.h) and remodulate. The network output
+// is clamped to >= 0 by the remodulation (stages/demodulate.h). Weights: weights_source.h.
 //
 // Settings (settings.h): `spp`, the input's samples per pixel, which will choose between the
 // low- and high-count models; read at commit.
@@ -17,12 +17,12 @@
 #include "base/exception.h"
 #include "cpu/isa.h"
 #include "filter/registry.h"
-#include "methods/afn/features.h"
 #include "methods/afn/network.h"
 #include "methods/afn/quality_tiers.h"
 #include "methods/afn/settings.h"
 #include "methods/afn/weights_source.h"
 #include "stages/demodulate.h"
+#include "stages/feature_scaling.h"
 
 #ifdef AFN_HAS_CUDA
 #include "cuda/afn_cuda_filter.h"

@@ -8,9 +8,9 @@
 #include "cuda/frame_constants.h"
 #include "emulated_pipeline.h"
 #include "filter/registry.h"
-#include "methods/afn/features.h"
 #include "methods/afn/weights_source.h"
 #include "stages/demodulate.h"
+#include "stages/feature_scaling.h"
 
 #include <gtest/gtest.h>
 
@@ -104,8 +104,8 @@ TEST(CudaEmulated, NetworkInputIsTheCpuInputInHalfPrecision)
         accumulator.accumulate(reprojector, irradiance);
         reprojector.storeGeometry(f);
         albedo = f.albedo;
-        afn::afnet::normalToUnitRange(f.normal, f.width, f.height, normal01);
-        afn::afnet::depthToUnitRange(f.depth, f.width, f.height, depth01);
+        afn::normalToUnitRange(f.normal, f.width, f.height, normal01);
+        afn::depthToUnitRange(f.depth, f.width, f.height, depth01);
         cpu.runWholeFrame(
             { &irradiance, &accumulator.color(), &albedo, &normal01, &depth01 }, result);
         emulated.run(f, afn::cuda::frameConstants(f, kReproject, kAccumulation), out);

@@ -4,8 +4,8 @@
 #include "afn_test_util.h"
 #include "base/exception.h"
 #include "filter/registry.h"
-#include "methods/afn/features.h"
 #include "methods/afn/settings.h"
+#include "stages/feature_scaling.h"
 
 #include <gtest/gtest.h>
 
@@ -83,7 +83,7 @@ TEST(AfnFeatures, NormalAndDepthScaling)
     n(0, 0, 0) = -1.0f;
     n(0, 0, 1) = 1.0f;
     n(1, 0, 2) = NAN;
-    afn::afnet::normalToUnitRange(n, 2, 1, n01);
+    afn::normalToUnitRange(n, 2, 1, n01);
     EXPECT_EQ(n01(0, 0, 0), 0.0f);
     EXPECT_EQ(n01(0, 0, 1), 1.0f);
     EXPECT_EQ(n01(0, 0, 2), 0.5f);
@@ -93,12 +93,12 @@ TEST(AfnFeatures, NormalAndDepthScaling)
     z(1, 0, 0) = 4.0f;
     z(2, 0, 0) = 6.0f;
     z(3, 0, 0) = 1e10f; // sky
-    afn::afnet::depthToUnitRange(z, 4, 1, z01);
+    afn::depthToUnitRange(z, 4, 1, z01);
     EXPECT_EQ(z01(0, 0, 0), 0.0f);
     EXPECT_EQ(z01(1, 0, 0), 0.5f);
     EXPECT_EQ(z01(2, 0, 0), 1.0f);
     EXPECT_EQ(z01(3, 0, 0), 1.0f);
-    afn::afnet::depthToUnitRange(afn::Image(), 3, 2, z01);
+    afn::depthToUnitRange(afn::Image(), 3, 2, z01);
     EXPECT_EQ(z01.width(), 3);
     EXPECT_EQ(z01(2, 1, 0), 0.0f);
 }

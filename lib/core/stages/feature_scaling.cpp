@@ -1,11 +1,11 @@
 // SPDX-License-Identifier: Apache-2.0
-// AFN auxiliary-feature scaling (see methods/afn/features.h).
-#include "methods/afn/features.h"
+// Auxiliary-feature scaling of the learned methods' inputs (see stages/feature_scaling.h).
+#include "stages/feature_scaling.h"
 
 #include <algorithm>
 #include <cmath>
 
-namespace afn::afnet {
+namespace afn {
 
 void normalToUnitRange(const Image& normal, int w, int h, Image& out)
 {
@@ -47,4 +47,4 @@ void depthToUnitRange(const Image& depth, int w, int h, Image& out)
     }
 }
 
-} // namespace afn::afnet
+} // namespace afn
