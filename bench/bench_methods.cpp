@@ -5,6 +5,7 @@
 //   bench_methods --benchmark_repetitions=5 --benchmark_report_aggregates_only=true
 // bench_afn_vs_methods (bench/afn.cmake) links this file with bench_afn.cpp, so that AFN's stages
 // and these methods are measured in one run (AFN_BENCH_NO_MAIN leaves out this file's main).
+#include "bind_image.h"
 #include "filter/registry.h"
 
 #include <benchmark/benchmark.h>
@@ -16,6 +17,7 @@
 namespace {
 
 using afn::Image;
+using afntest::bindImage;
 
 constexpr int kWidth = 1280, kHeight = 720;
 
@@ -55,30 +57,18 @@ struct Sequence {
     }
 };
 
-afn::ImageBinding bind(Image& img)
-{
-    afn::ImageBinding b;
-    b.ptr = img.data();
-    b.format = static_cast<AFNFormat>(img.channels());
-    b.width = img.width();
-    b.height = img.height();
-    b.pixelStride = static_cast<std::ptrdiff_t>(img.channels() * sizeof(float));
-    b.rowStride = b.pixelStride * img.width();
-    return b;
-}
-
 void runMethod(benchmark::State& state, const char* method)
 {
     static Sequence seq;
     auto f = afn::createFilter(method);
-    f->setImage("albedo", bind(seq.albedo));
-    f->setImage("normal", bind(seq.normal));
-    f->setImage("position", bind(seq.position));
-    f->setImage("motion", bind(seq.motion));
-    f->setImage("output", bind(seq.out));
+    f->setImage("albedo", bindImage(seq.albedo));
+    f->setImage("normal", bindImage(seq.normal));
+    f->setImage("position", bindImage(seq.position));
+    f->setImage("motion", bindImage(seq.motion));
+    f->setImage("output", bindImage(seq.out));
     int frame = 0;
     auto step = [&] {
-        f->setImage("color", bind(seq.color[frame++ & 1]));
+        f->setImage("color", bindImage(seq.color[frame++ & 1]));
         f->commit();
         f->execute();
     };

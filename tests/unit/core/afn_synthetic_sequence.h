@@ -9,6 +9,7 @@
 #pragma once
 
 #include "base/image.h"
+#include "bind_image.h"
 #include "filter/filter.h"
 
 #include <cmath>
@@ -185,19 +186,6 @@ private:
     int m_w, m_h;
     std::uint32_t m_seed;
 };
-
-/// A binding of an image for Filter::setImage.
-inline afn::ImageBinding bindImage(afn::Image& img)
-{
-    afn::ImageBinding b;
-    b.ptr = img.data();
-    b.format = static_cast<AFNFormat>(img.channels());
-    b.width = img.width();
-    b.height = img.height();
-    b.pixelStride = static_cast<std::ptrdiff_t>(img.channels() * sizeof(float));
-    b.rowStride = b.pixelStride * img.width();
-    return b;
-}
 
 /// Bind a frame's non-empty inputs and `out` (3 channels), set its camera, commit and execute.
 inline void runFrame(afn::Filter& f, SequenceFrame& in, afn::Image& out)

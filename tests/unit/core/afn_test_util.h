@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: Apache-2.0
-// Helpers for the AFN tests: build .afnw archives in memory, load the committed parity files.
+// Helpers for the AFN tests: build .afnw archives in memory, read files, load the committed parity
+// files, random images and weights.
 #pragma once
 
 #include "base/image.h"
@@ -9,6 +10,7 @@
 #include <cstring>
 #include <fstream>
 #include <iterator>
+#include <random>
 #include <string>
 #include <utility>
 #include <vector>
@@ -72,11 +74,16 @@ inline afn::nn::WeightsArchive parseArchive(
     return afn::nn::WeightsArchive::parse(b.data(), b.size(), "in-memory");
 }
 
-inline afn::nn::WeightsArchive loadFile(const std::string& path)
+/// A file's bytes (empty when it cannot be read).
+inline std::vector<char> readBytes(const std::string& path)
 {
     std::ifstream f(path, std::ios::binary);
-    const std::vector<char> bytes(
-        (std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
+    return std::vector<char>((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
+}
+
+inline afn::nn::WeightsArchive loadFile(const std::string& path)
+{
+    const std::vector<char> bytes = readBytes(path);
     return afn::nn::WeightsArchive::parse(bytes.data(), bytes.size(), path);
 }
 
@@ -87,6 +94,28 @@ inline afn::Image toImage(const afn::nn::WeightTensor& t)
         static_cast<int>(t.dims[1]), static_cast<int>(t.dims[0]), static_cast<int>(t.dims[2]));
     std::memcpy(img.data(), t.data.data(), 4 * t.data.size());
     return img;
+}
+
+/// A w x h x c image of uniform values in [-1, 1) from mt19937(seed).
+inline afn::Image randomImage(int w, int h, int c, unsigned seed)
+{
+    std::mt19937 rng(seed);
+    std::uniform_real_distribution<float> u(-1.0f, 1.0f);
+    afn::Image img(w, h, c);
+    for (std::size_t k = 0; k < img.size(); ++k)
+        img.data()[k] = u(rng);
+    return img;
+}
+
+/// n uniform values in [-0.5, 0.5) from mt19937(seed) (layer weights and biases).
+inline std::vector<float> randomVec(std::size_t n, unsigned seed)
+{
+    std::mt19937 rng(seed);
+    std::uniform_real_distribution<float> u(-0.5f, 0.5f);
+    std::vector<float> v(n);
+    for (float& f : v)
+        f = u(rng);
+    return v;
 }
 
 } // namespace afntest

@@ -3,6 +3,7 @@
 #pragma once
 
 #include "base/image.h"
+#include "bind_image.h"
 #include "filter/registry.h"
 
 #include <cmath>
@@ -21,18 +22,6 @@ struct Buffers {
     std::vector<float> viewProjection; ///< 16 floats, or empty
 };
 
-inline afn::ImageBinding binding(Image& img)
-{
-    afn::ImageBinding b;
-    b.ptr = img.data();
-    b.format = static_cast<AFNFormat>(img.channels());
-    b.width = img.width();
-    b.height = img.height();
-    b.pixelStride = static_cast<std::ptrdiff_t>(img.channels() * sizeof(float));
-    b.rowStride = b.pixelStride * img.width();
-    return b;
-}
-
 /// Bind every non-empty buffer (and the output, allocated here), set the camera, commit, execute.
 inline void runFrame(afn::Filter& f, Buffers& b)
 {
@@ -42,8 +31,8 @@ inline void runFrame(afn::Filter& f, Buffers& b)
     Image* imgs[] = { &b.color, &b.albedo, &b.normal, &b.depth, &b.position, &b.motion };
     for (int i = 0; i < 6; ++i)
         if (!imgs[i]->empty())
-            f.setImage(names[i], binding(*imgs[i]));
-    f.setImage("output", binding(b.out));
+            f.setImage(names[i], afntest::bindImage(*imgs[i]));
+    f.setImage("output", afntest::bindImage(b.out));
     if (!b.viewProjection.empty())
         f.setFloats("viewProjection", b.viewProjection);
     f.commit();

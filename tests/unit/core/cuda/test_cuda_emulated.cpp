@@ -5,6 +5,7 @@
 // of several sizes, input sets and weights. Built in every configuration: a GPU is not needed.
 #include "afn_output_compare.h"
 #include "afn_parity_cases.h"
+#include "afn_test_util.h"
 #include "cuda/frame_constants.h"
 #include "emulated_pipeline.h"
 #include "filter/registry.h"
@@ -15,19 +16,12 @@
 #include <gtest/gtest.h>
 
 #include <cstring>
-#include <fstream>
 #include <iostream>
-#include <iterator>
 
 namespace {
 
+using afntest::readBytes;
 using afntest::SequenceInputs;
-
-std::vector<char> readBytes(const std::string& path)
-{
-    std::ifstream f(path, std::ios::binary);
-    return std::vector<char>((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
-}
 
 std::vector<char> testWeights(const char* name)
 {

@@ -9,31 +9,13 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
-#include <random>
 
 using afn::Image;
 
 namespace {
 
-Image randomImage(int w, int h, int c, unsigned seed)
-{
-    std::mt19937 rng(seed);
-    std::uniform_real_distribution<float> u(-1.0f, 1.0f);
-    Image img(w, h, c);
-    for (std::size_t k = 0; k < img.size(); ++k)
-        img.data()[k] = u(rng);
-    return img;
-}
-
-std::vector<float> randomVec(std::size_t n, unsigned seed)
-{
-    std::mt19937 rng(seed);
-    std::uniform_real_distribution<float> u(-0.5f, 0.5f);
-    std::vector<float> v(n);
-    for (float& f : v)
-        f = u(rng);
-    return v;
-}
+using afntest::randomImage;
+using afntest::randomVec;
 
 /// Scalar 5x5 convolution, zero padding 2, of concat(U(up), same), in double.
 double reference(const Image* up, const Image& same, const std::vector<float>& wt,

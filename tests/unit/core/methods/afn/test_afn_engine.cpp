@@ -2,6 +2,7 @@
 // The AFN engine's implementation choices: the strip refinement equals a whole-frame pass over
 // several strips, the AVX-512 and portable kernels agree (where the CPU has AVX-512), and the
 // stage FLOP counts that the benchmarks divide by match a count by hand.
+#include "afn_random_inputs.h"
 #include "cpu/isa.h"
 #include "methods/afn/network.h"
 #include "methods/afn/random_weights.h"
@@ -10,28 +11,17 @@
 
 #include <algorithm>
 #include <cmath>
-#include <random>
 
 using afn::Image;
 using afn::afnet::Network;
 
 namespace {
 
-struct Frame {
-    Image c1, cta, albedo, normal, depth;
-    afn::afnet::Inputs in;
+/// The network's inputs for these tests (seed 7).
+struct Frame : afntest::RandomAfnInputs {
     Frame(int w, int h)
+        : RandomAfnInputs(w, h, 7u)
     {
-        std::mt19937 rng(7);
-        std::uniform_real_distribution<float> u(0.0f, 1.0f);
-        auto fill = [&](Image& img, int c, float scale) {
-            img = Image(w, h, c);
-            for (std::size_t k = 0; k < img.size(); ++k)
-                img.data()[k] = scale * u(rng);
-        };
-        fill(c1, 3, 4.0f), fill(cta, 3, 2.0f), fill(albedo, 3, 1.0f), fill(normal, 3, 1.0f);
-        fill(depth, 1, 1.0f);
-        in = { &c1, &cta, &albedo, &normal, &depth };
     }
 };
 

@@ -6,53 +6,22 @@
 #include "filter/registry.h"
 #include "methods/afn/settings.h"
 #include "stages/feature_scaling.h"
+#include "still_frame.h"
 
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
-#include <fstream>
-#include <iterator>
 
-namespace {
-
-afn::ImageBinding bind(afn::Image& img)
-{
-    afn::ImageBinding b;
-    b.ptr = img.data();
-    b.format = static_cast<AFNFormat>(img.channels());
-    b.width = img.width();
-    b.height = img.height();
-    b.pixelStride = static_cast<std::ptrdiff_t>(img.channels() * sizeof(float));
-    b.rowStride = b.pixelStride * img.width();
-    return b;
-}
-
-std::vector<char> readBytes(const std::string& path)
-{
-    std::ifstream f(path, std::ios::binary);
-    return std::vector<char>((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
-}
-
-} // namespace
+using afntest::readBytes;
 
 TEST(AfnFilter, NeedsWeightsThenDenoises)
 {
     auto f = afn::createFilter("afn");
     const int w = 19, h = 11;
-    afn::Image color(w, h, 3), albedo(w, h, 3, 0.5f), normal(w, h, 3), depth(w, h, 1), out(w, h, 3);
-    for (int y = 0; y < h; ++y)
-        for (int x = 0; x < w; ++x) {
-            for (int c = 0; c < 3; ++c)
-                color(x, y, c) = static_cast<float>(((x * 7 + y * 3 + c) % 5)) * 0.3f;
-            normal(x, y, 2) = 1.0f;
-            depth(x, y, 0) = 1.0f + 0.1f * static_cast<float>(x);
-        }
-    f->setImage("color", bind(color));
-    f->setImage("albedo", bind(albedo));
-    f->setImage("normal", bind(normal));
-    f->setImage("depth", bind(depth));
-    f->setImage("output", bind(out));
+    afntest::StillFrame still(w, h);
+    still.bindTo(*f);
+    const afn::Image& out = still.out;
 #ifndef AFN_HAS_EMBEDDED_WEIGHTS
     try {
         f->commit();

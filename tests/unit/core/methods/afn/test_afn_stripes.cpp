@@ -2,6 +2,7 @@
 // The AFN stripe path (methods/afn/network_stripes.cpp): bit-identical to the whole-frame stages
 // for frames of one and of many stripes (odd sizes, both variants, 1 thread and all), and its work
 // mask (issue 19): stripes without work take the cheap path, the others are unchanged.
+#include "afn_random_inputs.h"
 #include "methods/afn/network.h"
 #include "methods/afn/random_weights.h"
 
@@ -9,28 +10,17 @@
 #include <tbb/global_control.h>
 
 #include <algorithm>
-#include <random>
 
 using afn::Image;
 using afn::afnet::Network;
 
 namespace {
 
-struct Frame {
-    Image c1, cta, albedo, normal, depth;
-    afn::afnet::Inputs in;
+/// The network's inputs for these tests (seed 11).
+struct Frame : afntest::RandomAfnInputs {
     Frame(int w, int h)
+        : RandomAfnInputs(w, h, 11u)
     {
-        std::mt19937 rng(11);
-        std::uniform_real_distribution<float> u(0.0f, 1.0f);
-        auto fill = [&](Image& img, int c, float scale) {
-            img = Image(w, h, c);
-            for (std::size_t k = 0; k < img.size(); ++k)
-                img.data()[k] = scale * u(rng);
-        };
-        fill(c1, 3, 4.0f), fill(cta, 3, 2.0f), fill(albedo, 3, 1.0f), fill(normal, 3, 1.0f);
-        fill(depth, 1, 1.0f);
-        in = { &c1, &cta, &albedo, &normal, &depth };
     }
 };
 

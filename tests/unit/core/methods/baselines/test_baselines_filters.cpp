@@ -9,50 +9,24 @@
 #include "methods/nbgd/bilateral_grid.h"
 #include "methods/wskpn/network.h"
 #include "methods/wskpn/weight_sharing_filter.h"
+#include "still_frame.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <fstream>
-#include <iterator>
 
 namespace {
 
-afn::ImageBinding bind(afn::Image& img)
-{
-    afn::ImageBinding b;
-    b.ptr = img.data();
-    b.format = static_cast<AFNFormat>(img.channels());
-    b.width = img.width();
-    b.height = img.height();
-    b.pixelStride = static_cast<std::ptrdiff_t>(img.channels() * sizeof(float));
-    b.rowStride = b.pixelStride * img.width();
-    return b;
-}
-
-std::vector<char> readBytes(const std::string& path)
-{
-    std::ifstream f(path, std::ios::binary);
-    return std::vector<char>((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
-}
+using afntest::bindImage;
+using afntest::readBytes;
 
 void runSequence(const std::string& method)
 {
     auto f = afn::createFilter(method);
     const int w = 23, h = 13;
-    afn::Image color(w, h, 3), albedo(w, h, 3, 0.5f), normal(w, h, 3), depth(w, h, 1), out(w, h, 3);
-    for (int y = 0; y < h; ++y)
-        for (int x = 0; x < w; ++x) {
-            for (int c = 0; c < 3; ++c)
-                color(x, y, c) = static_cast<float>(((x * 7 + y * 3 + c) % 5)) * 0.3f;
-            normal(x, y, 2) = 1.0f;
-            depth(x, y, 0) = 1.0f + 0.1f * static_cast<float>(x);
-        }
-    f->setImage("color", bind(color));
-    f->setImage("albedo", bind(albedo));
-    f->setImage("normal", bind(normal));
-    f->setImage("depth", bind(depth));
-    f->setImage("output", bind(out));
+    afntest::StillFrame still(w, h);
+    still.bindTo(*f);
+    const afn::Image& out = still.out;
     const std::string other = method == "wskpn" ? "nbgd" : "wskpn";
     const std::string dir = std::string(AFN_TEST_DATA) + "/baselines_parity/";
     const auto bytes = readBytes(dir + method + "_weights.afnw");
@@ -92,8 +66,8 @@ TEST(BaselineFilters, WithoutWeightsCommitSaysSo)
             continue; // this build embeds weights
         auto f = afn::createFilter(method);
         afn::Image color(8, 8, 3, 0.5f), out(8, 8, 3);
-        f->setImage("color", bind(color));
-        f->setImage("output", bind(out));
+        f->setImage("color", bindImage(color));
+        f->setImage("output", bindImage(out));
         try {
             f->commit();
             FAIL() << method << ": commit without weights must fail";
