@@ -6,29 +6,19 @@
 // Pixels within 3 of the border use the scalar kernel (zero padding, methods/afn/fusion.h).
 #include "cpu/afn_filter_avx512.h"
 
+#include "cpu/avx512.h"
 #include "methods/afn/fusion.h"
 
 #include <cfloat>
 
-#if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__))
-#include <immintrin.h>
-#define AFN_HAVE_AVX512_KERNELS 1
-#define AFN_AVX512 __attribute__((target("avx512f,avx2,fma")))
-#if defined(__GNUC__) && !defined(__clang__)
-// GCC 12's AVX-512 min/max/reduce intrinsics start from _mm512_undefined_ps (false positive).
-#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
-#pragma GCC diagnostic ignored "-Wuninitialized"
-#endif
-#endif
-
 namespace afn::cpu {
 
-#ifdef AFN_HAVE_AVX512_KERNELS
+#ifdef AFN_CPU_HAVE_AVX512
 
 namespace {
 
 /// exp(x) for x <= 0, as cpu::exp8.
-AFN_AVX512 inline __attribute__((always_inline)) __m512 exp16(__m512 x)
+AFN_CPU_AVX512_INLINE __m512 exp16(__m512 x)
 {
     x = _mm512_max_ps(x, _mm512_set1_ps(-87.0f));
     const __m512 magic = _mm512_set1_ps(12582912.0f);
@@ -51,14 +41,14 @@ AFN_AVX512 inline __attribute__((always_inline)) __m512 exp16(__m512 x)
 }
 
 /// NaN -> -FLT_MAX, +-Inf -> +-FLT_MAX (max returns its second operand for a NaN first one).
-AFN_AVX512 inline __attribute__((always_inline)) __m512 finite16(__m512 v)
+AFN_CPU_AVX512_INLINE __m512 finite16(__m512 v)
 {
     return _mm512_min_ps(_mm512_max_ps(v, _mm512_set1_ps(-FLT_MAX)), _mm512_set1_ps(FLT_MAX));
 }
 
 } // namespace
 
-AFN_AVX512 void softmaxApplyAvx512(float* l, const Image& img, int x, int y, float* rgb)
+AFN_CPU_AVX512 void softmaxApplyAvx512(float* l, const Image& img, int x, int y, float* rgb)
 {
     constexpr __mmask16 last = 0x0001; // logit 48
     __m512 v0 = finite16(_mm512_loadu_ps(l)), v1 = finite16(_mm512_loadu_ps(l + 16));

@@ -18,15 +18,11 @@
 //   threads: results are bit-identical for every thread count.
 #include "cpu/conv_kernel.h"
 
+#include "cpu/avx512.h"
+
 #include <algorithm>
 #include <cstring>
 #include <vector>
-
-#if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__))
-#include <immintrin.h>
-#define AFN_HAVE_AVX512_KERNELS 1
-#define AFN_AVX512 __attribute__((target("avx512f,avx2,fma")))
-#endif
 
 namespace afn::cpu {
 
@@ -68,7 +64,7 @@ void fillBand(const ConvArgs& a, int y0, int y1, int c, std::vector<float>& band
     std::memset(band.data() + rows * rowFloats, 0, sizeof(float) * slack);
 }
 
-#ifdef AFN_HAVE_AVX512_KERNELS
+#ifdef AFN_CPU_HAVE_AVX512
 
 /// Operands of one row pass over one group of NV output vectors.
 struct RowPass {
@@ -85,8 +81,7 @@ struct RowPass {
 
 /// P output pixels (np of them stored) x NV x 16 output channels.
 template <int NV, int P, int C>
-AFN_AVX512 inline __attribute__((always_inline)) void block(
-    const RowPass& r, const float* src, float* dst, int np)
+AFN_CPU_AVX512_INLINE void block(const RowPass& r, const float* src, float* dst, int np)
 {
     const int cs = C ? C : r.c;
     __m512 acc[P][NV];
@@ -128,7 +123,7 @@ AFN_AVX512 inline __attribute__((always_inline)) void block(
     }
 }
 
-template <int NV, int P, int C> AFN_AVX512 void rows(const RowPass& r, int nRows)
+template <int NV, int P, int C> AFN_CPU_AVX512 void rows(const RowPass& r, int nRows)
 {
     const int cs = C ? C : r.c;
     for (int i = 0; i < nRows; ++i) {
@@ -170,13 +165,13 @@ template <int NV> void rowsForWidth(const RowPass& r, int nRows)
     }
 }
 
-#endif // AFN_HAVE_AVX512_KERNELS
+#endif // AFN_CPU_HAVE_AVX512
 
 } // namespace
 
 void convRowsAvx512(const ConvArgs& a, int y0, int y1)
 {
-#ifdef AFN_HAVE_AVX512_KERNELS
+#ifdef AFN_CPU_HAVE_AVX512
     const int c = (a.in + 15) / 16 * 16;
     thread_local std::vector<float> band;
     fillBand(a, y0, y1, c, band);

@@ -14,27 +14,15 @@
 // tap pairs in a fixed order per pixel: results do not depend on the thread count, and differ from
 // the portable kernel's in the last bits only (tests/unit/core/methods/svgf/test_svgf_kernels.cpp
 // checks both against a double-precision evaluation of the formulas).
+#include "cpu/avx512.h"
 #include "methods/svgf/kernels.h"
 #include "methods/svgf/tap_vector.h"
 
 #include <cmath>
 
-#if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__))
-#include <immintrin.h>
-#define AFN_SVGF_HAVE_AVX512 1
-#define AFN_SVGF_AVX512 __attribute__((target("avx512f,avx2,fma")))
-#define AFN_SVGF_AVX512_INLINE AFN_SVGF_AVX512 inline __attribute__((always_inline))
-#if defined(__GNUC__) && !defined(__clang__)
-// GCC 12's AVX-512 max/roundscale/scalef intrinsics start from _mm512_undefined_ps (false
-// positive).
-#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
-#pragma GCC diagnostic ignored "-Wuninitialized"
-#endif
-#endif
-
 namespace afn::svgf {
 
-#ifdef AFN_SVGF_HAVE_AVX512
+#ifdef AFN_CPU_HAVE_AVX512
 
 namespace {
 
@@ -54,7 +42,7 @@ inline __mmask16 columnsInImage(int qx0, int width)
 }
 
 /// 2^a for a <= 0 (finite results for a >= -126; lanes below are flushed or masked by callers).
-AFN_SVGF_AVX512_INLINE __m512 exp2v(__m512 a)
+AFN_CPU_AVX512_INLINE __m512 exp2v(__m512 a)
 {
     const __m512 fl = _mm512_roundscale_ps(a, _MM_FROUND_TO_NEG_INF | _MM_FROUND_NO_EXC);
     const __m512 f = _mm512_sub_ps(a, fl);
@@ -67,7 +55,7 @@ AFN_SVGF_AVX512_INLINE __m512 exp2v(__m512 a)
     return _mm512_scalef_ps(p, fl);
 }
 
-AFN_SVGF_AVX512_INLINE __m512 absv(__m512 v)
+AFN_CPU_AVX512_INLINE __m512 absv(__m512 v)
 {
     return _mm512_castsi512_ps(
         _mm512_and_si512(_mm512_castps_si512(v), _mm512_set1_epi32(0x7fffffff)));
@@ -99,7 +87,7 @@ struct NormalPower {
 /// max(0, n_p . n_q)^sigmaN; kSquarings >= 0: sigmaN = 2^kSquarings (the default 128 = 2^7,
 /// unrolled), -1: as `np` says.
 template <bool kHasNormal, int kSquarings>
-AFN_SVGF_AVX512_INLINE __m512 normalFactor16(
+AFN_CPU_AVX512_INLINE __m512 normalFactor16(
     const NormalPower& np, const Centre& c, const TapRow& r, int qx, __mmask16 m)
 {
     if (!kHasNormal)
@@ -137,7 +125,7 @@ AFN_SVGF_AVX512_INLINE __m512 normalFactor16(
 /// Add the tap at column qx of row r (lanes `m` in the image), with log2 h = `log2h` and the
 /// depth term's log2e / denominator `rz`, to the sums.
 template <bool kHasNormal, bool kHasDepth, int kSquarings>
-AFN_SVGF_AVX512_INLINE void addTap(const NormalPower& np, const Centre& c, const TapRow& r, int qx,
+AFN_CPU_AVX512_INLINE void addTap(const NormalPower& np, const Centre& c, const TapRow& r, int qx,
     __mmask16 m, float log2h, __m512 rz, Sums& s)
 {
     const __m512 lq = _mm512_maskz_loadu_ps(m, r.c[kLuminance] + qx);
@@ -176,8 +164,7 @@ constexpr float kLog2H[3][3] = { // by |j|, |i|
 
 /// log2e * invPhiL of pixels x .. x + 15 of row y (kernels.h AtrousArgs::sigmaL), from the
 /// variance of the rows y - 1, y, y + 1 (lanes outside the image load 0 and are not counted).
-AFN_SVGF_AVX512_INLINE __m512 invPhiLog2e(
-    const Planes& in, float sigmaL, int x, int y, __mmask16 m0)
+AFN_CPU_AVX512_INLINE __m512 invPhiLog2e(const Planes& in, float sigmaL, int x, int y, __mmask16 m0)
 {
     const int w = in.width(), h = in.height();
     const __mmask16 left = columnsInImage(x - 1, w), right = columnsInImage(x + 1, w);
@@ -211,7 +198,7 @@ AFN_SVGF_AVX512_INLINE __m512 invPhiLog2e(
 
 /// Sums of the 24 non-centre taps of pixels x .. x + 15 of the rows `rows` (offsets -2 .. 2).
 template <bool kHasNormal, bool kHasDepth, int kSquarings>
-AFN_SVGF_AVX512_INLINE void addTaps(const NormalPower& np, const Centre& c, const TapRow* rows,
+AFN_CPU_AVX512_INLINE void addTaps(const NormalPower& np, const Centre& c, const TapRow* rows,
     const bool* valid, const __mmask16* cols, int x, int step, float sigmaZ, Sums& s)
 {
 #pragma GCC unroll 12
@@ -240,7 +227,7 @@ AFN_SVGF_AVX512_INLINE void addTaps(const NormalPower& np, const Centre& c, cons
 }
 
 template <bool kHasNormal, bool kHasDepth, int kSquarings>
-AFN_SVGF_AVX512 void atrousRows16(const AtrousArgs& a, int y0, int y1, const NormalPower& np)
+AFN_CPU_AVX512 void atrousRows16(const AtrousArgs& a, int y0, int y1, const NormalPower& np)
 {
     const Planes& in = *a.in;
     const Guide& g = *a.guide;

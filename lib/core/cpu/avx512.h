@@ -1,0 +1,23 @@
+// SPDX-License-Identifier: Apache-2.0
+// The common head of the AVX-512 kernels (cpu/conv_avx512.cpp, cpu/afn_filter_avx512.cpp,
+// methods/svgf/atrous_avx512.cpp). The build has no -march: such a kernel is compiled for AVX-512
+// per function and used only where the running CPU has AVX-512F (cpu/isa.h, checked at run time).
+// Where the compiler can do that (GCC or Clang on x86-64), AFN_CPU_HAVE_AVX512 is defined, the
+// intrinsics are included, AFN_CPU_AVX512 marks a kernel and AFN_CPU_AVX512_INLINE a helper of one
+// (the same target, so that it may use the intrinsics, and always inlined into its caller).
+// Elsewhere a kernel file compiles its fallback only. Include it in kernel files only: it silences
+// a GCC false positive for the rest of the file.
+#pragma once
+
+#if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__))
+#include <immintrin.h>
+#define AFN_CPU_HAVE_AVX512 1
+#define AFN_CPU_AVX512 __attribute__((target("avx512f,avx2,fma")))
+#define AFN_CPU_AVX512_INLINE AFN_CPU_AVX512 inline __attribute__((always_inline))
+#if defined(__GNUC__) && !defined(__clang__)
+// GCC 12's AVX-512 min/max/reduce/roundscale/scalef intrinsics start from _mm512_undefined_ps
+// (false positive).
+#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
+#pragma GCC diagnostic ignored "-Wuninitialized"
+#endif
+#endif
