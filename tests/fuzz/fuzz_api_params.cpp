@@ -209,9 +209,7 @@ void step(FuzzedDataProvider& in, const std::string& method, AFNFilter f,
 
 extern "C" int LLVMFuzzerInitialize(int*, char***)
 {
-    g_device = afnNewDevice(AFN_DEVICE_TYPE_DEFAULT);
-    afnSetDeviceInt(g_device, "numThreads", 1);
-    afnCommitDevice(g_device);
+    g_device = fuzz::newSingleThreadDevice();
     return 0;
 }
 

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: Apache-2.0
 // Helpers shared by the fuzz targets: property checks that abort (libFuzzer then saves the input),
-// the device error rule of the C API, and a small deterministic input frame.
+// the targets' device, the device error rule of the C API, and a small deterministic input frame.
 #pragma once
 
 #include <afn/afn.h>
@@ -22,6 +22,15 @@ inline void check(bool ok, const char* target, const std::string& what)
         std::fprintf(stderr, "%s: property violated: %s\n", target, what.c_str());
         std::abort();
     }
+}
+
+/// A committed default device running one thread (the targets' device, made once at start).
+inline AFNDevice newSingleThreadDevice()
+{
+    AFNDevice device = afnNewDevice(AFN_DEVICE_TYPE_DEFAULT);
+    afnSetDeviceInt(device, "numThreads", 1);
+    afnCommitDevice(device);
+    return device;
 }
 
 /// Take the device's pending error and check it is one a caller can act on: bad input is
