@@ -4,7 +4,14 @@
     cd training && /usr/bin/python3 -m afn.evaluate --data ../data/afn-default \\
         --scenes moving_light,glass --weights results/eval-holdout/model.afnw \\
         [--ablation full=a.afnw,fusion=b.afnw,1spp=c.afnw,ta=d.afnw] [--frames 0-15] \\
+        [--spp 16] [--timing 1280x720] \\
         --out ../docs/afn-evaluation.md --json results.json
+
+A scene is a folder under --data (or an absolute path, e.g. examples/sequence) holding
+frame.NNNN.exr and reference.NNNN.exr. With --spp N a scene's frames come from its sppN/ subfolder
+where it has one (the afn-dataset-2 layout of docs/dataset.md: SCENE/sppN/frame.NNNN.exr beside
+SCENE/reference.NNNN.exr); folders without it are read as they are. --timing WxH adds paper
+Table 9: one `afntool --benchmark:size=WxH` run over every method, ms per frame on this machine.
 
 For every scene and method (the noisy 1-spp input, ta, svgf, bmfr, afn) it runs one afntool command,
 ``afntool --frames F DATA/scene/frame.####.exr [--denoise:method=M] --compare
@@ -68,24 +75,35 @@ def weights_info(path):
 
 
 def frames_found(scene_dir):
-    """Frame numbers that have both a 1-spp frame and a reference."""
+    """Frame numbers that have both a noisy frame and a reference."""
+    frame_dir, ref_dir = scene_dirs(scene_dir)
     nums = []
-    for p in glob.glob(os.path.join(scene_dir, "frame.[0-9][0-9][0-9][0-9].exr")):
+    for p in glob.glob(os.path.join(frame_dir, "frame.[0-9][0-9][0-9][0-9].exr")):
         n = int(os.path.basename(p)[6:10])
-        if os.path.exists(os.path.join(scene_dir, f"reference.{n:04d}.exr")):
+        if os.path.exists(os.path.join(ref_dir, f"reference.{n:04d}.exr")):
             nums.append(n)
     return sorted(nums)
 
 
+SPP = None   # set by main(): --spp N reads SCENE/sppN/ where a scene has it
+
+
+def scene_dirs(scene_dir):
+    """(folder of the noisy frames, folder of the references) of one scene."""
+    if SPP is not None and os.path.isdir(os.path.join(scene_dir, f"spp{SPP}")):
+        return os.path.join(scene_dir, f"spp{SPP}"), scene_dir
+    return scene_dir, scene_dir
+
+
 def afntool_command(args, scene, method, weights):
-    d = os.path.join(args.data, scene)
+    frame_dir, ref_dir = scene_dirs(os.path.join(args.data, scene))
     cmd = [args.afntool, "--threads", str(args.threads), "--frames", args.scene_frames[scene]]
     if weights:
         cmd += ["--weights", weights]
-    cmd.append(os.path.join(d, "frame.####.exr"))
+    cmd.append(os.path.join(frame_dir, "frame.####.exr"))
     if method != "noisy":
         cmd.append(f"--denoise:method={method}")
-    return cmd + ["--compare", os.path.join(d, "reference.####.exr"), "--json"]
+    return cmd + ["--compare", os.path.join(ref_dir, "reference.####.exr"), "--json"]
 
 
 def run_one(args, scene, method, weights=None, label=None):
@@ -197,18 +215,76 @@ def table(header, rows):
     return lines + ["| " + " | ".join(r) + " |" for r in rows]
 
 
+def method_labels():
+    """Column titles; the noisy input's names the sample count read with --spp."""
+    return [f"Noisy ({SPP} spp)" if m == "noisy" and SPP is not None else label
+            for m, label in METHODS]
+
+
+def scene_name(scene):
+    """A scene as the tables show it: its name, or an absolute path relative to the repository."""
+    if os.path.isabs(scene):
+        rel = os.path.relpath(scene, REPO)
+        return scene if rel.startswith("..") else rel
+    return scene
+
+
 def metric_table(metric, results, averages, scenes, notes):
     key, title, higher, fmt = metric
-    labels = [label for _, label in METHODS]
+    labels = method_labels()
     rows = []
     for scene in scenes:
         runs = [results[scene][m] for m, _ in METHODS]
-        rows.append([f"`{scene}`"] + cells(runs, key, fmt, higher, notes, labels))
+        rows.append([f"`{scene_name(scene)}`"] + cells(runs, key, fmt, higher, notes, labels))
     avg = [averages[m] for m, _ in METHODS]
     rows.append(["Average"] + cells(avg, key, fmt, higher, notes, labels))
     arrow = "higher is better" if higher else "lower is better"
     return [f"### {title}", "", f"({arrow}; best per row in bold)", ""] + \
         table(["Scene"] + labels, rows) + [""]
+
+
+# ---- paper Table 9: time per frame ---------------------------------------------------------------
+
+def run_timing(args):
+    """One afntool benchmark run over every method at args.timing (WxH): its JSON points, the
+    command and the load average before and after (the machine may be shared)."""
+    methods = [m for m, _ in METHODS if m != "noisy"]
+    cmd = [args.afntool, "--threads", str(args.threads), "-q",
+           f"--benchmark:size={args.timing}:methods={','.join(methods)}:frames=5:warmup=1",
+           "--json"]
+    load0 = os.getloadavg()[0]
+    try:
+        p = subprocess.run(cmd, check=True, capture_output=True, text=True)
+        doc = json.loads(p.stdout)
+    except (subprocess.CalledProcessError, json.JSONDecodeError) as e:
+        log(f"timing FAILED: {e}")
+        return {"error": str(e), "command": shlex.join(cmd)}
+    load1 = os.getloadavg()[0]
+    log(f"timing at {args.timing}: {len(doc.get('points', []))} methods")
+    return {"points": doc.get("points", []), "command": shlex.join(cmd),
+            "load": [round(load0, 2), round(load1, 2)], "threads": doc.get("threads")}
+
+
+def timing_table(timing):
+    lines = ["### Time per frame (paper Table 9)", ""]
+    if "error" in timing:
+        return lines + [f"The benchmark failed: {timing['error']}", ""]
+    lines += [f"One run on this machine ({timing['threads']} threads, load average "
+              f"{timing['load'][0]} before, {timing['load'][1]} after: a shared machine "
+              "inflates wall times, the process CPU time is the steadier figure), median of 5 "
+              "frames after 1 warm-up, synthetic frames with every AOV:", "", "```sh",
+              timing["command"], "```", ""]
+    rows = []
+    by = {p["method"]: p for p in timing["points"]}
+    labels = dict(METHODS)
+    for m, _ in METHODS:
+        p = by.get(m)
+        if p:
+            size = f"{p['width']}x{p['height']}"
+            rows.append([labels[m], size, f"{p['medianMs']:.1f}", f"{p['medianCpuMs']:.1f}",
+                         f"{p['heapMiBPerMegapixel']:.0f}"])
+    return lines + table(["Method", "Size", "ms per frame (wall)", "CPU ms per frame",
+                          "Heap MiB per MP"], rows) + [""]
 
 
 def ablation_table(results, averages, scenes, args, notes):
@@ -239,11 +315,15 @@ def weights_line(info):
 
 
 def header_lines(args, meta):
-    lines = ["# afn evaluation: accuracy on held-out scenes", "",
+    title = "# afn evaluation: accuracy on held-out scenes"
+    lines = [title + (f" at {SPP} spp" if SPP is not None else ""), "",
              f"Generated {meta['date']} by:", "", "```sh", meta["command"], "```", "",
              f"- Data: `{args.data}` — {meta['data']}",
-             f"- Held-out scenes: {', '.join(f'`{s}`' for s in args.scenes)}",
-             "- Frames: " + ", ".join(f"`{s}` {args.scene_frames[s]}" for s in args.scenes),
+             f"- Held-out scenes: {', '.join(f'`{scene_name(s)}`' for s in args.scenes)}",
+             "- Frames: " + ", ".join(f"`{scene_name(s)}` {args.scene_frames[s]}"
+                                      for s in args.scenes),
+             "- Noisy input: " + (f"the scenes' `spp{SPP}/` frames where they have them"
+                                  if SPP is not None else "the scenes' `frame.NNNN.exr`"),
              f"- afntool: `{args.afntool}` ({meta['afntool_version']})",
              "- AFN weights: " + (weights_line(meta["weights"]) if meta["weights"] else
                                   "none given (the library's built-in weights, if any)")]
@@ -270,8 +350,24 @@ def markdown(args, meta, results, averages):
         body += metric_table(TEMPORAL, results, averages, args.scenes, notes)
     if args.ablation:
         body += ablation_table(results, averages, args.scenes, args, notes)
+    if meta.get("timing"):
+        body += timing_table(meta["timing"])
     foot = ["Notes:", ""] + notes.lines() if notes.texts else []
     return "\n".join(header_lines(args, meta) + body + foot) + "\n"
+
+
+def replace_section(path, name, text):
+    """The document at `path` with the block named `name` replaced by `text` (appended when the
+    document has no such block, created when there is no document). Headings go one level down
+    so the block sits under the document's own title."""
+    begin, end = f"<!-- evaluate:{name} begin -->", f"<!-- evaluate:{name} end -->"
+    body = "\n".join("#" + ln if ln.startswith("#") else ln for ln in text.splitlines())
+    block = f"{begin}\n{body}\n{end}"
+    old = open(path).read() if os.path.exists(path) else ""
+    if begin in old and end in old.split(begin, 1)[1]:
+        head, rest = old.split(begin, 1)
+        return head + block + rest.split(end, 1)[1]
+    return (old.rstrip("\n") + "\n\n" if old else "") + block + "\n"
 
 
 # ---- command line -------------------------------------------------------------------------------
@@ -335,7 +431,18 @@ def main(argv=None):
     ap.add_argument("--threads", type=int, default=0, help="afntool threads (0: all cores)")
     ap.add_argument("--out", default="", help="markdown report (default: print to stdout)")
     ap.add_argument("--json", default="", help="raw numbers (per frame and mean) as JSON")
+    ap.add_argument("--spp", type=int, default=None,
+                    help="read each scene's noisy frames from its sppN/ folder where it has one")
+    ap.add_argument("--section", default="",
+                    help="NAME: update only the block between '<!-- evaluate:NAME begin/end -->' "
+                    "in --out (appended if absent; headings one level down), keep the rest")
+    ap.add_argument("--timing", default="",
+                    help="WxH: add paper Table 9 (ms per frame of every method, one benchmark run)")
     args = ap.parse_args(argv)
+    global SPP
+    SPP = args.spp
+    if args.section and not args.out:
+        raise SystemExit("afn.evaluate: --section needs --out (the document to update)")
     args.scenes = [s for s in args.scenes.split(",") if s]
     args.ablation = parse_ablation(args.ablation)
     args.afntool = args.afntool or afntool.find_afntool()
@@ -350,12 +457,17 @@ def main(argv=None):
     log(f"{len(args.scenes)} scenes x {len(METHODS) + len(args.ablation)} runs, "
         f"afntool {args.afntool}")
     results, averages = evaluate(args)
+    if args.timing:
+        meta["timing"] = run_timing(args)
 
     text = markdown(args, meta, results, averages)
     if args.out:
         os.makedirs(os.path.dirname(os.path.abspath(args.out)), exist_ok=True)
-        with open(args.out, "w") as f:
+        if args.section:
+            text = replace_section(args.out, args.section, text)
+        with open(args.out + ".tmp", "w") as f:
             f.write(text)
+        os.replace(args.out + ".tmp", args.out)
         log(f"wrote {args.out}")
     else:
         sys.stdout.write(text)

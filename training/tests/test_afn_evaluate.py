@@ -172,3 +172,54 @@ def test_helpers():
     assert evaluate.parse_ablation("full=a.afnw,ta=b.afnw") == {"full": "a.afnw", "ta": "b.afnw"}
     with pytest.raises(SystemExit):
         evaluate.parse_ablation("refine=a.afnw")
+
+
+def test_spp_layout_section_and_timing(tmp_path, monkeypatch):
+    """--spp N reads SCENE/sppN/frame.NNNN.exr against SCENE/reference.NNNN.exr (the
+    afn-dataset-2 layout) and plain folders as they are; --section replaces only its block of an
+    existing document; --timing adds Table 9 with one row per method benchmarked."""
+    if AFNTOOL is None:
+        pytest.skip("afntool is not built (../build*/cli/afntool)")
+    monkeypatch.setattr(evaluate, "METHODS", [("noisy", "Noisy (1 spp)"), ("ta", "TA")])
+    data = tmp_path / "data"
+    layered, flat = data / "gamma", data / "delta"
+    (layered / "spp4").mkdir(parents=True)
+    flat.mkdir(parents=True)
+    def seq(kind, k):
+        return os.path.abspath(os.path.join(SEQUENCE, f"{kind}.{k:04d}.exr"))
+    for n in range(2):
+        os.symlink(seq("frame", n), layered / "spp4" / f"frame.{n:04d}.exr")
+        os.symlink(seq("reference", n), layered / f"reference.{n:04d}.exr")
+        os.symlink(seq("frame", n + 3), flat / f"frame.{n:04d}.exr")
+        os.symlink(seq("reference", n + 3), flat / f"reference.{n:04d}.exr")
+    doc_path, js = tmp_path / "doc.md", tmp_path / "eval.json"
+    doc_path.write_text("# Title\n\nkept before\n\n<!-- evaluate:s4 begin -->\nOLD TABLE\n"
+                        "<!-- evaluate:s4 end -->\n\nkept after\n")
+    evaluate.main(["--data", str(data), "--scenes", "gamma,delta", "--afntool", AFNTOOL,
+                   "--spp", "4", "--threads", "1", "--out", str(doc_path), "--section", "s4",
+                   "--timing", "64x36", "--json", str(js)])
+    md, doc = doc_path.read_text(), json.loads(js.read_text())
+    assert md.startswith("# Title\n\nkept before\n\n<!-- evaluate:s4 begin -->\n## afn evaluation")
+    assert md.rstrip().endswith("<!-- evaluate:s4 end -->\n\nkept after")
+    assert "OLD TABLE" not in md and md.count("evaluate:s4 begin") == 1
+    assert "| Scene | Noisy (4 spp) | TA |" in md and "#### PSNR (dB)" in md
+    for scene, first in (("gamma", 0), ("delta", 3)):
+        got = doc["results"][scene]["noisy"]["frames"]
+        want = [afntool_json(os.path.join(SEQUENCE, f"frame.{first + n:04d}.exr"), "--compare",
+                             os.path.join(SEQUENCE, f"reference.{first + n:04d}.exr"))
+                for n in range(2)]
+        for a, b in zip(got, want):
+            assert a["psnr"] == pytest.approx(b["frames"][0]["psnr"], rel=1e-9), scene
+    rows = section(md.replace("\n#### ", "\n### "), "Time per frame (paper Table 9)")
+    assert rows[0].startswith("| Method | Size | ms per frame (wall) |")
+    assert [r.split("|")[1].strip() for r in rows[2:]] == ["TA"]
+    assert rows[2].split("|")[2].strip() == "64x36"
+
+
+def test_replace_section_appends_and_creates(tmp_path):
+    p = tmp_path / "d.md"
+    assert evaluate.replace_section(str(p), "x", "# T\nbody") == \
+        "<!-- evaluate:x begin -->\n## T\nbody\n<!-- evaluate:x end -->\n"
+    p.write_text("intro\n")
+    assert evaluate.replace_section(str(p), "x", "### U") == \
+        "intro\n\n<!-- evaluate:x begin -->\n#### U\n<!-- evaluate:x end -->\n"
