@@ -24,7 +24,7 @@ struct FilterType {
     std::string description;
     /// The method's own parameters; after registration the full table: accumulation (when the
     /// stages accumulate), the method's own, reprojection (when they reproject), aux (when they
-    /// demodulate: stages/aux_prefilter.h), conventions.
+    /// demodulate: stages/aux_prefilter.h), work skipping (filter/work_mask.h), conventions.
     std::vector<ParamDesc> params;
     StageNeeds stages;
     std::vector<FeatureOutput> features; ///< feature outputs the method can write

@@ -7,18 +7,23 @@
 
 namespace afn::svgf {
 
-void Denoiser::atrous(const Planes& in, Planes& out, int step)
+void Denoiser::atrous(const Planes& in, Planes& out, int step, const WorkRegion* region)
 {
     const int w = in.width(), h = in.height();
     out.resize(w, h, kColorPlanes);
     m_invPhiL.resize(w, h, 1);
-    parallelRows(h, [&](int y0, int y1) { invPhiRows(in, m_settings.sigmaL, m_invPhiL, y0, y1); });
+    parallelRows(h, [&](int y0, int y1) {
+        for (int y = y0; y < y1; ++y)
+            if (!region || !region->rowEmpty(y)) // invPhiL is read at the computed pixels only
+                invPhiRows(in, m_settings.sigmaL, m_invPhiL, y, y + 1);
+    });
     AtrousArgs a;
     a.in = &in;
     a.invPhiL = &m_invPhiL;
     a.guide = &m_guide;
     a.out = &out;
     a.step = step;
+    a.region = region;
     parallelRows(h, [&](int y0, int y1) { atrousRows(a, y0, y1); });
 }
 

@@ -79,8 +79,10 @@ AFN_SVGF_INLINE void atrousRowsOf(const AtrousArgs& a, int y0, int y1)
     const Planes& in = *a.in;
     Planes& out = *a.out;
     const int w = in.width(), h = in.height();
-    for (int y = y0; y < y1; ++y)
-        for (int x = 0; x < w; x += kLanes) {
+    for (int y = y0; y < y1; ++y) {
+        int xBegin, xEnd;
+        regionColumns(a.region, y, w, xBegin, xEnd);
+        for (int x = xBegin; x < xEnd; x += kLanes) {
             V8 cp[3];
             for (int k = 0; k < 3; ++k)
                 cp[k] = cpu::load8(in.row(k, y) + x);
@@ -103,6 +105,7 @@ AFN_SVGF_INLINE void atrousRowsOf(const AtrousArgs& a, int y0, int y1)
             storeLanes(out.row(kVariance, y), x, w, s.vsum * inv * inv);
             storeLanes(out.row(kLuminance, y), x, w, luminance8(o[0], o[1], o[2]));
         }
+    }
 }
 
 } // namespace

@@ -15,11 +15,17 @@
 // Filtered values are written as c_p + sum(w (c_q - c_p)) / sum(w), identical in exact arithmetic
 // to sum(w c_q) / sum(w), so a constant image stays bit-exactly constant. The variance estimate and
 // the à-trous passes run 8 pixels at a time on planes (methods/svgf/kernels.h).
+// Work skipping (Frame::work, methods/svgf/work_skip.cpp): the variance estimate and the à-trous
+// passes run only on the work region dilated by what the later passes read; the other pixels put
+// out the temporally integrated colour.
 #pragma once
 
+#include "filter/work_region.h"
 #include "methods/svgf/guide.h"
 #include "methods/svgf/planes.h"
 #include "stages/reproject.h"
+
+#include <vector>
 
 namespace afn::svgf {
 
@@ -36,8 +42,13 @@ public:
 
 private:
     void integrate(const Image& irradiance, const Reprojector& taps);
-    void estimateVariance();
-    void atrous(const Planes& in, Planes& out, int step);
+    void estimateVariance(const WorkRegion* region);
+    void atrous(const Planes& in, Planes& out, int step, const WorkRegion* region);
+    /// The regions the passes compute for this frame's work mask (work_skip.cpp); false when
+    /// every pixel needs work.
+    bool planRegions(const Frame& f);
+    /// Copy colour planes into `dst` (3 ch) over `region` (null: everywhere).
+    static void copyColor(const Planes& src, int firstPlane, const WorkRegion* region, Image& dst);
 
     Settings m_settings;
     Guide m_guide;
@@ -47,6 +58,9 @@ private:
     Planes m_integrated; ///< this frame's integration as planes (kernels.h IntegratedPlane)
     Planes m_cv, m_cvTmp; ///< colour, variance, luminance ping-pong (kernels.h ColorPlane)
     Planes m_invPhiL; ///< per-iteration luminance scale (1 plane)
+    WorkRegion m_work; ///< pixels that need denoising (bounding spans of Frame::work)
+    std::vector<WorkRegion> m_passRegions; ///< per à-trous iteration, the pixels it computes
+    WorkRegion m_varianceRegion; ///< the pixels the variance estimate computes
 };
 
 } // namespace afn::svgf

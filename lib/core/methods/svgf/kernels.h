@@ -12,6 +12,7 @@
 // on every frame (peak = the scalar output's maximum).
 #pragma once
 
+#include "filter/work_region.h"
 #include "methods/svgf/guide.h"
 #include "methods/svgf/planes.h"
 
@@ -38,6 +39,7 @@ struct AtrousArgs {
     const Guide* guide = nullptr;
     Planes* out = nullptr; ///< ColorPlane
     int step = 1;
+    const WorkRegion* region = nullptr; ///< per row, the columns to compute (null: all)
 };
 void atrousRows(const AtrousArgs& a, int y0, int y1);
 
@@ -53,7 +55,16 @@ struct VarianceArgs {
     Planes* out = nullptr; ///< ColorPlane
     float phiL = 4.0f; ///< luminance edge-stopping (sigmaL, not variance-scaled)
     float varianceHistory = 4.0f;
+    const WorkRegion* region = nullptr; ///< per row, the columns to compute (null: all)
 };
+
+/// Columns [begin, end) of row y that a kernel computes: the region's span with its start rounded
+/// down to a vector boundary (lanes are computed as without a region), or the whole row.
+inline void regionColumns(const WorkRegion* region, int y, int width, int& begin, int& end)
+{
+    begin = region ? region->x0(y) / kLanes * kLanes : 0;
+    end = region ? region->x1(y) : width;
+}
 void varianceRows(const VarianceArgs& a, int y0, int y1);
 
 } // namespace afn::svgf

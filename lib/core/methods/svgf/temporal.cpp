@@ -70,7 +70,7 @@ void Denoiser::integrate(const Image& irr, const Reprojector& taps)
     m_hasHistory = true;
 }
 
-void Denoiser::estimateVariance()
+void Denoiser::estimateVariance(const WorkRegion* region)
 {
     const int w = m_color.width(), h = m_color.height();
     m_cv.resize(w, h, kColorPlanes);
@@ -80,6 +80,7 @@ void Denoiser::estimateVariance()
     a.out = &m_cv;
     a.phiL = m_settings.sigmaL;
     a.varianceHistory = static_cast<float>(m_settings.varianceHistory);
+    a.region = region;
     parallelRows(h, [&](int y0, int y1) { varianceRows(a, y0, y1); });
 }
 
@@ -87,33 +88,22 @@ void Denoiser::process(const Frame& f, const Image& irr, const Reprojector& taps
 {
     m_guide.build(f, m_settings);
     integrate(irr, taps);
-    estimateVariance();
+    const bool skip = planRegions(f);
+    estimateVariance(skip ? &m_varianceRegion : nullptr);
     // m_color is the feedback slot (it becomes the history in the next integrate()): it keeps the
-    // unfiltered integrated colour unless iteration feedbackTap overwrites it.
+    // unfiltered integrated colour unless iteration feedbackTap overwrites it (with skipping: over
+    // the pixels that iteration computed, exact ones only).
     for (int i = 0; i < m_settings.iterations; ++i) {
-        atrous(m_cv, m_cvTmp, 1 << i);
+        const WorkRegion* region = skip ? &m_passRegions[i] : nullptr;
+        atrous(m_cv, m_cvTmp, 1 << i, region);
         std::swap(m_cv, m_cvTmp);
-        if (i == m_settings.feedbackTap) {
-            const int w = m_cv.width(), h = m_cv.height();
-            parallelRows(h, [&](int y0, int y1) {
-                for (int y = y0; y < y1; ++y)
-                    for (int k = 0; k < 3; ++k) {
-                        const float* c = m_cv.row(kRed + k, y);
-                        for (int x = 0; x < w; ++x)
-                            m_color(x, y, k) = c[x];
-                    }
-            });
-        }
+        if (i == m_settings.feedbackTap)
+            copyColor(m_cv, kRed, region, m_color);
     }
     filtered.resize(f.width, f.height, 3);
-    parallelRows(f.height, [&](int y0, int y1) {
-        for (int y = y0; y < y1; ++y)
-            for (int k = 0; k < 3; ++k) {
-                const float* c = m_cv.row(kRed + k, y);
-                for (int x = 0; x < f.width; ++x)
-                    filtered(x, y, k) = c[x];
-            }
-    });
+    if (skip) // the cheap path: the temporally integrated colour, then the work region's result
+        copyColor(m_integrated, kIntRed, nullptr, filtered);
+    copyColor(m_cv, kRed, skip ? &m_work : nullptr, filtered);
 }
 
 } // namespace afn::svgf
