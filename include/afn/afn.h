@@ -120,6 +120,10 @@ typedef enum AFNDeviceType {
 /// denoising come out bit-identical to skip = false.
 #define AFN_PARAM_SKIP "skip"
 #define AFN_PARAM_DENOISING_RANGE "denoisingRange"
+/// Cost/accuracy tier: "fast", "balanced" (default: the method as without the parameter), "high"
+/// (a parameter of every denoising method; what each tier does is in its help text and README.md,
+/// lib/core/filter/quality.h).
+#define AFN_PARAM_QUALITY "quality"
 /// Array parameters (afnSetFilterFloats).
 #define AFN_ARRAY_VIEW_PROJECTION "viewProjection"
 #define AFN_ARRAY_PIXEL_OFFSET "pixelOffset"

@@ -58,6 +58,11 @@ add_test(NAME slurm_farm_job_array
 set_tests_properties(slurm_farm_job_array PROPERTIES SKIP_RETURN_CODE 77 TIMEOUT 240
   LABELS farm ENVIRONMENT "OCIO=")
 
+# --denoise:quality=fast|balanced|high end to end (the tiers' pixels, errors, help).
+afn_add_gtest(test_afntool_quality SOURCES integration/test_afntool_quality.cpp
+  integration/cli_runner.cpp LIBS PkgConfig::OIIO)
+target_compile_definitions(test_afntool_quality PRIVATE AFNTOOL_PATH="$<TARGET_FILE:afntool>")
+add_dependencies(test_afntool_quality afntool)
 # Work skipping end to end: :mask=, sky depth, skip=off comparison, the sky benchmark.
 afn_add_gtest(test_afntool_skip SOURCES integration/test_afntool_skip.cpp
   integration/cli_runner.cpp LIBS PkgConfig::OIIO)
