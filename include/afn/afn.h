@@ -116,8 +116,9 @@ typedef enum AFNDeviceType {
 #define AFN_PARAM_AUX "aux"
 /// Work skipping, parameters of every method (docs/work-skipping.md): "skip" (bool, default true)
 /// lets pixels that need no denoising (depth non-finite or >= "denoisingRange" (float, scene units,
-/// default 1e9), alpha 0, AFN_IMAGE_MASK <= 0) take the method's cheap path; the pixels that need
-/// denoising come out bit-identical to skip = false.
+/// default 1e9), alpha 0, AFN_IMAGE_MASK <= 0) take the method's cheap path where it has one
+/// (svgf, bmfr, afn on the CPU; the help of "skip" says what each method does); the pixels that
+/// need denoising come out bit-identical to skip = false.
 #define AFN_PARAM_SKIP "skip"
 #define AFN_PARAM_DENOISING_RANGE "denoisingRange"
 /// Cost/accuracy tier: "fast", "balanced" (default: the method as without the parameter), "high"

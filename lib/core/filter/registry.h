@@ -30,6 +30,9 @@ struct FilterType {
     /// What quality=fast|balanced|high do for this method (the help of its "quality" parameter,
     /// filter/quality.h: appended after its own parameters); empty = no such parameter.
     std::string qualityHelp;
+    /// What skip=on does in this method (appended to the help of "skip", filter/work_mask.h):
+    /// its cheap path and what stays exact, or that it skips nothing. Empty: "not implemented".
+    std::string skipHelp;
     StageNeeds stages;
     std::vector<FeatureOutput> features; ///< feature outputs the method can write
     /// Inputs it reads besides the colour: the method's own; the registry adds those of the

@@ -16,12 +16,24 @@ const ParamBinding<WorkSettings>& workBinding()
         = ParamBinding<S>()
               .add(&S::skip, "skip", "Skip unneeded pixels",
                   "pixels that need no denoising (background: depth non-finite or beyond "
-                  "denoisingRange; alpha 0; outside the mask image) take the method's cheap path "
-                  "(temporally accumulated colour); the others come out bit-identical to skip=off")
+                  "denoisingRange; alpha 0; outside the mask image) may take the method's cheap "
+                  "path")
               .add(&S::denoisingRange, "denoisingRange", 0.0, 3.4e38, "Denoising range",
                   "depth (scene units) at or beyond which a pixel is background and skipped "
                   "(NRD denoisingRange; Blender Cycles writes 1e10 for the background)");
     return binding;
+}
+
+std::vector<ParamDesc> workDescriptors(const std::string& skipHelp)
+{
+    std::vector<ParamDesc> table = workBinding().descriptors();
+    for (ParamDesc& d : table)
+        if (d.name == "skip")
+            d.help += ". In this method: "
+                + (skipHelp.empty() ? std::string("not implemented (every pixel is denoised; the "
+                                                  "skipped share is only reported)")
+                                    : skipHelp);
+    return table;
 }
 
 namespace {

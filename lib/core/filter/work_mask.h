@@ -21,6 +21,7 @@
 
 #include <map>
 #include <string>
+#include <vector>
 
 namespace afn {
 
@@ -36,11 +37,14 @@ struct WorkSettings {
 
 /// The descriptors of WorkSettings ("skip", "denoisingRange").
 const ParamBinding<WorkSettings>& workBinding();
+/// The same descriptors for one method: `skipHelp` (FilterType::skipHelp: what skipping does in
+/// that method) is appended to the help of "skip"; empty says skipping is not implemented there.
+std::vector<ParamDesc> workDescriptors(const std::string& skipHelp);
 
 /// Fill `frame.work` (frame size, gathered) from the raw depth / position bindings, the gathered
 /// alpha and the mask binding; leaves it empty when skipping is off or every pixel needs work.
 /// Returns the share in [0, 1] of pixels that need no denoising.
-double buildWorkMask(const std::map<std::string, ImageBinding>& images, const WorkSettings& s,
-    Frame& frame);
+double buildWorkMask(
+    const std::map<std::string, ImageBinding>& images, const WorkSettings& s, Frame& frame);
 
 } // namespace afn

@@ -1,17 +1,21 @@
 // SPDX-License-Identifier: Apache-2.0
-// Work skipping (issue 19, filter/work_mask.h): for every method, the pixels that need denoising
-// come out bit-identical to skip=off on every frame of a sequence (static camera, and a camera
-// moving by a sub-pixel step), whatever marks the others (sky depth, alpha 0, a user mask); the
-// skipped pixels really take the cheap path where the method has one (svgf, bmfr); the share is
-// reported. Plus the mask rules and WorkRegion's dilation.
+// Work skipping (issue 19, filter/work_mask.h): for every method (one test per method and case),
+// the pixels that need denoising come out bit-identical to skip=off on every frame of a sequence
+// (static camera, and a camera moving by a sub-pixel step), whatever marks the others (sky depth,
+// alpha 0, a user mask); the skipped pixels really take the cheap path where the method has one
+// (svgf, bmfr, afn), and nothing changes where it has none; the share is reported; every method's
+// "skip" help says which. Plus the mask rules and WorkRegion's dilation.
+#include "cpu/isa.h"
 #include "filter/work_region.h"
 #include "test_methods_util.h"
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <string>
+#include <vector>
 
 namespace {
 
@@ -85,27 +89,33 @@ void differences(const Image& a, const Image& b, const Image& need, double& need
             }
 }
 
-const char* const kMethods[] = { "identity", "ta", "svgf", "bmfr" };
-
-void expectUnchanged(float mx, float my, Image* alpha, Image* mask, const Image& need)
+/// Methods with a cheap path: skipped pixels differ from skip=off. The others (identity, ta:
+/// nothing to skip; wskpn, nbgd: not implemented) must come out identical everywhere.
+bool skipsWork(const std::string& m)
 {
-    for (const char* m : kMethods) {
-        double share = 0.0;
-        const std::vector<Image> on = run(m, true, 6, mx, my, alpha, mask, &share);
-        const std::vector<Image> off = run(m, false, 6, mx, my, alpha, mask);
-        EXPECT_GT(share, 0.3) << m;
-        double otherMax = 0.0;
-        for (std::size_t i = 0; i < on.size(); ++i) {
-            double needed = 0.0, other = 0.0;
-            differences(on[i], off[i], need, needed, other);
-            EXPECT_EQ(needed, 0.0) << m << " frame " << i << " motion " << mx << "," << my;
-            otherMax = std::max(otherMax, other);
-        }
-        // svgf and bmfr filter less where they skip: the skipped pixels must differ somewhere
-        // (else nothing was skipped and the test above proves nothing).
-        if (std::string(m) == "svgf" || std::string(m) == "bmfr")
-            EXPECT_GT(otherMax, 0.0) << m;
+    return m == "svgf" || m == "bmfr" || m == "afn";
+}
+
+void expectUnchanged(
+    const std::string& m, float mx, float my, Image* alpha, Image* mask, const Image& need)
+{
+    double share = 0.0;
+    const std::vector<Image> on = run(m, true, 6, mx, my, alpha, mask, &share);
+    const std::vector<Image> off = run(m, false, 6, mx, my, alpha, mask);
+    EXPECT_GT(share, 0.3) << m;
+    double otherMax = 0.0;
+    for (std::size_t i = 0; i < on.size(); ++i) {
+        double needed = 0.0, other = 0.0;
+        differences(on[i], off[i], need, needed, other);
+        EXPECT_EQ(needed, 0.0) << m << " frame " << i << " motion " << mx << "," << my;
+        otherMax = std::max(otherMax, other);
     }
+    // Where a method skips, the skipped pixels must differ somewhere (else nothing was skipped
+    // and the test above proves nothing); where it does not, skip must change nothing.
+    if (skipsWork(m))
+        EXPECT_GT(otherMax, 0.0) << m;
+    else
+        EXPECT_EQ(otherMax, 0.0) << m;
 }
 
 Image belowSky()
@@ -113,27 +123,84 @@ Image belowSky()
     return makeImage(kW, kH, 1, [](int, int y, int) { return y >= kSkyRows ? 1.0f : 0.0f; });
 }
 
+/// Every registered method that runs as created (afn, wskpn, nbgd: builds with their weights).
+std::vector<std::string> readyMethods()
+{
+    std::vector<std::string> names;
+    for (const afn::FilterType& t : afn::filterTypes())
+        if (t.ready)
+            names.push_back(t.name);
+    return names;
+}
+
+class WorkSkipping : public testing::TestWithParam<std::string> { };
+
 } // namespace
 
-TEST(WorkSkipping, SkyPixelsSkippedOthersBitIdenticalStaticCamera)
+TEST_P(WorkSkipping, SkyPixelsSkippedOthersBitIdenticalStaticCamera)
 {
-    expectUnchanged(0.0f, 0.0f, nullptr, nullptr, belowSky());
+    expectUnchanged(GetParam(), 0.0f, 0.0f, nullptr, nullptr, belowSky());
 }
 
-TEST(WorkSkipping, SkyPixelsSkippedOthersBitIdenticalSubPixelMotion)
+TEST_P(WorkSkipping, SkyPixelsSkippedOthersBitIdenticalSubPixelMotion)
 {
-    expectUnchanged(0.3f, -0.2f, nullptr, nullptr, belowSky());
+    expectUnchanged(GetParam(), 0.3f, -0.2f, nullptr, nullptr, belowSky());
 }
 
-TEST(WorkSkipping, AlphaAndUserMaskSkippedOthersBitIdentical)
+TEST_P(WorkSkipping, AlphaAndUserMaskSkippedOthersBitIdentical)
 {
     // Alpha 0 on the left 20 columns, a user mask that leaves out the right 30 columns.
     Image alpha = makeImage(kW, kH, 1, [](int x, int, int) { return x < 20 ? 0.0f : 1.0f; });
     Image mask = makeImage(kW, kH, 1, [](int x, int, int) { return x < kW - 30 ? 1.0f : 0.0f; });
-    const Image need = makeImage(kW, kH, 1, [](int x, int y, int) {
-        return y >= kSkyRows && x >= 20 && x < kW - 30 ? 1.0f : 0.0f;
-    });
-    expectUnchanged(0.0f, 0.0f, &alpha, &mask, need);
+    const Image need = makeImage(kW, kH, 1,
+        [](int x, int y, int) { return y >= kSkyRows && x >= 20 && x < kW - 30 ? 1.0f : 0.0f; });
+    expectUnchanged(GetParam(), 0.0f, 0.0f, &alpha, &mask, need);
+}
+
+INSTANTIATE_TEST_SUITE_P(EveryMethod, WorkSkipping, testing::ValuesIn(readyMethods()),
+    [](const testing::TestParamInfo<std::string>& i) { return i.param; });
+
+TEST(WorkSkippingSvgf, BothAtrousKernelsKeepNeededPixelsBitIdentical)
+{
+    // The portable 8-lane and the AVX-512 16-lane à-trous kernels each restrict their rows to
+    // the region; each must keep the needed pixels of its own skip=off run (where the CPU has
+    // no AVX-512 both runs are the portable kernel).
+    const afn::cpu::Isa saved = afn::cpu::activeIsa();
+    std::vector<Image> byIsa[2];
+    int k = 0;
+    for (afn::cpu::Isa isa : { afn::cpu::Isa::Portable, afn::cpu::Isa::Avx512 }) {
+        afn::cpu::forceIsa(isa);
+        expectUnchanged("svgf", 0.3f, -0.2f, nullptr, nullptr, belowSky());
+        byIsa[k++] = run("svgf", true, 3, 0.3f, -0.2f);
+    }
+    afn::cpu::forceIsa(saved);
+    // And the two kernels agree within the tolerance the kernels have without skipping
+    // (methods/svgf/kernels.h: max relative difference 1.1e-5 on examples/sequence).
+    const Image need = belowSky();
+    for (std::size_t f = 0; f < byIsa[0].size(); ++f)
+        for (int y = 0; y < kH; ++y)
+            for (int x = 0; x < kW; ++x)
+                for (int c = 0; c < 3; ++c)
+                    if (need(x, y, 0) > 0.0f) {
+                        const float a = byIsa[0][f](x, y, c), b = byIsa[1][f](x, y, c);
+                        EXPECT_LE(std::fabs(a - b), 1e-4f * std::max(1.0f, std::fabs(a)))
+                            << x << "," << y << " frame " << f;
+                    }
+}
+
+TEST(WorkSkippingHelp, EveryMethodSaysWhatSkipDoes)
+{
+    // The help of "skip" states the method's behaviour; the ones that skip nothing say so.
+    for (const afn::FilterType& t : afn::filterTypes()) {
+        std::string help;
+        for (const afn::ParamDesc& d : t.params)
+            if (d.name == "skip")
+                help = d.help;
+        EXPECT_NE(help.find("In this method: "), std::string::npos) << t.name;
+        const bool says = help.find("not implemented") != std::string::npos
+            || help.find("nothing to skip") != std::string::npos;
+        EXPECT_EQ(says, !skipsWork(t.name)) << t.name << ": " << help;
+    }
 }
 
 TEST(WorkSkipping, MaskRulesAndShare)
@@ -142,9 +209,8 @@ TEST(WorkSkipping, MaskRulesAndShare)
     double share = 0.0;
     run("ta", true, 1, 0.0f, 0.0f, nullptr, nullptr, &share);
     EXPECT_DOUBLE_EQ(share, static_cast<double>(kSkyRows) / kH);
-    Image mask = makeImage(kW, kH, 1, [](int x, int, int) {
-        return x == 0 ? std::numeric_limits<float>::quiet_NaN() : 1.0f;
-    });
+    Image mask = makeImage(kW, kH, 1,
+        [](int x, int, int) { return x == 0 ? std::numeric_limits<float>::quiet_NaN() : 1.0f; });
     run("ta", true, 1, 0.0f, 0.0f, nullptr, &mask, &share);
     EXPECT_DOUBLE_EQ(share, (kSkyRows * kW + (kH - kSkyRows)) / static_cast<double>(kW * kH));
     run("ta", false, 1, 0.0f, 0.0f, nullptr, &mask, &share);
