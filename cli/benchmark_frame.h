@@ -20,4 +20,9 @@ void makeFrame(LoadedFrame& f, int w, int h, int frame, double sky = 0.0);
 /// The number of sky rows makeFrame gives a frame of height h.
 int skyRows(int h, double sky);
 
+/// The expected value of a covered pixel's beauty (every channel): the noiseless image the
+/// covered rows estimate, E[v] for v = 0.3 u (u < 0.9), 4 u (u >= 0.9), u uniform in [0, 1):
+/// 0.3 * 0.81 / 2 + 4 * 0.19 / 2 = 0.5015.
+constexpr float kCoveredExpectation = 0.5015f;
+
 } // namespace afntool

@@ -5,9 +5,11 @@
 // "sky skip=off" (the same frames, every pixel denoised). Reported: median wall and process-CPU ms
 // per frame, the ratios sky / full and sky / sky skip=off, and the largest difference between
 // the two sky runs over the covered pixels on every timed frame (0 = bit-identical: skipping
-// changed no pixel that needed denoising). rounds=N repeats the three runs alternately and takes
-// the medians over all rounds' frames (robust on a shared machine). Modifiers: methods=a,b
-// (default every type but identity), frames=N (5), warmup=W (2), rounds=R (1).
+// changed no pixel that needed denoising) and the covered rows' PSNR against their noiseless
+// value (benchmark_frame.h kCoveredExpectation) in all three runs. rounds=N repeats the three runs
+// alternately and takes the medians over all rounds' frames (robust on a shared machine).
+// Modifiers: methods=a,b (default every type but identity), frames=N (5), warmup=W (2), rounds=R
+// (1).
 #include "ops.h"
 
 #include "benchmark_frame.h"
@@ -72,13 +74,27 @@ double coveredDifference(const SkipRun& a, const SkipRun& b, int w, int y0)
     return worst;
 }
 
+/// PSNR (peak 1) over rows [y0, h) of every timed frame against kCoveredExpectation, the
+/// generated frames' noiseless covered value (benchmark_frame.h).
+double coveredPsnr(const SkipRun& r, int w, int y0)
+{
+    double se = 0.0;
+    std::size_t n = 0;
+    for (const std::vector<float>& out : r.outputs)
+        for (std::size_t i = static_cast<std::size_t>(y0) * w * 3; i < out.size(); ++i, ++n) {
+            const double d = static_cast<double>(out[i]) - kCoveredExpectation;
+            se += d * d;
+        }
+    return n == 0 || se == 0.0 ? INFINITY : -10.0 * std::log10(se / static_cast<double>(n));
+}
+
 int toCount(const std::string& text, const char* what, int lo)
 {
     try {
         return std::max(lo, std::stoi(text));
     } catch (const std::exception&) {
-        throw CliError(std::string("--benchmark: ") + what + " expects an integer, got '" + text
-            + "'");
+        throw CliError(
+            std::string("--benchmark: ") + what + " expects an integer, got '" + text + "'");
     }
 }
 
@@ -130,11 +146,12 @@ int runSkyBenchmark(const Options& opts, const Action& action)
     j.key("methods").beginArray();
     std::ostringstream csv;
     csv << "method,width,height,sky,fullMs,skyMs,skyOffMs,skyOverFull,skyOverSkyOff,fullCpuMs,"
-           "skyCpuMs,skyOffCpuMs,cpuSkyOverFull,cpuSkyOverSkyOff,coveredMaxDiff\n";
+           "skyCpuMs,skyOffCpuMs,cpuSkyOverFull,cpuSkyOverSkyOff,coveredMaxDiff,coveredPsnrSky,"
+           "coveredPsnrSkyOff,coveredPsnrFull\n";
     if (!opts.json)
-        std::printf("%-6s %9s %9s %9s %8s %8s %9s %9s %8s %8s %12s\n", "method", "full ms",
-            "sky ms", "off ms", "sky/full", "sky/off", "full cpu", "sky cpu", "sky/full",
-            "sky/off", "covered diff");
+        std::printf("%-6s %9s %9s %9s %8s %8s %9s %9s %8s %8s %12s %9s %9s\n", "method", "full ms",
+            "sky ms", "off ms", "sky/full", "sky/off", "full cpu", "sky cpu", "sky/full", "sky/off",
+            "covered diff", "psnr sky", "off-sky");
     Progress progress(static_cast<int>(methods.size()) * rounds * kCases, opts.quiet);
     int done = 0;
     for (const std::string& m : methods) {
@@ -154,21 +171,27 @@ int runSkyBenchmark(const Options& opts, const Action& action)
         for (int c = 0; c < kCases; ++c)
             ms[c] = median(runs[c].ms), cpu[c] = median(runs[c].cpuMs);
         const double diff = coveredDifference(runs[kSky], runs[kSkyOff], w, covered);
+        double psnr[kCases];
+        for (int c = 0; c < kCases; ++c)
+            psnr[c] = coveredPsnr(runs[c], w, covered);
         if (!opts.json)
-            std::printf("%-6s %9.1f %9.1f %9.1f %8.3f %8.3f %9.1f %9.1f %8.3f %8.3f %12.3g\n",
+            std::printf("%-6s %9.1f %9.1f %9.1f %8.3f %8.3f %9.1f %9.1f %8.3f %8.3f %12.3g %9.3f "
+                        "%9.3f\n",
                 m.c_str(), ms[kFull], ms[kSky], ms[kSkyOff], ms[kSky] / ms[kFull],
                 ms[kSky] / ms[kSkyOff], cpu[kFull], cpu[kSky], cpu[kSky] / cpu[kFull],
-                cpu[kSky] / cpu[kSkyOff], diff);
+                cpu[kSky] / cpu[kSkyOff], diff, psnr[kSky], psnr[kSkyOff] - psnr[kSky]);
         j.beginObject().field("method", m).field("fullMs", ms[kFull]).field("skyMs", ms[kSky]);
         j.field("skyOffMs", ms[kSkyOff]).field("fullCpuMs", cpu[kFull]);
         j.field("skyCpuMs", cpu[kSky]).field("skyOffCpuMs", cpu[kSkyOff]);
-        j.field("coveredMaxDiff", diff).endObject();
+        j.field("coveredMaxDiff", diff).field("coveredPsnrSky", psnr[kSky]);
+        j.field("coveredPsnrSkyOff", psnr[kSkyOff]).field("coveredPsnrFull", psnr[kFull]);
+        j.endObject();
         char line[400];
         std::snprintf(line, sizeof line,
-            "%s,%d,%d,%.3f,%.3f,%.3f,%.3f,%.4f,%.4f,%.3f,%.3f,%.3f,%.4f,%.4f,%.6g\n", m.c_str(), w,
-            h, sky, ms[kFull], ms[kSky], ms[kSkyOff], ms[kSky] / ms[kFull], ms[kSky] / ms[kSkyOff],
-            cpu[kFull], cpu[kSky], cpu[kSkyOff], cpu[kSky] / cpu[kFull], cpu[kSky] / cpu[kSkyOff],
-            diff);
+            "%s,%d,%d,%.3f,%.3f,%.3f,%.3f,%.4f,%.4f,%.3f,%.3f,%.3f,%.4f,%.4f,%.6g,%.4f,%.4f,%.4f\n",
+            m.c_str(), w, h, sky, ms[kFull], ms[kSky], ms[kSkyOff], ms[kSky] / ms[kFull],
+            ms[kSky] / ms[kSkyOff], cpu[kFull], cpu[kSky], cpu[kSkyOff], cpu[kSky] / cpu[kFull],
+            cpu[kSky] / cpu[kSkyOff], diff, psnr[kSky], psnr[kSkyOff], psnr[kFull]);
         csv << line;
     }
     progress.clear();
@@ -176,10 +199,13 @@ int runSkyBenchmark(const Options& opts, const Action& action)
     if (opts.json)
         std::printf("%s\n", j.str().c_str());
     else
-        std::printf("(median ms per frame over %d round(s) of %d timed frames after %d warm-up "
-                    "frames; full = every pixel covered, sky = top %.0f %% of the rows sky with "
-                    "skip on, off = the same with skip=off; covered diff = largest |sky - off| on "
-                    "the covered rows, 0 = bit-identical)\n",
+        std::printf(
+            "(median ms per frame over %d round(s) of %d timed frames after %d warm-up "
+            "frames; full = every pixel covered, sky = top %.0f %% of the rows sky with "
+            "skip on, off = the same with skip=off; covered diff = largest |sky - off| on "
+            "the covered rows, 0 = bit-identical; psnr sky = PSNR (peak 1) of the covered rows "
+            "against their noiseless value, off-sky = the same with skip=off minus it, "
+            "in dB)\n",
             rounds, timed, warmup, 100.0 * sky);
     if (!opts.report.empty()) {
         std::error_code ec;

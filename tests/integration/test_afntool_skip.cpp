@@ -8,11 +8,13 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <cstdint>
+#include <cstdio>
 #include <limits>
 #include <string>
+#include <vector>
 
 namespace {
 
@@ -58,11 +60,12 @@ TEST(AfntoolSkip, NeededPixelsBitIdenticalToSkipOffForEveryMethod)
     const std::string in = dir.file("in.####.exr");
     for (const char* method : { "ta", "svgf", "bmfr" }) {
         const std::string m = std::string("--denoise:method=") + method + ":mask=matte.R";
-        const CliResult on = runAfntool({ "--frames", "0-3", in, m, "-o", dir.file("on.####.exr") });
+        const CliResult on
+            = runAfntool({ "--frames", "0-3", in, m, "-o", dir.file("on.####.exr") });
         ASSERT_EQ(on.exitCode, 0) << on.err;
         // 24 sky rows + the right 64 columns of the other 40: (24 * 96 + 40 * 64) / (96 * 64).
-        EXPECT_NE(on.err.find(std::string(method) + " skipped 79.17 % of the pixels"),
-            std::string::npos)
+        EXPECT_NE(
+            on.err.find(std::string(method) + " skipped 79.17 % of the pixels"), std::string::npos)
             << on.err;
         const CliResult off = runAfntool(
             { "--frames", "0-3", in, m + ":skip=off", "-o", dir.file("off.####.exr") });
@@ -110,22 +113,41 @@ TEST(AfntoolSkip, MissingMaskChannelIsAnErrorNamingIt)
 TEST(AfntoolSkip, SkyBenchmarkReportsBitIdenticalCoveredPixels)
 {
     TempDir dir;
-    const CliResult r = runAfntool({ "-q", "--benchmark:size=64x48:sky=0.6:methods=svgf,bmfr:"
-                                           "frames=2:warmup=1",
+    const CliResult r = runAfntool({ "-q",
+        "--benchmark:size=64x48:sky=0.6:methods=svgf,bmfr,afn:"
+        "frames=2:warmup=1",
         "--report", dir.path() });
     ASSERT_EQ(r.exitCode, 0) << r.err;
     std::FILE* f = std::fopen(dir.file("skip.csv").c_str(), "r");
     ASSERT_NE(f, nullptr);
     char line[512];
-    int rows = 0;
-    ASSERT_NE(std::fgets(line, sizeof line, f), nullptr); // header
+    auto split = [](const std::string& s) {
+        std::vector<std::string> cells;
+        std::size_t a = 0;
+        for (std::size_t b; (b = s.find_first_of(",\n", a)) != std::string::npos; a = b + 1)
+            cells.push_back(s.substr(a, b - a));
+        if (a < s.size())
+            cells.push_back(s.substr(a));
+        return cells;
+    };
+    ASSERT_NE(std::fgets(line, sizeof line, f), nullptr);
+    const std::vector<std::string> header = split(line);
+    auto column = [&](const char* name) {
+        return static_cast<std::size_t>(
+            std::find(header.begin(), header.end(), name) - header.begin());
+    };
+    const std::size_t diff = column("coveredMaxDiff"), sky = column("coveredPsnrSky"),
+                      off = column("coveredPsnrSkyOff");
+    ASSERT_LT(off, header.size());
+    std::vector<std::string> methods;
     while (std::fgets(line, sizeof line, f)) {
-        const std::string s = line;
-        ++rows;
-        // The last column is the largest covered-pixel difference: exactly 0.
-        const std::string last = s.substr(s.rfind(',') + 1);
-        EXPECT_EQ(std::stod(last), 0.0) << s;
+        const std::vector<std::string> c = split(line);
+        ASSERT_EQ(c.size(), header.size()) << line;
+        methods.push_back(c[0]);
+        // Skipping changed no covered pixel: the largest difference is 0, the PSNRs are equal.
+        EXPECT_EQ(std::stod(c[diff]), 0.0) << line;
+        EXPECT_EQ(c[sky], c[off]) << line;
     }
     std::fclose(f);
-    EXPECT_EQ(rows, 2);
+    EXPECT_EQ(methods, (std::vector<std::string> { "svgf", "bmfr", "afn" }));
 }

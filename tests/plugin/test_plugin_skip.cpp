@@ -31,8 +31,8 @@ ClipSource maskSource(const Sequence& seq)
 }
 
 /// Every frame of `method` with the Mask clip connected and skip on or off.
-std::vector<std::vector<float>> renderAll(Session& s, const ClipSource& mask,
-    const std::string& method, bool skip)
+std::vector<std::vector<float>> renderAll(
+    Session& s, const ClipSource& mask, const std::string& method, bool skip)
 {
     std::map<std::string, const ClipSource*> inputs
         = { { "Source", &s.sources["color"] }, { "Mask", &mask } };
