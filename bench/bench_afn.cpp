@@ -127,7 +127,7 @@ void BM_AfnWhole(benchmark::State& state)
 BENCHMARK(BM_AfnWhole)->Name("afn.whole.1280x720")->Apply(configure);
 
 // Work skipping (issue 19): the same pass with the top 60 % of the rows masked out (work = 0), so
-// the stripes there take the cheap path. Compare with afn.whole.1280x720 in the same run; the
+// the rows there take the cheap path. Compare with afn.whole.1280x720 in the same run; the
 // counter is the full frame's GFLOP over the time, an "effective" rate.
 void BM_AfnWholeWork40(benchmark::State& state)
 {
@@ -137,7 +137,7 @@ void BM_AfnWholeWork40(benchmark::State& state)
     std::fill(work.data(), work.at(0, s.c1.height() * 60 / 100), 0.0f);
     for (auto _ : state)
         s.net.run(s.in, s.out, &work);
-    state.counters["skipped stripes"] = s.net.skippedStripes();
+    state.counters["skipped rows"] = s.net.skippedRows();
     setFlops(state,
         s.net.stageFlop(Stage::Prediction) + s.net.stageFlop(Stage::Filtering)
             + s.net.stageFlop(Stage::Refinement));

@@ -122,7 +122,11 @@ LoadedFrame loadFrame(RunContext& ctx, const FrameRef& ref, bool keepAll)
     lf.ref = ref;
     afn::io::ReadOptions ro;
     ro.overrides = opts.overrides;
-    ro.keepAll = keepAll;
+    // A --denoise:mask=CHANNEL reads a channel no role maps: every channel is read then.
+    bool mask = false;
+    for (const Action& a : opts.actions)
+        mask = mask || (a.name == "denoise" && a.mods.count("mask"));
+    ro.keepAll = keepAll || mask;
     ro.required = { afn::io::Role::Color };
     try {
         lf.images = afn::io::readFrame(ref.path, ro);

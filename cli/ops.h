@@ -58,6 +58,8 @@ private:
     /// and the inputs the method uses that the frame lacks (a warning when that changes).
     void logAux(const LoadedFrame& frame, Progress* progress);
     void check(const std::string& what, const std::string& file);
+    /// Bind the :mask= channel of the frame (or unbind the mask); CliError when the file lacks it.
+    void bindMask(const LoadedFrame& frame);
     /// --device cuda|auto: the filter on the CUDA device; with auto, nothing (the CPU is used)
     /// when there is no CUDA device or the method does not run there.
     void openOnCuda(const std::string& choice);
@@ -73,6 +75,8 @@ private:
     afn::FilterRef m_filter;
     std::vector<float> m_output;
     std::string m_missingWarned; ///< the missing inputs last warned about (warned once per change)
+    std::string m_maskChannel; ///< :mask=CHANNEL, the work mask's channel ("" = none)
+    std::vector<float> m_mask; ///< that channel of the current frame
 };
 
 /// --compare REF: per-frame and mean metrics of the current beauty against the reference frames

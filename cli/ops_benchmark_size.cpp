@@ -6,10 +6,11 @@
 // Per point also the peak heap of the run (heap_counter.h: every operator new of the process,
 // filter creation to the last frame; the generated input frame, allocated before, is left out),
 // and for afn the engine report (engine_report.h: GFLOP/s per stage beside dnnl_sgemm).
-// The inputs are plain fills plus hashed per-pixel noise (no rendering): a lit plane facing the
-// camera, static camera, zero motion. Written by hand here; they carry no product pixel math.
+// The inputs are plain fills plus hashed per-pixel noise (benchmark_frame.h). With :sky=S the
+// work-skipping benchmark runs instead (ops_benchmark_skip.cpp).
 #include "ops.h"
 
+#include "benchmark_frame.h"
 #include "cli_error.h"
 #include "engine_report.h"
 #include "heap_counter.h"
@@ -53,60 +54,14 @@ std::pair<int, int> parseSize(const std::string& text)
     throw CliError("--benchmark: size expects WIDTHxHEIGHT (1..16384), got '" + text + "'");
 }
 
-/// Hash noise in [0, 1) for (x, y, frame, channel): integer mixing, independent of thread count.
-float hashNoise(std::uint32_t x, std::uint32_t y, std::uint32_t f, std::uint32_t c)
-{
-    std::uint32_t h = x * 0x8da6b343u ^ y * 0xd8163841u ^ f * 0xcb1ab31fu ^ c * 0x9e3779b9u;
-    h ^= h >> 16, h *= 0x7feb352du, h ^= h >> 15, h *= 0x846ca68bu, h ^= h >> 16;
-    return static_cast<float>(h >> 8) / 16777216.0f;
-}
-
-afn::io::RoleImage fill(int w, int h, int components, std::initializer_list<float> value)
-{
-    afn::io::RoleImage r;
-    r.width = w, r.height = h, r.components = components;
-    r.pixels.resize(static_cast<std::size_t>(w) * h * components);
-    const std::vector<float> v(value);
-    for (std::size_t i = 0; i < r.pixels.size(); ++i)
-        r.pixels[i] = v[i % components];
-    return r;
-}
-
-/// A generated frame: 1-spp-like noisy beauty over constant albedo, normal, depth; zero motion.
-void makeFrame(LoadedFrame& f, int w, int h, int frame)
-{
-    using afn::io::Role;
-    if (f.images.roles.empty()) {
-        f.images.roles[Role::Color] = fill(w, h, 3, { 0.0f, 0.0f, 0.0f });
-        f.images.roles[Role::Albedo] = fill(w, h, 3, { 0.6f, 0.5f, 0.4f });
-        f.images.roles[Role::Normal] = fill(w, h, 3, { 0.0f, 0.0f, 1.0f });
-        f.images.roles[Role::Depth] = fill(w, h, 1, { 5.0f });
-        f.images.roles[Role::Motion] = fill(w, h, 2, { 0.0f, 0.0f });
-        afn::io::RoleImage pos = fill(w, h, 3, { 0.0f, 0.0f, -5.0f });
-        for (int y = 0; y < h; ++y)
-            for (int x = 0; x < w; ++x) {
-                float* p = &pos.pixels[(static_cast<std::size_t>(y) * w + x) * 3];
-                p[0] = (x + 0.5f) / w * 2.0f - 1.0f, p[1] = 1.0f - (y + 0.5f) / h * 2.0f;
-            }
-        f.images.roles[Role::Position] = std::move(pos);
-    }
-    f.ref.frame = frame;
-    f.ref.path = "generated " + std::to_string(w) + "x" + std::to_string(h);
-    f.beauty.resize(static_cast<std::size_t>(w) * h * 3);
-    for (int y = 0; y < h; ++y)
-        for (int x = 0; x < w; ++x)
-            for (int c = 0; c < 3; ++c) {
-                // Mostly dark with rare bright samples, as 1 spp path tracing gives.
-                const float u = hashNoise(x, y, frame, c);
-                f.beauty[(static_cast<std::size_t>(y) * w + x) * 3 + c]
-                    = u > 0.9f ? 4.0f * u : 0.3f * u;
-            }
-}
-
 } // namespace
+
+int runSkyBenchmark(const Options& opts, const Action& action); // ops_benchmark_skip.cpp
 
 int runSizeBenchmark(const Options& opts, const Action& action)
 {
+    if (action.mods.count("sky"))
+        return runSkyBenchmark(opts, action);
     auto mod = [&](const char* k, const std::string& def) {
         auto it = action.mods.find(k);
         return it == action.mods.end() ? def : it->second;

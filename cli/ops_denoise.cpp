@@ -3,11 +3,13 @@
 
 #include "arg_checks.h"
 #include "cli_error.h"
+#include "near_match.h"
 #include "output_header.h"
 #include "progress.h"
 #include "sample_count.h"
 #include "text.h"
 
+#include <algorithm>
 #include <cstdio>
 #include <cstdlib>
 
@@ -71,7 +73,13 @@ SequenceDenoiser::SequenceDenoiser(const Options& opts, const Action& action)
     if (it != m_params.end())
         m_params.erase(it);
     checkMethodName(m_flag, m_method);
-    checkMethodParameters(m_flag, m_method, m_params, { "weights" });
+    checkMethodParameters(m_flag, m_method, m_params, { "weights", "mask" });
+    if (auto mk = m_params.find("mask"); mk != m_params.end()) {
+        m_maskChannel = mk->second;
+        m_params.erase(mk);
+        if (m_maskChannel.empty())
+            throw CliError(m_flag + ": :mask= needs a channel name (e.g. :mask=matte.R)");
+    }
     // Feature outputs are computed on the CPU: auto stays there, cuda reports the device's error.
     if (opts.device == "cuda" || (opts.device == "auto" && !m_features))
         openOnCuda(opts.device);
@@ -172,6 +180,7 @@ void SequenceDenoiser::run(LoadedFrame& frame, Progress* progress)
         m_filter.setImage(name, r.pixels.data(), formatFor(r.components), r.width, r.height, 0,
             r.components * sizeof(float), 0);
     }
+    bindMask(frame);
     if (img.camera) {
         m_filter.setFloats(AFN_ARRAY_VIEW_PROJECTION, img.camera->viewProjection, 16);
         m_filter.setFloats(AFN_ARRAY_PIXEL_OFFSET, img.camera->pixelOffset, 2);
@@ -202,6 +211,12 @@ void SequenceDenoiser::run(LoadedFrame& frame, Progress* progress)
     check(m_flag, frame.ref.path);
 
     logAux(frame, progress);
+    const float skipped = m_filter.get<float>(AFN_STAT_SKIPPED);
+    if (skipped > 0.0f)
+        note(m_flag + ": " + m_method + " skipped " + shareText(skipped)
+                + " of the pixels (background, alpha 0" + (m_maskChannel.empty() ? "" : ", mask")
+                + "; skip=off filters them) " + frame.ref.path,
+            m_opts.quiet, progress);
     const int nonFinite = m_filter.get<int>(AFN_STAT_NON_FINITE);
     const int negative = m_filter.get<int>(AFN_STAT_NEGATIVE);
     if (nonFinite > 0)
@@ -212,6 +227,31 @@ void SequenceDenoiser::run(LoadedFrame& frame, Progress* progress)
         warn(std::to_string(negative) + " negative colour values clamped to 0 (" + frame.ref.path
                 + ")",
             m_opts.quiet, progress);
+}
+
+void SequenceDenoiser::bindMask(const LoadedFrame& frame)
+{
+    if (m_maskChannel.empty()) {
+        m_filter.unsetImage(AFN_IMAGE_MASK);
+        return;
+    }
+    const std::optional<afn::io::LayeredImage>& all = frame.images.all;
+    const auto& names = all ? all->channels : std::vector<std::string> {};
+    const auto it = std::find(names.begin(), names.end(), m_maskChannel);
+    if (!all || it == names.end()) {
+        std::string list;
+        for (const std::string& n : names)
+            list += (list.empty() ? "" : ", ") + n;
+        throw CliError(m_flag + ": mask channel '" + m_maskChannel + "' is not in the file"
+                + didYouMean(m_maskChannel, names) + " (channels: " + list + ")",
+            frame.ref.path);
+    }
+    const std::size_t stride = names.size(), c = it - names.begin();
+    const std::size_t n = static_cast<std::size_t>(all->width) * all->height;
+    m_mask.resize(n);
+    for (std::size_t i = 0; i < n; ++i)
+        m_mask[i] = all->pixels[i * stride + c];
+    m_filter.setImage(AFN_IMAGE_MASK, m_mask.data(), afn::Format::Float, all->width, all->height);
 }
 
 void SequenceDenoiser::logAux(const LoadedFrame& frame, Progress* progress)

@@ -22,7 +22,10 @@ struct ClipRole {
 };
 const ClipRole kAuxClips[] = { { "Albedo", AFN_IMAGE_ALBEDO }, { "Normal", AFN_IMAGE_NORMAL },
     { "Depth", AFN_IMAGE_DEPTH }, { "Position", AFN_IMAGE_POSITION },
-    { "Motion", AFN_IMAGE_MOTION } };
+    { "Motion", AFN_IMAGE_MOTION },
+    // Work skipping: pixels where the mask's first component (an Alpha clip's only one) is <= 0
+    // need no denoising (docs/work-skipping.md; parameter "skip").
+    { "Mask", AFN_IMAGE_MASK } };
 constexpr int kNumAux = sizeof(kAuxClips) / sizeof(kAuxClips[0]);
 
 /// Per-instance state; render calls of one instance are serialised by `mutex`, so the effect is
@@ -123,7 +126,8 @@ void describeInContext(OfxImageEffectHandle effect, OfxPropertySetHandle inArgs)
     defineClip(effect, kOfxImageEffectSimpleSourceClipName, false, false);
     if (general)
         for (const ClipRole& c : kAuxClips)
-            defineClip(effect, c.clip, true, std::string(c.role) == "depth");
+            defineClip(effect, c.clip, true,
+                std::string(c.role) == AFN_IMAGE_DEPTH || std::string(c.role) == AFN_IMAGE_MASK);
     // The Filter context has only Source: frames are denoised on their own unless asked, and the
     // parameters that need auxiliary inputs are hidden.
     defineParams(effect, general);

@@ -212,7 +212,9 @@ void SequenceRunner::runFrame(
             throw OfxError(kOfxStatFailed, "no image from the " + where.str());
         const StridedView v = viewWindow(img, req.window, m_scratch[i]);
         const std::string role = in.role;
-        int need = role == AFN_IMAGE_DEPTH ? 1 : role == AFN_IMAGE_MOTION ? 2 : 3;
+        int need = role == AFN_IMAGE_DEPTH || role == AFN_IMAGE_MASK ? 1
+            : role == AFN_IMAGE_MOTION                               ? 2
+                                                                     : 3;
         if (v.components < need)
             throw OfxError(kOfxStatErrImageFormat,
                 "the " + where.str() + " has " + std::to_string(v.components)

@@ -95,6 +95,10 @@ typedef enum AFNDeviceType {
 #define AFN_IMAGE_POSITION "position" ///< world position
 #define AFN_IMAGE_MOTION "motion" ///< motion vectors (AFN_CONVENTION_MOTION_*)
 #define AFN_IMAGE_ALPHA "alpha" ///< coverage, passed through to a FLOAT4 output
+/// Work mask (1 channel; a wider format is read in its first channel): pixels where it is <= 0 (or
+/// NaN) need no denoising and take the method's cheap path when "skip" is on
+/// (docs/work-skipping.md).
+#define AFN_IMAGE_MASK "mask"
 /// Output image.
 #define AFN_IMAGE_OUTPUT "output"
 /// Prefix of a method's feature outputs ("feature.<name>", see afnGetFilterTypeFeature).
@@ -110,6 +114,13 @@ typedef enum AFNDeviceType {
 /// Quality of the auxiliary buffers (albedo, normal, depth): "auto" (default), "clean", "noisy"
 /// (a parameter of every method that demodulates; lib/core/stages/aux_prefilter.h).
 #define AFN_PARAM_AUX "aux"
+/// Work skipping, parameters of every method (docs/work-skipping.md): "skip" (bool, default true)
+/// lets pixels that need no denoising (depth non-finite or >= "denoisingRange" (float, scene units,
+/// default 1e9), alpha 0, AFN_IMAGE_MASK <= 0) take the method's cheap path where it has one
+/// (svgf, bmfr, afn on the CPU; the help of "skip" says what each method does); the pixels that
+/// need denoising come out bit-identical to skip = false.
+#define AFN_PARAM_SKIP "skip"
+#define AFN_PARAM_DENOISING_RANGE "denoisingRange"
 /// Cost/accuracy tier: "fast", "balanced" (default: the method as without the parameter), "high"
 /// (a parameter of every denoising method; what each tier does is in its help text and README.md,
 /// lib/core/filter/quality.h).
@@ -132,6 +143,9 @@ typedef enum AFNDeviceType {
 #define AFN_STAT_ALBEDO_SPECKLE "stats.albedoSpeckle"
 #define AFN_STAT_NORMAL_SPECKLE "stats.normalSpeckle"
 #define AFN_STAT_DEPTH_SPECKLE "stats.depthSpeckle"
+/// Share in [0, 1] of the last frame's pixels that needed no denoising (work skipping; 0 with
+/// skip = false) (afnGetFilterFloat).
+#define AFN_STAT_SKIPPED "stats.skipped"
 /// The inputs the method reads that the last frame lacked, with what each is for, e.g.
 /// "normal (edge-stopping); motion or position with a camera (reprojection: ...)"; "" when none
 /// (afnGetFilterString). The method still runs, with less to go on.

@@ -63,3 +63,8 @@ afn_add_gtest(test_afntool_quality SOURCES integration/test_afntool_quality.cpp
   integration/cli_runner.cpp LIBS PkgConfig::OIIO)
 target_compile_definitions(test_afntool_quality PRIVATE AFNTOOL_PATH="$<TARGET_FILE:afntool>")
 add_dependencies(test_afntool_quality afntool)
+# Work skipping end to end: :mask=, sky depth, skip=off comparison, the sky benchmark.
+afn_add_gtest(test_afntool_skip SOURCES integration/test_afntool_skip.cpp
+  integration/cli_runner.cpp LIBS PkgConfig::OIIO)
+target_compile_definitions(test_afntool_skip PRIVATE AFNTOOL_PATH="$<TARGET_FILE:afntool>")
+add_dependencies(test_afntool_skip afntool)

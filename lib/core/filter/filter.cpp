@@ -4,6 +4,7 @@
 #include "base/exception.h"
 #include "base/parallel.h"
 #include "filter/registry.h"
+#include "filter/work_mask.h"
 #include "stages/demodulate.h"
 
 #include <algorithm>
@@ -13,8 +14,9 @@ namespace afn {
 
 const std::vector<std::string>& inputImageNames()
 {
-    static const std::vector<std::string> names = { AFN_IMAGE_COLOR, AFN_IMAGE_ALBEDO,
-        AFN_IMAGE_NORMAL, AFN_IMAGE_DEPTH, AFN_IMAGE_POSITION, AFN_IMAGE_MOTION, AFN_IMAGE_ALPHA };
+    static const std::vector<std::string> names
+        = { AFN_IMAGE_COLOR, AFN_IMAGE_ALBEDO, AFN_IMAGE_NORMAL, AFN_IMAGE_DEPTH,
+              AFN_IMAGE_POSITION, AFN_IMAGE_MOTION, AFN_IMAGE_ALPHA, AFN_IMAGE_MASK };
     return names;
 }
 
@@ -113,7 +115,8 @@ void Filter::setImage(const std::string& name, const ImageBinding& b)
         for (const FeatureOutput& f : m_type.features)
             features += (features.empty() ? "" : ", ") + (AFN_IMAGE_FEATURE_PREFIX + f.name);
         throwInvalidArgument("unknown image '" + name
-            + "' (inputs: color, albedo, normal, depth, position, motion, alpha; output: output"
+            + "' (inputs: color, albedo, normal, depth, position, motion, alpha, mask; output: "
+              "output"
             + (features.empty() ? "" : "; features of " + m_type.name + ": " + features) + ")");
     }
     if (b.ptr == nullptr)
@@ -189,6 +192,7 @@ void Filter::commit()
 {
     validateBindings();
     m_conventions = conventionsBinding().read(m_params);
+    m_work = workBinding().read(m_params);
     if (m_stages.demodulate)
         m_aux.setSettings(auxBinding().read(m_params));
     if (m_stages.reproject != StageNeeds::Reproject::None) {
@@ -257,6 +261,7 @@ void Filter::execute()
     reportProgress(0.0);
     m_stats = InputStats {};
     gatherFrame(m_images, m_conventions, m_frame, m_stats);
+    m_skipped = buildWorkMask(m_images, m_work, m_frame);
     m_frame.camera = m_camera;
     m_frame.prevCamera = m_frameIndex > 0 ? m_prevCamera : Camera {};
     m_frame.frameIndex = m_frameIndex;

@@ -5,7 +5,8 @@
 // into the bound output. It also owns the temporal history's life: the first frame after creation
 // or a reset starts every stage and the method from an empty history.
 //
-// Per execute:  gather -> [aux prefilter: geometry] -> [reproject] -> [aux prefilter: albedo]
+// Per execute:  gather -> work mask -> [aux prefilter: geometry] -> [reproject] -> [aux prefilter:
+// albedo]
 //               -> [demodulate] -> [accumulate] -> denoise() -> output
 // (the aux prefilter runs with demodulation; stages/aux_prefilter.h)
 #pragma once
@@ -13,6 +14,7 @@
 #include "base/params.h"
 #include "filter/conventions.h"
 #include "filter/frame.h"
+#include "filter/work_mask.h"
 #include "stages/aux_prefilter.h"
 #include "stages/temporal_accumulation.h"
 
@@ -94,6 +96,8 @@ public:
     const InputStats& lastStats() const { return m_stats; }
     /// The method's inputs the last frame lacked (missingInputs(); "" when none).
     const std::string& lastMissingInputs() const { return m_missingInputs; }
+    /// Share of the last frame's pixels that needed no denoising (filter/work_mask.h).
+    double lastSkippedShare() const { return m_skipped; }
     /// What the aux prefilter measured and decided on the last frame (methods that demodulate).
     const AuxReport& auxReport() const { return m_aux.report(); }
     int width() const { return m_frame.width; }
@@ -141,6 +145,8 @@ private:
     ParamSet m_params;
     StageNeeds m_stages;
     InputConventions m_conventions;
+    WorkSettings m_work;
+    double m_skipped = 0.0;
     std::map<std::string, ImageBinding> m_images;
     std::function<bool(double)> m_progress;
     Camera m_camera; ///< set for the next frame

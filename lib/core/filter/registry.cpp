@@ -29,6 +29,7 @@ FilterType registered(FilterType t)
         append(table, reprojectBinding().descriptors());
     if (t.stages.demodulate)
         append(table, auxBinding().descriptors());
+    append(table, workDescriptors(t.skipHelp));
     append(table, conventionsBinding().descriptors());
     t.params = std::move(table);
 

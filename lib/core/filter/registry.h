@@ -24,11 +24,15 @@ struct FilterType {
     std::string description;
     /// The method's own parameters; after registration the full table: accumulation (when the
     /// stages accumulate), the method's own, quality (when qualityHelp is set), reprojection
-    /// (when they reproject), aux (when they demodulate: stages/aux_prefilter.h), conventions.
+    /// (when they reproject), aux (when they demodulate: stages/aux_prefilter.h), work skipping
+    /// (filter/work_mask.h), conventions.
     std::vector<ParamDesc> params;
     /// What quality=fast|balanced|high do for this method (the help of its "quality" parameter,
     /// filter/quality.h: appended after its own parameters); empty = no such parameter.
     std::string qualityHelp;
+    /// What skip=on does in this method (appended to the help of "skip", filter/work_mask.h):
+    /// its cheap path and what stays exact, or that it skips nothing. Empty: "not implemented".
+    std::string skipHelp;
     StageNeeds stages;
     std::vector<FeatureOutput> features; ///< feature outputs the method can write
     /// Inputs it reads besides the colour: the method's own; the registry adds those of the

@@ -171,6 +171,9 @@ FilterType filterType()
     t.devices = { AFN_DEVICE_TYPE_CPU, AFN_DEVICE_TYPE_CUDA };
 #endif
     t.create = create;
+    t.skipHelp = "the network (CPU) skips the rows without a needed pixel, in 8-row steps; those "
+                 "pixels take the temporally accumulated colour; needed pixels bit-identical to "
+                 "skip=off; not on a CUDA device";
     return t;
 }
 

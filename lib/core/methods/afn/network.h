@@ -57,15 +57,17 @@ public:
     Variant variant() const { return m_variant; }
 
     /// Whole forward pass in stripes: `out` = o (3 ch, demodulated, W x H, not clamped).
-    /// `work` (W x H, 1 ch, or null/empty = everywhere): a stripe none of whose output pixels is
-    /// non-zero there is not computed; its pixels take the cheap path, `out` = in.colorTa (the
-    /// temporal accumulation, the input colour where there is no history). Pixels whose stripe is
-    /// computed are bit-identical to a run without mask (work=0 pixels in it included).
+    /// `work` (W x H, 1 ch, or null/empty = everywhere): only the 8-row blocks that hold a
+    /// non-zero pixel there are computed (runs of such blocks cut into stripes); the other rows
+    /// take the cheap path, `out` = in.colorTa (the temporal accumulation, the input colour where
+    /// there is no history). Computed rows are bit-identical to a run without mask (work=0 pixels
+    /// in them included).
     void run(const Inputs& in, Image& out, const Image* work = nullptr);
     /// The same result through the whole-frame stages; keeps the intermediates below.
     void runWholeFrame(const Inputs& in, Image& out);
-    /// Stripes of the last run() skipped by its work mask, and stripes in all.
-    int skippedStripes() const { return m_skippedStripes; }
+    /// Rows of the frame (of H) the last run()'s work mask left to the cheap path, and the
+    /// stripes it computed.
+    int skippedRows() const { return m_skippedRows; }
     int stripes() const { return m_stripes; }
 
     // The stages, callable one by one (benchmark): prepare + predict = kernel prediction.
@@ -118,7 +120,7 @@ private:
     Inputs checkInputs(const Inputs& in);
 
     bool m_loaded = false;
-    int m_skippedStripes = 0, m_stripes = 0;
+    int m_skippedRows = 0, m_stripes = 0;
     Variant m_variant = Variant::Full;
     nn::Conv m_enc1, m_enc2, m_enc3, m_dec2, m_dec1, m_head1, m_headTa, m_ref1, m_ref2, m_ref3;
     int m_width = 0, m_height = 0;

@@ -36,10 +36,13 @@
 // multiply-adds than the frame needs (mostly the cheap encoder levels), not counted in the stage
 // GFLOP. A stripe's working set (a few MB per layer at 4K) replaces frame-sized streams.
 //
-// Work skipping (issue 19): a stripe whose output rows have no non-zero pixel in the work mask is
-// not computed; its output pixels are the temporal accumulation in.colorTa (the cheap path;
-// afn_method.cpp remodulates it as the network output). Stripes are independent, so a computed
-// stripe's pixels are bit-identical with or without the mask.
+// Work skipping (issue 19): with a work mask, only the 8-row blocks (the 1/8 grid a stripe must
+// start on) that hold a non-zero pixel of it are computed: each run of such blocks is cut into
+// stripes of at most kStripeRows from its first row. The other rows are the temporal accumulation
+// in.colorTa (the cheap path; afn_method.cpp remodulates it as the network output). The argument
+// above holds for any stripe bounds on the 1/8 grid, so computed rows are bit-identical with or
+// without the mask. Each run pays its own halos: a sky above the subject costs one halo, not a
+// stripe's worth of rows.
 #include "methods/afn/network.h"
 
 #include "base/exception.h"
@@ -183,29 +186,48 @@ void Network::run(const Inputs& given, Image& out, const Image* work)
     WorkspacePool& pool = *m_pool;
     std::fill(pool.ms, pool.ms + kStages, 0.0);
     const Image& cheap = given.colorTa ? *given.colorTa : *in.colorTa;
-    const int stripes = (hp + kStripeRows - 1) / kStripeRows;
-    std::vector<char> skip(stripes, 0);
-    if (masked)
-        for (int s = 0; s < stripes; ++s) {
-            const int y0 = s * kStripeRows, y1 = std::min(h, y0 + kStripeRows);
+    // Stripes [y0, y1) of padded rows; rows of the frame in none take the cheap path.
+    std::vector<std::pair<int, int>> stripes;
+    auto addRun = [&](int y0, int y1) {
+        for (int y = y0; y < y1; y += kStripeRows)
+            stripes.emplace_back(y, std::min(y1, y + kStripeRows));
+    };
+    if (!masked) {
+        addRun(0, hp);
+    } else {
+        auto blockHasWork = [&](int y0) { // y0 < h: hp - h < 8
             const float* m = work->at(0, y0);
-            skip[s] = std::none_of(
-                m, m + static_cast<std::size_t>(y1 - y0) * w, [](float v) { return v != 0.0f; });
+            return std::any_of(m, m + static_cast<std::size_t>(std::min(h, y0 + 8) - y0) * w,
+                [](float v) { return v != 0.0f; });
+        };
+        int runStart = -1; // first row of the current run of blocks with work
+        for (int y = 0; y <= hp; y += 8) {
+            const bool needed = y < hp && blockHasWork(y);
+            if (needed && runStart < 0)
+                runStart = y;
+            if (!needed && runStart >= 0) {
+                addRun(runStart, y);
+                runStart = -1;
+            }
         }
-    parallelFor(stripes, [&](int s) {
-        const int y0 = s * kStripeRows, y1 = std::min(hp, y0 + kStripeRows);
-        if (skip[s]) {
-            for (int y = y0; y < std::min(y1, h); ++y)
-                std::copy(cheap.at(0, y), cheap.at(0, y) + 3 * w, out.at(0, y));
-            return;
-        }
+    }
+    std::vector<char> computed(static_cast<std::size_t>(h), 0);
+    for (const auto& [y0, y1] : stripes)
+        std::fill(computed.begin() + std::min(y0, h), computed.begin() + std::min(y1, h), 1);
+    m_skippedRows = static_cast<int>(std::count(computed.begin(), computed.end(), 0));
+    if (m_skippedRows > 0)
+        parallelRows(h, [&](int y0, int y1) {
+            for (int y = y0; y < y1; ++y)
+                if (!computed[y])
+                    std::copy(cheap.at(0, y), cheap.at(0, y) + 3 * w, out.at(0, y));
+        });
+    parallelFor(static_cast<int>(stripes.size()), [&](int s) {
         std::unique_ptr<StripeWorkspace> ws = pool.take();
         double ms[kStages] = {};
-        runStripe(in, y0, y1, *ws, out, ms);
+        runStripe(in, stripes[s].first, stripes[s].second, *ws, out, ms);
         pool.give(std::move(ws), ms);
     });
-    m_stripes = stripes;
-    m_skippedStripes = static_cast<int>(std::count(skip.begin(), skip.end(), 1));
+    m_stripes = static_cast<int>(stripes.size());
     // The stages interleave across threads: split the wall time by their thread time.
     const double wall = std::chrono::duration<double, std::milli>(Clock::now() - start).count();
     double total = 0.0;

@@ -45,6 +45,9 @@ FilterType filterType()
     t.inputs = { { { AFN_IMAGE_NORMAL }, "regression features" },
         { { AFN_IMAGE_POSITION, AFN_IMAGE_DEPTH }, "regression features" } };
     t.create = factoryOf<BmfrFilter>();
+    t.skipHelp = "only the blocks holding a needed pixel (+3 px) are fitted; skipped pixels take "
+                 "the accumulated colour through the second accumulation and TAA; needed pixels "
+                 "bit-identical to skip=off";
     return t;
 }
 

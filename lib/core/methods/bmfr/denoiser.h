@@ -9,8 +9,15 @@
 //   3. second accumulation of the regression output with the same taps and
 //      alpha = max(1/len, secondAlphaMin) (len = TA history length after this frame);
 //   4. remodulation by albedo, then TAA (taa.cpp) on the linear radiance.
+// Work skipping (Frame::work): only the blocks that hold a pixel of the work region dilated by
+// kWorkMargin are fitted; the others pass the accumulated colour on (the cheap path) through the
+// second accumulation and TAA, which run everywhere (per pixel, cheap). The margin covers TAA's
+// 3x3 clamp box (1 pixel) and the history taps of the next frame (bilinear + 1: 2 pixels), so a
+// pixel that needs denoising is bit-identical to skip=off while it moves by less than a pixel per
+// frame relative to the mask (always with a static camera and mask).
 #pragma once
 
+#include "filter/work_region.h"
 #include "stages/temporal_accumulation.h"
 
 namespace afn::bmfr {
@@ -30,14 +37,19 @@ const ParamBinding<Settings>& settingsBinding();
 
 /// Fit the blockwise regression of `noisy` (3 ch, demodulated) over the frame's features and write
 /// the per-pixel fitted values (>= 0) into `filtered`. `blockFrame` selects the block offset.
-void regression(
-    const Frame& f, const Image& noisy, const Settings& s, int blockFrame, Image& filtered);
+/// With a `region` (work skipping), blocks that hold none of its pixels are not fitted: their
+/// pixels get `noisy` as it is.
+void regression(const Frame& f, const Image& noisy, const Settings& s, int blockFrame,
+    Image& filtered, const WorkRegion* region = nullptr);
 
 /// Temporal anti-aliasing: blend `current` (3 ch radiance) with `history` sampled bilinearly at the
 /// reprojected position, the history clamped in YCoCg to the average of the 3x3 box and 5-tap cross
 /// min/max boxes of `current`. Writes `out` (may not alias the inputs).
 void taa(
     const Reprojector& taps, const Image& current, const Image& history, float alpha, Image& out);
+
+/// Pixels around the work region whose regression must be exact (see the file comment).
+constexpr int kWorkMargin = 3;
 
 class Denoiser {
 public:

@@ -19,7 +19,12 @@ void Denoiser::reset()
 void Denoiser::process(
     const Frame& f, const Reprojector& taps, const TemporalAccumulator& ta, Image& out)
 {
-    regression(f, ta.color(), m_settings, f.frameIndex, m_regressed);
+    if (f.hasWorkMask()) {
+        const WorkRegion region = WorkRegion::fromMask(f.work).dilated(kWorkMargin);
+        regression(f, ta.color(), m_settings, f.frameIndex, m_regressed, &region);
+    } else {
+        regression(f, ta.color(), m_settings, f.frameIndex, m_regressed);
+    }
 
     // Second accumulation with the TA's taps: alpha = max(1/len, secondAlphaMin), len after TA.
     std::swap(m_filtered, m_prevFiltered);

@@ -156,10 +156,19 @@ void solveBlock(std::vector<double>& a, int n, int nf, double* w)
     }
 }
 
+/// Copy the in-image pixels of the block at (bx0, by0) from `src` to `dst` (3 ch).
+void copyBlock(const Image& src, int bx0, int by0, int B, Image& dst)
+{
+    for (int y = std::max(by0, 0); y < std::min(by0 + B, src.height()); ++y)
+        for (int x = std::max(bx0, 0); x < std::min(bx0 + B, src.width()); ++x)
+            for (int c = 0; c < 3; ++c)
+                dst(x, y, c) = src(x, y, c);
+}
+
 } // namespace
 
-void regression(
-    const Frame& f, const Image& noisy, const Settings& s, int blockFrame, Image& filtered)
+void regression(const Frame& f, const Image& noisy, const Settings& s, int blockFrame,
+    Image& filtered, const WorkRegion* region)
 {
     const int W = f.width, H = f.height, B = s.blockSize, n = B * B;
     Layout L;
@@ -174,6 +183,10 @@ void regression(
 
     parallelFor(nbx * nby, [&](int blockIndex) {
         const int bx0 = sx + (blockIndex % nbx) * B, by0 = sy + (blockIndex / nbx) * B;
+        if (region && !region->intersects(bx0, by0, bx0 + B, by0 + B)) {
+            copyBlock(noisy, bx0, by0, B, filtered); // work skipping: the cheap path
+            return;
+        }
         // Per-thread scratch, reused from block to block: a fresh 130 KB matrix per block was an
         // mmap, page faults and munmap each time. Every element read below is written first.
         thread_local std::vector<double> a;

@@ -26,6 +26,7 @@ FilterType filterType()
     t.name = "identity";
     t.description = "no denoising: the sanitised noisy colour (for I/O checks and comparisons)";
     t.create = factoryOf<IdentityFilter>();
+    t.skipHelp = "nothing to skip (the output is the input)";
     return t;
 }
 

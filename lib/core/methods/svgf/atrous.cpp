@@ -17,7 +17,7 @@ void atrousRows(const AtrousArgs& a, int y0, int y1)
         atrousRowsPortable(a, y0, y1);
 }
 
-void Denoiser::atrous(const Planes& in, Planes& out, int step)
+void Denoiser::atrous(const Planes& in, Planes& out, int step, const WorkRegion* region)
 {
     const int w = in.width(), h = in.height();
     out.resize(w, h, kColorPlanes);
@@ -27,6 +27,7 @@ void Denoiser::atrous(const Planes& in, Planes& out, int step)
     a.guide = &m_guide;
     a.out = &out;
     a.step = step;
+    a.region = region;
     m_rowOrder.clear();
     for (int r = 0; r < step; ++r)
         for (int y = r; y < h; y += step)

@@ -246,6 +246,10 @@ AFN_CPU_AVX512 void atrousRows16(const AtrousArgs& a, int y0, int y1, const Norm
     };
     for (int v = y0; v < y1; ++v) {
         const int y = a.rowOrder ? a.rowOrder[v] : v;
+        int xBegin, xEnd; // work skipping: the row's span of AtrousArgs::region
+        regionColumns(a.region, y, w, xBegin, xEnd, 16);
+        if (xBegin >= xEnd)
+            continue;
         TapRow rows[5];
         bool valid[5];
         for (int j = -2; j <= 2; ++j) {
@@ -254,7 +258,7 @@ AFN_CPU_AVX512 void atrousRows16(const AtrousArgs& a, int y0, int y1, const Norm
             if (valid[j + 2])
                 rows[j + 2] = tapRow(qy);
         }
-        for (int x = 0; x < w; x += 16) {
+        for (int x = xBegin; x < xEnd; x += 16) {
             __mmask16 cols[5];
             for (int i = -2; i <= 2; ++i)
                 cols[i + 2] = columnsInImage(x + i * step, w);

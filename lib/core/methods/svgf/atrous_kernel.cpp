@@ -112,7 +112,9 @@ AFN_SVGF_INLINE void atrousRowsOf(const AtrousArgs& a, int y0, int y1)
     const int w = in.width(), h = in.height();
     for (int v = y0; v < y1; ++v) {
         const int y = a.rowOrder ? a.rowOrder[v] : v;
-        for (int x = 0; x < w; x += kLanes) {
+        int xBegin, xEnd;
+        regionColumns(a.region, y, w, xBegin, xEnd);
+        for (int x = xBegin; x < xEnd; x += kLanes) {
             V8 cp[3];
             for (int k = 0; k < 3; ++k)
                 cp[k] = cpu::load8(in.row(k, y) + x);

@@ -18,8 +18,12 @@
 // 16 at a time with AVX-512 where the CPU has it (atrous_avx512.cpp); phiL is computed inside the
 // pass. Colour, moments and history length are kept as one 6-channel history image, gathered
 // through the reprojection's taps once per pixel.
+// Work skipping (Frame::work, methods/svgf/work_skip.cpp): the variance estimate and the à-trous
+// passes run only on the work region dilated by what the later passes read; the other pixels put
+// out the temporally integrated colour.
 #pragma once
 
+#include "filter/work_region.h"
 #include "methods/svgf/guide.h"
 #include "methods/svgf/planes.h"
 #include "stages/reproject.h"
@@ -38,8 +42,13 @@ public:
 
 private:
     void integrate(const Image& irradiance, const Reprojector& taps);
-    void estimateVariance();
-    void atrous(const Planes& in, Planes& out, int step);
+    void estimateVariance(const WorkRegion* region);
+    void atrous(const Planes& in, Planes& out, int step, const WorkRegion* region);
+    /// The regions the passes compute for this frame's work mask (work_skip.cpp); false when
+    /// every pixel needs work.
+    bool planRegions(const Frame& f);
+    /// Copy colour planes into `dst` (3 ch) over `region` (null: everywhere).
+    static void copyColor(const Planes& src, int firstPlane, const WorkRegion* region, Image& dst);
 
     Settings m_settings;
     Guide m_guide;
@@ -51,6 +60,9 @@ private:
     Planes m_integrated; ///< this frame's integration as planes (kernels.h IntegratedPlane)
     Planes m_cv, m_cvTmp; ///< colour, variance, luminance ping-pong (kernels.h ColorPlane)
     std::vector<int> m_rowOrder; ///< à-trous rows by y mod step (kernels.h AtrousArgs)
+    WorkRegion m_work; ///< pixels that need denoising (bounding spans of Frame::work)
+    std::vector<WorkRegion> m_passRegions; ///< per à-trous iteration, the pixels it computes
+    WorkRegion m_varianceRegion; ///< the pixels the variance estimate computes
 };
 
 } // namespace afn::svgf

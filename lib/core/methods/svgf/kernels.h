@@ -16,6 +16,7 @@
 // path (AFN_CPU_ISA=portable) is bit-identical to 6625a64.
 #pragma once
 
+#include "filter/work_region.h"
 #include "methods/svgf/guide.h"
 #include "methods/svgf/planes.h"
 
@@ -49,6 +50,7 @@ struct AtrousArgs {
     /// Denoiser::atrous orders rows by y mod step, so that consecutive rows share 4 of their 5
     /// tap rows and those stay in the cache at large steps.
     const int* rowOrder = nullptr;
+    const WorkRegion* region = nullptr; ///< per row, the columns to compute (null: all)
 };
 /// The kernel family of cpu::activeIsa(): atrousRowsAvx512 or atrousRowsPortable.
 void atrousRows(const AtrousArgs& a, int y0, int y1);
@@ -65,7 +67,18 @@ struct VarianceArgs {
     Planes* out = nullptr; ///< ColorPlane
     float phiL = 4.0f; ///< luminance edge-stopping (sigmaL, not variance-scaled)
     float varianceHistory = 4.0f;
+    const WorkRegion* region = nullptr; ///< per row, the columns to compute (null: all)
 };
+
+/// Columns [begin, end) of row y that a kernel computes: the region's span with its start rounded
+/// down to a boundary of `lanes` (vectors start where they do without a region), or the whole
+/// row; begin >= end for a row the region leaves out.
+inline void regionColumns(
+    const WorkRegion* region, int y, int width, int& begin, int& end, int lanes = kLanes)
+{
+    begin = region ? region->x0(y) / lanes * lanes : 0;
+    end = region ? region->x1(y) : width;
+}
 void varianceRows(const VarianceArgs& a, int y0, int y1);
 
 } // namespace afn::svgf

@@ -50,6 +50,10 @@ FilterType filterType()
     t.inputs = { { { AFN_IMAGE_NORMAL }, "edge-stopping" },
         { { AFN_IMAGE_DEPTH, AFN_IMAGE_POSITION }, "edge-stopping", true } };
     t.create = factoryOf<SvgfFilter>();
+    t.skipHelp = "the variance estimate and the a-trous passes run only over the needed pixels "
+                 "dilated by what later passes read; skipped pixels take the temporally "
+                 "integrated colour; needed pixels bit-identical to skip=off where the region "
+                 "ends at a depth edge (docs/work-skipping.md)";
     return t;
 }
 

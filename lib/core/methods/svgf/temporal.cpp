@@ -67,7 +67,7 @@ void Denoiser::integrate(const Image& irr, const Reprojector& taps)
     m_hasHistory = true;
 }
 
-void Denoiser::estimateVariance()
+void Denoiser::estimateVariance(const WorkRegion* region)
 {
     const int w = m_integrated.width(), h = m_integrated.height();
     m_cv.resize(w, h, kColorPlanes);
@@ -77,6 +77,7 @@ void Denoiser::estimateVariance()
     a.out = &m_cv;
     a.phiL = m_settings.sigmaL;
     a.varianceHistory = static_cast<float>(m_settings.varianceHistory);
+    a.region = region;
     parallelRows(h, [&](int y0, int y1) { varianceRows(a, y0, y1); });
 }
 
@@ -84,33 +85,22 @@ void Denoiser::process(const Frame& f, const Image& irr, const Reprojector& taps
 {
     m_guide.build(f, m_settings);
     integrate(irr, taps);
-    estimateVariance();
+    const bool skip = planRegions(f);
+    estimateVariance(skip ? &m_varianceRegion : nullptr);
     // m_history's colour is the feedback slot (the history of the next integrate()): it keeps the
-    // unfiltered integrated colour unless iteration feedbackTap overwrites it.
+    // unfiltered integrated colour unless iteration feedbackTap overwrites it (with skipping: over
+    // the pixels that iteration computed, exact ones only).
     for (int i = 0; i < m_settings.iterations; ++i) {
-        atrous(m_cv, m_cvTmp, 1 << i);
+        const WorkRegion* region = skip ? &m_passRegions[i] : nullptr;
+        atrous(m_cv, m_cvTmp, 1 << i, region);
         std::swap(m_cv, m_cvTmp);
-        if (i == m_settings.feedbackTap) {
-            const int w = m_cv.width(), h = m_cv.height();
-            parallelRows(h, [&](int y0, int y1) {
-                for (int y = y0; y < y1; ++y)
-                    for (int k = 0; k < 3; ++k) {
-                        const float* c = m_cv.row(kRed + k, y);
-                        for (int x = 0; x < w; ++x)
-                            m_history(x, y, k) = c[x];
-                    }
-            });
-        }
+        if (i == m_settings.feedbackTap)
+            copyColor(m_cv, kRed, region, m_history);
     }
     filtered.resize(f.width, f.height, 3);
-    parallelRows(f.height, [&](int y0, int y1) {
-        for (int y = y0; y < y1; ++y)
-            for (int k = 0; k < 3; ++k) {
-                const float* c = m_cv.row(kRed + k, y);
-                for (int x = 0; x < f.width; ++x)
-                    filtered(x, y, k) = c[x];
-            }
-    });
+    if (skip) // the cheap path: the temporally integrated colour, then the work region's result
+        copyColor(m_integrated, kIntRed, nullptr, filtered);
+    copyColor(m_cv, kRed, skip ? &m_work : nullptr, filtered);
 }
 
 } // namespace afn::svgf

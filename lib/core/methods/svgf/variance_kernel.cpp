@@ -77,8 +77,10 @@ AFN_SVGF_INLINE void varianceRowsOf(const VarianceArgs& a, int y0, int y1)
     const Planes& in = *a.in;
     Planes& out = *a.out;
     const int w = in.width();
-    for (int y = y0; y < y1; ++y)
-        for (int x = 0; x < w; x += kLanes) {
+    for (int y = y0; y < y1; ++y) {
+        int xBegin, xEnd;
+        regionColumns(a.region, y, w, xBegin, xEnd);
+        for (int x = xBegin; x < xEnd; x += kLanes) {
             V8 c[3], m[2];
             for (int k = 0; k < 3; ++k)
                 c[k] = cpu::load8(in.row(kIntRed + k, y) + x);
@@ -106,6 +108,7 @@ AFN_SVGF_INLINE void varianceRowsOf(const VarianceArgs& a, int y0, int y1)
             storeLanes(out.row(kVariance, y), x, w, var);
             storeLanes(out.row(kLuminance, y), x, w, luminance8(c[0], c[1], c[2]));
         }
+    }
 }
 
 AFN_CPU_KERNEL_CLONES void varianceRows(const VarianceArgs& a, int y0, int y1)

@@ -37,6 +37,9 @@ FilterType filterType()
     t.qualityHelp = std::string(kQualityOneLevel)
         + " (one reprojection and blend per pixel: nothing to drop; history length is alphaMin)";
     t.create = factoryOf<TaFilter>();
+    t.skipHelp = "nothing to skip: the temporally accumulated colour, which is the cheap path, "
+                 "is ta's output on every pixel (the accumulation runs everywhere to keep the "
+                 "history complete)";
     return t;
 }
 

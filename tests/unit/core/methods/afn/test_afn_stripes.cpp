@@ -72,20 +72,21 @@ TEST(AfnStripes, WorkMaskSkipsStripesWithoutWorkOnly)
     Frame f(w, h);
     Image plain, skipped;
     net.run(f.in, plain);
-    EXPECT_EQ(net.skippedStripes(), 0);
+    EXPECT_EQ(net.skippedRows(), 0);
     Image work(w, h, 1, 1.0f);
     std::fill(work.data(), work.at(0, masked), 0.0f);
     net.run(f.in, skipped, &work);
-    // Rows 0-179 masked: stripes [0, 64) and [64, 128) have no work; [128, 192) has rows 180+.
-    EXPECT_EQ(net.skippedStripes(), 2);
-    EXPECT_EQ(net.stripes(), 5);
+    // Rows 0-179 masked: the 8-row blocks up to row 175 have no work; block [176, 184) has rows
+    // 180+, so the network computes padded rows [176, 304) as stripes [176, 240), [240, 304).
+    EXPECT_EQ(net.skippedRows(), 176);
+    EXPECT_EQ(net.stripes(), 2);
     int differ = 0, notCheap = 0;
     for (int y = 0; y < h; ++y)
         for (int x = 0; x < w; ++x)
             for (int c = 0; c < 3; ++c) {
                 if (y >= masked)
                     differ += skipped(x, y, c) != plain(x, y, c);
-                if (y < 128)
+                if (y < 176)
                     notCheap += skipped(x, y, c) != f.cta(x, y, c);
             }
     EXPECT_EQ(differ, 0) << "pixels with work differ from the run without mask";
@@ -96,6 +97,35 @@ TEST(AfnStripes, WorkMaskSkipsStripesWithoutWorkOnly)
     EXPECT_EQ(differingValues(plain, again), 0);
     net.run(f.in, again, &none);
     EXPECT_EQ(differingValues(plain, again), 0);
+}
+
+TEST(AfnStripes, WorkMaskRunsOffTheStripeGridAreBitIdentical)
+{
+    // Two bands of work, neither on the 64-row grid: rows 100-169 (blocks [96, 176): stripes
+    // [96, 160), [160, 176)) and rows 250-252 (block [248, 256)); the rows between are cheap.
+    const int w = 41, h = 300;
+    Network net = randomNetwork("full");
+    Frame f(w, h);
+    Image plain, skipped;
+    net.run(f.in, plain);
+    Image work(w, h, 1, 0.0f);
+    for (int y = 100; y < 170; ++y)
+        work(y % w, y, 0) = 1.0f; // one pixel a row marks the row
+    for (int y = 250; y < 253; ++y)
+        work(0, y, 0) = 1.0f;
+    net.run(f.in, skipped, &work);
+    EXPECT_EQ(net.stripes(), 3);
+    EXPECT_EQ(net.skippedRows(), h - 80 - 8);
+    int differ = 0, notCheap = 0;
+    for (int y = 0; y < h; ++y) {
+        const bool computed = (y >= 96 && y < 176) || (y >= 248 && y < 256);
+        for (int x = 0; x < w; ++x)
+            for (int c = 0; c < 3; ++c)
+                (computed ? differ : notCheap)
+                    += skipped(x, y, c) != (computed ? plain(x, y, c) : f.cta(x, y, c));
+    }
+    EXPECT_EQ(differ, 0) << "computed rows differ from the run without mask";
+    EXPECT_EQ(notCheap, 0) << "rows without work are not the temporal accumulation";
 }
 
 TEST(AfnStripes, RejectsAWorkMaskOfAnotherSize)
