@@ -73,6 +73,7 @@ private:
     afn::FilterRef m_filter;
     std::vector<float> m_output;
     std::string m_missingWarned; ///< the missing inputs last warned about (warned once per change)
+    std::string m_modelWarned; ///< afn: the model path last seen (a fallback is warned once)
 };
 
 /// --compare REF: per-frame and mean metrics of the current beauty against the reference frames

@@ -24,6 +24,7 @@ afn_add_gtest(test_afn
     unit/core/nn/test_afn_layers.cpp
     unit/core/methods/afn/test_afn_parity.cpp
     unit/core/methods/afn/test_afn_filter.cpp
+    unit/core/methods/afn/test_afn_input_set.cpp
     unit/core/methods/afn/test_afn_engine.cpp
     unit/core/stages/test_afn_ta_parity.cpp
   LIBS afn_core)

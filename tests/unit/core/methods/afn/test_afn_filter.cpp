@@ -41,6 +41,7 @@ TEST(AfnFilter, NeedsWeightsThenDenoises)
     auto f = afn::createFilter("afn");
     const int w = 19, h = 11;
     afn::Image color(w, h, 3), albedo(w, h, 3, 0.5f), normal(w, h, 3), depth(w, h, 1), out(w, h, 3);
+    afn::Image motion(w, h, 2); // every input: weights_full.afnw is a full-input-set model
     for (int y = 0; y < h; ++y)
         for (int x = 0; x < w; ++x) {
             for (int c = 0; c < 3; ++c)
@@ -52,6 +53,7 @@ TEST(AfnFilter, NeedsWeightsThenDenoises)
     f->setImage("albedo", bind(albedo));
     f->setImage("normal", bind(normal));
     f->setImage("depth", bind(depth));
+    f->setImage("motion", bind(motion));
     f->setImage("output", bind(out));
 #ifndef AFN_HAS_EMBEDDED_WEIGHTS
     try {
