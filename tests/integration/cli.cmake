@@ -64,3 +64,9 @@ afn_add_gtest(test_afntool_input_sets SOURCES integration/test_afntool_input_set
   integration/cli_runner.cpp LIBS PkgConfig::OIIO)
 target_compile_definitions(test_afntool_input_sets PRIVATE AFNTOOL_PATH="$<TARGET_FILE:afntool>")
 add_dependencies(test_afntool_input_sets afntool)
+
+# --denoise:quality=fast|balanced|high end to end (the tiers' pixels, errors, help).
+afn_add_gtest(test_afntool_quality SOURCES integration/test_afntool_quality.cpp
+  integration/cli_runner.cpp LIBS PkgConfig::OIIO)
+target_compile_definitions(test_afntool_quality PRIVATE AFNTOOL_PATH="$<TARGET_FILE:afntool>")
+add_dependencies(test_afntool_quality afntool)

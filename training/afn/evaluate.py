@@ -31,7 +31,9 @@ from .weights import WeightsFormatError, loads
 
 REPO = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 METHODS = [("noisy", "Noisy (1 spp)"), ("ta", "TA"), ("svgf", "SVGF"), ("bmfr", "BMFR"),
-           ("afn", "AFN")]
+           ("nbgd", "NBGD"), ("wskpn", "WSKPN"), ("afn", "AFN")]
+# The learned baselines (nbgd, wskpn) run with the library's built-in weights, trained by
+# training/afn/baselines/train.py on the training split only (never on the evaluation scenes).
 # (afntool JSON key, table title, higher is better, format)
 METRICS = [("psnr", "PSNR (dB)", True, "{:.3f}"), ("ssim", "SSIM", True, "{:.4f}"),
            ("rmse", "RMSE", False, "{:.4f}"), ("smape", "SMAPE", False, "{:.4f}")]
