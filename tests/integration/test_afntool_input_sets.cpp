@@ -1,8 +1,9 @@
 // SPDX-License-Identifier: Apache-2.0
 // Input-aware afn (issue 19) end to end through afntool: EXR sequences holding only some of the
 // passes (colour; + albedo + normal; + depth; + motion) are denoised with the model trained for
-// them, the path is stated by --info and in every frame's log line, a model for fewer inputs than
-// the file has is warned about, and weights lacking a model for the file's inputs are an error.
+// them (at every quality tier), the path is stated by --info and in every frame's log line, a
+// model for fewer inputs than the file has is warned about, and weights lacking a model for the
+// file's inputs are an error.
 #include "cli_runner.h"
 #include "image_files.h"
 
@@ -178,6 +179,37 @@ TEST(AfntoolInputSets, UnboundRoleChoosesTheSmallerModel)
     const CliResult c = runAfntool({ "--aov", "color=none", "--info", dir.file("in.0001.exr") });
     EXPECT_NE(c.exitCode, 0);
     EXPECT_NE(c.err.find("afntool ERROR: "), std::string::npos) << c.err;
+}
+
+TEST(AfntoolInputSets, EveryQualityTierRunsTheChosenModel)
+{
+    if (!shippedModels())
+        GTEST_SKIP() << "the per-input-set weights are not in weights/";
+    // The model chosen per frame feeds the same tier runner: each tier runs on a colour-only and
+    // a no-motion file with that file's model; balanced is the default, fast and high differ.
+    for (const Case& c : { kCases[0], kCases[1] }) {
+        SCOPED_TRACE(c.label);
+        TempDir dir;
+        writeSequence(dir, c.passes);
+        std::vector<std::vector<float>> out;
+        for (const char* q : { "", ":quality=balanced", ":quality=fast", ":quality=high" }) {
+            SCOPED_TRACE(q);
+            const std::string o = "out" + std::to_string(out.size()) + ".####.exr";
+            const CliResult r = runAfntool({ "--frames", "1-3", dir.file("in.####.exr"),
+                std::string("--denoise:method=afn") + q, "-o", dir.file(o) });
+            ASSERT_EQ(r.exitCode, 0) << r.err;
+            EXPECT_NE(
+                r.err.find(std::string("afntool: --denoise: afn ") + c.model), std::string::npos)
+                << r.err;
+            out.push_back(readImage(dir.file(o.substr(0, o.find('#')) + "0003.exr")).pixels);
+            ASSERT_EQ(out.back().size(), std::size_t(kW) * kH * 3);
+            for (float v : out.back())
+                ASSERT_TRUE(std::isfinite(v));
+        }
+        EXPECT_EQ(meanAbsDiff(out[0], out[1]), 0.0); // balanced is the default
+        EXPECT_GT(meanAbsDiff(out[1], out[2]), 0.0); // fast: no refinement
+        EXPECT_GT(meanAbsDiff(out[1], out[3]), 0.0); // high: four-flip ensemble
+    }
 }
 
 TEST(AfntoolInputSets, WeightsWithoutAModelForTheInputsAreAnError)
