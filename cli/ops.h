@@ -77,6 +77,7 @@ private:
     std::string m_missingWarned; ///< the missing inputs last warned about (warned once per change)
     std::string m_maskChannel; ///< :mask=CHANNEL, the work mask's channel ("" = none)
     std::vector<float> m_mask; ///< that channel of the current frame
+    std::string m_modelWarned; ///< afn: the model path last seen (a fallback is warned once)
 };
 
 /// --compare REF: per-frame and mean metrics of the current beauty against the reference frames

@@ -274,6 +274,17 @@ void SequenceDenoiser::logAux(const LoadedFrame& frame, Progress* progress)
         note(m_flag + ": " + m_method + " without " + missingShort + " " + frame.ref.path,
             m_opts.quiet, progress);
 
+    if (m_method == "afn") {
+        // The trained model chosen for the file's inputs (issue 19): said once, and per frame.
+        // A model for fewer inputs than the file has is warned about (once per change).
+        const std::string model = m_filter.get<std::string>(AFN_STAT_AFN_MODEL);
+        if (model.find("not used:") != std::string::npos && model != m_modelWarned)
+            warn(m_flag + ": afn has no model for all of the file's inputs and runs " + model,
+                m_opts.quiet, progress);
+        m_modelWarned = model;
+        note(m_flag + ": afn " + model + " " + frame.ref.path, m_opts.quiet, progress);
+    }
+
     bool hasAux = false;
     for (const AFNParamInfo& p : afn::filterTypeParams(m_method.c_str()))
         hasAux = hasAux || std::string(p.name) == AFN_PARAM_AUX;

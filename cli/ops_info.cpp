@@ -2,6 +2,7 @@
 #include "ops.h"
 
 #include "cli_error.h"
+#include "info_afn_model.h"
 #include "json_writer.h"
 
 #include <algorithm>
@@ -37,6 +38,7 @@ struct FileReport {
     std::map<Role, afn::io::RoleStats> stats;
     std::map<Role, AFNAuxNoise> noise; ///< auxiliary roles only (afnEstimateAuxNoise)
     std::optional<int> samples;
+    std::string afnModel; ///< the afn method's path for these inputs ("" without a colour)
 };
 
 /// The auxiliary roles whose noise --info estimates, with their afnEstimateAuxNoise names.
@@ -91,6 +93,8 @@ FileReport collect(const Options& opts, const FrameRef& ref)
         for (const auto& [role, image] : fi.roles)
             r.stats[role] = afn::io::computeStats(image);
         estimateNoise(fi, r.noise);
+        if (fi.roles.count(Role::Color))
+            r.afnModel = afnModelFor(opts, fi);
         if (ref.path.find("#bmfr:") == std::string::npos) {
             r.info = afn::io::inspect(ref.path);
         } else {
@@ -162,6 +166,8 @@ void printText(const FileReport& r)
         }
     }
     std::printf("  aux=auto: %s\n", autoNoisy(r) ? "noisy" : "clean");
+    if (!r.afnModel.empty())
+        std::printf("  afn: %s\n", r.afnModel.c_str());
     std::printf("  conventions:");
     for (const auto& [name, value] : r.mapping.tag.parameters())
         std::printf(" %s=%s", name.c_str(), value.c_str());
@@ -236,6 +242,7 @@ void writeJson(JsonWriter& j, const FileReport& r)
             .endObject();
     j.endObject();
     j.field("auxAuto", std::string(autoNoisy(r) ? "noisy" : "clean"));
+    j.field("afnModel", r.afnModel);
     j.key("stats").beginObject();
     for (const auto& [role, s] : r.stats) {
         j.key(afn::io::roleName(role))

@@ -245,6 +245,14 @@ void SequenceRunner::runFrame(
     afnUnsetFilterImage(f, AFN_IMAGE_ALPHA);
     afnUnsetFilterImage(f, AFN_IMAGE_OUTPUT);
     checkError("afn execute");
+    if (settings.method == "afn") {
+        // The trained model afn chose for the connected clips (issue 19), logged when it changes.
+        const char* model = afnGetFilterString(f, AFN_STAT_AFN_MODEL);
+        if (model && m_afnModel != model) {
+            m_afnModel = model;
+            postNote(req.instance, "afn: " + m_afnModel);
+        }
+    }
 }
 
 } // namespace afnofx

@@ -150,6 +150,11 @@ typedef enum AFNDeviceType {
 /// "normal (edge-stopping); motion or position with a camera (reprojection: ...)"; "" when none
 /// (afnGetFilterString). The method still runs, with less to go on.
 #define AFN_STAT_MISSING_INPUTS "stats.missingInputs"
+/// The "afn" method's path for the last frame (afnGetFilterString; issue 19): the input set of the
+/// trained model chosen for the frame's inputs, temporal or single-frame, and the frame inputs it
+/// does not use, e.g. "model color+albedo+normal, single-frame (no temporal branch: no motion or
+/// position); not used: depth"; "" before the first frame.
+#define AFN_STAT_AFN_MODEL "stats.afn.model"
 /// The "afn" method on the CPU, last execute (afnGetFilterFloat): wall-clock milliseconds and GFLOP
 /// (2 x multiply-adds of the layers and 7x7 filters at the padded size; softmax, pooling and tone
 /// map not counted) of the network's stages: prediction (input preparation + encoder-decoder),

@@ -146,7 +146,8 @@ AFN_IO_API std::optional<int> samplesPerPixel(
 /// generic R,G,B), then apply overrides. A preset is chosen by the header (e.g. Blender's
 /// attributes) or by the names it explains; roles it leaves unmapped fall back to the generic
 /// names ("albedo", "N", "P", "Z", "motionvector", ...). Never throws for a missing role (see
-/// lookedFor); throws IoError when an override names channels the file does not have.
+/// lookedFor); throws IoError when an override names channels the file does not have. An override
+/// "ROLE=none" unbinds the role (as if the file lacked it; not allowed for colour).
 AFN_IO_API RoleMapping mapRoles(const FileInfo& info, const MappingOverrides& overrides = {});
 
 // ---- Reading frames -----------------------------------------------------------------------------

@@ -389,8 +389,10 @@ AFN_API const char* afnGetFilterString(AFNFilter f, const char* name)
     checkFilter(f);
     std::lock_guard<std::mutex> lock(f->mutex);
     const std::string key = checkName(name);
-    f->stringResult = key == AFN_STAT_MISSING_INPUTS ? f->filter->lastMissingInputs()
-                                                     : f->filter->params().getString(key);
+    if (key == AFN_STAT_MISSING_INPUTS)
+        f->stringResult = f->filter->lastMissingInputs();
+    else if (!f->filter->stringStatistic(key, f->stringResult))
+        f->stringResult = f->filter->params().getString(key);
     return f->stringResult.c_str();
     AFN_CATCH(deviceOf(f))
     return nullptr;

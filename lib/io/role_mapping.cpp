@@ -13,6 +13,9 @@ namespace {
 using detail::Candidate;
 using detail::Preset;
 
+/// The --aov value that unbinds a role ("--aov depth=none").
+const std::string kNoChannels = "none";
+
 /// One channel as seen by the matcher. Channels of named parts in multi-part files are also
 /// visible under "<part>.<layer>" (a part "albedo" holding R,G,B is the layer "albedo").
 struct Entry {
@@ -369,11 +372,24 @@ RoleMapping mapRoles(const FileInfo& info, const MappingOverrides& overrides)
 
     // A mistyped --aov is an error, not a warning: the run would otherwise go on without the
     // role the user asked for.
-    for (const auto& [role, names] : overrides.channels)
+    for (const auto& [role, names] : overrides.channels) {
+        if (names == std::vector<std::string> { kNoChannels }) {
+            // "--aov ROLE=none": run as if the file had no such pass (input-aware methods pick
+            // the path and weights for what is left; training prepares such inputs this way).
+            if (role == Role::Color)
+                throw IoError("--aov color=none: the colour is required", info.path);
+            auto& roles = mapping.roles;
+            roles.erase(std::remove_if(roles.begin(), roles.end(),
+                            [&](const RoleChannels& r) { return r.role == role; }),
+                roles.end());
+            mapping.lookedFor.erase(role);
+            continue;
+        }
         if (!applyChannelOverride(entries, chosen, role, names, mapping))
             throw IoError("--aov " + std::string(roleName(role)) + "=" + join(names, ",")
                     + ": no such channels or layer; the file has: " + detail::channelSummary(info),
                 info.path);
+    }
     for (const auto& [key, value] : overrides.tags)
         if (!detail::applyTag(mapping.tag, key, value))
             throw IoError("--aov: invalid tag " + key + "=" + value, info.path);

@@ -61,15 +61,17 @@ class AFNConfig:
     enc: tuple = field(default_factory=lambda: (16, 32, 64))  # e1, e2, e3 widths
     dec: tuple = field(default_factory=lambda: (32, 24))      # d2, d1 widths
     refine: int = 16                                    # refinement hidden width
+    inputs: str = "albedo,normal,depth,temporal"        # input set trained for (input_sets.py)
 
     def to_dict(self):
         return {"variant": self.variant, "enc": list(self.enc), "dec": list(self.dec),
-                "refine": self.refine}
+                "refine": self.refine, "inputs": self.inputs}
 
     @staticmethod
     def from_dict(d):
         return AFNConfig(variant=d.get("variant", "full"), enc=tuple(d.get("enc", (16, 32, 64))),
-                         dec=tuple(d.get("dec", (32, 24))), refine=int(d.get("refine", 16)))
+                         dec=tuple(d.get("dec", (32, 24))), refine=int(d.get("refine", 16)),
+                         inputs=d.get("inputs", "albedo,normal,depth,temporal"))
 
 
 def down2(x: torch.Tensor) -> torch.Tensor:

@@ -13,6 +13,7 @@ the same code runs on a CPU here and on a GPU with a newer PyTorch.
 """
 
 import argparse
+import hashlib
 import json
 import os
 import subprocess
@@ -21,7 +22,7 @@ import time
 import numpy as np
 import torch
 
-from . import color
+from . import color, input_sets
 from .afntool import AfntoolError
 from .dataset import (LAYOUT, CropSampler, SceneError, evaluation_scenes, find_scenes, load_scene,
                       to_tensors)
@@ -64,7 +65,18 @@ def parse_args(argv=None):
     ap.add_argument("--aov", action="append", default=[], metavar="ROLE=CHANNELS",
                     help="map a pass the C++ core's automatic role mapping misses, as afntool's "
                     "--aov (e.g. albedo=diffuse.R,diffuse.G,diffuse.B); repeatable")
-    return ap.parse_args(argv)
+    ap.add_argument("--cache", default="", help="keep the prepared scenes in this folder and "
+                    "reuse them (runs for several --inputs share the afntool preparation)")
+    ap.add_argument("--inputs", default=input_sets.FULL, help="input set the model is for "
+                    "(issue 19): color, or a list of albedo, normal, depth, temporal (default: "
+                    "all); the other inputs are held at their neutral values in the training data "
+                    "(input_sets.mask, as the C++ filter does) and the set is stored in the weights")
+    args = ap.parse_args(argv)
+    try:
+        args.inputs = input_sets.parse(args.inputs)
+    except ValueError as e:
+        ap.error(f"--inputs: {e}")
+    return args
 
 
 def resolve_device(name):
@@ -157,10 +169,30 @@ def resolve_scenes(args):
     return all_scenes, train_names, holdout
 
 
+def cached_scene(args, path, name, max_frames):
+    """load_scene, through ``--cache DIR`` when given: the prepared full-set features of a scene
+    are kept as DIR/<name>.npz (keyed by the --aov list and frame count) and reused by later runs,
+    e.g. the models for several input sets trained from the same data."""
+    if not args.cache:
+        return load_scene(path, max_frames=max_frames, aov=args.aov)
+    key = hashlib.sha1(repr((sorted(args.aov), max_frames)).encode()).hexdigest()[:10]
+    file = os.path.join(args.cache, f"{name.replace('/', '__')}-{key}.npz")
+    if os.path.exists(file):
+        with np.load(file) as z:
+            return {k: z[k] for k in z.files}
+    scene = load_scene(path, max_frames=max_frames, aov=args.aov)
+    os.makedirs(args.cache, exist_ok=True)
+    tmp = file + f".{os.getpid()}.tmp.npz"
+    np.savez(tmp, **scene)
+    os.replace(tmp, file)
+    return scene
+
+
 def model_config(args):
     """The AFNConfig the arguments describe."""
     return AFNConfig(variant=args.variant, enc=tuple(int(v) for v in args.enc.split(",")),
-                     dec=tuple(int(v) for v in args.dec.split(",")), refine=args.refine)
+                     dec=tuple(int(v) for v in args.dec.split(",")), refine=args.refine,
+                     inputs=args.inputs)
 
 
 class RunFolder:
@@ -242,8 +274,10 @@ def main(argv=None):
     mf = args.max_frames or None
     print(f"loading {len(train_names)} training and {len(holdout)} held-out scenes ...", flush=True)
     try:
-        train = [load_scene(all_scenes[s], max_frames=mf, aov=args.aov) for s in train_names]
-        val = [load_scene(all_scenes[s], max_frames=mf, aov=args.aov) for s in holdout]
+        def prepared(name):
+            return input_sets.mask(cached_scene(args, all_scenes[name], name, mf), args.inputs)
+        train = [prepared(s) for s in train_names]
+        val = [prepared(s) for s in holdout]
     except (SceneError, AfntoolError) as e:
         raise SystemExit(f"afn.train: {e}")
     sampler = CropSampler(train, args.crop, seed=args.seed)

@@ -106,7 +106,7 @@ def save_model(path, model) -> None:
     """Write a model's state_dict and its AFNConfig (metadata) to ``path``."""
     cfg = model.cfg
     meta = {"format": "afn", "variant": cfg.variant, "enc": ",".join(map(str, cfg.enc)),
-            "dec": ",".join(map(str, cfg.dec)), "refine": cfg.refine}
+            "dec": ",".join(map(str, cfg.dec)), "refine": cfg.refine, "inputs": cfg.inputs}
     with open(path, "wb") as f:
         f.write(dumps(model.state_dict(), meta))
 
@@ -121,7 +121,8 @@ def load_model(path, device="cpu"):
     cfg = AFNConfig(variant=meta.get("variant", "full"),
                     enc=tuple(int(v) for v in meta.get("enc", "16,32,64").split(",")),
                     dec=tuple(int(v) for v in meta.get("dec", "32,24").split(",")),
-                    refine=int(meta.get("refine", 16)))
+                    refine=int(meta.get("refine", 16)),
+                    inputs=meta.get("inputs", "albedo,normal,depth,temporal"))
     model = AFN(cfg)
     model.load_state_dict({k: torch.from_numpy(v) for k, v in tensors.items()})
     return model.to(device).eval()

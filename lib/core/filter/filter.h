@@ -105,6 +105,12 @@ public:
     /// A method's own statistic of the last execute ("stats.afn.*"); false when it has none of
     /// that name.
     virtual bool statistic(const std::string& name, double& value) const { return false; }
+    /// A method's own text statistic of the last execute ("stats.afn.model"); false when it has
+    /// none of that name.
+    virtual bool stringStatistic(const std::string& name, std::string& value) const
+    {
+        return false;
+    }
 
 protected:
     /// A filter of `type` (parameter table, stages, feature outputs); the type outlives it.
@@ -127,6 +133,10 @@ protected:
     bool outputBound() const;
     /// True when the caller bound at least one feature output.
     bool anyFeatureBound() const;
+    /// True when the caller bound the image `name` (AFN_IMAGE_*), e.g. to choose a path at commit.
+    bool imageBound(const std::string& name) const { return m_images.count(name) != 0; }
+    /// True when the caller set a camera (AFN_ARRAY_VIEW_PROJECTION) for the next frame.
+    bool cameraSet() const { return m_camera.valid; }
     /// Write the first channels of `image` (frame size) into the feature output `name` when the
     /// caller bound it; `name` must be one of the type's features.
     void writeFeature(const std::string& name, const Image& image) const;

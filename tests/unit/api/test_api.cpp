@@ -404,11 +404,16 @@ TEST_F(ApiTest, FeatureOutputsAreTheNetworkInputs)
     for (size_t i = 0; i < irr.size(); ++i)
         ASSERT_EQ(irr[i], color[i] / std::max(factor[i], 1.0f / 1024.0f)) << i;
 
-    // Binding features does not change the output.
+    // Binding features does not change the output. Every input: a build may embed only the
+    // model for all of them (issue 19).
+    std::vector<float> normal(w * h * 3, 0.5f), motion(w * h * 2, 0.0f);
     afn::FilterRef a = device.newFilter("afn"), b = device.newFilter("afn");
     for (afn::FilterRef* g : { &a, &b }) {
         g->setImage(AFN_IMAGE_COLOR, color.data(), afn::Format::Float3, w, h);
         g->setImage(AFN_IMAGE_ALBEDO, albedo.data(), afn::Format::Float3, w, h);
+        g->setImage(AFN_IMAGE_NORMAL, normal.data(), afn::Format::Float3, w, h);
+        g->setImage(AFN_IMAGE_DEPTH, color.data(), afn::Format::Float, w, h, 0, 12);
+        g->setImage(AFN_IMAGE_MOTION, motion.data(), afn::Format::Float2, w, h);
     }
     a.setImage(AFN_IMAGE_OUTPUT, out1.data(), afn::Format::Float3, w, h);
     b.setImage(AFN_IMAGE_OUTPUT, out2.data(), afn::Format::Float3, w, h);

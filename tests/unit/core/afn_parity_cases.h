@@ -41,6 +41,15 @@ inline std::vector<SequenceInputs> parityInputSets()
     return { all, camera, depthOnly, colorOnly, noAlbedo };
 }
 
+/// Whether the CPU filter runs the full-input model on `in` (issue 19): albedo, normal, depth and a
+/// temporal history (motion, or positions with a camera). For fewer inputs it runs the model for
+/// that input set (methods/afn/model_set.h), or refuses when only the full one is loaded; the CUDA
+/// filter has only the full model so far (docs/gpu.md), so CPU-filter parity skips those sets.
+inline bool cpuRunsTheFullModel(const SequenceInputs& in)
+{
+    return in.albedo && in.normal && in.depth && (in.motion || (in.position && in.camera));
+}
+
 /// The GPU parity cases: sizes from 1 x 1 to 1280 x 720 (odd ones included), each input set,
 /// both committed test archives (variants "full" and "fusion") and the shipped model.
 inline std::vector<ParityCase> gpuParityCases()

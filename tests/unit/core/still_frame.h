@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: Apache-2.0
 // A small still frame for the tests that run a learned filter through createFilter: colour
-// ((7x + 3y + c) mod 5) * 0.3, albedo 0.5, normal +z, depth 1 + 0.1x, and an output buffer.
+// ((7x + 3y + c) mod 5) * 0.3, albedo 0.5, normal +z, depth 1 + 0.1x, zero motion (bound on
+// request), and an output buffer.
 #pragma once
 
 #include "base/image.h"
@@ -10,13 +11,14 @@
 namespace afntest {
 
 struct StillFrame {
-    afn::Image color, albedo, normal, depth, out;
+    afn::Image color, albedo, normal, depth, motion, out;
 
     StillFrame(int w, int h)
         : color(w, h, 3)
         , albedo(w, h, 3, 0.5f)
         , normal(w, h, 3)
         , depth(w, h, 1)
+        , motion(w, h, 2)
         , out(w, h, 3)
     {
         for (int y = 0; y < h; ++y)
@@ -37,6 +39,9 @@ struct StillFrame {
         f.setImage("depth", bindImage(depth));
         f.setImage("output", bindImage(out));
     }
+
+    /// Also bind a zero motion (a temporal history): the afn model for every input needs it.
+    void bindMotionTo(afn::Filter& f) { f.setImage("motion", bindImage(motion)); }
 };
 
 } // namespace afntest

@@ -5,6 +5,11 @@
 // depth (stages/feature_scaling.h), run the network (network.h) and remodulate. The network output
 // is clamped to >= 0 by the remodulation (stages/demodulate.h). Weights: weights_source.h.
 //
+// Input-aware (issue 19): the library holds one trained model per input set (model_set.h,
+// input_set.h); each frame runs the model for its inputs, whose absent roles are held neutral and
+// which without a temporal history runs single-frame (network_inputs.h). The choice is
+// reported as AFN_STAT_AFN_MODEL; no fitting model is an error at commit and at execute.
+//
 // Settings (settings.h): `spp`, the input's samples per pixel, which will choose between the
 // low- and high-count models; read at commit.
 //
@@ -17,12 +22,13 @@
 #include "base/exception.h"
 #include "cpu/isa.h"
 #include "filter/registry.h"
+#include "methods/afn/model_set.h"
+#include "methods/afn/network_inputs.h"
 #include "methods/afn/network.h"
 #include "methods/afn/quality_tiers.h"
 #include "methods/afn/settings.h"
 #include "methods/afn/weights_source.h"
 #include "stages/demodulate.h"
-#include "stages/feature_scaling.h"
 
 #ifdef AFN_HAS_CUDA
 #include "cuda/afn_cuda_filter.h"
@@ -38,17 +44,26 @@ class AfnFilter final : public Filter {
 public:
     explicit AfnFilter(const FilterType& t)
         : Filter(t)
+        , m_models(ModelSet::embedded())
     {
-        loadEmbeddedNetwork(m_net);
     }
 
     void setData(const std::string& name, const void* data, std::size_t size) override
     {
         if (name != AFN_DATA_WEIGHTS)
             Filter::setData(name, data, size);
-        m_net = networkFromData(data, size); // only valid weights replace the current ones
+        m_models = ModelSet::fromData(data, size); // only valid weights replace the current ones
+        m_model = nullptr;
         markDirty();
         reset();
+    }
+
+    bool stringStatistic(const std::string& name, std::string& value) const override
+    {
+        if (name != AFN_STAT_AFN_MODEL)
+            return false;
+        value = m_path;
+        return true;
     }
 
     bool statistic(const std::string& name, double& value) const override
@@ -80,38 +95,60 @@ private:
     {
         m_settings = settingsBinding().read(params());
         m_quality = qualityBinding().read(params()).quality;
-        if (outputBound() && !m_net.loaded())
+        if (!outputBound())
+            return;
+        if (m_models.empty())
             throwNoWeights();
+        // The model for the bound inputs: a missing one fails the commit (and is reported by
+        // afntool --info); execute chooses again from each frame's own inputs.
+        InputSet bound;
+        bound.albedo = imageBound(AFN_IMAGE_ALBEDO);
+        bound.normal = imageBound(AFN_IMAGE_NORMAL);
+        bound.depth = imageBound(AFN_IMAGE_DEPTH);
+        bound.temporal
+            = imageBound(AFN_IMAGE_MOTION) || (imageBound(AFN_IMAGE_POSITION) && cameraSet());
+        m_model = m_models.choose(bound);
+        if (!m_model)
+            m_models.throwNoModelFor(bound);
+        m_path = describePath(bound, m_model->inputs);
     }
     void denoise(const Frame& in, Image& out) override
     {
         reportProgress(0.1);
-        m_albedo.resize(in.width, in.height, 3);
-        if (in.hasAlbedo())
-            std::copy(in.albedo.data(), in.albedo.data() + in.albedo.size(), m_albedo.data());
-        else
-            m_albedo.fill(1.0f);
-        normalToUnitRange(in.normal, in.width, in.height, m_normal01);
-        depthToUnitRange(in.depth, in.width, in.height, m_depth01);
-        writeFeature("irradiance", irradiance());
-        writeFeature("accumulated", accumulator().color());
-        writeFeature("albedo", m_albedo);
-        writeFeature("normal01", m_normal01);
-        writeFeature("depth01", m_depth01);
+        // The model for this frame's inputs (model_set.h); feature-only runs (training data)
+        // prepare the inputs of a model for exactly the frame's input set.
+        const InputSet available = inputSetOf(in);
+        InputSet use = available;
+        if (outputBound()) {
+            m_model = m_models.choose(available);
+            if (!m_model)
+                m_models.throwNoModelFor(available);
+            use = m_model->inputs;
+        }
+        m_path = describePath(available, use);
+        m_inputs.prepare(in, use, irradiance(), accumulator().color());
+        writeFeature("irradiance", m_inputs.color1());
+        writeFeature("accumulated", m_inputs.colorTa());
+        writeFeature("albedo", m_inputs.albedo());
+        writeFeature("normal01", m_inputs.normal01());
+        writeFeature("depth01", m_inputs.depth01());
         if (!outputBound())
             return; // only the network's inputs were asked for
-        const Inputs net { &irradiance(), &accumulator().color(), &m_albedo, &m_normal01,
-            &m_depth01 };
-        m_tiers.run(m_quality, m_net, net, m_result, &in.work); // work skipping: network.h
+        // Every model runs through the same quality tier (quality_tiers.h) and work skipping
+        // (network.h: skipped stripes take inputs().colorTa, the model's own TA input).
+        m_tiers.run(m_quality, m_model->net, m_inputs.inputs(), m_result, &in.work);
         reportProgress(0.95);
-        remodulate(in, m_result, out);
+        m_inputs.radiance(in, m_result, out);
     }
 
     Settings m_settings;
     QualitySettings::Tier m_quality = QualitySettings::Tier::Balanced;
     TierRunner m_tiers;
-    Network m_net;
-    Image m_albedo, m_normal01, m_depth01, m_result;
+    ModelSet m_models;
+    Model* m_model = nullptr; ///< the last frame's (in m_models)
+    std::string m_path; ///< describePath() of the last frame
+    NetworkInputs m_inputs;
+    Image m_result;
 };
 
 std::unique_ptr<Filter> create(const FilterType& t, const Device& device)
@@ -159,7 +196,9 @@ FilterType filterType()
         { { AFN_IMAGE_DEPTH }, "network features" } };
     t.features = {
         { "irradiance", 3, "1-spp colour divided by max(albedo, 2^-10), linear HDR, >= 0" },
-        { "accumulated", 3, "BMFR temporal accumulation of the irradiance (TA-1spp), linear HDR" },
+        { "accumulated", 3,
+            "BMFR temporal accumulation of the irradiance (TA-1spp), linear HDR; the irradiance "
+            "itself without motion or position (single-frame)" },
         { "albedo", 3,
             "demodulation factor = the albedo after the aux prefilter (as given when clean), "
             "[0, 1] (1 without an albedo input); the network input and the remodulation" },

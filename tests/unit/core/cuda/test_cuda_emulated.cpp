@@ -152,7 +152,8 @@ TEST(CudaEmulated, FilterMatchesCpuWithTestWeights)
 {
     const auto full = testWeights("weights_full.afnw");
     for (const SequenceInputs& inputs : afntest::parityInputSets())
-        expectFilterParity(full, 37, 21, inputs, 3);
+        if (afntest::cpuRunsTheFullModel(inputs))
+            expectFilterParity(full, 37, 21, inputs, 3);
     expectFilterParity(full, 8, 8, SequenceInputs {}, 2);
     expectFilterParity(full, 1, 1, SequenceInputs {}, 2);
 }

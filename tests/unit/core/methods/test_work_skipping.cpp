@@ -20,7 +20,7 @@
 namespace {
 
 using afn::Image;
-using methods_test::binding;
+using afntest::bindImage;
 using methods_test::Buffers;
 using methods_test::makeImage;
 
@@ -65,9 +65,9 @@ std::vector<Image> run(const std::string& m, bool skip, int frames, float mx, fl
     for (int i = 0; i < frames; ++i) {
         Buffers b = scene(i, mx, my);
         if (alpha)
-            f->setImage("alpha", binding(*alpha));
+            f->setImage("alpha", bindImage(*alpha));
         if (mask)
-            f->setImage("mask", binding(*mask));
+            f->setImage("mask", bindImage(*mask));
         methods_test::runFrame(*f, b);
         outs.push_back(b.out);
         if (share)

@@ -21,6 +21,7 @@ TEST(AfnFilter, NeedsWeightsThenDenoises)
     const int w = 19, h = 11;
     afntest::StillFrame still(w, h);
     still.bindTo(*f);
+    still.bindMotionTo(*f); // weights_full.afnw is a full-input-set model
     const afn::Image& out = still.out;
 #ifndef AFN_HAS_EMBEDDED_WEIGHTS
     try {

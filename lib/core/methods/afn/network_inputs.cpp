@@ -1,0 +1,64 @@
+// SPDX-License-Identifier: Apache-2.0
+// AFN network inputs per input set (see methods/afn/network_inputs.h).
+#include "methods/afn/network_inputs.h"
+
+#include "filter/frame.h"
+#include "stages/demodulate.h"
+
+#include <algorithm>
+
+namespace afn::afnet {
+
+namespace {
+
+/// The radiance of a demodulated image (irradiance x the frame's albedo factor), <= kMaxIrradiance.
+void undemodulate(const Frame& in, const Image& irradiance, Image& out)
+{
+    remodulate(in, irradiance, out);
+    for (std::size_t k = 0; k < out.size(); ++k)
+        out.data()[k] = std::min(out.data()[k], kMaxIrradiance);
+}
+
+} // namespace
+
+void NetworkInputs::prepare(
+    const Frame& in, const InputSet& use, const Image& irradiance, const Image& accumulated)
+{
+    m_use = use;
+    m_color1 = &irradiance;
+    m_colorTa = use.temporal ? &accumulated : &irradiance;
+    m_albedo.resize(in.width, in.height, 3);
+    if (use.albedo) {
+        std::copy(in.albedo.data(), in.albedo.data() + in.albedo.size(), m_albedo.data());
+    } else {
+        m_albedo.fill(1.0f);
+        if (in.hasAlbedo()) {
+            // A model without albedo filters the colour itself (training/afn/input_sets.py mask).
+            undemodulate(in, irradiance, m_colour);
+            m_color1 = &m_colour;
+            m_colorTa = &m_colour;
+            if (use.temporal) {
+                undemodulate(in, accumulated, m_colourTa);
+                m_colorTa = &m_colourTa;
+            }
+        }
+    }
+    static const Image none;
+    normalToUnitRange(use.normal ? in.normal : none, in.width, in.height, m_normal01);
+    depthToUnitRange(use.depth ? in.depth : none, in.width, in.height, m_depth01);
+}
+
+void NetworkInputs::radiance(const Frame& in, const Image& result, Image& out) const
+{
+    if (m_use.albedo) {
+        remodulate(in, result, out);
+        return;
+    }
+    out.resize(in.width, in.height, 3);
+    for (std::size_t k = 0; k < out.size(); ++k) {
+        const float v = result.data()[k];
+        out.data()[k] = v > 0.0f ? std::min(v, kMaxIrradiance) : 0.0f;
+    }
+}
+
+} // namespace afn::afnet

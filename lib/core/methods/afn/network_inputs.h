@@ -1,0 +1,44 @@
+// SPDX-License-Identifier: Apache-2.0
+// NetworkInputs assembles the five network inputs of a frame for a model of a given input set
+// (input_set.h): the roles the model was not trained for are held at their neutral values
+// (albedo 1, i.e. the colour itself is filtered and nothing is remodulated; normal01 0.5;
+// depth01 0), and without the temporal branch the TA input is the current irradiance. The
+// feature scaling itself (normal01, depth01) is stages/feature_scaling.h, shared with the
+// learned baselines.
+#pragma once
+
+#include "base/image.h"
+#include "methods/afn/input_set.h"
+#include "methods/afn/network.h"
+#include "stages/feature_scaling.h"
+
+namespace afn {
+struct Frame;
+}
+
+namespace afn::afnet {
+
+class NetworkInputs {
+public:
+    /// Assemble the inputs of `in` for a model of input set `use` (covered by the frame's), from
+    /// the shared stages' irradiance and temporal accumulation (both must outlive the inputs).
+    void prepare(
+        const Frame& in, const InputSet& use, const Image& irradiance, const Image& accumulated);
+    Inputs inputs() const { return { m_color1, m_colorTa, &m_albedo, &m_normal01, &m_depth01 }; }
+    const Image& color1() const { return *m_color1; }
+    const Image& colorTa() const { return *m_colorTa; }
+    const Image& albedo() const { return m_albedo; }
+    const Image& normal01() const { return m_normal01; }
+    const Image& depth01() const { return m_depth01; }
+    /// The radiance of the network output `result`: remodulated by the albedo when the model
+    /// uses it, else clamped to [0, kMaxIrradiance] as the remodulation does.
+    void radiance(const Frame& in, const Image& result, Image& out) const;
+
+private:
+    InputSet m_use;
+    const Image* m_color1 = nullptr;
+    const Image* m_colorTa = nullptr;
+    Image m_colour, m_colourTa, m_albedo, m_normal01, m_depth01;
+};
+
+} // namespace afn::afnet

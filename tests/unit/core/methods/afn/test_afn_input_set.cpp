@@ -1,0 +1,194 @@
+// SPDX-License-Identifier: Apache-2.0
+// Input-aware afn (issue 19): input-set spelling, the model choice and its fallback order, the
+// missing-model error, the reported path, and the network inputs of a model that uses fewer
+// inputs than the frame has.
+#include "base/exception.h"
+#include "filter/frame.h"
+#include "methods/afn/network_inputs.h"
+#include "methods/afn/input_set.h"
+#include "methods/afn/model_set.h"
+#include "methods/afn/random_weights.h"
+#include "stages/demodulate.h"
+
+#include <gtest/gtest.h>
+
+#include <string>
+#include <vector>
+
+using afn::afnet::InputSet;
+
+namespace {
+
+/// All 16 input sets.
+std::vector<InputSet> allSets()
+{
+    std::vector<InputSet> out;
+    for (int m = 0; m < 16; ++m)
+        out.push_back({ (m & 1) != 0, (m & 2) != 0, (m & 4) != 0, (m & 8) != 0 });
+    return out;
+}
+
+/// A random-weights archive trained "for" `inputs` ("" = no inputs key).
+afn::nn::WeightsArchive archiveFor(const std::string& inputs, unsigned seed)
+{
+    afn::afnet::Architecture narrow;
+    narrow.enc = { 4, 4, 4 };
+    narrow.dec = { 4, 4 };
+    narrow.refine = 4;
+    const afn::nn::WeightsArchive a = afn::afnet::randomWeights(narrow, seed);
+    std::map<std::string, std::string> meta = { { "variant", "full" }, { "format", "afn" } };
+    if (!inputs.empty())
+        meta["inputs"] = inputs;
+    return afn::nn::WeightsArchive::fromTensors(a.tensors(), meta, "test " + inputs);
+}
+
+} // namespace
+
+TEST(AfnInputSet, SpellingsRoundTrip)
+{
+    for (const InputSet& s : allSets()) {
+        InputSet back;
+        ASSERT_TRUE(afn::afnet::parseInputSet(afn::afnet::inputSetKey(s), back));
+        EXPECT_EQ(back, s) << afn::afnet::inputSetKey(s);
+        const std::string name = afn::afnet::inputSetName(s);
+        EXPECT_EQ(name.rfind("color", 0), 0u) << name;
+        ASSERT_TRUE(afn::afnet::parseInputSet(name, back));
+        EXPECT_EQ(back, s) << name;
+    }
+    InputSet s;
+    EXPECT_TRUE(afn::afnet::parseInputSet("normal, albedo", s));
+    EXPECT_EQ(afn::afnet::inputSetKey(s), "albedo,normal");
+    EXPECT_FALSE(afn::afnet::parseInputSet("albedo,motion", s)); // "temporal", not "motion"
+    EXPECT_EQ(afn::afnet::inputSetKey(s), "albedo,normal") << "unchanged on failure";
+}
+
+TEST(AfnInputSet, ChoosesTheLargestCoveredModel)
+{
+    afn::afnet::ModelSet models;
+    models.add(archiveFor("", 1)); // no key: the full set
+    models.add(archiveFor("color", 2));
+    models.add(archiveFor("albedo,normal", 3));
+    EXPECT_EQ(models.listing(), "color+albedo+normal+depth+temporal; color; color+albedo+normal");
+    for (const InputSet& available : allSets()) {
+        // Expected by the documented order, written out independently of choose().
+        std::string expected = "color";
+        if (available.albedo && available.normal)
+            expected = "color+albedo+normal";
+        if (available == InputSet::full())
+            expected = "color+albedo+normal+depth+temporal";
+        const afn::afnet::Model* m = models.choose(available);
+        ASSERT_NE(m, nullptr);
+        EXPECT_EQ(afn::afnet::inputSetName(m->inputs), expected)
+            << "available " << afn::afnet::inputSetName(available);
+    }
+}
+
+TEST(AfnInputSet, TiesPreferTheTemporalModel)
+{
+    afn::afnet::ModelSet models;
+    models.add(archiveFor("albedo", 1));
+    models.add(archiveFor("temporal", 2));
+    const afn::afnet::Model* m = models.choose({ true, false, false, true });
+    ASSERT_NE(m, nullptr);
+    EXPECT_TRUE(m->inputs.temporal);
+    EXPECT_FALSE(m->inputs.albedo);
+}
+
+TEST(AfnInputSet, NoCoveredModelIsAnErrorNamingBoth)
+{
+    afn::afnet::ModelSet models;
+    models.add(archiveFor("", 1));
+    const InputSet colourOnly;
+    EXPECT_EQ(models.choose(colourOnly), nullptr);
+    try {
+        models.throwNoModelFor(colourOnly);
+        FAIL() << "must throw";
+    } catch (const afn::Exception& e) {
+        const std::string text = e.what();
+        EXPECT_NE(text.find("no weights for the inputs color "), std::string::npos) << text;
+        EXPECT_NE(text.find("color+albedo+normal+depth+temporal"), std::string::npos) << text;
+    }
+    EXPECT_EQ(afn::afnet::ModelSet().listing(), "none");
+    EXPECT_THROW(models.add(archiveFor("albedo,motion", 4)), afn::Exception);
+}
+
+TEST(AfnInputSet, PathTextSaysModeAndUnusedInputs)
+{
+    using afn::afnet::describePath;
+    EXPECT_EQ(describePath({}, {}),
+        "model color, single-frame (no temporal branch: no motion or position)");
+    EXPECT_EQ(describePath({ true, true, true, false }, { true, true, false, false }),
+        "model color+albedo+normal, single-frame (no temporal branch: no motion or position); "
+        "not used: depth");
+    EXPECT_EQ(describePath({ false, false, false, true }, {}),
+        "model color, single-frame (no temporal branch: the model has none); not used: temporal");
+    EXPECT_EQ(describePath(InputSet::full(), InputSet::full()),
+        "model color+albedo+normal+depth+temporal, temporal");
+}
+
+TEST(AfnInputSet, FrameInputsDecideTheSet)
+{
+    afn::Frame f;
+    f.width = 4;
+    f.height = 2;
+    f.color = afn::Image(4, 2, 3, 1.0f);
+    EXPECT_EQ(afn::afnet::inputSetOf(f), InputSet {});
+    f.position = afn::Image(4, 2, 3);
+    EXPECT_FALSE(afn::afnet::inputSetOf(f).temporal) << "positions need a camera";
+    f.camera.valid = true;
+    EXPECT_TRUE(afn::afnet::inputSetOf(f).temporal);
+    f.position = afn::Image();
+    f.motion = afn::Image(4, 2, 2);
+    f.depth = afn::Image(4, 2, 1);
+    EXPECT_EQ(afn::afnet::inputSetOf(f), (InputSet { false, false, true, true }));
+}
+
+TEST(AfnInputSet, UnusedInputsAreHeldNeutral)
+{
+    const int w = 5, h = 3;
+    afn::Frame f;
+    f.width = w;
+    f.height = h;
+    f.color = afn::Image(w, h, 3);
+    f.albedo = afn::Image(w, h, 3);
+    f.normal = afn::Image(w, h, 3);
+    f.depth = afn::Image(w, h, 1);
+    for (std::size_t k = 0; k < f.color.size(); ++k) {
+        f.color.data()[k] = 0.1f * float(k % 7);
+        f.albedo.data()[k] = 0.25f + 0.05f * float(k % 5);
+        f.normal.data()[k] = (k % 3) == 2 ? 1.0f : 0.0f;
+    }
+    for (std::size_t k = 0; k < f.depth.size(); ++k)
+        f.depth.data()[k] = 1.0f + float(k);
+    afn::Image irradiance, accumulated(w, h, 3, 9.0f);
+    afn::demodulate(f, irradiance);
+
+    afn::afnet::NetworkInputs colourOnly;
+    colourOnly.prepare(f, {}, irradiance, accumulated);
+    for (std::size_t k = 0; k < f.color.size(); ++k) {
+        EXPECT_NEAR(colourOnly.color1().data()[k], f.color.data()[k], 1e-6f) << k;
+        EXPECT_EQ(colourOnly.colorTa().data()[k], colourOnly.color1().data()[k]) << "single-frame";
+        EXPECT_EQ(colourOnly.albedo().data()[k], 1.0f);
+        EXPECT_EQ(colourOnly.normal01().data()[k], 0.5f);
+    }
+    for (std::size_t k = 0; k < f.depth.size(); ++k)
+        EXPECT_EQ(colourOnly.depth01().data()[k], 0.0f);
+    afn::Image result(w, h, 3, -2.0f), out;
+    result.data()[4] = 3.0f;
+    colourOnly.radiance(f, result, out);
+    EXPECT_EQ(out.data()[0], 0.0f);
+    EXPECT_EQ(out.data()[4], 3.0f) << "not remodulated: the model filtered the colour itself";
+
+    afn::afnet::NetworkInputs withAux;
+    withAux.prepare(f, { true, true, false, false }, irradiance, accumulated);
+    EXPECT_EQ(withAux.color1().data()[4], irradiance.data()[4]);
+    EXPECT_EQ(withAux.colorTa().data()[4], irradiance.data()[4]);
+    EXPECT_EQ(withAux.albedo().data()[4], f.albedo.data()[4]);
+    EXPECT_EQ(withAux.normal01().data()[2], 1.0f);
+    EXPECT_EQ(withAux.depth01().data()[1], 0.0f) << "depth present but not used";
+
+    afn::afnet::NetworkInputs temporal;
+    temporal.prepare(f, InputSet::full(), irradiance, accumulated);
+    EXPECT_EQ(temporal.colorTa().data()[4], 9.0f);
+    EXPECT_GT(temporal.depth01().data()[1], 0.0f);
+}
