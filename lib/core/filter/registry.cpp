@@ -57,6 +57,8 @@ const std::vector<FilterType>& filterTypes()
         registered(svgf::filterType()),
         registered(bmfr::filterType()),
         registered(afnet::filterType()),
+        registered(onnd::filterType()),
+        registered(mrkp::filterType()),
     };
     return types;
 }

@@ -70,5 +70,11 @@ FilterType filterType();
 namespace afnet {
 FilterType filterType();
 }
+namespace onnd {
+FilterType filterType();
+}
+namespace mrkp {
+FilterType filterType();
+}
 
 } // namespace afn

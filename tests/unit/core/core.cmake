@@ -25,6 +25,8 @@ afn_add_gtest(test_afn
     unit/core/methods/afn/test_afn_parity.cpp
     unit/core/methods/afn/test_afn_filter.cpp
     unit/core/methods/afn/test_afn_engine.cpp
+    unit/core/methods/baselines/test_baselines_parity.cpp
+    unit/core/methods/baselines/test_baselines_filter.cpp
     unit/core/stages/test_afn_ta_parity.cpp
   LIBS afn_core)
 target_include_directories(test_afn PRIVATE ${AFN_CORE_TESTS})
