@@ -1,17 +1,20 @@
 // SPDX-License-Identifier: Apache-2.0
 // AFN inference speed per 1280x720 frame (paper Table 10 stages): kernel prediction (padding, tone
-// map, encoder-decoder), filtering + fusion (heads, softmax, 7x7 filters, Eq. 3), refinement, and
-// the whole forward pass. Random weights of the shipped architecture: timings do not depend on the
-// values. Each case reports GFLOP/s (counter "GFLOPs": Network::stageFlop over real time); the
-// yardstick, oneDNN's dnnl_sgemm on 1024^3 at the same thread counts, runs in the same program
-// (sgemm.1024, built with oneDNN). Run: afnBenchmarkAfn [--benchmark_filter=...]; report the
-// medians. The kernels are chosen at run time (AFN_CPU_ISA=portable forces the portable ones).
+// map, encoder-decoder), filtering + fusion (heads, softmax, 7x7 filters, Eq. 3), refinement (the
+// whole-frame stages), the whole forward pass (the stripe path, Network::run), and the whole pass
+// with 60 % of the frame masked out by a work mask. Random weights of the shipped architecture:
+// timings do not depend on the values. Each case reports GFLOP/s (counter "GFLOPs":
+// Network::stageFlop over real time); the yardstick, oneDNN's dnnl_sgemm on 1024^3 at the same
+// thread counts, runs in the same program (sgemm.1024, built with oneDNN). Run: afnBenchmarkAfn
+// [--benchmark_filter=...]; report the medians. The kernels are chosen at run time
+// (AFN_CPU_ISA=portable forces the portable ones).
 #include "methods/afn/network.h"
 #include "methods/afn/random_weights.h"
 
 #include <benchmark/benchmark.h>
 #include <tbb/global_control.h>
 
+#include <algorithm>
 #include <memory>
 #include <random>
 #include <vector>
@@ -122,6 +125,24 @@ void BM_AfnWhole(benchmark::State& state)
             + s.net.stageFlop(Stage::Refinement));
 }
 BENCHMARK(BM_AfnWhole)->Name("afn.whole.1280x720")->Apply(configure);
+
+// Work skipping (issue 19): the same pass with the top 60 % of the rows masked out (work = 0), so
+// the stripes there take the cheap path. Compare with afn.whole.1280x720 in the same run; the
+// counter is the full frame's GFLOP over the time, an "effective" rate.
+void BM_AfnWholeWork40(benchmark::State& state)
+{
+    Setup& s = setup720();
+    const auto limit = threads(state);
+    afn::Image work(s.c1.width(), s.c1.height(), 1, 1.0f);
+    std::fill(work.data(), work.at(0, s.c1.height() * 60 / 100), 0.0f);
+    for (auto _ : state)
+        s.net.run(s.in, s.out, &work);
+    state.counters["skipped stripes"] = s.net.skippedStripes();
+    setFlops(state,
+        s.net.stageFlop(Stage::Prediction) + s.net.stageFlop(Stage::Filtering)
+            + s.net.stageFlop(Stage::Refinement));
+}
+BENCHMARK(BM_AfnWholeWork40)->Name("afn.whole.work40.1280x720")->Apply(configure);
 
 #ifdef AFN_HAS_DNNL
 // The yardstick: dnnl_sgemm, C = A B with M = N = K = 1024 (oneDNN threads on OpenMP).

@@ -192,7 +192,8 @@ void SequenceDenoiser::run(LoadedFrame& frame, Progress* progress)
             offset += f.channels;
         }
     } else {
-        m_output.assign(static_cast<std::size_t>(w) * h * 3, 0.0f);
+        // The filter writes every pixel of "output": no fill pass over a buffer of this size.
+        m_output.resize(static_cast<std::size_t>(w) * h * 3);
         m_filter.setImage(AFN_IMAGE_OUTPUT, m_output.data(), afn::Format::Float3, w, h);
     }
     m_filter.commit();

@@ -41,7 +41,7 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, HERE)
 sys.path.insert(0, os.path.join(HERE, "..", "..", "examples", "blender"))
 import afn_render  # noqa: E402
-from _runner import camera_record, load_state, save_state  # noqa: E402
+from _runner import camera_record, load_state, render_frames, save_state  # noqa: E402
 from generator import blender_build  # noqa: E402
 
 PROBE_SPP = 16
@@ -152,20 +152,7 @@ def main():
         configure(scene, desc, kind, args.width, args.height, spp, seed, use_blur, args.threads,
                   exposure)
         os.makedirs(os.path.dirname(os.path.join(out, stem)), exist_ok=True)
-        for f in range(desc["frames"]):
-            final = os.path.join(out, "%s.%04d.exr" % (stem, f))
-            if os.path.exists(final):
-                print("afn: skip %s" % final, flush=True)
-                continue
-            partial = os.path.join(out, "%s.%04d.partial.exr" % (stem, f))
-            cpu0 = time.process_time()
-            secs = afn_render.render_frame(scene, f, partial)
-            os.replace(partial, final)
-            name = os.path.relpath(final, out)
-            times[name] = round(secs, 2)
-            cpu_times[name] = round(time.process_time() - cpu0, 2)
-            save_state(state_path, state)
-            print("afn: wrote %s (%d spp, %.1f s)" % (name, spp, secs), flush=True)
+        render_frames(scene, out, stem, desc["frames"], spp, state, state_path)
 
 
 if __name__ == "__main__":

@@ -63,6 +63,30 @@ def load_state(path):
     return {}
 
 
+def render_frames(scene, out, stem, frames, spp, state, state_path):
+    """Render frames 0..frames-1 of the configured scene to OUT/STEM.NNNN.exr, skipping finished
+    ones; each written to a .partial file and renamed (a killed render leaves no half frame).
+    Wall and CPU seconds per file go into state["seconds"] / state["cpu_seconds"] (saved after
+    every frame, so a resumed render keeps them)."""
+    times = state.setdefault("seconds", {})
+    cpu_times = state.setdefault("cpu_seconds", {})
+    for f in range(frames):
+        final = os.path.join(out, "%s.%04d.exr" % (stem, f))
+        if os.path.exists(final):
+            print("afn: skip %s" % final, flush=True)
+            continue
+        partial = os.path.join(out, "%s.%04d.partial.exr" % (stem, f))
+        cpu0 = time.process_time()
+        secs = afn_render.render_frame(scene, f, partial)
+        os.replace(partial, final)
+        name = os.path.relpath(final, out)
+        times[name] = round(secs, 2)
+        # CPU seconds of all Blender threads: a load-independent measure for estimates.
+        cpu_times[name] = round(time.process_time() - cpu0, 2)
+        save_state(state_path, state)
+        print("afn: wrote %s (%d spp, %.1f s)" % (name, spp, secs), flush=True)
+
+
 def save_state(path, state):
     tmp = path + ".tmp"
     with open(tmp, "w") as fh:
@@ -91,8 +115,6 @@ def main():
         "reference_seed_offset": args.ref_seed_offset,
         "blender": bpy.app.version_string, "view_layer": afn_render.VIEW_LAYER_NAME,
     })
-    times = state.setdefault("seconds", {})
-    cpu_times = state.setdefault("cpu_seconds", {})
     cameras = state.setdefault("cameras", {})
     for f in range(args.frames):
         scene.frame_set(f)
@@ -101,20 +123,7 @@ def main():
 
     for kind, name, spp in (("noisy", "frame", args.spp), ("reference", "reference", args.ref_spp)):
         afn_render.setup(scene, kind, args.width, args.height, spp, args.seed, args.ref_seed_offset)
-        for f in range(args.frames):
-            final = os.path.join(out, "%s.%04d.exr" % (name, f))
-            if os.path.exists(final):
-                print("afn: skip %s" % final, flush=True)
-                continue
-            partial = os.path.join(out, "%s.%04d.partial.exr" % (name, f))
-            cpu0 = time.process_time()
-            secs = afn_render.render_frame(scene, f, partial)
-            os.replace(partial, final)
-            times[os.path.basename(final)] = round(secs, 2)
-            # CPU seconds of all Blender threads: a load-independent measure for estimates.
-            cpu_times[os.path.basename(final)] = round(time.process_time() - cpu0, 2)
-            save_state(state_path, state)
-            print("afn: wrote %s (%d spp, %.1f s)" % (final, spp, secs), flush=True)
+        render_frames(scene, out, name, args.frames, spp, state, state_path)
 
 
 if __name__ == "__main__":

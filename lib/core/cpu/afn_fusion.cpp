@@ -110,10 +110,13 @@ inline __attribute__((always_inline)) void softmax49(float* l)
         l[j] *= inv;
 }
 
+} // namespace
+
 // Rows [y0, y1) of half-resolution blocks. The heads run per row through nn::Conv::runRows (the
 // engine's conv kernels) into thread-local row buffers: one half-res row of head1 logits and the
 // two full-res rows of headTA logits, then the softmax, filtering and fusion per 2x2 block.
-AFN_CPU_CLONES void fuseRows(const FusionInputs& in, const FusionOutputs& out, int y0, int y1)
+AFN_CPU_CLONES void filterAndFuseRows(
+    const FusionInputs& in, const FusionOutputs& out, int y0, int y1)
 {
     const Image& d1 = *in.d1;
     const Image& x = *in.x;
@@ -140,8 +143,10 @@ AFN_CPU_CLONES void fuseRows(const FusionInputs& in, const FusionOutputs& out, i
         for (int xh = 0; xh < wh; ++xh) {
             // 1-spp branch at half resolution.
             float* logits = rows1.data() + static_cast<std::size_t>(xh) * s1;
-            float* d1s = out.filtered1Half->at(xh, yh);
+            float d1s[3];
             filter(logits, *in.color1Half, xh, yh, d1s);
+            if (out.filtered1Half)
+                std::copy(d1s, d1s + 3, out.filtered1Half->at(xh, yh));
             // TA branch on the four full-resolution pixels of this block.
             float dta[4][3], alpha[4];
             for (int q = 0; q < 4; ++q) {
@@ -156,16 +161,16 @@ AFN_CPU_CLONES void fuseRows(const FusionInputs& in, const FusionOutputs& out, i
                 for (int q = 0; q < 4; ++q) {
                     const int px = 2 * xh + (q & 1), py = 2 * yh + (q >> 1);
                     (*out.fused)(px, py, c) = dta[q][c] - alpha[q] * mean + alpha[q] * d1s[c];
-                    (*out.filteredTa)(px, py, c) = dta[q][c];
+                    if (out.filteredTa)
+                        (*out.filteredTa)(px, py, c) = dta[q][c];
                 }
             }
-            for (int q = 0; q < 4; ++q)
-                (*out.alpha)(2 * xh + (q & 1), 2 * yh + (q >> 1), 0) = alpha[q];
+            if (out.alpha)
+                for (int q = 0; q < 4; ++q)
+                    (*out.alpha)(2 * xh + (q & 1), 2 * yh + (q >> 1), 0) = alpha[q];
         }
     }
 }
-
-} // namespace
 
 void filterAndFuse(const FusionInputs& in, const FusionOutputs& out)
 {
@@ -174,7 +179,7 @@ void filterAndFuse(const FusionInputs& in, const FusionOutputs& out)
     out.filteredTa->resize(2 * wh, 2 * hh, 3);
     out.alpha->resize(2 * wh, 2 * hh, 1);
     out.filtered1Half->resize(wh, hh, 3);
-    parallelRows(hh, [&](int y0, int y1) { fuseRows(in, out, y0, y1); });
+    parallelRows(hh, [&](int y0, int y1) { filterAndFuseRows(in, out, y0, y1); });
 }
 
 } // namespace afn::afnet

@@ -228,8 +228,6 @@ void Filter::runStages()
     }
     if (m_stages.accumulate)
         m_accumulator.accumulate(m_reprojector, m_irradiance);
-    if (reproject)
-        m_reprojector.storeGeometry(m_frame);
 }
 
 void Filter::reportProgress(double fraction) const
@@ -264,10 +262,23 @@ void Filter::execute()
     m_frame.frameIndex = m_frameIndex;
     m_missingInputs = missingInputs(m_type, m_frame);
     runStages();
-    m_output.resize(m_frame.width, m_frame.height, 3);
-    denoise(m_frame, m_output);
-    if (outputBound())
-        writeOutput(m_output);
+    {
+        // The frame's geometry becomes the reprojection's history once the method has run (also
+        // when it throws: the stages' history has advanced with this frame): swapped, not
+        // copied; the next gather rewrites the buffers the frame gets back.
+        struct KeepGeometry {
+            Filter& self;
+            ~KeepGeometry()
+            {
+                if (self.m_stages.reproject != StageNeeds::Reproject::None)
+                    self.m_reprojector.takeGeometry(self.m_frame);
+            }
+        } keep { *this };
+        m_output.resize(m_frame.width, m_frame.height, 3);
+        denoise(m_frame, m_output);
+        if (outputBound())
+            writeOutput(m_output);
+    }
     reportProgress(1.0);
     m_prevWidth = color.width;
     m_prevHeight = color.height;

@@ -46,6 +46,8 @@ struct Frame {
     Image position;
     Image motion;
     Image alpha;
+    Image work; ///< 1 ch: 1 where the pixel needs denoising, 0 where it may take the cheap path
+                ///< (work skipping, issue 19); empty = every pixel needs it
     NormalSpace normalSpace = NormalSpace::World;
     DepthKind depthKind = DepthKind::Planar;
     bool colorDemodulated = false; ///< colour is already divided by albedo (BMFR dataset)
@@ -58,6 +60,7 @@ struct Frame {
     bool hasDepth() const { return !depth.empty(); }
     bool hasPosition() const { return !position.empty(); }
     bool hasMotion() const { return !motion.empty(); }
+    bool hasWorkMask() const { return !work.empty(); }
 };
 
 } // namespace afn

@@ -13,6 +13,7 @@
 #include "base/parallel.h"
 
 #include <atomic>
+#include <cfloat>
 #include <cmath>
 
 namespace afn {
@@ -25,30 +26,43 @@ struct Counters {
 };
 
 /// Copy `channels` channels of a binding into `dst`, replacing non-finite values by `replacement`.
-/// `perPixel(float* px)` then converts one pixel in place.
+/// `perPixel(float* px)` then converts one pixel in place. A binding whose pixels are packed with
+/// exactly `channels` floats (the usual case) is copied row by row as one run of floats.
 template <typename PerPixel>
 void gather(const ImageBinding& b, int channels, Image& dst, Counters& counts, PerPixel&& perPixel,
     float replacement = 0.0f)
 {
     const ImageView src = b.view();
     dst.resize(src.width, src.height, channels);
+    const bool packed = src.channels == channels
+        && src.pixelStride == static_cast<std::ptrdiff_t>(channels * sizeof(float));
     parallelRows(src.height, [&](int y0, int y1) {
         std::int64_t bad = 0;
-        for (int y = y0; y < y1; ++y)
-            for (int x = 0; x < src.width; ++x) {
-                const float* s = src.at(x, y);
-                float* d = dst.at(x, y);
-                for (int c = 0; c < channels; ++c) {
-                    const float v = c < src.channels ? s[c] : 0.0f;
-                    if (std::isfinite(v)) {
-                        d[c] = v;
-                    } else {
-                        d[c] = replacement;
-                        ++bad;
+        for (int y = y0; y < y1; ++y) {
+            float* d = dst.at(0, y);
+            if (packed) {
+                const float* s = src.at(0, y);
+                const int n = src.width * channels;
+                for (int i = 0; i < n; ++i) {
+                    const float v = s[i];
+                    const bool finite = std::fabs(v) <= FLT_MAX; // false for NaN and +-Inf
+                    d[i] = finite ? v : replacement;
+                    bad += finite ? 0 : 1;
+                }
+            } else {
+                for (int x = 0; x < src.width; ++x) {
+                    const float* s = src.at(x, y);
+                    for (int c = 0; c < channels; ++c) {
+                        const float v = c < src.channels ? s[c] : 0.0f;
+                        const bool finite = std::isfinite(v);
+                        d[x * channels + c] = finite ? v : replacement;
+                        bad += finite ? 0 : 1;
                     }
                 }
-                perPixel(d);
             }
+            for (int x = 0; x < src.width; ++x)
+                perPixel(d + x * channels);
+        }
         counts.nonFinite += bad;
     });
 }

@@ -57,6 +57,8 @@ const std::vector<FilterType>& filterTypes()
         registered(svgf::filterType()),
         registered(bmfr::filterType()),
         registered(afnet::filterType()),
+        registered(wskpn::filterType()),
+        registered(nbgd::filterType()),
         registered(onnd::filterType()),
         registered(mrkp::filterType()),
     };

@@ -70,6 +70,12 @@ FilterType filterType();
 namespace afnet {
 FilterType filterType();
 }
+namespace wskpn {
+FilterType filterType();
+}
+namespace nbgd {
+FilterType filterType();
+}
 namespace onnd {
 FilterType filterType();
 }

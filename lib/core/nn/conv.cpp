@@ -35,8 +35,8 @@ void Conv::load(const WeightsArchive& a, const std::string& name, int expectedIn
         bad("expected (out, in, k, k)");
     const int out = static_cast<int>(w.dims[0]), in = static_cast<int>(w.dims[1]);
     const int k = static_cast<int>(w.dims[2]);
-    if (k != 1 && k != 3)
-        bad("kernel size must be 1 or 3");
+    if (k != 1 && k != 3 && k != 5)
+        bad("kernel size must be 1, 3 or 5");
     if (out < 1 || out > kMaxChannels)
         bad("output channels out of range");
     if (in != expectedIn)
@@ -107,23 +107,26 @@ void Conv::runRows(const Image* up, const Image& same, int y0, int y1, float* ds
         cpu::convRows(a, y0, y1);
 }
 
+void down2Rows(const Image& in, Image& out, int y0, int y1)
+{
+    const int w = out.width(), c = in.channels();
+    for (int y = y0; y < y1; ++y)
+        for (int x = 0; x < w; ++x) {
+            const float* a = in.at(2 * x, 2 * y);
+            const float* b = in.at(2 * x + 1, 2 * y);
+            const float* cc = in.at(2 * x, 2 * y + 1);
+            const float* d = in.at(2 * x + 1, 2 * y + 1);
+            float* o = out.at(x, y);
+            // PyTorch avg_pool2d sums the window in row order, then divides by 4.
+            for (int k = 0; k < c; ++k)
+                o[k] = (a[k] + b[k] + cc[k] + d[k]) / 4.0f;
+        }
+}
+
 void down2(const Image& in, Image& out)
 {
-    const int w = in.width() / 2, h = in.height() / 2, c = in.channels();
-    out.resize(w, h, c);
-    parallelRows(h, [&](int y0, int y1) {
-        for (int y = y0; y < y1; ++y)
-            for (int x = 0; x < w; ++x) {
-                const float* a = in.at(2 * x, 2 * y);
-                const float* b = in.at(2 * x + 1, 2 * y);
-                const float* cc = in.at(2 * x, 2 * y + 1);
-                const float* d = in.at(2 * x + 1, 2 * y + 1);
-                float* o = out.at(x, y);
-                // PyTorch avg_pool2d sums the window in row order, then divides by 4.
-                for (int k = 0; k < c; ++k)
-                    o[k] = (a[k] + b[k] + cc[k] + d[k]) / 4.0f;
-            }
-    });
+    out.resize(in.width() / 2, in.height() / 2, in.channels());
+    parallelRows(out.height(), [&](int y0, int y1) { down2Rows(in, out, y0, y1); });
 }
 
 } // namespace afn::nn

@@ -23,8 +23,10 @@ constexpr int kMaxChannels = 256;
 class Conv {
 public:
     /// Load "<name>.weight" (Cout, Cin, k, k) and "<name>.bias" (Cout). Throws "invalid or
-    /// corrupted weights" if the shapes are inconsistent, k is not 1 or 3, Cin differs from
-    /// `expectedIn`, or Cout from `expectedOut` (when >= 0).
+    /// corrupted weights" if the shapes are inconsistent, k is not 1, 3 or 5, Cin differs from
+    /// `expectedIn`, or Cout from `expectedOut` (when >= 0). Both kernel families take k as a
+    /// run-time value (the taps loop and the band's k/2-pixel halo), so 5x5 (WSKPN, NBGD) runs on
+    /// the same kernels as 1x1 and 3x3; tests/unit/core/nn/test_conv5.cpp checks it on both.
     void load(
         const WeightsArchive& a, const std::string& name, int expectedIn, int expectedOut = -1);
 
@@ -67,5 +69,7 @@ private:
 
 /// D: 2x2 average pooling of an image with even size into `out` (half size).
 void down2(const Image& in, Image& out);
+/// Rows [y0, y1) of the same into `out`, already of half size, on the calling thread.
+void down2Rows(const Image& in, Image& out, int y0, int y1);
 
 } // namespace afn::nn

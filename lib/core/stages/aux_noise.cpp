@@ -36,10 +36,34 @@ template <AuxKind K> inline float distance(const float* p, const float* q)
     }
 }
 
-/// Flags of rows [y0, y1); returns their count. Pixels with all 8 neighbours in the image take a
-/// path without bounds checks (same neighbours, same order, same result).
+/// Whether the pixel at `p` is speckle: its distance to every comparable neighbour exceeds `t`.
+/// The neighbours are visited in a fixed order and the visit stops at the first one within `t`
+/// (then min <= t and the pixel is not speckle): clean buffers cost about one distance per pixel,
+/// and the answer is the one of the full minimum (NaN distances are skipped either way, as
+/// std::min(best, NaN) keeps best). `inner`: all 8 neighbours lie in the image.
 template <AuxKind K>
-std::int64_t flagRows(const ImageView& img, float t, Image& flags, int y0, int y1)
+inline bool isSpeckle(const ImageView& img, int x, int y, const float* p, float t, bool inner)
+{
+    static constexpr int kDx[8] = { -1, 1, 0, 0, -1, 1, -1, 1 };
+    static constexpr int kDy[8] = { 0, 0, -1, 1, -1, -1, 1, 1 };
+    float best = std::numeric_limits<float>::infinity();
+    for (int k = 0; k < 8; ++k) {
+        const int qx = x + kDx[k], qy = y + kDy[k];
+        if (!inner && (qx < 0 || qy < 0 || qx >= img.width || qy >= img.height))
+            continue;
+        const float d = distance<K>(p, img.at(qx, qy));
+        if (d <= t)
+            return false;
+        best = std::min(best, d);
+    }
+    // A pixel without comparable neighbours (1x1 image, surface pixel amid sky) is not called
+    // speckle: there is nothing to compare it with. Every finite distance seen was above t.
+    return std::isfinite(best);
+}
+
+/// Flags of rows [y0, y1) into `flags` (when not null); returns their count.
+template <AuxKind K>
+std::int64_t flagRows(const ImageView& img, float t, Image* flags, int y0, int y1)
 {
     const int w = img.width, h = img.height;
     std::int64_t count = 0;
@@ -47,28 +71,10 @@ std::int64_t flagRows(const ImageView& img, float t, Image& flags, int y0, int y
         const bool innerRow = y > 0 && y < h - 1;
         for (int x = 0; x < w; ++x) {
             const float* p = img.at(x, y);
-            bool speckle = false;
-            if (K != AuxKind::Depth || hasSurface(p[0])) {
-                float best = std::numeric_limits<float>::infinity();
-                if (innerRow && x > 0 && x < w - 1) {
-                    for (int dy = -1; dy <= 1; ++dy)
-                        for (int dx = -1; dx <= 1; ++dx)
-                            if (dx != 0 || dy != 0)
-                                best = std::min(best, distance<K>(p, img.at(x + dx, y + dy)));
-                } else {
-                    for (int dy = -1; dy <= 1; ++dy)
-                        for (int dx = -1; dx <= 1; ++dx) {
-                            const int qx = x + dx, qy = y + dy;
-                            if ((dx == 0 && dy == 0) || qx < 0 || qy < 0 || qx >= w || qy >= h)
-                                continue;
-                            best = std::min(best, distance<K>(p, img.at(qx, qy)));
-                        }
-                }
-                // A pixel without comparable neighbours (1x1 image, surface pixel amid sky) is not
-                // called speckle: there is nothing to compare it with.
-                speckle = std::isfinite(best) && best > t;
-            }
-            flags(x, y, 0) = speckle ? 1.0f : 0.0f;
+            const bool speckle = (K != AuxKind::Depth || hasSurface(p[0]))
+                && isSpeckle<K>(img, x, y, p, t, innerRow && x > 0 && x < w - 1);
+            if (flags)
+                (*flags)(x, y, 0) = speckle ? 1.0f : 0.0f;
             count += speckle ? 1 : 0;
         }
     }
@@ -90,17 +96,13 @@ float threshold(AuxKind kind)
 
 } // namespace
 
-std::int64_t speckleFlags(const ImageView& img, AuxKind kind, Image& flags)
+namespace {
+
+std::int64_t speckleRows(const ImageView& img, AuxKind kind, Image* flags)
 {
-    if (img.empty()) {
-        flags = Image();
-        return 0;
-    }
-    const int w = img.width, h = img.height;
-    flags.resize(w, h, 1);
     const float t = threshold(kind);
     std::atomic<std::int64_t> total { 0 };
-    parallelRows(h, [&](int y0, int y1) {
+    parallelRows(img.height, [&](int y0, int y1) {
         switch (kind) {
         case AuxKind::Albedo:
             total += flagRows<AuxKind::Albedo>(img, t, flags, y0, y1);
@@ -116,12 +118,28 @@ std::int64_t speckleFlags(const ImageView& img, AuxKind kind, Image& flags)
     return total;
 }
 
+} // namespace
+
+std::int64_t speckleFlags(const ImageView& img, AuxKind kind, Image& flags)
+{
+    if (img.empty()) {
+        flags = Image();
+        return 0;
+    }
+    flags.resize(img.width, img.height, 1);
+    return speckleRows(img, kind, &flags);
+}
+
+std::int64_t speckleCount(const ImageView& img, AuxKind kind)
+{
+    return img.empty() ? 0 : speckleRows(img, kind, nullptr);
+}
+
 double speckleShare(const ImageView& img, AuxKind kind)
 {
     if (img.empty())
         return 0.0;
-    Image flags;
-    const std::int64_t n = speckleFlags(img, kind, flags);
+    const std::int64_t n = speckleCount(img, kind);
     return static_cast<double>(n) / (static_cast<double>(img.width) * img.height);
 }
 

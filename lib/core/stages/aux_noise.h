@@ -43,6 +43,9 @@ struct AuxNoiseThresholds {
 /// Floor of the albedo level that scales albedo differences (dark albedo: absolute 0.01).
 constexpr float kAuxAlbedoLevelFloor = 0.1f;
 
+/// The number of speckle pixels of `image` (speckleFlags without writing the flags).
+std::int64_t speckleCount(const ImageView& image, AuxKind kind);
+
 /// Share of speckle pixels above which a buffer counts as noisy ("auto" decides on it): 0.5 %.
 /// Measured (Blender 3.4, 1 spp, Denoising Albedo): 0.09-0.15 % on scenes without metal or glass
 /// (neon, flyby of training/scenes), 1.9-5.0 % with them (examples/sequence, the afn-v2 eval
@@ -55,6 +58,9 @@ constexpr float kAuxDepthSky = 1e9f;
 /// Write the speckle flags of `image` (1 channel, 0 or 1) into `flags`; returns their count.
 /// `image` holds 3 channels (albedo, normal) or 1 (depth); an empty image gives no flags.
 std::int64_t speckleFlags(const ImageView& image, AuxKind kind, Image& flags);
+
+/// The number of speckle pixels of `image` (speckleFlags without writing the flags).
+std::int64_t speckleCount(const ImageView& image, AuxKind kind);
 
 /// Share of speckle pixels of `image` in [0, 1] (0 for an empty image).
 double speckleShare(const ImageView& image, AuxKind kind);

@@ -83,16 +83,20 @@ void AuxPrefilter::reset()
 
 void AuxPrefilter::prepare(Frame& f)
 {
-    const bool albedo = f.hasAlbedo();
     const std::int64_t pixels = static_cast<std::int64_t>(f.width) * f.height;
-    Image normalFlags, depthFlags;
-    auto share = [&](std::int64_t n) { return static_cast<double>(n) / pixels; };
-    m_report.albedoSpeckle
-        = albedo ? share(speckleFlags(f.albedo.view(), AuxKind::Albedo, m_albedoFlags)) : -1.0;
-    m_report.normalSpeckle
-        = f.hasNormal() ? share(speckleFlags(f.normal.view(), AuxKind::Normal, normalFlags)) : -1.0;
-    m_report.depthSpeckle
-        = f.hasDepth() ? share(speckleFlags(f.depth.view(), AuxKind::Depth, depthFlags)) : -1.0;
+    // The flags themselves are needed only where this history may be (or is) prefiltered; a
+    // history decided clean (or aux=clean) only reports the shares: counted, not stored.
+    const bool keepFlags = m_decided ? m_report.noisy : m_settings.aux != AuxSettings::Mode::Clean;
+    auto share = [&](const Image& img, AuxKind kind, Image& flags) {
+        if (img.empty())
+            return -1.0;
+        const std::int64_t n
+            = keepFlags ? speckleFlags(img.view(), kind, flags) : speckleCount(img.view(), kind);
+        return static_cast<double>(n) / pixels;
+    };
+    m_report.albedoSpeckle = share(f.albedo, AuxKind::Albedo, m_albedoFlags);
+    m_report.normalSpeckle = share(f.normal, AuxKind::Normal, m_normalFlags);
+    m_report.depthSpeckle = share(f.depth, AuxKind::Depth, m_depthFlags);
 
     if (!m_decided) {
         using M = AuxSettings::Mode;
@@ -105,7 +109,7 @@ void AuxPrefilter::prepare(Frame& f)
         return;
 
     if (f.hasNormal()) {
-        boxMean(normalFlags, m_tmp, m_share);
+        boxMean(m_normalFlags, m_tmp, m_share);
         boxMean(f.normal, m_tmp, m_mean);
         parallelRows(f.height, [&](int y0, int y1) {
             for (int y = y0; y < y1; ++y)
@@ -128,7 +132,8 @@ void AuxPrefilter::prepare(Frame& f)
     }
     if (f.hasDepth()) {
         // Mean over pixels with a surface: channels (z * valid, valid).
-        Image zv(f.width, f.height, 2);
+        Image& zv = m_depthValid;
+        zv.resize(f.width, f.height, 2);
         for (int y = 0; y < f.height; ++y)
             for (int x = 0; x < f.width; ++x) {
                 const float z = f.depth(x, y, 0);
@@ -136,7 +141,7 @@ void AuxPrefilter::prepare(Frame& f)
                 zv(x, y, 0) = ok ? z : 0.0f;
                 zv(x, y, 1) = ok ? 1.0f : 0.0f;
             }
-        boxMean(depthFlags, m_tmp, m_share);
+        boxMean(m_depthFlags, m_tmp, m_share);
         boxMean(zv, m_tmp, m_mean);
         parallelRows(f.height, [&](int y0, int y1) {
             for (int y = y0; y < y1; ++y)

@@ -93,7 +93,8 @@ private:
     AuxReport m_report;
     bool m_decided = false;
     bool m_hasHistory = false;
-    Image m_albedoFlags, m_flags, m_share, m_mean, m_tmp;
+    Image m_albedoFlags, m_normalFlags, m_depthFlags; ///< speckle flags (kept in noisy mode)
+    Image m_share, m_mean, m_tmp, m_depthValid;
     Image m_hist, m_prevHist; ///< per pixel: smoothed albedo (3), flag share (1), length (1)
 };
 

@@ -5,7 +5,9 @@
 #include "base/parallel.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
+#include <utility>
 
 namespace afn {
 
@@ -46,6 +48,14 @@ inline bool isZero3(const float* v)
 
 } // namespace
 
+struct Reprojector::Context {
+    const Frame& f;
+    bool position; ///< position test (this and the previous frame have positions)
+    bool absolute; ///< BMFR's absolute position limit instead of the footprint-relative one
+    bool depth; ///< depth test (no positions; both frames have depth)
+    bool normal; ///< normal test
+};
+
 void Reprojector::reset()
 {
     m_hasPrev = false;
@@ -60,6 +70,14 @@ void Reprojector::storeGeometry(const Frame& f)
     m_prevPosition = f.position;
     m_prevNormal = f.normal;
     m_prevDepth = f.depth;
+    m_hasPrev = true;
+}
+
+void Reprojector::takeGeometry(Frame& f)
+{
+    std::swap(m_prevPosition, f.position);
+    std::swap(m_prevNormal, f.normal);
+    std::swap(m_prevDepth, f.depth);
     m_hasPrev = true;
 }
 
@@ -111,27 +129,30 @@ void Reprojector::previousPosition(
         ok = false;
 }
 
-bool Reprojector::accept(const Frame& f, int x, int y, int tx, int ty, float fp) const
+bool Reprojector::accept(const Context& c, int x, int y, int tx, int ty, float& fp) const
 {
+    const Frame& f = c.f;
     if (tx < 0 || ty < 0 || tx >= f.width || ty >= f.height)
         return false;
-    if (f.hasPosition() && !m_prevPosition.empty()) {
+    if (c.position) {
         const float d2 = dist2(m_prevPosition.at(tx, ty), f.position.at(x, y));
-        if (m_settings.positionLimitSquared > 0.0f) {
+        if (c.absolute) {
             if (!(d2 < m_settings.positionLimitSquared))
                 return false;
-        } else {
+        } else if (!(d2 == 0.0f)) {
+            if (fp < 0.0f)
+                fp = footprint(f, x, y); // once per pixel, and only where a position differs
             const float lim = m_settings.positionLimit * fp;
-            if (!(d2 == 0.0f || d2 < lim * lim))
+            if (!(d2 < lim * lim))
                 return false;
         }
-    } else if (f.hasDepth() && !m_prevDepth.empty()) {
+    } else if (c.depth) {
         const float z = f.depth(x, y, 0);
         const float dz = std::fabs(m_prevDepth(tx, ty, 0) - z);
         if (!(dz == 0.0f || dz < m_settings.depthLimit * std::fabs(z)))
             return false;
     }
-    if (f.hasNormal() && !m_prevNormal.empty()) {
+    if (c.normal) {
         const float* n = f.normal.at(x, y);
         const float* np = m_prevNormal.at(tx, ty);
         if (isZero3(n) || isZero3(np))
@@ -139,6 +160,95 @@ bool Reprojector::accept(const Frame& f, int x, int y, int tx, int ty, float fp)
         if (!(dist2(n, np) < m_settings.normalLimitSquared))
             return false;
     }
+    return true;
+}
+
+namespace {
+
+/// Bilinear weights of the four taps for the fractions (fx, fy); shared by acceptance and taps()
+/// so that the stored and the rebuilt weights are the same numbers.
+inline void bilinearWeights(float fx, float fy, float* bw)
+{
+    bw[0] = (1.0f - fx) * (1.0f - fy);
+    bw[1] = fx * (1.0f - fy);
+    bw[2] = (1.0f - fx) * fy;
+    bw[3] = fx * fy;
+}
+
+} // namespace
+
+Reprojector::TapBits Reprojector::pixelTaps(
+    const Context& c, int x, int y, float px, float py) const
+{
+    TapBits b;
+    b.onScreen = 1;
+    const float fx0 = std::floor(px), fy0 = std::floor(py);
+    const int x0 = static_cast<int>(fx0), y0 = static_cast<int>(fy0);
+    float bw[4];
+    bilinearWeights(px - fx0, py - fy0, bw);
+    float fp = -1.0f; // footprint, computed on first use
+    float ws = 0.0f;
+    for (int k = 0; k < 4; ++k) {
+        if (!(bw[k] > 0.0f) || !accept(c, x, y, x0 + (k & 1), y0 + (k >> 1), fp))
+            continue;
+        b.mask |= static_cast<std::uint16_t>(1u << k);
+        ws += bw[k];
+    }
+    if (ws > 0.0f || !m_settings.boxFallback)
+        return b;
+    // SVGF fallback: 3x3 box around the nearest previous pixel, equal weights.
+    const int cx = static_cast<int>(std::floor(px + 0.5f));
+    const int cy = static_cast<int>(std::floor(py + 0.5f));
+    std::uint16_t mask = 0;
+    for (int k = 0; k < 9; ++k)
+        if (accept(c, x, y, cx + k % 3 - 1, cy + k / 3 - 1, fp))
+            mask |= static_cast<std::uint16_t>(1u << k);
+    if (mask) {
+        b.box = 1;
+        b.mask = mask;
+    }
+    return b;
+}
+
+PixelTaps Reprojector::taps(int x, int y) const
+{
+    PixelTaps t;
+    const std::size_t i = static_cast<std::size_t>(y) * m_width + x;
+    const TapBits b = m_bits[i];
+    if (!b.onScreen)
+        return t;
+    float px = static_cast<float>(x), py = static_cast<float>(y);
+    if (!m_identityRow[static_cast<std::size_t>(y)]) {
+        px = m_prev[i].x;
+        py = m_prev[i].y;
+    }
+    const float fx0 = std::floor(px), fy0 = std::floor(py);
+    t.x0 = static_cast<std::int32_t>(fx0);
+    t.y0 = static_cast<std::int32_t>(fy0);
+    t.fx = px - fx0;
+    t.fy = py - fy0;
+    t.mask = b.mask;
+    t.box = b.box;
+    t.onScreen = 1;
+    if (b.box) {
+        t.x0 = static_cast<std::int32_t>(std::floor(px + 0.5f));
+        t.y0 = static_cast<std::int32_t>(std::floor(py + 0.5f));
+        return t; // bilinear weights all 0: none was accepted
+    }
+    float bw[4];
+    bilinearWeights(t.fx, t.fy, bw);
+    for (int k = 0; k < 4; ++k)
+        t.w[k] = (b.mask & (1u << k)) ? bw[k] : 0.0f;
+    return t;
+}
+
+bool Reprojector::motionRowIsZero(const Frame& f, int y) const
+{
+    const float* m = f.motion.at(0, y);
+    const int n = 2 * f.width;
+    for (int i = 0; i < n; ++i)
+        if (m[i] != 0.0f)
+            return false;
     return true;
 }
 
@@ -153,55 +263,45 @@ void Reprojector::compute(const Frame& f)
         && (m_prevNormal.empty() || m_prevNormal.width() == f.width)
         && (m_prevDepth.empty() || m_prevDepth.width() == f.width);
     if (!m_hasPrev || !sameSize) {
-        m_taps.assign(n, PixelTaps {});
+        m_bits.assign(n, TapBits {});
+        m_identityRow.assign(static_cast<std::size_t>(m_height), 1);
         return;
     }
-    m_taps.resize(n); // every pixel's taps are rewritten below: no fill pass
-    const bool usePosition
-        = f.hasPosition() && !m_prevPosition.empty() && !(m_settings.positionLimitSquared > 0.0f);
+    m_bits.resize(n); // every pixel's taps are rewritten below: no fill pass
+    m_identityRow.resize(static_cast<std::size_t>(m_height));
+    const bool camera = f.hasPosition() && f.camera.valid && f.prevCamera.valid;
+    // Identity rows: zero motion, or no motion and no camera reprojection (static camera).
+    std::atomic<bool> anyMoving { false };
     parallelRows(f.height, [&](int y0, int y1) {
-        for (int y = y0; y < y1; ++y)
+        for (int y = y0; y < y1; ++y) {
+            const bool identity = f.hasMotion() ? motionRowIsZero(f, y) : !camera;
+            m_identityRow[static_cast<std::size_t>(y)] = identity ? 1 : 0;
+            if (!identity)
+                anyMoving = true;
+        }
+    });
+    if (anyMoving && m_prev.size() < n)
+        m_prev.resize(n);
+    const bool position = f.hasPosition() && !m_prevPosition.empty();
+    const Context c { f, position, m_settings.positionLimitSquared > 0.0f,
+        !position && f.hasDepth() && !m_prevDepth.empty(), f.hasNormal() && !m_prevNormal.empty() };
+    parallelRows(f.height, [&](int y0, int y1) {
+        for (int y = y0; y < y1; ++y) {
+            TapBits* bits = m_bits.data() + static_cast<std::size_t>(y) * m_width;
+            if (m_identityRow[static_cast<std::size_t>(y)]) {
+                for (int x = 0; x < f.width; ++x)
+                    bits[x] = pixelTaps(c, x, y, static_cast<float>(x), static_cast<float>(y));
+                continue;
+            }
+            Prev* prev = m_prev.data() + static_cast<std::size_t>(y) * m_width;
             for (int x = 0; x < f.width; ++x) {
-                PixelTaps& t = m_taps[static_cast<std::size_t>(y) * m_width + x];
-                t = PixelTaps {};
                 float px = 0.0f, py = 0.0f;
                 bool ok = false;
                 previousPosition(f, x, y, px, py, ok);
-                if (!ok)
-                    continue;
-                const float fx0 = std::floor(px), fy0 = std::floor(py);
-                t.x0 = static_cast<std::int32_t>(fx0);
-                t.y0 = static_cast<std::int32_t>(fy0);
-                t.fx = px - fx0;
-                t.fy = py - fy0;
-                t.onScreen = 1;
-                const float fp = usePosition ? footprint(f, x, y) : 0.0f;
-                const float bw[4] = { (1.0f - t.fx) * (1.0f - t.fy), t.fx * (1.0f - t.fy),
-                    (1.0f - t.fx) * t.fy, t.fx * t.fy };
-                float ws = 0.0f;
-                for (int k = 0; k < 4; ++k) {
-                    if (!accept(f, x, y, t.x0 + (k & 1), t.y0 + (k >> 1), fp))
-                        continue;
-                    t.mask |= static_cast<std::uint16_t>(1u << k);
-                    t.w[k] = bw[k];
-                    ws += bw[k];
-                }
-                if (ws > 0.0f || !m_settings.boxFallback)
-                    continue;
-                // SVGF fallback: 3x3 box around the nearest previous pixel, equal weights.
-                const int cx = static_cast<int>(std::floor(px + 0.5f));
-                const int cy = static_cast<int>(std::floor(py + 0.5f));
-                std::uint16_t mask = 0;
-                for (int k = 0; k < 9; ++k)
-                    if (accept(f, x, y, cx + k % 3 - 1, cy + k / 3 - 1, fp))
-                        mask |= static_cast<std::uint16_t>(1u << k);
-                if (mask) {
-                    t.box = 1;
-                    t.mask = mask;
-                    t.x0 = cx;
-                    t.y0 = cy;
-                }
+                prev[x] = { px, py };
+                bits[x] = ok ? pixelTaps(c, x, y, px, py) : TapBits {};
             }
+        }
     });
 }
 

@@ -22,8 +22,21 @@
 //   - normal: |n_prev(tap) - n|^2 < normalLimitSquared (BMFR: squared distance of the normals,
 //     sponza 0.25); a zero normal never matches.
 // With only colour and motion, every in-image tap is accepted. Weights of accepted taps are later
-// renormalised (gatherHistory). Optional SVGF fallback: when no bilinear tap with weight > 0 is
-// accepted, the 3x3 box around the nearest previous pixel is tested with equal weights.
+// renormalised (gatherHistory). Only taps with a bilinear weight > 0 are tested (a tap of weight 0
+// adds nothing to any history: the previous position lies on its column or row), so `mask` holds
+// accepted taps of positive weight. Optional SVGF fallback: when no bilinear tap with weight > 0
+// is accepted, the 3x3 box around the nearest previous pixel is tested with equal weights.
+//
+// Static camera (identity reprojection): a row whose motion vectors are all exactly zero (or
+// every row, without motion and without a camera reprojection) has prev = (x, y): fx = fy = 0,
+// weights (1, 0, 0, 0), so only the pixel's own previous value is tested and fetched. Such rows
+// skip reading the motion and computing previous positions; the taps are the ones the general
+// rule gives (tests/unit/core/stages/test_reproject_identity.cpp compares the two). The world
+// footprint is computed only where a position test needs it (a tap whose position differs).
+//
+// Storage: per pixel 4 bytes (mask, box, on-screen flag) plus, for rows that are not identity
+// rows, the previous position (8 bytes); taps() rebuilds the PixelTaps from them (x0 = floor(px),
+// fx = px - x0, weights from fx and fy as computed at acceptance, bit for bit).
 #pragma once
 
 #include "base/params.h"
@@ -75,26 +88,46 @@ public:
 
     /// Compute the taps of `frame`; all taps are rejected when there is no previous frame.
     void compute(const Frame& frame);
-    /// Keep the frame's geometry for the next compute().
+    /// Keep the frame's geometry for the next compute() (a copy).
     void storeGeometry(const Frame& frame);
+    /// Keep the frame's geometry for the next compute() by swapping buffers with `frame`: its
+    /// position, normal and depth then hold unspecified data of the same shape (or are empty),
+    /// to be overwritten by the next gather (the Filter base, after the method has run).
+    void takeGeometry(Frame& frame);
     void reset();
 
     /// True when the last compute() had a previous frame (its taps may point into it).
     bool hasHistory() const { return m_tapsHaveHistory; }
-    const PixelTaps& taps(int x, int y) const
-    {
-        return m_taps[static_cast<std::size_t>(y) * m_width + x];
-    }
+    /// The taps of pixel (x, y) (decoded from the compact storage, see the file comment).
+    PixelTaps taps(int x, int y) const;
+    /// True when row y of the last compute() was an identity row (prev = (x, y) for every pixel
+    /// with history).
+    bool identityRow(int y) const { return m_identityRow[static_cast<std::size_t>(y)] != 0; }
     int width() const { return m_width; }
     int height() const { return m_height; }
 
 private:
+    /// Per pixel: accepted-tap mask (bits 0-3 bilinear, 0-8 box), box flag, on-screen flag.
+    struct TapBits {
+        std::uint16_t mask = 0;
+        std::uint8_t box = 0;
+        std::uint8_t onScreen = 0;
+    };
+    struct Prev {
+        float x = 0.0f, y = 0.0f; ///< previous position (pixel-index space)
+    };
+    struct Context;
+
     void previousPosition(const Frame& f, int x, int y, float& px, float& py, bool& ok) const;
-    bool accept(const Frame& f, int x, int y, int tx, int ty, float footprint) const;
+    bool accept(const Context& c, int x, int y, int tx, int ty, float& footprint) const;
     float footprint(const Frame& f, int x, int y) const;
+    TapBits pixelTaps(const Context& c, int x, int y, float px, float py) const;
+    bool motionRowIsZero(const Frame& f, int y) const;
 
     ReprojectSettings m_settings;
-    std::vector<PixelTaps> m_taps;
+    std::vector<TapBits> m_bits;
+    std::vector<Prev> m_prev; ///< allocated once a frame has a non-identity row
+    std::vector<std::uint8_t> m_identityRow;
     int m_width = 0, m_height = 0;
     bool m_hasPrev = false; ///< geometry of a previous frame is stored
     bool m_tapsHaveHistory = false; ///< the current taps were computed against it

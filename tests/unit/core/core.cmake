@@ -9,6 +9,7 @@ afn_add_gtest(test_methods
   SOURCES
     unit/core/stages/test_methods_reproject.cpp
     unit/core/stages/test_aux_prefilter.cpp
+    unit/core/stages/test_reproject_identity.cpp
     unit/core/methods/test_methods_ta.cpp
     unit/core/methods/test_methods_filters.cpp
     unit/core/methods/test_methods_blender.cpp
@@ -22,12 +23,16 @@ afn_add_gtest(test_afn
   SOURCES
     unit/core/nn/test_afn_weights.cpp
     unit/core/nn/test_afn_layers.cpp
+    unit/core/nn/test_conv5.cpp
     unit/core/methods/afn/test_afn_parity.cpp
     unit/core/methods/afn/test_afn_filter.cpp
     unit/core/methods/afn/test_afn_engine.cpp
-    unit/core/methods/baselines/test_baselines_parity.cpp
-    unit/core/methods/baselines/test_baselines_filter.cpp
+    unit/core/methods/afn/test_afn_stripes.cpp
     unit/core/stages/test_afn_ta_parity.cpp
+    unit/core/methods/baselines/test_baselines_parity.cpp
+    unit/core/methods/baselines/test_baselines_filters.cpp
+    unit/core/methods/baselines/test_onnd_mrkp_parity.cpp
+    unit/core/methods/baselines/test_onnd_mrkp_filter.cpp
   LIBS afn_core)
 target_include_directories(test_afn PRIVATE ${AFN_CORE_TESTS})
 # The embedding mechanism of the shipped weights, exercised on a committed parity file.

@@ -1,16 +1,18 @@
 # SPDX-License-Identifier: Apache-2.0
-"""Write the PyTorch <-> C++ parity vectors of the learned baselines to
-tests/data/baselines_parity/ (one command):
+"""Write the PyTorch <-> C++ parity vectors of the baselines to tests/data/baselines_parity/.
 
     /usr/bin/python3 -m afn.baselines.make_parity_vectors            (from training/)
 
-Files (weights-archive format, weights.py):
-  <name>_weights.afnw   deterministic random-initialised model (narrow widths for ONND, so the
-                        C++ engine must derive every width from the tensor dims)
-  <name>_case.afnw      per frame t: inputs cta<t>, albedo<t>, normal01<t>, depth01<t> and the
-                        PyTorch output irr<t> (demodulated irradiance), (H, W, C) float32.
-ONND runs three frames (the recurrent state carried from frame to frame); MR-KP one. The frame is
-37x21 (odd, not a multiple of 16) so the padding rule is covered.
+Files (weights-archive format, :mod:`afn.weights`):
+  wskpn_weights.afnw  a deterministic random WSKPN, folded as the export folds it (the C++ engine
+                      runs the folded 5x5 layers); head logits scaled x3 so weights and fusion are
+                      far from uniform
+  wskpn_case.afnw     inputs cta, albedo, normal01, depth01 (H, W, C) and the outputs of the folded
+                      PyTorch model: head (12 ch), o; plus o_branches, the unfolded training model's
+                      output (the folding check)
+  nbgd_weights.afnw   a deterministic random NBGD (guide2 scaled x4: guides spread over [0, 255])
+  nbgd_case.afnw      the same inputs and guides (5 ch sigmoid), g1, g2, g3 (sliced grids), o
+The frame is 37x21 (odd; the 16-pixel grid has 4 x 3 cells).
 """
 
 import argparse
@@ -20,58 +22,74 @@ import numpy as np
 import torch
 
 from ..make_parity_vectors import HEIGHT, WIDTH, make_inputs
-from . import mrkp, onnd
-from .train import export
 from ..weights import dumps
+from . import archive, nbgd, wskpn
 
-ONND_PARITY = dict(enc=(6, 8, 10), bottleneck=12)
-MRKP_PARITY = dict(width=12)
-
-
-def frames(count):
-    """Inputs of `count` frames (numpy (H, W, C)), different per frame."""
-    out = []
-    for t in range(count):
-        i = make_inputs(seed=1 + t)
-        out.append({"cta": i["cta"] * (1.0 + 2.0 * t), "albedo": i["albedo"],
-                    "normal01": i["normal01"], "depth01": i["depth01"]})
-    return out
+KEYS = ("cta", "albedo", "normal01", "depth01")
 
 
-def tensor(a):
+def _t(a):
     return torch.from_numpy(a).permute(2, 0, 1)[None]
+
+
+def _np(t):
+    return t[0].permute(1, 2, 0).contiguous().numpy()
+
+
+def make_wskpn(seed=0):
+    torch.manual_seed(seed)
+    model = wskpn.WSKPN().eval()
+    with torch.no_grad():
+        for branch in ("b5", "b3", "b1"):
+            getattr(model.blocks[-1], branch).weight.mul_(3.0)
+    return model
+
+
+def make_nbgd(seed=0):
+    torch.manual_seed(seed)
+    model = nbgd.NBGD().eval()
+    with torch.no_grad():
+        model.guide2.weight.mul_(4.0)
+    return model
+
+
+def cases(inputs):
+    """{method: (weights bytes, case tensors)}."""
+    args = [_t(inputs[k]) for k in KEYS]
+    out = {}
+    model = make_wskpn()
+    weights = archive.archive_bytes("wskpn", model)
+    folded = wskpn.FoldedWSKPN(model.folded_state()).eval()
+    with torch.no_grad():
+        f = folded(*args)
+        b = model(*args)
+    out["wskpn"] = (weights, {"head": _np(f["head"]), "o": _np(f["o"]),
+                              "o_branches": _np(b["o"])})
+    model = make_nbgd()
+    with torch.no_grad():
+        r = model(*args)
+    out["nbgd"] = (archive.archive_bytes("nbgd", model),
+                   {k: _np(r[k]) for k in ("guides", "g1", "g2", "g3", "o")})
+    return out
 
 
 def main(argv=None):
     here = os.path.dirname(os.path.abspath(__file__))
     default_out = os.path.join(here, "..", "..", "..", "tests", "data", "baselines_parity")
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("--out", default=default_out, help="output folder (default: %(default)s)")
+    ap.add_argument("--out", default=default_out)
     args = ap.parse_args(argv)
     os.makedirs(args.out, exist_ok=True)
-    torch.manual_seed(0)
-    models = {"onnd": onnd.ONND(**ONND_PARITY).eval(), "mrkp": mrkp.MRKP(**MRKP_PARITY).eval()}
-    with torch.no_grad():   # kernels far from uniform, blend weights away from 0.5
-        for l in range(mrkp.FILTER_LEVELS):
-            getattr(models["mrkp"], f"head{l}").weight.mul_(4.0)
-    for name, model in models.items():
-        export(os.path.join(args.out, f"{name}_weights.afnw"), model, name)
-        seq = frames(3 if name == "onnd" else 1)
-        case, state = {}, None
-        with torch.no_grad():
-            for t, f in enumerate(seq):
-                x = [tensor(f[k]) for k in ("cta", "albedo", "normal01", "depth01")]
-                if name == "onnd":
-                    irr, state = model(*x, state)
-                else:
-                    irr = model(*x)
-                case.update({f"{k}{t}": v for k, v in f.items()})
-                case[f"irr{t}"] = irr[0].permute(1, 2, 0).contiguous().numpy()
-        with open(os.path.join(args.out, f"{name}_case.afnw"), "wb") as fh:
-            fh.write(dumps(case, {"width": WIDTH, "height": HEIGHT, "frames": len(seq),
-                                  "torch": torch.__version__}))
-        last = case[f"irr{len(seq) - 1}"]
-        print(f"{name}: {len(seq)} frames, last output range [{last.min():.4f}, {last.max():.4f}]")
+    full = make_inputs()
+    inputs = {k: full[k] for k in KEYS}
+    for method, (weights, outputs) in cases(inputs).items():
+        with open(os.path.join(args.out, f"{method}_weights.afnw"), "wb") as f:
+            f.write(weights)
+        with open(os.path.join(args.out, f"{method}_case.afnw"), "wb") as f:
+            f.write(dumps({**inputs, **outputs}, {"width": WIDTH, "height": HEIGHT,
+                                                  "method": method, "torch": torch.__version__}))
+        o = outputs["o"]
+        print(f"{method}: o range [{o.min():.4f}, {o.max():.4f}]")
     print(f"wrote {os.path.normpath(args.out)}")
 
 

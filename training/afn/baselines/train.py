@@ -1,142 +1,128 @@
 # SPDX-License-Identifier: Apache-2.0
-"""Train a learned baseline (ONND or MR-KP) on the same data and protocol as afn (train.py):
-a generated dataset's training sequences at the given sample count (its eval split, family
-atrium, never trained on), inputs prepared by the C++ core through ``afntool --features``.
+"""Train a learned baseline (wskpn, nbgd) on afn's data and protocol.
 
-    cd training && /usr/bin/python3 -m afn.baselines.train --model mrkp --data /work/data/afn-v2 \\
-        --spp 1 --out results/mrkp [--crop 64] [--minutes 35] [--threads 1]
+    cd training && /usr/bin/python3 -m afn.baselines.train --method wskpn --data ../data/afn-v2 \\
+        --spp 1 --out results/wskpn [--cache results/v2-spp1-cache] [--minutes 40] [--threads 1]
 
-Budget choices (CPU training; the papers trained for days on GPUs): crops of 64x64 (the papers:
-128x128), a wall-clock limit instead of epochs, Adam lr 1e-3 (ONND's; beta2 0.99 for ONND as its
-paper), divided by 5 for the last fifth of the time. ONND trains on whole 6-frame sequences (the
-recurrence), MR-KP on single frames. Prepared scenes are cached as .npy under OUT/cache (memory-
-mapped, so concurrent runs share them). OUT/log.csv has one line per 25 steps; OUT/model.afnw is
-the latest weights (metadata ``format=onnd|mrkp``) for the C++ core.
+Data, crops (128x128, flips, brightness jitter) and the scene rules (a generated dataset's eval
+split is never trained on) are afn.train's; the inputs come from ``afntool --features`` (afn's
+features: the baselines read cta, albedo, normal01, depth01). Loss, learning rate and batch follow
+each paper (WSKPN: SMAPE eps 0.01, Adam 1e-3; NBGD: L1 on tone-mapped output, Adam 1e-4) except
+the batch size, which is sized for a CPU (default 8; the papers: 64 and 1). OUT holds config.json,
+log.csv, checkpoints/latest.pt (resumed) and model.afnw (what the C++ method embeds).
 """
 
 import argparse
-import json
 import os
 import time
 
 import numpy as np
 import torch
 
-from ..dataset import evaluation_scenes, find_scenes, load_scene
-from ..weights import dumps
-from . import mrkp, onnd
-from .common import SEQ_KEYS, SequenceSampler
+from .. import color
+from ..dataset import KEYS, CropSampler, load_scene, to_tensors
+from ..train import RunFolder, git_revision, resolve_device, resolve_scenes
+from . import archive, nbgd, wskpn
+
+LOSSES = {"wskpn": wskpn.loss, "nbgd": nbgd.loss}
+LEARNING_RATES = {"wskpn": 1e-3, "nbgd": 1e-4}
 
 
 def parse_args(argv=None):
-    ap = argparse.ArgumentParser(description="Train a learned baseline (onnd, mrkp).")
-    ap.add_argument("--model", required=True, choices=("onnd", "mrkp"))
-    ap.add_argument("-d", "--data", required=True, help="generated dataset root (afn-dataset-2)")
-    ap.add_argument("--spp", default="1", help="input sample count level (default 1)")
-    ap.add_argument("-o", "--out", required=True, help="results folder (resumed when it exists)")
-    ap.add_argument("--cache", default="", help="folder of prepared .npy arrays (default OUT/cache)")
-    ap.add_argument("--crop", type=int, default=64)
-    ap.add_argument("-b", "--batch", type=int, default=0, help="0: 4 sequences (onnd), 8 (mrkp)")
-    ap.add_argument("--lr", type=float, default=1e-3)
-    ap.add_argument("--minutes", type=float, default=35.0, help="wall-clock training budget")
-    ap.add_argument("--threads", type=int, default=1)
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--method", required=True, choices=archive.METHODS)
+    ap.add_argument("-d", "--data", required=True)
+    ap.add_argument("-o", "--out", required=True)
+    ap.add_argument("--spp", default="")
+    ap.add_argument("--scenes", default="")
+    ap.add_argument("--holdout", default="")
+    ap.add_argument("--cache", default="", help="folder keeping the prepared scenes as .npz "
+                    "(reused by later runs; delete it when the data or afntool change)")
+    ap.add_argument("-e", "--epochs", type=int, default=1000)
+    ap.add_argument("--steps", type=int, default=50, help="batches per epoch")
+    ap.add_argument("-b", "--batch", type=int, default=8)
+    ap.add_argument("--lr", type=float, default=0.0, help="0: the paper's")
+    ap.add_argument("--crop", type=int, default=128)
+    ap.add_argument("--device", default="auto")
+    ap.add_argument("--threads", type=int, default=0)
     ap.add_argument("--seed", type=int, default=0)
+    ap.add_argument("--minutes", type=float, default=0.0)
     return ap.parse_args(argv)
 
 
-def prepared_scenes(args):
-    """List of scene dicts (F, H, W, C) arrays, memory-mapped from the cache (built on first use)."""
-    cache = args.cache or os.path.join(args.out, "cache")
-    done = os.path.join(cache, "scenes.json")
-    if not os.path.exists(done):
-        scenes = find_scenes(args.data, args.spp)
-        held = evaluation_scenes(args.data, args.spp)
-        names = [s for s in scenes if s not in held]
-        print(f"preparing {len(names)} training scenes through afntool ...", flush=True)
-        arrays = {k: [] for k in SEQ_KEYS}
-        for n in names:
-            s = load_scene(scenes[n])
-            for k in SEQ_KEYS:
-                arrays[k].append(s[k])
+def load_cached(name, folder, cache):
+    """A prepared scene (afn.dataset.load_scene), kept in ``cache`` as .npz when given."""
+    path = os.path.join(cache, name.replace("/", "_") + ".npz") if cache else ""
+    if path and os.path.exists(path):
+        with np.load(path) as z:
+            return {k: z[k] for k in KEYS}
+    scene = load_scene(folder)
+    if path:
         os.makedirs(cache, exist_ok=True)
-        for k in SEQ_KEYS:
-            np.save(os.path.join(cache, f"{k}.npy"), np.stack(arrays[k]))
-        with open(done, "w") as f:
-            json.dump(names, f)
-    with open(done) as f:
-        names = json.load(f)
-    arrays = {k: np.load(os.path.join(cache, f"{k}.npy"), mmap_mode="r") for k in SEQ_KEYS}
-    return [{k: arrays[k][i] for k in SEQ_KEYS} for i in range(len(names))], names
+        np.savez(path + ".tmp.npz", **scene)
+        os.replace(path + ".tmp.npz", path)
+    return scene
 
 
-def export(path, model, name):
-    meta = {"format": name}
-    if name == "onnd":
-        meta.update(enc=",".join(map(str, model.enc)), bottleneck=model.bottleneck)
-    else:
-        meta.update(width=model.width)
-    tmp = path + ".tmp"
-    with open(tmp, "wb") as f:
-        f.write(dumps(model.state_dict(), meta))
-    os.replace(tmp, path)
+class BaselineRun(RunFolder):
+    def __init__(self, path, method):
+        super().__init__(path)
+        self.method = method
+
+    def checkpoint(self, model, opt, sampler, epoch, cfg, device):
+        tmp = self.latest + ".tmp"
+        torch.save({"model": model.state_dict(), "optimizer": opt.state_dict(), "epoch": epoch,
+                    "method": self.method, "sampler_rng": sampler.rng.get_state(),
+                    "torch_rng": torch.get_rng_state()}, tmp)
+        os.replace(tmp, self.latest)
+        archive.save_model(self.weights, self.method, model.cpu())
+        model.to(device)
+
+
+def forward(model, b):
+    out = model(b["cta"], b["albedo"], b["normal01"], b["depth01"])
+    return color.remodulate(out["o"], b["albedo"])
 
 
 def main(argv=None):
     args = parse_args(argv)
-    torch.set_num_threads(args.threads)
+    device = resolve_device(args.device)
+    if args.threads:
+        torch.set_num_threads(args.threads)
     torch.manual_seed(args.seed)
-    os.makedirs(args.out, exist_ok=True)
-    scenes, names = prepared_scenes(args)
-    is_onnd = args.model == "onnd"
-    model = onnd.ONND() if is_onnd else mrkp.MRKP()
-    cost = (onnd if is_onnd else mrkp).cost_per_pixel(model)
-    with open(os.path.join(args.out, "config.json"), "w") as f:
-        json.dump({**vars(args), "train_scenes": names, "cost": cost}, f, indent=2)
-    betas = (0.9, 0.99) if is_onnd else (0.9, 0.999)
-    opt = torch.optim.Adam(model.parameters(), lr=args.lr, betas=betas)
-    batch = args.batch or (4 if is_onnd else 8)
-    sampler = SequenceSampler(scenes, args.crop, frames=6 if is_onnd else 1, seed=args.seed)
-    kernel = onnd.log_kernel()
-    latest = os.path.join(args.out, "latest.pt")
-    step = 0
-    if os.path.exists(latest):
-        ck = torch.load(latest)
-        model.load_state_dict(ck["model"])
-        opt.load_state_dict(ck["optimizer"])
-        step = ck["step"]
-    log = os.path.join(args.out, "log.csv")
-    start, losses, decayed = time.time(), [], False
-    while time.time() - start < args.minutes * 60.0:
-        if not decayed and time.time() - start > 0.8 * args.minutes * 60.0:
-            for g in opt.param_groups:
-                g["lr"] = args.lr / 5.0
-            decayed = True
-        seq = sampler.batch(batch)
-        if is_onnd:
-            loss = onnd.sequence_loss(model, seq, kernel)
-        else:
-            loss = mrkp.loss(model, {k: v[0] for k, v in seq.items()})
-        opt.zero_grad(set_to_none=True)
-        loss.backward()
-        if not torch.isfinite(loss):
-            continue
-        opt.step()
-        losses.append(loss.item())
-        step += 1
-        if step % 25 == 0:
-            with open(log, "a") as f:
-                f.write(f"{step},{np.mean(losses):.6f},{time.time() - start:.1f}\n")
-            print(f"step {step}: loss {np.mean(losses):.5f} ({time.time() - start:.0f} s)",
+    all_scenes, train_names, holdout = resolve_scenes(args)
+    run = BaselineRun(args.out, args.method)
+    lr = args.lr or LEARNING_RATES[args.method]
+    run.save_config({**vars(args), "lr": lr, "device": str(device), "train_scenes": train_names,
+                     "git": git_revision(), "torch": torch.__version__})
+    print(f"loading {len(train_names)} training scenes ...", flush=True)
+    train = [load_cached(s, all_scenes[s], args.cache) for s in train_names]
+    sampler = CropSampler(train, args.crop, seed=args.seed)
+    model = archive.make_model(args.method).to(device)
+    opt = torch.optim.Adam(model.parameters(), lr=lr)
+    start = run.resume(model, opt, sampler, device)
+    loss_fn = LOSSES[args.method]
+    t_start = time.time()
+    for epoch in range(start, args.epochs):
+        t0, losses = time.time(), []
+        for _ in range(args.steps):
+            b = to_tensors(sampler.batch(args.batch), device)
+            loss = loss_fn(forward(model, b), b["target"])
+            opt.zero_grad(set_to_none=True)
+            loss.backward()
+            if not torch.isfinite(loss) or not all(
+                    torch.isfinite(p.grad).all() for p in model.parameters() if p.grad is not None):
+                continue  # one bad batch never poisons the weights
+            opt.step()
+            losses.append(loss.item())
+        mean = float(np.mean(losses)) if losses else float("nan")
+        run.append_log(epoch + 1, mean, float("nan"), float("nan"), time.time() - t0)
+        print(f"epoch {epoch + 1}: train loss {mean:.5f} ({time.time() - t0:.1f} s)", flush=True)
+        run.checkpoint(model, opt, sampler, epoch + 1, None, device)
+        if args.minutes and time.time() - t_start > args.minutes * 60.0:
+            print(f"time limit of {args.minutes} minutes reached after epoch {epoch + 1}",
                   flush=True)
-            losses = []
-        if step % 100 == 0:
-            torch.save({"model": model.state_dict(), "optimizer": opt.state_dict(),
-                        "step": step}, latest + ".tmp")
-            os.replace(latest + ".tmp", latest)
-            export(os.path.join(args.out, "model.afnw"), model, args.model)
-    torch.save({"model": model.state_dict(), "optimizer": opt.state_dict(), "step": step}, latest)
-    export(os.path.join(args.out, "model.afnw"), model, args.model)
-    print(f"done after {step} steps; cost {cost}", flush=True)
+            break
 
 
 if __name__ == "__main__":

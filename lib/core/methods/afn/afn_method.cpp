@@ -97,7 +97,7 @@ private:
             return; // only the network's inputs were asked for
         const Inputs net { &irradiance(), &accumulator().color(), &m_albedo, &m_normal01,
             &m_depth01 };
-        m_net.run(net, m_result);
+        m_net.run(net, m_result, &in.work); // work skipping: network.h
         reportProgress(0.95);
         remodulate(in, m_result, out);
     }

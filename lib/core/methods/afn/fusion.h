@@ -30,7 +30,8 @@ struct FusionInputs {
     const nn::Conv* headTa = nullptr; ///< 1x1, d1 + 13 -> 50
 };
 
-/// Outputs (resized here): fused image i, d_TA, alpha (full res), d_1spp (half res).
+/// Outputs: fused image i, d_TA, alpha (full res), d_1spp (half res); all but `fused` may be null
+/// for filterAndFuseRows (not kept).
 struct FusionOutputs {
     Image* fused = nullptr;
     Image* filteredTa = nullptr;
@@ -38,8 +39,14 @@ struct FusionOutputs {
     Image* filtered1Half = nullptr;
 };
 
-/// Run heads, softmax, filtering and fusion.
+/// Run heads, softmax, filtering and fusion over the whole frame (outputs resized here).
 void filterAndFuse(const FusionInputs& in, const FusionOutputs& out);
+
+/// The same for half-resolution rows [y0, y1) (full rows [2 y0, 2 y1)) on the calling thread,
+/// into outputs already of their size. The images may be a window of the frame (network
+/// stripes): rows outside them read zero, which is right only at the frame's border, so a window
+/// must hold the 3-pixel filter halo (and d1, x the same rows) wherever it is not at the border.
+void filterAndFuseRows(const FusionInputs& in, const FusionOutputs& out, int y0, int y1);
 
 /// Softmax over `n` logits in place, with the maximum subtracted first.
 void softmax(float* v, int n);

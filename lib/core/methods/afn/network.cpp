@@ -16,13 +16,6 @@ namespace {
 
 constexpr int kInputChannels = 13; // T(1spp) 3, T(TA) 3, albedo 3, normal01 3, depth01 1
 constexpr int kRefineChannels = 10; // T(i) 3, albedo 3, normal01 3, depth01 1
-constexpr int kPadMultiple = 8;
-
-int padded(int n)
-{
-    return (n + kPadMultiple - 1) / kPadMultiple * kPadMultiple;
-}
-
 } // namespace
 
 float toneMap(float x)
@@ -95,18 +88,19 @@ const nn::Conv& Network::layer(Layer which) const
     return m_ref3;
 }
 
-void Network::prepare(const Inputs& in)
+Inputs Network::checkInputs(const Inputs& given)
 {
     if (!m_loaded)
         throwInvalidOperation("AFN: no weights loaded");
-    const Image* c1 = in.color1;
-    const Image* cta = in.colorTa;
+    Inputs in = given;
     if (m_variant == Variant::OneSpp)
-        cta = c1;
+        in.colorTa = in.color1;
     if (m_variant == Variant::Ta)
-        c1 = cta;
-    const int w = c1->width(), h = c1->height();
-    const Image* all[] = { c1, cta, in.albedo, in.normal01, in.depth01 };
+        in.color1 = in.colorTa;
+    if (!in.color1)
+        throwInvalidArgument("AFN: input 0 missing or of the wrong shape");
+    const int w = in.color1->width(), h = in.color1->height();
+    const Image* all[] = { in.color1, in.colorTa, in.albedo, in.normal01, in.depth01 };
     const int chans[] = { 3, 3, 3, 3, 1 };
     for (int k = 0; k < 5; ++k)
         if (!all[k] || all[k]->width() != w || all[k]->height() != h
@@ -115,28 +109,41 @@ void Network::prepare(const Inputs& in)
                 "AFN: input " + std::to_string(k) + " missing or of the wrong shape");
     m_width = w;
     m_height = h;
-    const int wp = padded(w), hp = padded(h);
+    return in;
+}
+
+void Network::fillInput(
+    const Inputs& in, int y0, int y1, int origin, Image& x, Image& color1, Image& colorTa) const
+{
+    const int w = m_width, h = m_height, wp = x.width();
+    for (int y = y0; y < y1; ++y)
+        for (int xx = 0; xx < wp; ++xx) {
+            const int sx = std::min(xx, w - 1), sy = std::min(y, h - 1); // edge replication
+            const float* a = in.color1->at(sx, sy);
+            const float* b = in.colorTa->at(sx, sy);
+            float* o = x.at(xx, y - origin);
+            float* c1 = color1.at(xx, y - origin);
+            float* cta = colorTa.at(xx, y - origin);
+            for (int c = 0; c < 3; ++c) {
+                o[c] = toneMap(a[c]);
+                o[3 + c] = toneMap(b[c]);
+                o[6 + c] = in.albedo->at(sx, sy)[c];
+                o[9 + c] = in.normal01->at(sx, sy)[c];
+                c1[c] = a[c];
+                cta[c] = b[c];
+            }
+            o[12] = in.depth01->at(sx, sy)[0];
+        }
+}
+
+void Network::prepare(const Inputs& given)
+{
+    const Inputs in = checkInputs(given);
+    const int wp = paddedSize(m_width), hp = paddedSize(m_height);
     m_x.resize(wp, hp, kInputChannels);
     m_colorTa.resize(wp, hp, 3);
     m_color1.resize(wp, hp, 3);
-    parallelRows(hp, [&](int y0, int y1) {
-        for (int y = y0; y < y1; ++y)
-            for (int x = 0; x < wp; ++x) {
-                const int sx = std::min(x, w - 1), sy = std::min(y, h - 1); // edge replication
-                const float* a = c1->at(sx, sy);
-                const float* b = cta->at(sx, sy);
-                float* o = m_x.at(x, y);
-                for (int c = 0; c < 3; ++c) {
-                    o[c] = toneMap(a[c]);
-                    o[3 + c] = toneMap(b[c]);
-                    o[6 + c] = in.albedo->at(sx, sy)[c];
-                    o[9 + c] = in.normal01->at(sx, sy)[c];
-                    m_color1(x, y, c) = a[c];
-                    m_colorTa(x, y, c) = b[c];
-                }
-                o[12] = in.depth01->at(sx, sy)[0];
-            }
-    });
+    parallelRows(hp, [&](int y0, int y1) { fillInput(in, y0, y1, 0, m_x, m_color1, m_colorTa); });
     nn::down2(m_color1, m_color1Half);
 }
 
@@ -185,7 +192,7 @@ const char* Network::stageName(Stage s)
 
 double Network::stageFlop(Stage s) const
 {
-    const double full = static_cast<double>(padded(m_width)) * padded(m_height);
+    const double full = static_cast<double>(paddedSize(m_width)) * paddedSize(m_height);
     const double half = full / 4, quarter = full / 16, eighth = full / 64;
     switch (s) {
     case Stage::Prediction:
@@ -203,7 +210,7 @@ double Network::stageFlop(Stage s) const
         : (m_ref1.flopPerPixel() + m_ref2.flopPerPixel() + m_ref3.flopPerPixel()) * full;
 }
 
-void Network::run(const Inputs& in, Image& out)
+void Network::runWholeFrame(const Inputs& in, Image& out)
 {
     using Clock = std::chrono::steady_clock;
     auto ms = [](Clock::time_point a, Clock::time_point b) {

@@ -8,14 +8,21 @@
 // with T(x) = clip(max(x, 0)^(1/2.2), 0, 1), D = 2x2 average pooling, U = nearest 2x upsampling.
 // Odd sizes: every input is padded at the right/bottom to a multiple of 8 by edge replication,
 // the graph runs on the padded frame and the output is cropped (same rule as PyTorch).
-// Buffers are allocated once per resolution and reused. The refinement runs in row strips with
-// thread-local buffers (network_refine.cpp), so its 45 channels are never stored at frame size.
+// Two paths compute the same graph, bit-identically:
+// - run(): the production path, in horizontal stripes (network_stripes.cpp): each stripe of output
+//   rows computes every layer over just the rows its receptive field needs, in a reusable stripe
+//   workspace, so memory is O(stripe width x height), not O(frame), and no layer is stored at
+//   frame size. It can skip stripes that a work mask does not ask for (work skipping, issue 19).
+// - runWholeFrame() = prepare, predict, filterAndFuse, refine, crop: every layer at frame size,
+//   kept for the tests (the intermediates below) and the per-stage Google benchmark.
+// The refinement runs in row strips with thread-local buffers in both (network_refine.cpp).
 #pragma once
 
 #include "base/image.h"
 #include "nn/conv.h"
 #include "nn/weights.h"
 
+#include <memory>
 #include <string>
 
 namespace afn::afnet {
@@ -32,6 +39,13 @@ struct Inputs {
     const Image* depth01 = nullptr; ///< 1 ch, per-frame min-max depth, [0, 1]
 };
 
+/// Frame sizes are padded to a multiple of this (edge replication).
+constexpr int kPadMultiple = 8;
+inline int paddedSize(int n)
+{
+    return (n + kPadMultiple - 1) / kPadMultiple * kPadMultiple;
+}
+
 /// Tone map of the network inputs: clip(max(x, 0)^(1/2.2), 0, 1).
 float toneMap(float x);
 
@@ -42,8 +56,17 @@ public:
     bool loaded() const { return m_loaded; }
     Variant variant() const { return m_variant; }
 
-    /// Whole forward pass: `out` = o (3 ch, demodulated, W x H, not clamped).
-    void run(const Inputs& in, Image& out);
+    /// Whole forward pass in stripes: `out` = o (3 ch, demodulated, W x H, not clamped).
+    /// `work` (W x H, 1 ch, or null/empty = everywhere): a stripe none of whose output pixels is
+    /// non-zero there is not computed; its pixels take the cheap path, `out` = in.colorTa (the
+    /// temporal accumulation, the input colour where there is no history). Pixels whose stripe is
+    /// computed are bit-identical to a run without mask (work=0 pixels in it included).
+    void run(const Inputs& in, Image& out, const Image* work = nullptr);
+    /// The same result through the whole-frame stages; keeps the intermediates below.
+    void runWholeFrame(const Inputs& in, Image& out);
+    /// Stripes of the last run() skipped by its work mask, and stripes in all.
+    int skippedStripes() const { return m_skippedStripes; }
+    int stripes() const { return m_stripes; }
 
     // The stages, callable one by one (benchmark): prepare + predict = kernel prediction.
     void prepare(const Inputs& in); ///< pad, tone map, build x and D(r_1spp)
@@ -59,15 +82,16 @@ public:
     /// FLOP of `s` for one frame at the last run's size: 2 x multiply-adds of its conv layers and
     /// 7x7 filters over the padded pixels they compute (softmax, pooling, tone map not counted).
     double stageFlop(Stage s) const;
-    /// Wall-clock milliseconds of `s` in the last run().
+    /// Wall-clock milliseconds of `s` in the last run(). In stripes the stages interleave across
+    /// threads: the run's wall time is split in proportion to the thread time each stage took.
     double stageMs(Stage s) const { return m_stageMs[static_cast<int>(s)]; }
 
     /// The layers, for engines that pack them in their own layout (lib/core/cuda).
     enum class Layer { Enc1, Enc2, Enc3, Dec2, Dec1, Head1, HeadTa, Ref1, Ref2, Ref3 };
     const nn::Conv& layer(Layer which) const;
 
-    /// Intermediates at the padded size (tests): network input x, fused i, d_TA, alpha; the
-    /// decoder output d1 and d_1spp at half size.
+    /// Intermediates at the padded size (tests) of the last runWholeFrame() or stage calls:
+    /// network input x, fused i, d_TA, alpha; the decoder output d1 and d_1spp at half size.
     const Image& input() const { return m_x; }
     const Image& decoderOutput() const { return m_d1; }
     const Image& fused() const { return m_fused; }
@@ -76,7 +100,25 @@ public:
     const Image& filtered1Half() const { return m_d1Half; }
 
 private:
+    struct StripeWorkspace; // network_stripes.cpp
+    /// Rows [y0, y1) of the padded frame into x, color1, colorTa (13, 3, 3 ch), whose row 0 is
+    /// padded row `origin` (edge replication of the W x H inputs, tone map of x's colours).
+    void fillInput(const Inputs& in, int y0, int y1, int origin, Image& x, Image& color1,
+        Image& colorTa) const;
+    /// Refined rows [y0, y1) of `fused` (3 ch) with the features of `x` (13 ch, same rows):
+    /// o row y at dst + (y - y0) * dstRow, width x 3 floats. Rows outside the images read zero.
+    void refineRows(
+        const Image& fused, const Image& x, int y0, int y1, float* dst, long dstRow) const;
+    struct WorkspacePool; // network_stripes.cpp
+    /// Output rows [y0, y1) of the padded frame (cropped into `out`); adds each stage's thread
+    /// milliseconds to ms[].
+    void runStripe(
+        const Inputs& in, int y0, int y1, StripeWorkspace& ws, Image& out, double* ms) const;
+    /// The inputs with the variant's substitution applied, shapes checked; sets the size.
+    Inputs checkInputs(const Inputs& in);
+
     bool m_loaded = false;
+    int m_skippedStripes = 0, m_stripes = 0;
     Variant m_variant = Variant::Full;
     nn::Conv m_enc1, m_enc2, m_enc3, m_dec2, m_dec1, m_head1, m_headTa, m_ref1, m_ref2, m_ref3;
     int m_width = 0, m_height = 0;
@@ -84,6 +126,9 @@ private:
     // Buffers, reused across frames of one size.
     Image m_x, m_colorTa, m_color1, m_color1Half, m_xHalf, m_e1, m_e1Pool, m_e2, m_e2Pool, m_e3;
     Image m_d2, m_d1, m_fused, m_dTa, m_alpha, m_d1Half, m_out;
+    // Stripe workspaces of run(), reused across frames; copies of the Network share them (a
+    // cache behind a mutex).
+    std::shared_ptr<WorkspacePool> m_pool;
 };
 
 } // namespace afn::afnet

@@ -69,7 +69,7 @@ long Network::parameters() const
     return n;
 }
 
-void Network::run(const nn::BaselineFeatures& in, Image& out)
+void Network::run(const nn::BaselineFeatureViews& in, Image& out)
 {
     if (!m_loaded)
         throwInvalidOperation("MR-KP: no weights loaded");

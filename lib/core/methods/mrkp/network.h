@@ -30,7 +30,7 @@ public:
     bool loaded() const { return m_loaded; }
 
     /// Denoise one frame: `out` = demodulated irradiance (3 ch, W x H).
-    void run(const nn::BaselineFeatures& in, Image& out);
+    void run(const nn::BaselineFeatureViews& in, Image& out);
 
     /// FLOP per frame of the last run (convolutions and the kernel filtering, padded pixels).
     double flopPerFrame() const { return m_flop; }

@@ -82,7 +82,7 @@ long Network::parameters() const
     return n;
 }
 
-void Network::run(const nn::BaselineFeatures& in, Image& out)
+void Network::run(const nn::BaselineFeatureViews& in, Image& out)
 {
     if (!loaded())
         throwInvalidOperation("ONND: no weights loaded");

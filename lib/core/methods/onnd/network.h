@@ -28,7 +28,7 @@ public:
     int levels() const { return static_cast<int>(m_levels.size()); }
 
     /// Denoise one frame: `out` = demodulated irradiance (3 ch, W x H); updates the state.
-    void run(const nn::BaselineFeatures& in, Image& out);
+    void run(const nn::BaselineFeatureViews& in, Image& out);
     /// Forget the recurrent state (the next frame starts a history).
     void resetState() { m_hasState = false; }
 

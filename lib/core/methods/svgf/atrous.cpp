@@ -1,24 +1,37 @@
 // SPDX-License-Identifier: Apache-2.0
 // One SVGF à-trous iteration on colour + variance (see methods/svgf/denoiser.h; the per-row
-// kernels are in atrous_kernel.cpp) and the method's parameter table.
+// kernels are in atrous_kernel.cpp and atrous_avx512.cpp, chosen here by cpu::activeIsa()) and
+// the method's parameter table.
 #include "base/parallel.h"
+#include "cpu/isa.h"
 #include "methods/svgf/denoiser.h"
 #include "methods/svgf/kernels.h"
 
 namespace afn::svgf {
 
+void atrousRows(const AtrousArgs& a, int y0, int y1)
+{
+    if (cpu::activeIsa() == cpu::Isa::Avx512)
+        atrousRowsAvx512(a, y0, y1);
+    else
+        atrousRowsPortable(a, y0, y1);
+}
+
 void Denoiser::atrous(const Planes& in, Planes& out, int step)
 {
     const int w = in.width(), h = in.height();
     out.resize(w, h, kColorPlanes);
-    m_invPhiL.resize(w, h, 1);
-    parallelRows(h, [&](int y0, int y1) { invPhiRows(in, m_settings.sigmaL, m_invPhiL, y0, y1); });
     AtrousArgs a;
     a.in = &in;
-    a.invPhiL = &m_invPhiL;
+    a.sigmaL = m_settings.sigmaL;
     a.guide = &m_guide;
     a.out = &out;
     a.step = step;
+    m_rowOrder.clear();
+    for (int r = 0; r < step; ++r)
+        for (int y = r; y < h; y += step)
+            m_rowOrder.push_back(y);
+    a.rowOrder = m_rowOrder.data();
     parallelRows(h, [&](int y0, int y1) { atrousRows(a, y0, y1); });
 }
 

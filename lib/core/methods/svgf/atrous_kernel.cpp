@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-// SVGF's à-trous iteration and its luminance scale invPhiL, 8 pixels at a time (see
+// SVGF's à-trous iteration with its luminance scale invPhiL, 8 pixels at a time (see
 // methods/svgf/kernels.h). The weights and sums are those of methods/svgf/denoiser.h, in the same
 // order per pixel as the former scalar loop; taps whose weight is below exp(-40) or whose normal
 // factor is 0 add exactly 0, as the scalar loop skipped them.
@@ -15,6 +15,37 @@ namespace {
 
 constexpr float kMaxExponent = 40.0f; ///< taps with exp(-e) below exp(-40) < 5e-18 are skipped
 constexpr float kB3[3] = { 3.0f / 8.0f, 1.0f / 4.0f, 1.0f / 16.0f }; ///< by |offset|
+
+/// invPhiL of pixels x .. x + 7 of row y (kernels.h AtrousArgs::sigmaL).
+AFN_SVGF_INLINE V8 invPhi8(const Planes& in, float sigmaL, int x, int y)
+{
+    const int w = in.width(), h = in.height();
+    // Out-of-image taps read the zero padding; the weight sum counts in-image taps only (a
+    // product of per-axis sums: the weights are powers of two, so it is exact).
+    V8 sum = {};
+    float wy = 0.0f;
+    for (int dy = -1; dy <= 1; ++dy) {
+        const int qy = y + dy;
+        if (qy < 0 || qy >= h)
+            continue;
+        const float ky = dy == 0 ? 0.5f : 0.25f;
+        wy += ky;
+        const float* v = in.row(kVariance, qy) + x;
+        sum += (ky * 0.25f) * cpu::load8(v - 1);
+        sum += (ky * 0.5f) * cpu::load8(v);
+        sum += (ky * 0.25f) * cpu::load8(v + 1);
+    }
+    const I8 iota = { 0, 1, 2, 3, 4, 5, 6, 7 };
+    const I8 px = iota + x;
+    const V8 wx = cpu::splat8(1.0f) - ((px == 0) ? cpu::splat8(0.25f) : V8 {})
+        - ((px == w - 1) ? cpu::splat8(0.25f) : V8 {});
+    V8 blurred = sum / (wx * wy);
+    blurred = blurred > 0.0f ? blurred : V8 {};
+    V8 r = {};
+    for (int l = 0; l < kLanes; ++l)
+        r[l] = std::sqrt(blurred[l]);
+    return 1.0f / (sigmaL * r + 1e-10f);
+}
 
 /// Running sums of one output vector.
 struct Sums {
@@ -79,13 +110,14 @@ AFN_SVGF_INLINE void atrousRowsOf(const AtrousArgs& a, int y0, int y1)
     const Planes& in = *a.in;
     Planes& out = *a.out;
     const int w = in.width(), h = in.height();
-    for (int y = y0; y < y1; ++y)
+    for (int v = y0; v < y1; ++v) {
+        const int y = a.rowOrder ? a.rowOrder[v] : v;
         for (int x = 0; x < w; x += kLanes) {
             V8 cp[3];
             for (int k = 0; k < 3; ++k)
                 cp[k] = cpu::load8(in.row(k, y) + x);
             const V8 lp = cpu::load8(in.row(kLuminance, y) + x);
-            const V8 invPhi = cpu::load8(a.invPhiL->row(0, y) + x);
+            const V8 invPhi = invPhi8(in, a.sigmaL, x, y);
             const GuideCentre gc = guideCentre(*a.guide, x, y);
             Sums s;
             for (int j = -2; j <= 2; ++j) {
@@ -103,11 +135,12 @@ AFN_SVGF_INLINE void atrousRowsOf(const AtrousArgs& a, int y0, int y1)
             storeLanes(out.row(kVariance, y), x, w, s.vsum * inv * inv);
             storeLanes(out.row(kLuminance, y), x, w, luminance8(o[0], o[1], o[2]));
         }
+    }
 }
 
 } // namespace
 
-AFN_CPU_KERNEL_CLONES void atrousRows(const AtrousArgs& a, int y0, int y1)
+AFN_CPU_KERNEL_CLONES void atrousRowsPortable(const AtrousArgs& a, int y0, int y1)
 {
     const FlushDenormals flush;
     const Guide& g = *a.guide;
@@ -119,47 +152,6 @@ AFN_CPU_KERNEL_CLONES void atrousRows(const AtrousArgs& a, int y0, int y1)
         atrousRowsOf<false, true>(a, y0, y1);
     else
         atrousRowsOf<false, false>(a, y0, y1);
-}
-
-/// invPhiRows' body, always inlined into each clone: clang refuses 8-float vector calls in a
-/// clone's own body for its baseline ("default") version, but not inside an always-inlined helper.
-AFN_SVGF_INLINE void invPhiRowsOf(const Planes& in, float sigmaL, Planes& invPhiL, int y0, int y1)
-{
-    const int w = in.width(), h = in.height();
-    for (int y = y0; y < y1; ++y)
-        for (int x = 0; x < w; x += kLanes) {
-            // Out-of-image taps read the zero padding; the weight sum counts in-image taps only
-            // (a product of per-axis sums: the weights are powers of two, so it is exact).
-            V8 sum = {};
-            float wy = 0.0f;
-            for (int dy = -1; dy <= 1; ++dy) {
-                const int qy = y + dy;
-                if (qy < 0 || qy >= h)
-                    continue;
-                const float ky = dy == 0 ? 0.5f : 0.25f;
-                wy += ky;
-                const float* v = in.row(kVariance, qy) + x;
-                sum += (ky * 0.25f) * cpu::load8(v - 1);
-                sum += (ky * 0.5f) * cpu::load8(v);
-                sum += (ky * 0.25f) * cpu::load8(v + 1);
-            }
-            const I8 iota = { 0, 1, 2, 3, 4, 5, 6, 7 };
-            const I8 px = iota + x;
-            const V8 wx = cpu::splat8(1.0f) - ((px == 0) ? cpu::splat8(0.25f) : V8 {})
-                - ((px == w - 1) ? cpu::splat8(0.25f) : V8 {});
-            V8 blurred = sum / (wx * wy);
-            blurred = blurred > 0.0f ? blurred : V8 {};
-            V8 r;
-            for (int l = 0; l < kLanes; ++l)
-                r[l] = std::sqrt(blurred[l]);
-            storeLanes(invPhiL.row(0, y), x, w, 1.0f / (sigmaL * r + 1e-10f));
-        }
-}
-
-AFN_CPU_KERNEL_CLONES void invPhiRows(
-    const Planes& in, float sigmaL, Planes& invPhiL, int y0, int y1)
-{
-    invPhiRowsOf(in, sigmaL, invPhiL, y0, y1);
 }
 
 } // namespace afn::svgf

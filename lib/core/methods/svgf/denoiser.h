@@ -14,12 +14,17 @@
 //      squared weights; the output of iteration feedbackTap is the next frame's colour history.
 // Filtered values are written as c_p + sum(w (c_q - c_p)) / sum(w), identical in exact arithmetic
 // to sum(w c_q) / sum(w), so a constant image stays bit-exactly constant. The variance estimate and
-// the à-trous passes run 8 pixels at a time on planes (methods/svgf/kernels.h).
+// the à-trous passes run 8 pixels at a time on planes (methods/svgf/kernels.h), the à-trous passes
+// 16 at a time with AVX-512 where the CPU has it (atrous_avx512.cpp); phiL is computed inside the
+// pass. Colour, moments and history length are kept as one 6-channel history image, gathered
+// through the reprojection's taps once per pixel.
 #pragma once
 
 #include "methods/svgf/guide.h"
 #include "methods/svgf/planes.h"
 #include "stages/reproject.h"
+
+#include <vector>
 
 namespace afn::svgf {
 
@@ -31,9 +36,6 @@ public:
     /// SVGF's box fallback), into `filtered` (3 ch, demodulated).
     void process(const Frame& f, const Image& irradiance, const Reprojector& taps, Image& filtered);
 
-    /// History length of the last frame (1 ch).
-    const Image& historyLength() const { return m_len; }
-
 private:
     void integrate(const Image& irradiance, const Reprojector& taps);
     void estimateVariance();
@@ -42,11 +44,13 @@ private:
     Settings m_settings;
     Guide m_guide;
     bool m_hasHistory = false;
-    Image m_color, m_moments, m_len; ///< this frame: integrated colour, moments, length
-    Image m_prevColor, m_prevMoments, m_prevLen; ///< history
+    /// Channels of the history: colour (3; the feedback iteration's output), moments l and l^2,
+    /// history length.
+    static constexpr int kHistoryChannels = 6;
+    Image m_history, m_prevHistory; ///< this frame's, the previous frame's
     Planes m_integrated; ///< this frame's integration as planes (kernels.h IntegratedPlane)
     Planes m_cv, m_cvTmp; ///< colour, variance, luminance ping-pong (kernels.h ColorPlane)
-    Planes m_invPhiL; ///< per-iteration luminance scale (1 plane)
+    std::vector<int> m_rowOrder; ///< à-trous rows by y mod step (kernels.h AtrousArgs)
 };
 
 } // namespace afn::svgf

@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: Apache-2.0
 // SVGF's per-row kernels (methods/svgf/denoiser.h for the method): 8 pixels of a row at a time on
 // structure-of-arrays planes (methods/svgf/planes.h), compiled per instruction set (cpu/target.h)
-// and chosen when the library loads. Every pixel runs the same code whatever the row split, so
+// and chosen when the library loads; the à-trous pass also 16 at a time with AVX-512, chosen at
+// run time (cpu/isa.h). Every pixel runs the same code whatever the row split, so
 // results are independent of the thread count.
 //
 // Accuracy against the former scalar code (libm expf per tap): the weights use cpu/simd.h's exp8
@@ -9,7 +10,10 @@
 // flushed inside the kernels. Measured with afntool --denoise:method=svgf on examples/sequence
 // frames 0-7 (320x180, float output) against the scalar build (main at 15a2fd3), AVX-512
 // clone: max |difference| 7.2e-5 (on a value of 3.08, i.e. 2.3e-5 relative), PSNR >= 159.6 dB
-// on every frame (peak = the scalar output's maximum).
+// on every frame (peak = the scalar output's maximum). The AVX-512 à-trous kernel
+// (atrous_avx512.cpp: base-2 exponential, shared depth denominators) against the portable one,
+// same frames (main at 6625a64): max relative difference 1.1e-5, PSNR >= 160.9 dB; the portable
+// path (AFN_CPU_ISA=portable) is bit-identical to 6625a64.
 #pragma once
 
 #include "methods/svgf/guide.h"
@@ -31,19 +35,27 @@ enum IntegratedPlane {
     kIntegratedPlanes
 };
 
-/// One à-trous iteration (step 2^i) over rows [y0, y1).
+/// One à-trous iteration (step 2^i) over rows [y0, y1) (of rowOrder where given).
 struct AtrousArgs {
     const Planes* in = nullptr; ///< ColorPlane
-    const Planes* invPhiL = nullptr; ///< 1 plane: 1 / (sigmaL * sqrt(g3x3(variance)) + 1e-10)
+    /// The luminance term's scale: |l_p - l_q| * invPhiL(p), invPhiL = 1 / (sigmaL *
+    /// sqrt(max(0, g3x3(variance))) + 1e-10), g3x3 the 3x3 Gaussian (1/4 centre, 1/8 edges, 1/16
+    /// corners) of `in`'s variance over in-image taps, renormalised; computed per centre pixel.
+    float sigmaL = 4.0f;
     const Guide* guide = nullptr;
     Planes* out = nullptr; ///< ColorPlane
     int step = 1;
+    /// The rows in processing order: [y0, y1) indexes this list (nullptr: row y0 to y1 - 1).
+    /// Denoiser::atrous orders rows by y mod step, so that consecutive rows share 4 of their 5
+    /// tap rows and those stay in the cache at large steps.
+    const int* rowOrder = nullptr;
 };
+/// The kernel family of cpu::activeIsa(): atrousRowsAvx512 or atrousRowsPortable.
 void atrousRows(const AtrousArgs& a, int y0, int y1);
-
-/// invPhiL of rows [y0, y1): 1 / (sigmaL * sqrt(max(0, g3x3(variance))) + 1e-10), g3x3 the 3x3
-/// Gaussian (1/4 centre, 1/8 edges, 1/16 corners) over in-image taps, renormalised.
-void invPhiRows(const Planes& in, float sigmaL, Planes& invPhiL, int y0, int y1);
+/// 8 lanes, GCC vector extensions, cloned per instruction set (atrous_kernel.cpp).
+void atrousRowsPortable(const AtrousArgs& a, int y0, int y1);
+/// 16 lanes, AVX-512F (atrous_avx512.cpp); only where the CPU has it.
+void atrousRowsAvx512(const AtrousArgs& a, int y0, int y1);
 
 /// Variance of rows [y0, y1): the temporal one where the history length reaches
 /// `varianceHistory`, else the 7x7 cross-bilateral estimate (methods/svgf/denoiser.h).

@@ -19,60 +19,57 @@ void Denoiser::reset()
 void Denoiser::integrate(const Image& irr, const Reprojector& taps)
 {
     const int w = irr.width(), h = irr.height();
-    std::swap(m_color, m_prevColor);
-    std::swap(m_moments, m_prevMoments);
-    std::swap(m_len, m_prevLen);
-    m_color.resize(w, h, 3);
-    m_moments.resize(w, h, 2);
-    m_len.resize(w, h, 1);
+    std::swap(m_history, m_prevHistory);
+    m_history.resize(w, h, kHistoryChannels);
     m_integrated.resize(w, h, kIntegratedPlanes);
-    const bool history = m_hasHistory && taps.hasHistory() && m_prevColor.width() == w
-        && m_prevColor.height() == h;
+    const bool history = m_hasHistory && taps.hasHistory() && m_prevHistory.width() == w
+        && m_prevHistory.height() == h;
     parallelRows(h, [&](int y0, int y1) {
-        for (int y = y0; y < y1; ++y)
+        for (int y = y0; y < y1; ++y) {
+            float* planes[kIntegratedPlanes];
+            for (int k = 0; k < kIntegratedPlanes; ++k)
+                planes[k] = m_integrated.row(k, y);
             for (int x = 0; x < w; ++x) {
                 const float* c = irr.at(x, y);
                 const float l = luminance(c);
                 const float m[2] = { l, l * l };
-                float pc[3], pm[2], plen = 0.0f, ws = 0.0f;
-                if (history) {
-                    const PixelTaps& t = taps.taps(x, y);
-                    ws = gatherHistory<3>(t, m_prevColor, pc);
-                    gatherHistory<2>(t, m_prevMoments, pm);
-                    gatherHistory<1>(t, m_prevLen, &plen);
-                }
-                float* oc = m_color.at(x, y);
-                float* om = m_moments.at(x, y);
+                // Colour, moments and length share the taps: one renormalised gather of all six.
+                float prev[kHistoryChannels];
+                const float ws = history
+                    ? gatherHistory<kHistoryChannels>(taps.taps(x, y), m_prevHistory, prev)
+                    : 0.0f;
+                float* o = m_history.at(x, y);
                 if (ws > 0.0f) {
-                    const float len = std::min(plen + 1.0f, 255.0f);
+                    const float len = std::min(prev[5] + 1.0f, 255.0f);
                     const float a = std::max(m_settings.alpha, 1.0f / len);
                     const float am = std::max(m_settings.momentsAlpha, 1.0f / len);
                     for (int k = 0; k < 3; ++k)
-                        oc[k] = blendHistory(pc[k], c[k], a);
+                        o[k] = blendHistory(prev[k], c[k], a);
                     for (int k = 0; k < 2; ++k)
-                        om[k] = blendHistory(pm[k], m[k], am);
-                    m_len(x, y, 0) = len;
+                        o[3 + k] = blendHistory(prev[3 + k], m[k], am);
+                    o[5] = len;
                 } else {
                     for (int k = 0; k < 3; ++k)
-                        oc[k] = c[k];
-                    om[0] = m[0];
-                    om[1] = m[1];
-                    m_len(x, y, 0) = 1.0f;
+                        o[k] = c[k];
+                    o[3] = m[0];
+                    o[4] = m[1];
+                    o[5] = 1.0f;
                 }
                 for (int k = 0; k < 3; ++k)
-                    m_integrated.row(kIntRed + k, y)[x] = oc[k];
-                m_integrated.row(kIntLuminance, y)[x] = luminance(oc);
-                m_integrated.row(kMoment1, y)[x] = om[0];
-                m_integrated.row(kMoment2, y)[x] = om[1];
-                m_integrated.row(kHistoryLength, y)[x] = m_len(x, y, 0);
+                    planes[kIntRed + k][x] = o[k];
+                planes[kIntLuminance][x] = luminance(o);
+                planes[kMoment1][x] = o[3];
+                planes[kMoment2][x] = o[4];
+                planes[kHistoryLength][x] = o[5];
             }
+        }
     });
     m_hasHistory = true;
 }
 
 void Denoiser::estimateVariance()
 {
-    const int w = m_color.width(), h = m_color.height();
+    const int w = m_integrated.width(), h = m_integrated.height();
     m_cv.resize(w, h, kColorPlanes);
     VarianceArgs a;
     a.in = &m_integrated;
@@ -88,7 +85,7 @@ void Denoiser::process(const Frame& f, const Image& irr, const Reprojector& taps
     m_guide.build(f, m_settings);
     integrate(irr, taps);
     estimateVariance();
-    // m_color is the feedback slot (it becomes the history in the next integrate()): it keeps the
+    // m_history's colour is the feedback slot (the history of the next integrate()): it keeps the
     // unfiltered integrated colour unless iteration feedbackTap overwrites it.
     for (int i = 0; i < m_settings.iterations; ++i) {
         atrous(m_cv, m_cvTmp, 1 << i);
@@ -100,7 +97,7 @@ void Denoiser::process(const Frame& f, const Image& irr, const Reprojector& taps
                     for (int k = 0; k < 3; ++k) {
                         const float* c = m_cv.row(kRed + k, y);
                         for (int x = 0; x < w; ++x)
-                            m_color(x, y, k) = c[x];
+                            m_history(x, y, k) = c[x];
                     }
             });
         }

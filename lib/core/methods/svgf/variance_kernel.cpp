@@ -69,8 +69,8 @@ AFN_SVGF_INLINE Estimate crossBilateral(
 
 } // namespace
 
-/// varianceRows' body, always inlined into each clone (see invPhiRowsOf in atrous_kernel.cpp: clang
-/// refuses 8-float vector calls in a clone's own baseline body).
+/// varianceRows' body, always inlined into each clone: clang refuses 8-float vector calls in a
+/// clone's own body for its baseline ("default") version, but not inside an always-inlined helper.
 AFN_SVGF_INLINE void varianceRowsOf(const VarianceArgs& a, int y0, int y1)
 {
     const FlushDenormals flush;

@@ -106,7 +106,8 @@ TEST(CudaEmulated, NetworkInputIsTheCpuInputInHalfPrecision)
         albedo = f.albedo;
         afn::afnet::normalToUnitRange(f.normal, f.width, f.height, normal01);
         afn::afnet::depthToUnitRange(f.depth, f.width, f.height, depth01);
-        cpu.run({ &irradiance, &accumulator.color(), &albedo, &normal01, &depth01 }, result);
+        cpu.runWholeFrame(
+            { &irradiance, &accumulator.color(), &albedo, &normal01, &depth01 }, result);
         emulated.run(f, afn::cuda::frameConstants(f, kReproject, kAccumulation), out);
         const afn::Image x = emulated.networkInput();
         ASSERT_EQ(x.width(), cpu.input().width());

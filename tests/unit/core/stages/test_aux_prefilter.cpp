@@ -196,4 +196,45 @@ TEST(AuxPrefilter, BadAlbedoCountedAndReplacedInNoisyMode)
     }
 }
 
+TEST(AuxNoise, FlagsAreTheFullMinimumOverTheNeighbours)
+{
+    // speckleFlags stops at the first neighbour within the threshold; the flags must be those of
+    // the literal rule: min over all comparable neighbours > threshold (normals, 30 % noisy).
+    const int w = 19, h = 11;
+    methods_test::Lcg rng { 42u };
+    Image n = makeImage(w, h, 3, [](int, int, int c) { return c == 2 ? 1.0f : 0.0f; });
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x)
+            if (rng.next() > 0.4f) {
+                float v[3] = { rng.next(), rng.next(), rng.next() }, l = 0.0f;
+                for (float c : v)
+                    l += c * c;
+                for (int c = 0; c < 3; ++c)
+                    n(x, y, c) = v[c] / std::sqrt(l);
+            }
+    Image flags;
+    const std::int64_t count = afn::speckleFlags(n.view(), afn::AuxKind::Normal, flags);
+    std::int64_t want = 0;
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) {
+            float best = std::numeric_limits<float>::infinity();
+            for (int qy = y - 1; qy <= y + 1; ++qy)
+                for (int qx = x - 1; qx <= x + 1; ++qx) {
+                    if ((qx == x && qy == y) || qx < 0 || qy < 0 || qx >= w || qy >= h)
+                        continue;
+                    float d2 = 0.0f;
+                    for (int c = 0; c < 3; ++c)
+                        d2 += (n(x, y, c) - n(qx, qy, c)) * (n(x, y, c) - n(qx, qy, c));
+                    best = std::fmin(best, std::sqrt(d2));
+                }
+            const bool speckle = best > afn::AuxNoiseThresholds::normal;
+            EXPECT_EQ(flags(x, y, 0), speckle ? 1.0f : 0.0f) << x << "," << y;
+            want += speckle;
+        }
+    EXPECT_EQ(count, want);
+    EXPECT_EQ(afn::speckleCount(n.view(), afn::AuxKind::Normal), want);
+    EXPECT_GT(want, 0);
+    EXPECT_LT(want, static_cast<std::int64_t>(w) * h);
+}
+
 } // namespace

@@ -49,7 +49,7 @@ TEST(AfnEngine, StripRefinementEqualsWholeFramePass)
     Network net;
     net.load(afn::afnet::randomWeights(afn::afnet::Architecture {}));
     Image o;
-    net.run(f.in, o);
+    net.runWholeFrame(f.in, o);
     // Whole-frame refinement with the same layers (Conv::run over full images).
     const Image& i = net.fused();
     const Image& x = net.input();

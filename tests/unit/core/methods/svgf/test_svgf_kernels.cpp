@@ -1,10 +1,13 @@
 // SPDX-License-Identifier: Apache-2.0
 // SVGF's vectorised row kernels (methods/svgf/kernels.h) against a plain scalar evaluation of the
 // documented formulas (methods/svgf/guide.h, kernels.h), in double precision, on random planes:
-// every guide combination (normal and/or depth or neither), steps 1 to 16 (the per-lane path at the
-// borders included), a width that is not a multiple of the vector width. A kernel that reads the
-// wrong plane, offset or weight (as a depth tap reading the normals' y once did) fails here even
-// where the method-level tests still see a plausible image.
+// both kernel families (portable 8 lanes, AVX-512 16 lanes where the CPU has it), every guide
+// combination (normal and/or depth or neither), steps 1 to 32 (beyond the planes' padding
+// included), a width that is not a multiple of the vector width. A kernel that reads the wrong
+// plane, offset or weight (as a depth tap reading the normals' y once did, or a mirrored tap
+// taking its partner's column mask) fails here even where the method-level tests still see a
+// plausible image.
+#include "cpu/isa.h"
 #include "methods/svgf/kernels.h"
 
 #include <gtest/gtest.h>
@@ -12,6 +15,7 @@
 #include <algorithm>
 #include <cmath>
 #include <random>
+#include <vector>
 
 namespace {
 
@@ -19,8 +23,10 @@ using namespace afn::svgf;
 
 constexpr int kW = 37, kH = 23; // not multiples of the 8 lanes; step 16 leaves the padded row
 
+constexpr float kSigmaL = 4.0f;
+
 struct Scene {
-    Planes in, invPhi;
+    Planes in;
     Guide guide;
 };
 
@@ -30,7 +36,6 @@ Scene randomScene(bool hasNormal, bool hasDepth, unsigned seed)
     std::uniform_real_distribution<float> u(0.0f, 1.0f);
     Scene s;
     s.in.resize(kW, kH, kColorPlanes);
-    s.invPhi.resize(kW, kH, 1);
     s.guide.planes.resize(kW, kH, kGuidePlanes);
     s.guide.hasNormal = hasNormal;
     s.guide.hasDepth = hasDepth;
@@ -43,7 +48,6 @@ Scene randomScene(bool hasNormal, bool hasDepth, unsigned seed)
                 s.in.row(k, y)[x] = c[k] = 2.0f * u(rng);
             s.in.row(kVariance, y)[x] = 0.5f * u(rng);
             s.in.row(kLuminance, y)[x] = luminance(c);
-            s.invPhi.row(0, y)[x] = 0.5f + 2.0f * u(rng);
             // Normals near +z (so that many taps keep a weight), unit length.
             float n[3] = { 0.3f * (u(rng) - 0.5f), 0.3f * (u(rng) - 0.5f), 1.0f };
             const float len = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
@@ -62,6 +66,24 @@ float plane(const Planes& p, int k, int x, int y)
     return p.row(k, y)[x];
 }
 
+/// invPhiL of pixel (x, y): 1 / (sigmaL sqrt(g3x3(variance)) + 1e-10), the 3x3 Gaussian
+/// renormalised over in-image taps.
+double scalarInvPhi(const Scene& s, int x, int y)
+{
+    const double g[3] = { 0.25, 0.5, 0.25 }; // per axis
+    double sum = 0.0, wsum = 0.0;
+    for (int dy = -1; dy <= 1; ++dy)
+        for (int dx = -1; dx <= 1; ++dx) {
+            const int qx = x + dx, qy = y + dy;
+            if (qx < 0 || qx >= kW || qy < 0 || qy >= kH)
+                continue;
+            const double w = g[dx + 1] * g[dy + 1];
+            sum += w * plane(s.in, kVariance, qx, qy);
+            wsum += w;
+        }
+    return 1.0 / (kSigmaL * std::sqrt(std::max(0.0, sum / wsum)) + 1e-10);
+}
+
 /// One output pixel of the à-trous iteration, evaluated literally.
 struct Expected {
     double rgb[3], variance, luminance;
@@ -74,7 +96,7 @@ Expected scalarAtrous(const Scene& s, int step, int x, int y)
     double cp[3];
     for (int k = 0; k < 3; ++k)
         cp[k] = plane(s.in, k, x, y);
-    const double lp = plane(s.in, kLuminance, x, y), invPhi = plane(s.invPhi, 0, x, y);
+    const double lp = plane(s.in, kLuminance, x, y), invPhi = scalarInvPhi(s, x, y);
     double ws = 0.0, vsum = 0.0, dc[3] = {};
     for (int j = -2; j <= 2; ++j)
         for (int i = -2; i <= 2; ++i) {
@@ -121,15 +143,34 @@ void expectNear(double expected, float got, const char* what, int x, int y)
         << what << " at (" << x << ", " << y << ")";
 }
 
-class SvgfAtrousKernel : public ::testing::TestWithParam<std::tuple<bool, bool, int>> { };
+/// Select a kernel family for the life of the object (the CPU's own choice afterwards).
+class UseIsa {
+public:
+    explicit UseIsa(afn::cpu::Isa isa)
+        : m_saved(afn::cpu::activeIsa())
+    {
+        afn::cpu::forceIsa(isa);
+    }
+    ~UseIsa() { afn::cpu::forceIsa(m_saved); }
+    bool active(afn::cpu::Isa isa) const { return afn::cpu::activeIsa() == isa; }
+
+private:
+    afn::cpu::Isa m_saved;
+};
+
+class SvgfAtrousKernel
+    : public ::testing::TestWithParam<std::tuple<afn::cpu::Isa, bool, bool, int>> { };
 
 TEST_P(SvgfAtrousKernel, MatchesTheScalarFormula)
 {
-    const auto [hasNormal, hasDepth, step] = GetParam();
+    const auto [isa, hasNormal, hasDepth, step] = GetParam();
+    const UseIsa use(isa);
+    if (!use.active(isa))
+        GTEST_SKIP() << "this CPU has no " << afn::cpu::isaName(isa);
     const Scene s = randomScene(hasNormal, hasDepth, 7u + step);
     Planes out;
     out.resize(kW, kH, kColorPlanes);
-    const AtrousArgs args { &s.in, &s.invPhi, &s.guide, &out, step };
+    const AtrousArgs args { &s.in, kSigmaL, &s.guide, &out, step };
     atrousRows(args, 0, kH);
     for (int y = 0; y < kH; ++y)
         for (int x = 0; x < kW; ++x) {
@@ -141,32 +182,36 @@ TEST_P(SvgfAtrousKernel, MatchesTheScalarFormula)
         }
 }
 
-INSTANTIATE_TEST_SUITE_P(GuidesAndSteps, SvgfAtrousKernel,
-    ::testing::Combine(::testing::Bool(), ::testing::Bool(), ::testing::Values(1, 2, 4, 8, 16)));
-
-TEST(SvgfInvPhiKernel, MatchesTheScalarFormula)
+// The rows in any order and any split give the same bits (Denoiser::atrous orders them by y mod
+// step; the thread count decides the split).
+TEST_P(SvgfAtrousKernel, RowOrderAndSplitLeaveTheResultUnchanged)
 {
-    const Scene s = randomScene(true, true, 3u);
-    const float sigmaL = 4.0f;
-    Planes invPhi;
-    invPhi.resize(kW, kH, 1);
-    invPhiRows(s.in, sigmaL, invPhi, 0, kH);
-    const double g[3] = { 0.25, 0.5, 0.25 }; // the 3x3 Gaussian per axis, renormalised in-image
-    for (int y = 0; y < kH; ++y)
-        for (int x = 0; x < kW; ++x) {
-            double sum = 0.0, wsum = 0.0;
-            for (int dy = -1; dy <= 1; ++dy)
-                for (int dx = -1; dx <= 1; ++dx) {
-                    const int qx = x + dx, qy = y + dy;
-                    if (qx < 0 || qx >= kW || qy < 0 || qy >= kH)
-                        continue;
-                    const double w = g[dx + 1] * g[dy + 1];
-                    sum += w * plane(s.in, kVariance, qx, qy);
-                    wsum += w;
-                }
-            const double expected = 1.0 / (sigmaL * std::sqrt(std::max(0.0, sum / wsum)) + 1e-10);
-            expectNear(expected, plane(invPhi, 0, x, y), "invPhiL", x, y);
-        }
+    const auto [isa, hasNormal, hasDepth, step] = GetParam();
+    const UseIsa use(isa);
+    if (!use.active(isa))
+        GTEST_SKIP() << "this CPU has no " << afn::cpu::isaName(isa);
+    const Scene s = randomScene(hasNormal, hasDepth, 11u + step);
+    Planes plain, ordered;
+    plain.resize(kW, kH, kColorPlanes);
+    ordered.resize(kW, kH, kColorPlanes);
+    atrousRows({ &s.in, kSigmaL, &s.guide, &plain, step }, 0, kH);
+    std::vector<int> order;
+    for (int r = 0; r < step; ++r)
+        for (int y = r; y < kH; y += step)
+            order.push_back(y);
+    std::reverse(order.begin(), order.end());
+    const AtrousArgs args { &s.in, kSigmaL, &s.guide, &ordered, step, order.data() };
+    atrousRows(args, kH / 3, kH);
+    atrousRows(args, 0, kH / 3);
+    for (int k = 0; k < kColorPlanes; ++k)
+        for (int y = 0; y < kH; ++y)
+            for (int x = 0; x < kW; ++x)
+                ASSERT_EQ(plane(plain, k, x, y), plane(ordered, k, x, y))
+                    << "plane " << k << " at (" << x << ", " << y << ")";
 }
+
+INSTANTIATE_TEST_SUITE_P(GuidesAndSteps, SvgfAtrousKernel,
+    ::testing::Combine(::testing::Values(afn::cpu::Isa::Portable, afn::cpu::Isa::Avx512),
+        ::testing::Bool(), ::testing::Bool(), ::testing::Values(1, 2, 4, 8, 16, 32)));
 
 } // namespace

@@ -1,0 +1,218 @@
+// SPDX-License-Identifier: Apache-2.0
+// The AFN forward pass in horizontal stripes (Network::run, see methods/afn/network.h).
+//
+// Memory (issue 16): the whole-frame path stores ~50 floats per padded pixel (x 13, d1 6 at half
+// res, e1 4, fused/d_TA/out 3 each, ...): 190 MiB per megapixel, 6 GiB at 8K. Here the padded
+// frame is cut into stripes of kStripeRows output rows (a multiple of 8, so that every level of
+// the U-Net has whole rows). A stripe [Y0, Y1) works in a window of padded rows
+// [Y0 - kHalo, Y1 + kHalo) clipped to the frame, and at level l (1/2^l resolution) in the window
+// rows scaled by 2^-l; every buffer is window-sized and comes from a pool of workspaces (one per
+// concurrently running stripe, reused across frames): memory is O(threads x width x
+// (kStripeRows + 2 kHalo)), whatever the frame height.
+//
+// Rows computed per layer for output rows [Y0, Y1) (global row numbers of the layer's level, each
+// clipped to the window; a 3x3 conv needs its input one row further, D two input rows per row,
+// U row r reads r / 2). Derived backwards from the output:
+//   refine    [Y0, Y1)        reads fused [Y0-3, Y1+3)
+//   fusion    half [Y0/2-2, Y1/2+2) = full [Y0-4, Y1+4); reads d1 there, x there, colorTa
+//             [Y0-7, Y1+7), D(color1) half [Y0/2-5, Y1/2+5)
+//   d1 (1/2)  [Y0/2-2, Y1/2+2)  reads e1 [Y0/2-3, Y1/2+3), d2 [Y0/4-2, Y1/4+2)
+//   d2 (1/4)  [Y0/4-2, Y1/4+2)  reads e2 [Y0/4-3, Y1/4+3), e3 [Y0/8-2, Y1/8+2)
+//   e3 (1/8)  [Y0/8-2, Y1/8+2)  reads D(e2) [Y0/8-3, Y1/8+3) = e2 [Y0/4-6, Y1/4+6)
+//   e2 (1/4)  [Y0/4-6, Y1/4+6)  reads D(e1) [Y0/4-7, Y1/4+7) = e1 [Y0/2-14, Y1/2+14)
+//   e1 (1/2)  [Y0/2-14, Y1/2+14) reads D(x) [Y0/2-15, Y1/2+15) = x [Y0-30, Y1+30)
+// so kHalo = 32 (30 rounded up to 8, keeping the window on the 1/8 grid: U's row r / 2 and D's
+// rows 2r, 2r+1 then map window-local rows to window-local rows). The pointwise buffers (x, D(x),
+// colours, the pools) are filled over the whole window; the convolutions run on their rows only.
+//
+// Exactness: every value is computed by the same kernel, with the same operations in the same
+// order, as in the whole-frame path (the conv kernels' summation order does not depend on how
+// rows are split, nn/conv.h). A window's buffers read zero outside the window, which is the
+// frame's zero padding where the window reaches the frame border, and is never read elsewhere
+// (the rows above need at most kHalo - 2 rows of margin). So run() equals runWholeFrame() bit for
+// bit (tests/unit/core/methods/afn/test_afn_stripes.cpp), for every thread count.
+//
+// Cost: the halos are computed by both neighbouring stripes: at kStripeRows = 64 about 15 % more
+// multiply-adds than the frame needs (mostly the cheap encoder levels), not counted in the stage
+// GFLOP. A stripe's working set (a few MB per layer at 4K) replaces frame-sized streams.
+//
+// Work skipping (issue 19): a stripe whose output rows have no non-zero pixel in the work mask is
+// not computed; its output pixels are the temporal accumulation in.colorTa (the cheap path;
+// afn_method.cpp remodulates it as the network output). Stripes are independent, so a computed
+// stripe's pixels are bit-identical with or without the mask.
+#include "methods/afn/network.h"
+
+#include "base/exception.h"
+#include "base/parallel.h"
+#include "methods/afn/fusion.h"
+
+#include <algorithm>
+#include <chrono>
+#include <mutex>
+#include <vector>
+
+namespace afn::afnet {
+
+namespace {
+
+constexpr int kStripeRows = 64; // output rows per stripe (multiple of 8)
+constexpr int kHalo = 32; // window rows above and below a stripe (multiple of 8, >= 30)
+constexpr int kRefineRows = 32; // refinement sub-strips within a stripe (bounds its buffers)
+static_assert(kStripeRows % 8 == 0 && kHalo % 8 == 0 && kHalo >= 30);
+
+/// Window-local rows [y0, y1) of level `level` for the global rows [lo, hi) of that level.
+struct Rows {
+    int y0, y1;
+};
+
+} // namespace
+
+struct Network::StripeWorkspace {
+    Image x, color1, colorTa, color1Half, xHalf, e1, e1Pool, e2, e2Pool, e3, d2, d1, fused;
+    std::vector<float> out; ///< the stripe's refined rows, padded width
+};
+
+struct Network::WorkspacePool {
+    std::mutex mutex;
+    std::vector<std::unique_ptr<StripeWorkspace>> free;
+    double ms[kStages] = {}; ///< thread milliseconds per stage of the current run
+
+    std::unique_ptr<StripeWorkspace> take()
+    {
+        std::lock_guard<std::mutex> lock(mutex);
+        if (free.empty())
+            return std::make_unique<StripeWorkspace>();
+        std::unique_ptr<StripeWorkspace> ws = std::move(free.back());
+        free.pop_back();
+        return ws;
+    }
+    void give(std::unique_ptr<StripeWorkspace> ws, const double* stageMs)
+    {
+        std::lock_guard<std::mutex> lock(mutex);
+        free.push_back(std::move(ws));
+        for (int k = 0; k < kStages; ++k)
+            ms[k] += stageMs[k];
+    }
+};
+
+void Network::runStripe(
+    const Inputs& in, int y0, int y1, StripeWorkspace& ws, Image& out, double* ms) const
+{
+    using Clock = std::chrono::steady_clock;
+    const Clock::time_point t0 = Clock::now();
+    const int wp = paddedSize(m_width), hp = paddedSize(m_height);
+    const int w0 = std::max(0, y0 - kHalo), w1 = std::min(hp, y1 + kHalo), n = w1 - w0;
+    auto rows = [&](int level, int lo, int hi) {
+        const int a = w0 >> level, b = w1 >> level;
+        return Rows { std::clamp(lo, a, b) - a, std::clamp(hi, a, b) - a };
+    };
+    auto conv = [](const nn::Conv& c, const Image* up, const Image& same, Image& dst, Rows r) {
+        dst.resize(same.width(), same.height(), c.outChannels());
+        c.runRows(up, same, r.y0, r.y1, dst.at(0, r.y0),
+            static_cast<long>(dst.width()) * dst.channels(), dst.channels(), true);
+    };
+    auto pool = [](const Image& src, Image& dst, Rows r) {
+        dst.resize(src.width() / 2, src.height() / 2, src.channels());
+        nn::down2Rows(src, dst, r.y0, r.y1);
+    };
+    // Kernel prediction.
+    ws.x.resize(wp, n, 13);
+    ws.color1.resize(wp, n, 3);
+    ws.colorTa.resize(wp, n, 3);
+    fillInput(in, w0, w1, w0, ws.x, ws.color1, ws.colorTa);
+    pool(ws.color1, ws.color1Half, rows(1, y0 / 2 - 5, y1 / 2 + 5));
+    pool(ws.x, ws.xHalf, rows(1, y0 / 2 - 15, y1 / 2 + 15));
+    conv(m_enc1, nullptr, ws.xHalf, ws.e1, rows(1, y0 / 2 - 14, y1 / 2 + 14));
+    pool(ws.e1, ws.e1Pool, rows(2, y0 / 4 - 7, y1 / 4 + 7));
+    conv(m_enc2, nullptr, ws.e1Pool, ws.e2, rows(2, y0 / 4 - 6, y1 / 4 + 6));
+    pool(ws.e2, ws.e2Pool, rows(3, y0 / 8 - 3, y1 / 8 + 3));
+    conv(m_enc3, nullptr, ws.e2Pool, ws.e3, rows(3, y0 / 8 - 2, y1 / 8 + 2));
+    conv(m_dec2, &ws.e3, ws.e2, ws.d2, rows(2, y0 / 4 - 2, y1 / 4 + 2));
+    conv(m_dec1, &ws.d2, ws.e1, ws.d1, rows(1, y0 / 2 - 2, y1 / 2 + 2));
+    const Clock::time_point t1 = Clock::now();
+    // Filtering and fusion.
+    ws.fused.resize(wp, n, 3);
+    FusionInputs fin;
+    fin.d1 = &ws.d1;
+    fin.x = &ws.x;
+    fin.colorTa = &ws.colorTa;
+    fin.color1Half = &ws.color1Half;
+    fin.head1 = &m_head1;
+    fin.headTa = &m_headTa;
+    FusionOutputs fout;
+    fout.fused = &ws.fused;
+    const Rows f = rows(1, y0 / 2 - 2, y1 / 2 + 2);
+    filterAndFuseRows(fin, fout, f.y0, f.y1);
+    const Clock::time_point t2 = Clock::now();
+    // Refinement into ws.out, then the crop into `out`.
+    const long row = static_cast<long>(wp) * 3;
+    ws.out.resize(static_cast<std::size_t>(y1 - y0) * row);
+    for (int y = y0; y < y1; y += kRefineRows) {
+        const int e = std::min(y1, y + kRefineRows);
+        float* dst = ws.out.data() + (y - y0) * row;
+        if (m_variant == Variant::Full)
+            refineRows(ws.fused, ws.x, y - w0, e - w0, dst, row);
+        else
+            std::copy(ws.fused.at(0, y - w0), ws.fused.at(0, e - w0), dst);
+    }
+    for (int y = y0; y < std::min(y1, m_height); ++y) {
+        const float* src = ws.out.data() + (y - y0) * row;
+        std::copy(src, src + 3 * m_width, out.at(0, y));
+    }
+    const Clock::time_point t3 = Clock::now();
+    auto msOf = [](Clock::time_point a, Clock::time_point b) {
+        return std::chrono::duration<double, std::milli>(b - a).count();
+    };
+    ms[0] += msOf(t0, t1);
+    ms[1] += msOf(t1, t2);
+    ms[2] += msOf(t2, t3);
+}
+
+void Network::run(const Inputs& given, Image& out, const Image* work)
+{
+    using Clock = std::chrono::steady_clock;
+    const Clock::time_point start = Clock::now();
+    const Inputs in = checkInputs(given);
+    const int w = m_width, h = m_height, hp = paddedSize(h);
+    const bool masked = work && !work->empty();
+    if (masked && (work->width() != w || work->height() != h || work->channels() != 1))
+        throwInvalidArgument("AFN: the work mask must be 1 channel of the frame's size");
+    out.resize(w, h, 3);
+    if (!m_pool)
+        m_pool = std::make_shared<WorkspacePool>();
+    WorkspacePool& pool = *m_pool;
+    std::fill(pool.ms, pool.ms + kStages, 0.0);
+    const Image& cheap = given.colorTa ? *given.colorTa : *in.colorTa;
+    const int stripes = (hp + kStripeRows - 1) / kStripeRows;
+    std::vector<char> skip(stripes, 0);
+    if (masked)
+        for (int s = 0; s < stripes; ++s) {
+            const int y0 = s * kStripeRows, y1 = std::min(h, y0 + kStripeRows);
+            const float* m = work->at(0, y0);
+            skip[s] = std::none_of(
+                m, m + static_cast<std::size_t>(y1 - y0) * w, [](float v) { return v != 0.0f; });
+        }
+    parallelFor(stripes, [&](int s) {
+        const int y0 = s * kStripeRows, y1 = std::min(hp, y0 + kStripeRows);
+        if (skip[s]) {
+            for (int y = y0; y < std::min(y1, h); ++y)
+                std::copy(cheap.at(0, y), cheap.at(0, y) + 3 * w, out.at(0, y));
+            return;
+        }
+        std::unique_ptr<StripeWorkspace> ws = pool.take();
+        double ms[kStages] = {};
+        runStripe(in, y0, y1, *ws, out, ms);
+        pool.give(std::move(ws), ms);
+    });
+    m_stripes = stripes;
+    m_skippedStripes = static_cast<int>(std::count(skip.begin(), skip.end(), 1));
+    // The stages interleave across threads: split the wall time by their thread time.
+    const double wall = std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+    double total = 0.0;
+    for (double v : pool.ms)
+        total += v;
+    for (int k = 0; k < kStages; ++k)
+        m_stageMs[k] = total > 0.0 ? wall * pool.ms[k] / total : 0.0;
+}
+
+} // namespace afn::afnet

@@ -1,0 +1,355 @@
+// SPDX-License-Identifier: Apache-2.0
+// SVGF's à-trous iteration with AVX-512F, 16 pixels at a time (methods/svgf/kernels.h), used where
+// cpu::activeIsa() is Avx512; the function carries its own target attribute (the build has no
+// -march). The same weights as the portable kernel (atrous_kernel.cpp), computed with less work:
+//   - the weight is one base-2 exponential: w = 2^(log2 h - log2e (|l_p - l_q| invPhi + depth))
+//     * max(0, n_p . n_q)^sigmaN, the B3 tap weight h folded into the exponent;
+//     2^a = 2^floor(a) (vscalefps) * p(a - floor(a)), p a degree-5 minimax polynomial on [0, 1)
+//     (relative error 1.6e-7 with FMA);
+//   - taps q = p + o and p - o share the depth term's denominator sigmaZ |grad z . o| + 1e-4 |z|,
+//     so one division serves both;
+//   - masked loads (lanes outside the image read 0 without touching memory and get weight 0), so
+//     any step is direct, and no tap needs a per-lane path.
+// Taps with exp(-e) below exp(-40) add exactly 0, as in the portable kernel. The sums run over the
+// tap pairs in a fixed order per pixel: results do not depend on the thread count, and differ from
+// the portable kernel's in the last bits only (tests/unit/core/methods/svgf/test_svgf_kernels.cpp
+// checks both against a double-precision evaluation of the formulas).
+#include "methods/svgf/kernels.h"
+#include "methods/svgf/tap_vector.h"
+
+#include <cmath>
+
+#if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__))
+#include <immintrin.h>
+#define AFN_SVGF_HAVE_AVX512 1
+#define AFN_SVGF_AVX512 __attribute__((target("avx512f,avx2,fma")))
+#define AFN_SVGF_AVX512_INLINE AFN_SVGF_AVX512 inline __attribute__((always_inline))
+#if defined(__GNUC__) && !defined(__clang__)
+// GCC 12's AVX-512 max/roundscale/scalef intrinsics start from _mm512_undefined_ps (false
+// positive).
+#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
+#pragma GCC diagnostic ignored "-Wuninitialized"
+#endif
+#endif
+
+namespace afn::svgf {
+
+#ifdef AFN_SVGF_HAVE_AVX512
+
+namespace {
+
+constexpr float kLog2e = 1.44269504088896341f;
+constexpr float kMaxExponent = 40.0f; ///< as atrous_kernel.cpp: exp(-e) < exp(-40) adds 0
+constexpr float kB3[3] = { 3.0f / 8.0f, 1.0f / 4.0f, 1.0f / 16.0f }; ///< by |offset|
+
+/// Lanes l of 16 with 0 <= qx0 + l < width.
+inline __mmask16 columnsInImage(int qx0, int width)
+{
+    const int lo = qx0 < 0 ? -qx0 : 0;
+    const int hi = width - qx0 < 16 ? width - qx0 : 16;
+    if (hi <= lo)
+        return 0;
+    const unsigned bits = (hi == 16 ? 0xffffu : (1u << hi) - 1u) & ~((1u << lo) - 1u);
+    return static_cast<__mmask16>(bits);
+}
+
+/// 2^a for a <= 0 (finite results for a >= -126; lanes below are flushed or masked by callers).
+AFN_SVGF_AVX512_INLINE __m512 exp2v(__m512 a)
+{
+    const __m512 fl = _mm512_roundscale_ps(a, _MM_FROUND_TO_NEG_INF | _MM_FROUND_NO_EXC);
+    const __m512 f = _mm512_sub_ps(a, fl);
+    __m512 p = _mm512_set1_ps(1.877576695e-03f);
+    p = _mm512_fmadd_ps(p, f, _mm512_set1_ps(8.989340626e-03f));
+    p = _mm512_fmadd_ps(p, f, _mm512_set1_ps(5.582631752e-02f));
+    p = _mm512_fmadd_ps(p, f, _mm512_set1_ps(2.401536107e-01f));
+    p = _mm512_fmadd_ps(p, f, _mm512_set1_ps(6.931530833e-01f));
+    p = _mm512_fmadd_ps(p, f, _mm512_set1_ps(9.999999404e-01f));
+    return _mm512_scalef_ps(p, fl);
+}
+
+AFN_SVGF_AVX512_INLINE __m512 absv(__m512 v)
+{
+    return _mm512_castsi512_ps(
+        _mm512_and_si512(_mm512_castps_si512(v), _mm512_set1_epi32(0x7fffffff)));
+}
+
+/// Row pointers of one tap row (ColorPlane order, then the guide's).
+struct TapRow {
+    const float* c[kColorPlanes];
+    const float* n[3];
+    const float* z;
+};
+
+/// The centre pixels' values and the running sums.
+struct Centre {
+    __m512 c[3], l, invPhi2, n[3], z, dzdx, dzdy, zEps;
+};
+struct Sums {
+    __m512 ws, vsum, dc[3];
+};
+
+/// How max(0, n_p . n_q)^sigmaN is evaluated (methods/svgf/guide.h) where sigmaN is not 2^7.
+struct NormalPower {
+    int squarings = -1; ///< sigmaN = 2^squarings: that many squarings
+    unsigned integer = 0; ///< else an integer sigmaN: binary powering
+    bool integral = false;
+    float sigmaN = 0.0f; ///< else std::pow per lane
+};
+
+/// max(0, n_p . n_q)^sigmaN; kSquarings >= 0: sigmaN = 2^kSquarings (the default 128 = 2^7,
+/// unrolled), -1: as `np` says.
+template <bool kHasNormal, int kSquarings>
+AFN_SVGF_AVX512_INLINE __m512 normalFactor16(
+    const NormalPower& np, const Centre& c, const TapRow& r, int qx, __mmask16 m)
+{
+    if (!kHasNormal)
+        return _mm512_set1_ps(1.0f);
+    __m512 d = _mm512_mul_ps(c.n[0], _mm512_maskz_loadu_ps(m, r.n[0] + qx));
+    d = _mm512_fmadd_ps(c.n[1], _mm512_maskz_loadu_ps(m, r.n[1] + qx), d);
+    d = _mm512_fmadd_ps(c.n[2], _mm512_maskz_loadu_ps(m, r.n[2] + qx), d);
+    d = _mm512_max_ps(d, _mm512_setzero_ps()); // NaN -> 0, as std::fmax
+    if (kSquarings >= 0) {
+        for (int k = 0; k < kSquarings; ++k)
+            d = _mm512_mul_ps(d, d);
+        return d;
+    }
+    if (np.squarings >= 0) {
+        for (int k = 0; k < np.squarings; ++k)
+            d = _mm512_mul_ps(d, d);
+        return d;
+    }
+    if (np.integral) {
+        __m512 result = _mm512_set1_ps(1.0f);
+        for (unsigned e = np.integer; e; e >>= 1u) {
+            if (e & 1u)
+                result = _mm512_mul_ps(result, d);
+            d = _mm512_mul_ps(d, d);
+        }
+        return result;
+    }
+    alignas(64) float v[16];
+    _mm512_store_ps(v, d);
+    for (float& x : v)
+        x = std::pow(x, np.sigmaN);
+    return _mm512_load_ps(v);
+}
+
+/// Add the tap at column qx of row r (lanes `m` in the image), with log2 h = `log2h` and the
+/// depth term's log2e / denominator `rz`, to the sums.
+template <bool kHasNormal, bool kHasDepth, int kSquarings>
+AFN_SVGF_AVX512_INLINE void addTap(const NormalPower& np, const Centre& c, const TapRow& r, int qx,
+    __mmask16 m, float log2h, __m512 rz, Sums& s)
+{
+    const __m512 lq = _mm512_maskz_loadu_ps(m, r.c[kLuminance] + qx);
+    __m512 a = _mm512_fnmadd_ps(absv(_mm512_sub_ps(c.l, lq)), c.invPhi2, _mm512_set1_ps(log2h));
+    if (kHasDepth) {
+        const __m512 zq = _mm512_maskz_loadu_ps(m, r.z + qx);
+        a = _mm512_fnmadd_ps(absv(_mm512_sub_ps(c.z, zq)), rz, a);
+    }
+    // e < 40 <=> a > log2 h - 40 log2e; NaN fails the test, so it adds 0.
+    const __mmask16 keep
+        = _mm512_mask_cmp_ps_mask(m, a, _mm512_set1_ps(log2h - kMaxExponent * kLog2e), _CMP_GT_OQ);
+    const __m512 wn = normalFactor16<kHasNormal, kSquarings>(np, c, r, qx, m);
+    const __m512 wq = _mm512_maskz_mul_ps(keep, exp2v(a), wn);
+    s.ws = _mm512_add_ps(s.ws, wq);
+    const __m512 vq = _mm512_maskz_loadu_ps(m, r.c[kVariance] + qx);
+    s.vsum = _mm512_fmadd_ps(_mm512_mul_ps(wq, wq), vq, s.vsum);
+    for (int k = 0; k < 3; ++k) {
+        const __m512 cq = _mm512_maskz_loadu_ps(m, r.c[kRed + k] + qx);
+        s.dc[k] = _mm512_fmadd_ps(wq, _mm512_sub_ps(cq, c.c[k]), s.dc[k]);
+    }
+}
+
+/// The 12 tap pairs (i, j) and (-i, -j) of the 5x5 footprint without its centre: j > 0, or j = 0
+/// and i > 0.
+struct TapPair {
+    int i, j;
+};
+constexpr TapPair kPairs[12] = { { 1, 0 }, { 2, 0 }, { -2, 1 }, { -1, 1 }, { 0, 1 }, { 1, 1 },
+    { 2, 1 }, { -2, 2 }, { -1, 2 }, { 0, 2 }, { 1, 2 }, { 2, 2 } };
+
+/// log2 of the B3 weight of offset (i, j).
+constexpr float kLog2H[3][3] = { // by |j|, |i|
+    { -2.830074998557688f, -3.415037499278844f, -5.415037499278844f },
+    { -3.415037499278844f, -4.0f, -6.0f }, { -5.415037499278844f, -6.0f, -8.0f }
+};
+
+/// log2e * invPhiL of pixels x .. x + 15 of row y (kernels.h AtrousArgs::sigmaL), from the
+/// variance of the rows y - 1, y, y + 1 (lanes outside the image load 0 and are not counted).
+AFN_SVGF_AVX512_INLINE __m512 invPhiLog2e(
+    const Planes& in, float sigmaL, int x, int y, __mmask16 m0)
+{
+    const int w = in.width(), h = in.height();
+    const __mmask16 left = columnsInImage(x - 1, w), right = columnsInImage(x + 1, w);
+    __m512 sum = _mm512_setzero_ps();
+    float wy = 0.0f;
+    for (int dy = -1; dy <= 1; ++dy) {
+        const int qy = y + dy;
+        if (qy < 0 || qy >= h)
+            continue;
+        const float ky = dy == 0 ? 0.5f : 0.25f;
+        wy += ky;
+        const float* v = in.row(kVariance, qy) + x;
+        sum = _mm512_fmadd_ps(_mm512_set1_ps(ky * 0.25f), _mm512_maskz_loadu_ps(left, v - 1), sum);
+        sum = _mm512_fmadd_ps(_mm512_set1_ps(ky * 0.5f), _mm512_maskz_loadu_ps(m0, v), sum);
+        sum = _mm512_fmadd_ps(_mm512_set1_ps(ky * 0.25f), _mm512_maskz_loadu_ps(right, v + 1), sum);
+    }
+    // In-image weight per lane: 1, less 1/4 at the first and at the last column.
+    const __m512i px = _mm512_add_epi32(_mm512_set1_epi32(x),
+        _mm512_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15));
+    __m512 wx = _mm512_set1_ps(1.0f);
+    wx = _mm512_mask_sub_ps(
+        wx, _mm512_cmpeq_epi32_mask(px, _mm512_setzero_si512()), wx, _mm512_set1_ps(0.25f));
+    wx = _mm512_mask_sub_ps(
+        wx, _mm512_cmpeq_epi32_mask(px, _mm512_set1_epi32(w - 1)), wx, _mm512_set1_ps(0.25f));
+    const __m512 blurred = _mm512_max_ps(
+        _mm512_div_ps(sum, _mm512_mul_ps(wx, _mm512_set1_ps(wy))), _mm512_setzero_ps());
+    const __m512 phi
+        = _mm512_fmadd_ps(_mm512_set1_ps(sigmaL), _mm512_sqrt_ps(blurred), _mm512_set1_ps(1e-10f));
+    return _mm512_div_ps(_mm512_set1_ps(kLog2e), phi);
+}
+
+/// Sums of the 24 non-centre taps of pixels x .. x + 15 of the rows `rows` (offsets -2 .. 2).
+template <bool kHasNormal, bool kHasDepth, int kSquarings>
+AFN_SVGF_AVX512_INLINE void addTaps(const NormalPower& np, const Centre& c, const TapRow* rows,
+    const bool* valid, const __mmask16* cols, int x, int step, float sigmaZ, Sums& s)
+{
+#pragma GCC unroll 12
+    for (int p = 0; p < 12; ++p) {
+        const int i = kPairs[p].i, j = kPairs[p].j;
+        const bool up = valid[2 + j], down = valid[2 - j];
+        if (!up && !down)
+            continue;
+        const float l2h = kLog2H[j][i < 0 ? -i : i];
+        __m512 rz = _mm512_setzero_ps();
+        if (kHasDepth) {
+            // sigmaZ |grad z . o| + 1e-4 |z|: the same for o and -o.
+            const __m512 grad
+                = _mm512_fmadd_ps(c.dzdx, _mm512_set1_ps(static_cast<float>(i * step)),
+                    _mm512_mul_ps(c.dzdy, _mm512_set1_ps(static_cast<float>(j * step))));
+            const __m512 denom = _mm512_fmadd_ps(_mm512_set1_ps(sigmaZ), absv(grad), c.zEps);
+            rz = _mm512_div_ps(_mm512_set1_ps(kLog2e), denom);
+        }
+        if (up)
+            addTap<kHasNormal, kHasDepth, kSquarings>(
+                np, c, rows[2 + j], x + i * step, cols[2 + i], l2h, rz, s);
+        if (down)
+            addTap<kHasNormal, kHasDepth, kSquarings>(
+                np, c, rows[2 - j], x - i * step, cols[2 - i], l2h, rz, s);
+    }
+}
+
+template <bool kHasNormal, bool kHasDepth, int kSquarings>
+AFN_SVGF_AVX512 void atrousRows16(const AtrousArgs& a, int y0, int y1, const NormalPower& np)
+{
+    const Planes& in = *a.in;
+    const Guide& g = *a.guide;
+    Planes& out = *a.out;
+    const int w = in.width(), h = in.height(), step = a.step;
+    auto tapRow = [&](int qy) {
+        TapRow r {};
+        for (int k = 0; k < kColorPlanes; ++k)
+            r.c[k] = in.row(k, qy);
+        if (kHasNormal)
+            for (int k = 0; k < 3; ++k)
+                r.n[k] = g.planes.row(kNormalX + k, qy);
+        if (kHasDepth)
+            r.z = g.planes.row(kDepth, qy);
+        return r;
+    };
+    for (int v = y0; v < y1; ++v) {
+        const int y = a.rowOrder ? a.rowOrder[v] : v;
+        TapRow rows[5];
+        bool valid[5];
+        for (int j = -2; j <= 2; ++j) {
+            const int qy = y + j * step;
+            valid[j + 2] = qy >= 0 && qy < h;
+            if (valid[j + 2])
+                rows[j + 2] = tapRow(qy);
+        }
+        for (int x = 0; x < w; x += 16) {
+            __mmask16 cols[5];
+            for (int i = -2; i <= 2; ++i)
+                cols[i + 2] = columnsInImage(x + i * step, w);
+            const __mmask16 m0 = cols[2];
+            const TapRow& centre = rows[2];
+            Centre c;
+            for (int k = 0; k < 3; ++k)
+                c.c[k] = _mm512_maskz_loadu_ps(m0, centre.c[kRed + k] + x);
+            c.l = _mm512_maskz_loadu_ps(m0, centre.c[kLuminance] + x);
+            c.invPhi2 = invPhiLog2e(in, a.sigmaL, x, y, m0);
+            if (kHasNormal)
+                for (int k = 0; k < 3; ++k)
+                    c.n[k] = _mm512_maskz_loadu_ps(m0, centre.n[k] + x);
+            if (kHasDepth) {
+                c.z = _mm512_maskz_loadu_ps(m0, centre.z + x);
+                c.dzdx = _mm512_maskz_loadu_ps(m0, g.planes.row(kDepthDx, y) + x);
+                c.dzdy = _mm512_maskz_loadu_ps(m0, g.planes.row(kDepthDy, y) + x);
+                c.zEps = _mm512_add_ps(
+                    _mm512_mul_ps(_mm512_set1_ps(1e-4f), absv(c.z)), _mm512_set1_ps(1e-30f));
+            }
+            const float hc = kB3[0] * kB3[0];
+            Sums s;
+            s.ws = _mm512_set1_ps(hc);
+            s.vsum = _mm512_mul_ps(
+                _mm512_set1_ps(hc * hc), _mm512_maskz_loadu_ps(m0, centre.c[kVariance] + x));
+            for (int k = 0; k < 3; ++k)
+                s.dc[k] = _mm512_setzero_ps();
+            addTaps<kHasNormal, kHasDepth, kSquarings>(
+                np, c, rows, valid, cols, x, step, g.sigmaZ, s);
+            const __m512 inv = _mm512_div_ps(_mm512_set1_ps(1.0f), s.ws);
+            __m512 o[3];
+            for (int k = 0; k < 3; ++k) {
+                o[k] = _mm512_max_ps(_mm512_fmadd_ps(s.dc[k], inv, c.c[k]),
+                    _mm512_setzero_ps()); // max(0, v), NaN -> 0
+                _mm512_mask_storeu_ps(out.row(kRed + k, y) + x, m0, o[k]);
+            }
+            _mm512_mask_storeu_ps(
+                out.row(kVariance, y) + x, m0, _mm512_mul_ps(_mm512_mul_ps(s.vsum, inv), inv));
+            __m512 lum = _mm512_mul_ps(_mm512_set1_ps(0.2126f), o[0]);
+            lum = _mm512_fmadd_ps(_mm512_set1_ps(0.7152f), o[1], lum);
+            lum = _mm512_fmadd_ps(_mm512_set1_ps(0.0722f), o[2], lum);
+            _mm512_mask_storeu_ps(out.row(kLuminance, y) + x, m0, lum);
+        }
+    }
+}
+
+} // namespace
+
+void atrousRowsAvx512(const AtrousArgs& a, int y0, int y1)
+{
+    const FlushDenormals flush;
+    const Guide& g = *a.guide;
+    NormalPower np;
+    np.sigmaN = g.sigmaN;
+    np.integral = g.integerSigmaN;
+    if (g.integerSigmaN) {
+        np.integer = static_cast<unsigned>(g.sigmaN);
+        if (np.integer != 0 && (np.integer & (np.integer - 1)) == 0)
+            np.squarings = __builtin_ctz(np.integer);
+    }
+    const bool default128 = np.squarings == 7;
+    if (g.hasNormal && g.hasDepth && default128)
+        atrousRows16<true, true, 7>(a, y0, y1, np);
+    else if (g.hasNormal && g.hasDepth)
+        atrousRows16<true, true, -1>(a, y0, y1, np);
+    else if (g.hasNormal && default128)
+        atrousRows16<true, false, 7>(a, y0, y1, np);
+    else if (g.hasNormal)
+        atrousRows16<true, false, -1>(a, y0, y1, np);
+    else if (g.hasDepth)
+        atrousRows16<false, true, -1>(a, y0, y1, np);
+    else
+        atrousRows16<false, false, -1>(a, y0, y1, np);
+}
+
+#else
+
+void atrousRowsAvx512(const AtrousArgs& a, int y0, int y1)
+{
+    atrousRowsPortable(a, y0, y1);
+}
+
+#endif
+
+} // namespace afn::svgf
