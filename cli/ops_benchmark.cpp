@@ -64,23 +64,6 @@ std::string commandLine()
     return all;
 }
 
-/// "svgf/iterations=2/alpha=0.1" -> method "svgf" and its parameters.
-MethodResult parseSetting(const std::string& item)
-{
-    MethodResult m;
-    m.label = item;
-    const std::vector<std::string> parts = splitList(item, '/');
-    m.method = parts.empty() ? "" : parts[0];
-    for (std::size_t i = 1; i < parts.size(); ++i) {
-        const std::size_t eq = parts[i].find('=');
-        if (eq == std::string::npos || eq == 0)
-            throw CliError(
-                "--benchmark: malformed setting '" + item + "' (expected method/param=value)");
-        m.params[parts[i].substr(0, eq)] = parts[i].substr(eq + 1);
-    }
-    return m;
-}
-
 void finishTimes(MethodResult& m, const std::vector<double>& times, const std::vector<double>& cpu)
 {
     m.medianMs = median(times);
@@ -145,6 +128,22 @@ void printSummary(const BenchmarkReport& r, double ioMsPerFrame)
 }
 
 } // namespace
+
+MethodResult parseSetting(const std::string& item)
+{
+    MethodResult m;
+    m.label = item;
+    const std::vector<std::string> parts = splitList(item, '/');
+    m.method = parts.empty() ? "" : parts[0];
+    for (std::size_t i = 1; i < parts.size(); ++i) {
+        const std::size_t eq = parts[i].find('=');
+        if (eq == std::string::npos || eq == 0)
+            throw CliError(
+                "--benchmark: malformed setting '" + item + "' (expected method/param=value)");
+        m.params[parts[i].substr(0, eq)] = parts[i].substr(eq + 1);
+    }
+    return m;
+}
 
 int runBenchmark(const Options& opts, const Action& action)
 {

@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: Apache-2.0
 // --benchmark:size=1280x720,1920x1080,...: time the denoise stage alone on generated inputs of each
 // size, for scaling curves (time against pixel count). Modifiers: methods=a,b (default: every type
-// but "identity"), frames=N timed frames (default 5) after warmup=W untimed ones (default 2).
+// but "identity"; settings as method/param=value, e.g. afn/quality=fast), frames=N timed frames
+// (default 5) after warmup=W untimed ones (default 2).
 // Per point also the peak heap of the run (heap_counter.h: every operator new of the process,
 // filter creation to the last frame; the generated input frame, allocated before, is left out),
 // and for afn the engine report (engine_report.h: GFLOP/s per stage beside dnnl_sgemm).
@@ -118,8 +119,9 @@ int runSizeBenchmark(const Options& opts, const Action& action)
     const std::vector<std::string> known = afn::filterTypes();
     std::vector<std::string> methods;
     for (const std::string& m : splitList(mod("methods", ""), ',')) {
-        if (std::find(known.begin(), known.end(), m) == known.end())
-            warn("method '" + m + "' is not in this build; skipped", opts.quiet);
+        const std::string type = parseSetting(m).method; // "afn/quality=fast": a setting of afn
+        if (std::find(known.begin(), known.end(), type) == known.end())
+            warn("method '" + type + "' is not in this build; skipped", opts.quiet);
         else
             methods.push_back(m);
     }
@@ -153,7 +155,9 @@ int runSizeBenchmark(const Options& opts, const Action& action)
         makeFrame(frame, w, h, 0); // allocated before the heap baseline of each run
         for (const std::string& m : methods) {
             progress.update(done++, m + " " + std::to_string(w) + "x" + std::to_string(h));
-            Action denoise { "denoise", "", { { "method", m } } };
+            const MethodResult setting = parseSetting(m);
+            Action denoise { "denoise", "", setting.params };
+            denoise.mods["method"] = setting.method;
             std::vector<double> times, cpuTimes;
             EngineCollector collector;
             heap::resetPeak();

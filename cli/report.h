@@ -67,6 +67,10 @@ struct MethodResult {
     std::map<std::string, double> means; ///< sequenceMeans(frames)
 };
 
+/// "svgf/iterations=2/alpha=0.1" -> method "svgf" and its parameters (label = the text; the
+/// --benchmark:methods= items, with and without :size=).
+MethodResult parseSetting(const std::string& item);
+
 /// Crops of one frame, as PNG file names relative to the report folder.
 struct CropSet {
     int frame = -1;

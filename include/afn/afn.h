@@ -110,6 +110,10 @@ typedef enum AFNDeviceType {
 /// Quality of the auxiliary buffers (albedo, normal, depth): "auto" (default), "clean", "noisy"
 /// (a parameter of every method that demodulates; lib/core/stages/aux_prefilter.h).
 #define AFN_PARAM_AUX "aux"
+/// Cost/accuracy tier: "fast", "balanced" (default: the method as without the parameter), "high"
+/// (a parameter of every denoising method; what each tier does is in its help text and README.md,
+/// lib/core/filter/quality.h).
+#define AFN_PARAM_QUALITY "quality"
 /// Array parameters (afnSetFilterFloats).
 #define AFN_ARRAY_VIEW_PROJECTION "viewProjection"
 #define AFN_ARRAY_PIXEL_OFFSET "pixelOffset"

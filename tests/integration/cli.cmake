@@ -57,3 +57,9 @@ add_test(NAME slurm_farm_job_array
     ${PROJECT_SOURCE_DIR})
 set_tests_properties(slurm_farm_job_array PROPERTIES SKIP_RETURN_CODE 77 TIMEOUT 240
   LABELS farm ENVIRONMENT "OCIO=")
+
+# --denoise:quality=fast|balanced|high end to end (the tiers' pixels, errors, help).
+afn_add_gtest(test_afntool_quality SOURCES integration/test_afntool_quality.cpp
+  integration/cli_runner.cpp LIBS PkgConfig::OIIO)
+target_compile_definitions(test_afntool_quality PRIVATE AFNTOOL_PATH="$<TARGET_FILE:afntool>")
+add_dependencies(test_afntool_quality afntool)

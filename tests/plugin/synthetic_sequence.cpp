@@ -152,6 +152,8 @@ std::vector<std::vector<float>> referenceFrames(const Sequence& seq, const Refer
         filter.set("motion.scale", float(opt.scale));
         if (!opt.floatParam.empty())
             filter.set(opt.floatParam.c_str(), float(opt.floatValue));
+        if (!opt.stringParam.empty())
+            filter.set(opt.stringParam.c_str(), opt.stringValue.c_str());
         if (!opt.temporal || t <= opt.historyStart)
             filter.reset();
         filter.commit();

@@ -38,6 +38,8 @@ struct ReferenceOptions {
     /// First frame the history may use: the filter restarts there, and frames before it are
     /// denoised on their own (the plugin's bounded window and start frame).
     double historyStart = -1e9;
+    std::string stringParam; ///< a string (choice) parameter to override ("" = none)
+    std::string stringValue;
 };
 
 /// The weights file the tests give `method`: "" when it runs without one, else the committed

@@ -3,6 +3,7 @@
 
 #include "base/exception.h"
 #include "cuda/frame_constants.h"
+#include "filter/quality.h"
 #include "methods/afn/weights_source.h"
 #include "stages/aux_prefilter.h"
 
@@ -38,6 +39,11 @@ void AfnCudaFilter::configure()
         throw Exception(AFN_ERROR_UNSUPPORTED,
             "afn on a CUDA device has no aux prefilter yet: aux=noisy runs on the CPU device only "
             "(afntool: --device cpu)");
+    // Quality tiers (methods/afn/quality_tiers.h) run on the CPU device only for now.
+    if (qualityBinding().read(params()).quality != QualitySettings::Tier::Balanced)
+        throw Exception(AFN_ERROR_UNSUPPORTED,
+            "afn on a CUDA device runs quality=balanced only: quality=fast and high run on the "
+            "CPU device (afntool: --device cpu)");
     // The same parameters as the CPU filter's stages (filter/filter.cpp commit()).
     m_reproject = reprojectBinding().read(params());
     m_accumulation = accumulationBinding().read(params());

@@ -2,6 +2,7 @@
 #include "filter/registry.h"
 
 #include "base/exception.h"
+#include "filter/quality.h"
 
 #include <algorithm>
 
@@ -22,6 +23,8 @@ FilterType registered(FilterType t)
     if (t.stages.accumulate)
         append(table, accumulationBinding().descriptors());
     append(table, std::move(t.params));
+    if (!t.qualityHelp.empty())
+        table.push_back(qualityDescriptor(t.qualityHelp));
     if (t.stages.reproject != StageNeeds::Reproject::None)
         append(table, reprojectBinding().descriptors());
     if (t.stages.demodulate)

@@ -23,9 +23,12 @@ struct FilterType {
     std::string name;
     std::string description;
     /// The method's own parameters; after registration the full table: accumulation (when the
-    /// stages accumulate), the method's own, reprojection (when they reproject), aux (when they
-    /// demodulate: stages/aux_prefilter.h), conventions.
+    /// stages accumulate), the method's own, quality (when qualityHelp is set), reprojection
+    /// (when they reproject), aux (when they demodulate: stages/aux_prefilter.h), conventions.
     std::vector<ParamDesc> params;
+    /// What quality=fast|balanced|high do for this method (the help of its "quality" parameter,
+    /// filter/quality.h: appended after its own parameters); empty = no such parameter.
+    std::string qualityHelp;
     StageNeeds stages;
     std::vector<FeatureOutput> features; ///< feature outputs the method can write
     /// Inputs it reads besides the colour: the method's own; the registry adds those of the

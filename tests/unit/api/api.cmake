@@ -3,3 +3,4 @@
 afn_add_gtest(test_api SOURCES unit/api/test_api.cpp LIBS afn)
 afn_add_gtest(test_metrics_api SOURCES unit/api/test_metrics_api.cpp LIBS afn)
 afn_add_gtest(test_api_missing_inputs SOURCES unit/api/test_api_missing_inputs.cpp LIBS afn)
+afn_add_gtest(test_api_quality SOURCES unit/api/test_api_quality.cpp LIBS afn)

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: Apache-2.0
 // "bmfr": blockwise multi-order feature regression (methods/bmfr/denoiser.h) on the shared
 // stages' temporal accumulation of albedo-demodulated colour.
+#include "filter/quality.h"
 #include "filter/registry.h"
 #include "methods/bmfr/denoiser.h"
 
@@ -35,6 +36,11 @@ FilterType filterType()
     t.description = "blockwise multi-order feature regression (Koskela et al. 2019) with BMFR's "
                     "accumulations and TAA";
     t.params = settingsBinding().descriptors();
+    // Quality tiers (filter/quality.h): the regression's cost is fixed per block and its feature
+    // set is the method; the one optional pass, TAA (taa=0), saves about 10 % at the same error on
+    // examples/sequence (docs/report). No real trade, so bmfr has one level.
+    t.qualityHelp = std::string(kQualityOneLevel)
+        + " (the block regression is the method; taa=0 saves about 10 % at equal error)";
     t.stages = { true, StageNeeds::Reproject::Bilinear, true };
     t.inputs = { { { AFN_IMAGE_NORMAL }, "regression features" },
         { { AFN_IMAGE_POSITION, AFN_IMAGE_DEPTH }, "regression features" } };

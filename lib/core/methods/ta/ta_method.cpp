@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: Apache-2.0
 // "ta": BMFR temporal accumulation only (the shared stages). Output = albedo-remodulated
 // accumulated irradiance (the TA-1spp input of AFN, WSKPN and NBGD, remodulated).
+#include "filter/quality.h"
 #include "filter/registry.h"
 #include "stages/demodulate.h"
 
@@ -31,6 +32,10 @@ FilterType filterType()
     t.description = "temporal accumulation only, exactly as BMFR (bilinear reprojection, per-tap "
                     "position/normal acceptance, alpha = max(1/(n+1), alphaMin))";
     t.stages = { true, StageNeeds::Reproject::Bilinear, true };
+    // Quality tiers (filter/quality.h): one reprojection and one blend per pixel leave nothing to
+    // drop, and a longer history is alphaMin's choice, not a cost.
+    t.qualityHelp = std::string(kQualityOneLevel)
+        + " (one reprojection and blend per pixel: nothing to drop; history length is alphaMin)";
     t.create = factoryOf<TaFilter>();
     return t;
 }
