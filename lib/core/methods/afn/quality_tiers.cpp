@@ -38,8 +38,8 @@ void flipImage(const Image& src, bool flipX, bool flipY, Image& dst)
     });
 }
 
-void TierRunner::run(QualitySettings::Tier tier, Network& net, const Inputs& in, Image& out,
-    const Image* work)
+void TierRunner::run(
+    QualitySettings::Tier tier, Network& net, const Inputs& in, Image& out, const Image* work)
 {
     m_totals = {};
     if (tier == QualitySettings::Tier::Fast && net.variant() == Variant::Full)
