@@ -23,7 +23,7 @@ const Label kMethodLabels[] = {
     { "bmfr", "BMFR (blockwise multi-order feature regression)" },
     { "afn", "AFN (adaptive fusion network)" },
     { "onnd", "ONND (recurrent denoising autoencoder)" },
-    { "mrkp", "MR-KP (multi-resolution kernel prediction)" },
+    { "mrkp", "MRKP (MR-KP: multi-resolution kernel prediction)" },
 };
 
 const Label kDeviceLabels[] = {
