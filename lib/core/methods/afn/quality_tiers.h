@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: Apache-2.0
 // AFN's quality tiers (quality=fast|balanced|high, filter/quality.h). The choice:
-//   fast      the network without its refinement: o = i, the fused output of filtering + fusion
+//   fast      the network without its refinement: o = i, the fused output of filtering + fusion,
+//             computed by the whole-frame stages (not striped: more memory per megapixel)
 //             (network.h). Refinement is a residual (o = i + ref(...)), so i is the network's own
 //             estimate before it; the weights are the same. Weights without a refinement
 //             (ablation variants) run as balanced.

@@ -6,6 +6,7 @@
 // remodulation by the albedo. Weights: the archive embedded at build time (weights/nbgd.afnw,
 // trained with training/afn/baselines/train.py) or afnSetFilterData(filter, "weights", ...).
 #include "base/exception.h"
+#include "filter/quality.h"
 #include "filter/registry.h"
 #include "methods/nbgd/network.h"
 #include "nn/baseline_input.h"
@@ -104,6 +105,9 @@ FilterType filterType()
         { "normal01", 3, "prefiltered shading normal * 0.5 + 0.5, [0, 1]" },
         { "depth01", 1, "prefiltered per-frame min-max depth, [0, 1]" },
     };
+    // Quality tiers (filter/quality.h): the baseline is reproduced as its paper defines it, one
+    // network and one filter; a cheaper or dearer variant would be another model.
+    t.qualityHelp = std::string(kQualityOneLevel) + " (a paper baseline: one trained model)";
     t.create = factoryOf<NbgdFilter>();
     return t;
 }

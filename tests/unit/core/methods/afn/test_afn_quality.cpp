@@ -97,7 +97,7 @@ TEST(AfnQuality, FastIsTheFusedOutputWithoutRefinement)
     Network net = fullNetwork();
     const Frame f = asymmetricFrame();
     Image balanced, fast;
-    net.run(f.inputs(), balanced);
+    net.runWholeFrame(f.inputs(), balanced); // fused() is kept by the whole-frame path only
     const Image fused = net.fused(); // padded; the refinement's input
     TierRunner tiers;
     tiers.run(Tier::Fast, net, f.inputs(), fast);
