@@ -7,6 +7,7 @@
 // accumulation is the shared stage's). Weights: the archive embedded at build time
 // (weights/mrkp.afnw), or afnSetFilterData(filter, "weights", ...).
 #include "base/exception.h"
+#include "filter/quality.h"
 #include "filter/registry.h"
 #include "methods/afn/features.h" // the shared feature scaling (normal01, depth01)
 #include "methods/mrkp/network.h"
@@ -103,6 +104,9 @@ FilterType filterType()
         { "normal01", 3, "prefiltered shading normal * 0.5 + 0.5, [0, 1]" },
         { "depth01", 1, "prefiltered per-frame min-max depth, [0, 1]" },
     };
+    // Quality tiers (filter/quality.h): the baseline is reproduced as its paper defines it, one
+    // network; a cheaper or dearer variant would be another model.
+    t.qualityHelp = std::string(kQualityOneLevel) + " (a paper baseline: one trained model)";
     t.create = factoryOf<MrkpFilter>();
     return t;
 }
