@@ -36,6 +36,33 @@ def test_onnd_shapes_and_recurrence():
     assert (a >= -1.0).all()                 # exp(.) - 1
 
 
+def test_onnd_contrast_gate_is_zero_on_flat_windows_and_open_on_noise():
+    for v in (0.0, 1e-3, 0.37, 3.0):
+        assert onnd.contrast_gate(torch.full((1, 3, 7, 9), v)).max() == 0.0
+    g = torch.Generator().manual_seed(1)
+    noisy = 0.7 + 0.6 * torch.rand(1, 3, 12, 16, generator=g)
+    assert onnd.contrast_gate(noisy).min() == 1.0
+    step = torch.ones(1, 3, 4, 10)
+    step[:, 1, :, 5:] = 1.05
+    gate = onnd.contrast_gate(step)[0, 0]
+    want = min(onnd.GATE_GAIN * 0.05 / (2.05 + onnd.GATE_EPS), 1.0)
+    assert 0.0 < want < 1.0
+    assert torch.allclose(gate[:, 4:6], torch.full((4, 2), want), rtol=1e-5)
+    assert gate[:, :4].max() == 0.0 and gate[:, 6:].max() == 0.0
+
+
+def test_onnd_returns_flat_frames_exactly_whatever_the_state():
+    torch.manual_seed(0)
+    net = onnd.ONND(enc=(6, 8, 10), bottleneck=12).eval()
+    aux = [torch.full((1, c, 21, 37), 0.5) for c in (3, 3, 1)]
+    with torch.no_grad():
+        for v in (0.0, 1e-3, 0.37, 3.0):
+            cta, state = torch.full((1, 3, 21, 37), v), None
+            for _ in range(4):
+                irr, state = net(cta, *aux, state)
+                assert torch.equal(irr, cta)
+
+
 def test_onnd_loss_is_finite_and_trains():
     torch.manual_seed(0)
     net = onnd.ONND(enc=(4, 6), bottleneck=8)

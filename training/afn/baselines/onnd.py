@@ -22,9 +22,20 @@ Chosen here (the paper is open or our budget differs; see also common.py):
   of a history) and its skip; the next level reads maxpool(h).
 * Decoder level l: ``y = lrelu(conv1([up(y_{l+1}), h_l]))``, ``y = lrelu(conv2(y))``, width of
   the encoder level; then ``out = conv(y_0) -> 3`` (the paper's last 128, 64 widths dropped).
-* Output: log-domain residual on the input colour: irradiance ``= exp(min(log1p(cta) + out,
-  20)) - 1`` (>= 0 after the remodulation's clamp), so a short CPU training starts from the TA
-  frame instead of black.
+* Output: a log-domain residual on the input colour, ``net = exp(min(log1p(c) + out, 20)) - 1``
+  with ``c = max(cta, 0)`` (so a short CPU training starts from the TA frame instead of black),
+  blended with the input colour by a local-contrast gate computed from the input alone:
+  irradiance ``= c + g * (net - c)``, ``g = min(1, GATE_GAIN * max_ch (hi - lo) / (hi + lo +
+  GATE_EPS))`` with hi, lo the maximum and minimum of c over the 3x3 window (edges replicated).
+  Why: the stress properties (tests/stress: a constant frame stays constant, black stays black,
+  a static scene reaches a fixed point) must hold by construction, not by training. On a flat
+  window hi == lo exactly in floating point, so g == 0 and the output is the input colour
+  bit for bit, whatever the network and its recurrent state say; black is the flat case c == 0.
+  A max/min contrast rather than a standard deviation because a mean of equal floats need not
+  equal them (the deviation would be tiny but not zero). The gain 8 opens the gate fully at
+  hi/lo ~ 1.29, far below the contrast of 1-spp noise, so noisy pixels see the plain network.
+  A purely multiplicative output (``c * exp(out)``) was rejected: it cannot brighten a pixel
+  whose TA colour is exactly zero, which 1-spp frames have in every dark region.
 * Sequences: the dataset has 6 frames per sequence; the paper's 7 temporal weights are used
   from the second on: 0.044, 0.135, 0.325, 0.607, 0.882, 1.0. Losses on the tone-mapped
   remodulated output T(o) against T(reference).
@@ -43,6 +54,9 @@ ENC = (16, 22, 29, 38)
 BOTTLENECK = 51
 LEAK = 0.1
 LOG_CLAMP = 20.0
+GATE_RADIUS = 1      # 3x3 window of the contrast gate
+GATE_GAIN = 8.0
+GATE_EPS = 1e-4      # keeps the ratio finite at black; dark noise (1e-3 vs 0) still opens it
 FRAME_WEIGHTS = (0.011, 0.044, 0.135, 0.325, 0.607, 0.882, 1.0)
 
 
@@ -52,6 +66,17 @@ def _conv3(cin, cout):
 
 def lrelu(x):
     return F.leaky_relu(x, LEAK)
+
+
+def contrast_gate(c):
+    """(B, 1, H, W) gate in [0, 1] from the colour c = max(cta, 0) (B, 3, H, W); exactly 0
+    wherever the 3x3 window (edges replicated) is flat (module docstring)."""
+    r = GATE_RADIUS
+    p = F.pad(c, (r, r, r, r), mode="replicate")
+    hi = F.max_pool2d(p, 2 * r + 1, stride=1)
+    lo = -F.max_pool2d(-p, 2 * r + 1, stride=1)
+    contrast = (hi - lo) / (hi + lo + GATE_EPS)
+    return torch.clamp(GATE_GAIN * contrast.amax(1, keepdim=True), max=1.0)
 
 
 class ONND(nn.Module):
@@ -103,8 +128,9 @@ class ONND(nn.Module):
         for l in reversed(range(len(self.enc))):
             y = lrelu(getattr(self, f"dec{l}a")(torch.cat([up2(y), skips[l]], 1)))
             y = lrelu(getattr(self, f"dec{l}b")(y))
-        logit = torch.log1p(torch.clamp(feats[0], min=0.0)) + self.out(y)
-        irr = torch.exp(torch.clamp(logit, max=LOG_CLAMP)) - 1.0
+        c = torch.clamp(feats[0], min=0.0)
+        net = torch.exp(torch.clamp(torch.log1p(c) + self.out(y), max=LOG_CLAMP)) - 1.0
+        irr = c + contrast_gate(c) * (net - c)
         return irr[..., :h, :w], skips
 
 

@@ -9,7 +9,8 @@ Files (weights-archive format, weights.py):
                         C++ engine must derive every width from the tensor dims)
   <name>_case.afnw      per frame t: inputs cta<t>, albedo<t>, normal01<t>, depth01<t> and the
                         PyTorch output irr<t> (demodulated irradiance), (H, W, C) float32.
-ONND runs three frames (the recurrent state carried from frame to frame); MR-KP one. The frame is
+ONND runs three frames (the recurrent state carried from frame to frame) whose colour has flat,
+black and low-contrast patches (the contrast gate's regimes); MR-KP one. The frame is
 37x21 (odd, not a multiple of 16) so the padding rule is covered.
 """
 
@@ -28,12 +29,20 @@ ONND_PARITY = dict(enc=(6, 8, 10), bottleneck=12)
 MRKP_PARITY = dict(width=12)
 
 
-def frames(count):
-    """Inputs of `count` frames (numpy (H, W, C)), different per frame."""
+def frames(count, gate_patches=False):
+    """Inputs of `count` frames (numpy (H, W, C)), different per frame. With `gate_patches`
+    (ONND) the colour has a flat patch, a black patch (gate exactly 0: output = input) and a
+    low-contrast patch (gate between 0 and 1), so the contrast gate's three regimes are compared."""
     out = []
     for t in range(count):
         i = make_inputs(seed=1 + t)
-        out.append({"cta": i["cta"] * (1.0 + 2.0 * t), "albedo": i["albedo"],
+        cta = i["cta"] * (1.0 + 2.0 * t)
+        if gate_patches:
+            rng = np.random.RandomState(100 + t)
+            cta[2:9, 3:12] = np.float32([0.8, 0.6, 0.4]) * (1.0 + t)
+            cta[12:19, 22:33] = 0.0
+            cta[2:9, 20:31] = 0.5 + 0.01 * rng.standard_normal((7, 11, 3)).astype(np.float32)
+        out.append({"cta": cta, "albedo": i["albedo"],
                     "normal01": i["normal01"], "depth01": i["depth01"]})
     return out
 
@@ -56,7 +65,7 @@ def main(argv=None):
             getattr(models["mrkp"], f"head{l}").weight.mul_(4.0)
     for name, model in models.items():
         export(os.path.join(args.out, f"{name}_weights.afnw"), model, name)
-        seq = frames(3 if name == "onnd" else 1)
+        seq = frames(3, gate_patches=True) if name == "onnd" else frames(1)
         case, state = {}, None
         with torch.no_grad():
             for t, f in enumerate(seq):

@@ -4,6 +4,7 @@
 
 #include "base/exception.h"
 #include "base/parallel.h"
+#include "methods/onnd/contrast_gate.h"
 #include "nn/pool.h"
 
 #include <algorithm>
@@ -126,14 +127,17 @@ void Network::run(const nn::BaselineFeatureViews& in, Image& out)
     }
     m_out.run(nullptr, *y, m_result, false);
     m_flop += static_cast<double>(m_result.width()) * m_result.height() * m_out.flopPerPixel();
+    contrastGate(m_colorTa, m_gate);
     m_irr.resize(m_result.width(), m_result.height(), 3);
     parallelRows(m_irr.height(), [&](int y0, int y1) {
         for (int yy = y0; yy < y1; ++yy)
             for (int xx = 0; xx < m_irr.width(); ++xx)
                 for (int k = 0; k < 3; ++k) {
-                    const float logit
-                        = std::log1p(std::max(m_colorTa(xx, yy, k), 0.0f)) + m_result(xx, yy, k);
-                    m_irr(xx, yy, k) = std::exp(std::min(logit, kLogClamp)) - 1.0f;
+                    const float c = std::max(m_colorTa(xx, yy, k), 0.0f);
+                    const float logit = std::log1p(c) + m_result(xx, yy, k);
+                    const float net = std::exp(std::min(logit, kLogClamp)) - 1.0f;
+                    // g == 0 (a flat window) returns c exactly (contrast_gate.h).
+                    m_irr(xx, yy, k) = c + m_gate(xx, yy, 0) * (net - c);
                 }
     });
     nn::cropTo(m_irr, w, h, out);

@@ -5,7 +5,9 @@
 //   a = lrelu(enc{l}a(x_l)); b = lrelu(enc{l}b([a, h_l(prev)])); h_l = lrelu(enc{l}c(b))
 //   x_{l+1} = maxpool2(h_l);  y = lrelu(bott2(lrelu(bott1(x_L))))
 //   y = lrelu(dec{l}b(lrelu(dec{l}a([U y, h_l]))))                  l = L-1 .. 0
-//   irradiance = exp(min(log1p(cta) + out(y), 20)) - 1
+//   c = max(cta, 0); net = exp(min(log1p(c) + out(y), 20)) - 1
+//   irradiance = c + g * (net - c), g = contrastGate(c) (contrast_gate.h: 0 on a flat window,
+//   so constant and black frames and a static scene's fixed point hold by construction)
 // lrelu slope 0.1, U = nearest 2x upsampling. h_l(prev) is the previous frame's h_l, zero on the
 // first frame of a history and after resetState() or a change of frame size.
 #pragma once
@@ -44,7 +46,7 @@ private:
     };
     std::vector<Level> m_levels;
     nn::Conv m_bott1, m_bott2, m_out;
-    Image m_x, m_colorTa, m_bottIn, m_bottMid, m_bottOut, m_result, m_irr;
+    Image m_x, m_colorTa, m_bottIn, m_bottMid, m_bottOut, m_result, m_gate, m_irr;
     bool m_hasState = false;
     double m_flop = 0.0;
 };
