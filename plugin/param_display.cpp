@@ -22,6 +22,8 @@ const Label kMethodLabels[] = {
     { "svgf", "SVGF (spatiotemporal variance-guided filtering)" },
     { "bmfr", "BMFR (blockwise multi-order feature regression)" },
     { "afn", "AFN (adaptive fusion network)" },
+    { "onnd", "ONND (recurrent denoising autoencoder)" },
+    { "mrkp", "MRKP (MR-KP: multi-resolution kernel prediction)" },
 };
 
 const Label kDeviceLabels[] = {

@@ -13,8 +13,8 @@ where it has one (the afn-dataset-2 layout of docs/dataset.md: SCENE/sppN/frame.
 SCENE/reference.NNNN.exr); folders without it are read as they are. --timing WxH adds paper
 Table 9: one `afntool --benchmark:size=WxH` run over every method, ms per frame on this machine.
 
-For every scene and method (the noisy 1-spp input, ta, svgf, bmfr, afn) it runs one afntool command,
-``afntool --frames F DATA/scene/frame.####.exr [--denoise:method=M] --compare
+For every scene and method (the noisy 1-spp input, ta, svgf, bmfr, nbgd, wskpn, onnd, mrkp, afn)
+it runs one afntool command, ``afntool --frames F DATA/scene/frame.####.exr [--denoise:method=M] --compare
 DATA/scene/reference.####.exr --json``: the denoised frames are scored in memory (no files are
 written; docs/metrics.md states the metrics). A sequence's value is the mean over its frames, the
 Average row the mean over scenes. A method that fails (e.g. afn without weights) is shown as "—"
@@ -38,9 +38,11 @@ from .weights import WeightsFormatError, loads
 
 REPO = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 METHODS = [("noisy", "Noisy (1 spp)"), ("ta", "TA"), ("svgf", "SVGF"), ("bmfr", "BMFR"),
-           ("nbgd", "NBGD"), ("wskpn", "WSKPN"), ("afn", "AFN")]
-# The learned baselines (nbgd, wskpn) run with the library's built-in weights, trained by
-# training/afn/baselines/train.py on the training split only (never on the evaluation scenes).
+           ("nbgd", "NBGD"), ("wskpn", "WSKPN"), ("onnd", "ONND"), ("mrkp", "MR-KP"),
+           ("afn", "AFN")]
+# The learned baselines (nbgd, wskpn, onnd, mrkp) run with the library's built-in weights, trained
+# by training/afn/baselines/train.py (nbgd, wskpn) and onnd_mrkp_train.py (onnd, mrkp) on the
+# training split only (never on the evaluation scenes).
 # (afntool JSON key, table title, higher is better, format)
 METRICS = [("psnr", "PSNR (dB)", True, "{:.3f}"), ("ssim", "SSIM", True, "{:.4f}"),
            ("rmse", "RMSE", False, "{:.4f}"), ("smape", "SMAPE", False, "{:.4f}")]

@@ -63,6 +63,8 @@ const std::vector<FilterType>& filterTypes()
         registered(afnet::filterType()),
         registered(wskpn::filterType()),
         registered(nbgd::filterType()),
+        registered(onnd::filterType()),
+        registered(mrkp::filterType()),
     };
     return types;
 }

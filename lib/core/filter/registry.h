@@ -83,5 +83,11 @@ FilterType filterType();
 namespace nbgd {
 FilterType filterType();
 }
+namespace onnd {
+FilterType filterType();
+}
+namespace mrkp {
+FilterType filterType();
+}
 
 } // namespace afn

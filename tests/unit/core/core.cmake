@@ -34,6 +34,9 @@ afn_add_gtest(test_afn
     unit/core/stages/test_afn_ta_parity.cpp
     unit/core/methods/baselines/test_baselines_parity.cpp
     unit/core/methods/baselines/test_baselines_filters.cpp
+    unit/core/methods/baselines/test_onnd_mrkp_parity.cpp
+    unit/core/methods/baselines/test_onnd_mrkp_filter.cpp
+    unit/core/methods/baselines/test_onnd_contrast_gate.cpp
   LIBS afn_core)
 target_include_directories(test_afn PRIVATE ${AFN_CORE_TESTS})
 # The embedding mechanism of the shipped weights, exercised on a committed parity file.

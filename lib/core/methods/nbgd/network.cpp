@@ -4,6 +4,7 @@
 #include "base/exception.h"
 #include "base/parallel.h"
 #include "nn/baseline_input.h"
+#include "nn/pool.h"
 
 #include <cmath>
 

@@ -4,6 +4,7 @@
 #include "base/exception.h"
 #include "methods/wskpn/weight_sharing_filter.h"
 #include "nn/baseline_input.h"
+#include "nn/pool.h"
 
 #include <string>
 
