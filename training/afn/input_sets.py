@@ -7,7 +7,7 @@ the set in the metadata key ``inputs`` ("color" or e.g. "albedo,normal"); an arc
 key is the full set.
 
 Training data for a smaller set: the full-set features (dataset.load_scene) with the parts outside
-the set replaced by :func:`mask`, the rule the C++ filter applies (lib/core/methods/afn/features.cpp,
+the set replaced by :func:`mask`, the rule the C++ filter applies (lib/core/methods/afn/network_inputs.cpp,
 NetworkInputs) when a model uses fewer inputs than the frame has: absent roles at their neutral
 values (albedo 1 with the colour itself as c1, normal01 0.5, depth01 0) and, without the temporal
 history, the current frame as the TA input. A file that lacks those roles gives the same inputs
