@@ -9,10 +9,10 @@
 #include "base/exception.h"
 #include "filter/quality.h"
 #include "filter/registry.h"
-#include "stages/feature_scaling.h" // the shared feature scaling (normal01, depth01)
 #include "methods/onnd/network.h"
 #include "nn/weights.h"
 #include "stages/demodulate.h"
+#include "stages/feature_scaling.h" // the shared feature scaling (normal01, depth01)
 
 #include <algorithm>
 

@@ -4,9 +4,9 @@
 // inputs than the frame has.
 #include "base/exception.h"
 #include "filter/frame.h"
-#include "methods/afn/network_inputs.h"
 #include "methods/afn/input_set.h"
 #include "methods/afn/model_set.h"
+#include "methods/afn/network_inputs.h"
 #include "methods/afn/random_weights.h"
 #include "stages/demodulate.h"
 
