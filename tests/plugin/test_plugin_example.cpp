@@ -117,7 +117,7 @@ TEST(PluginExample, MatchesAfntoolOnTheExampleSequence)
     fs::create_directories(out);
     const std::vector<std::string> types = afn::filterTypes();
     int compared = 0;
-    for (const std::string m : { "afn", "svgf", "ta", "bmfr", "wskpn", "nbgd" }) {
+    for (const std::string m : { "afn", "svgf", "ta", "bmfr", "wskpn", "nbgd", "onnd", "mrkp" }) {
         if (std::find(types.begin(), types.end(), m) == types.end())
             continue;
         if (!afn::isFilterTypeReady(m.c_str()))
