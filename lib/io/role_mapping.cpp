@@ -379,8 +379,9 @@ RoleMapping mapRoles(const FileInfo& info, const MappingOverrides& overrides)
             if (role == Role::Color)
                 throw IoError("--aov color=none: the colour is required", info.path);
             auto& roles = mapping.roles;
+            const Role absent = role; // a structured binding cannot be captured (C++17, clang)
             roles.erase(std::remove_if(roles.begin(), roles.end(),
-                            [&](const RoleChannels& r) { return r.role == role; }),
+                            [absent](const RoleChannels& r) { return r.role == absent; }),
                 roles.end());
             mapping.lookedFor.erase(role);
             continue;
