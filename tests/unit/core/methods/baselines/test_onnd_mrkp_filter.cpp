@@ -3,7 +3,9 @@
 // model's archive without losing the previous), denoise a small sequence to finite non-negative
 // output; ONND's recurrent state is the filter's history (afnResetFilter restarts it, so the
 // first frame after a reset equals the first frame of a new filter).
+#include "afn_test_util.h"
 #include "base/exception.h"
+#include "bind_image.h"
 #include "filter/registry.h"
 
 #include <gtest/gtest.h>
@@ -16,23 +18,8 @@
 
 namespace {
 
-afn::ImageBinding bind(afn::Image& img)
-{
-    afn::ImageBinding b;
-    b.ptr = img.data();
-    b.format = static_cast<AFNFormat>(img.channels());
-    b.width = img.width();
-    b.height = img.height();
-    b.pixelStride = static_cast<std::ptrdiff_t>(img.channels() * sizeof(float));
-    b.rowStride = b.pixelStride * img.width();
-    return b;
-}
-
-std::vector<char> readBytes(const std::string& path)
-{
-    std::ifstream f(path, std::ios::binary);
-    return std::vector<char>((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
-}
+using afntest::bindImage;
+using afntest::readBytes;
 
 struct Frames {
     static constexpr int w = 23, h = 13;
@@ -52,11 +39,11 @@ struct Frames {
     }
     void bindTo(afn::Filter& f)
     {
-        f.setImage("color", bind(color));
-        f.setImage("albedo", bind(albedo));
-        f.setImage("normal", bind(normal));
-        f.setImage("depth", bind(depth));
-        f.setImage("output", bind(out));
+        f.setImage("color", bindImage(color));
+        f.setImage("albedo", bindImage(albedo));
+        f.setImage("normal", bindImage(normal));
+        f.setImage("depth", bindImage(depth));
+        f.setImage("output", bindImage(out));
     }
 };
 
