@@ -9,7 +9,7 @@ pkgs=(cmake g++ make pkg-config libopenimageio-dev openimageio-tools libopencolo
 for arg in "$@"; do
   case "$arg" in
     --blender) pkgs+=(blender) ;;
-    --torch) pkgs+=(python3-torch) ;;
+    --torch) pkgs+=(python3-torch libjemalloc2) ;; # jemalloc: training steps, afn/fast_alloc.py
     --sanitizers) pkgs+=(clang libclang-rt-14-dev) ;; # ASan/UBSan build and libFuzzer targets
   esac
 done

@@ -22,7 +22,7 @@ import time
 import numpy as np
 import torch
 
-from . import color, input_sets
+from . import color, fast_alloc, input_sets
 from .afntool import AfntoolError
 from .dataset import (LAYOUT, CropSampler, SceneError, evaluation_scenes, find_scenes, load_scene,
                       to_tensors)
@@ -308,4 +308,5 @@ def main(argv=None):
 
 
 if __name__ == "__main__":
+    fast_alloc.reexec("afn.train")  # jemalloc: 5-10x faster CPU steps here (fast_alloc.py)
     main()

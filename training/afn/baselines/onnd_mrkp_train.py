@@ -22,6 +22,7 @@ import time
 import numpy as np
 import torch
 
+from .. import fast_alloc
 from ..dataset import evaluation_scenes, find_scenes, load_scene
 from ..weights import dumps
 from . import mrkp, onnd
@@ -140,4 +141,5 @@ def main(argv=None):
 
 
 if __name__ == "__main__":
+    fast_alloc.reexec("afn.baselines.onnd_mrkp_train")  # jemalloc (fast_alloc.py)
     main()
