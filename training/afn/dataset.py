@@ -213,26 +213,51 @@ class CropSampler:
         self.rng = np.random.RandomState(seed)
 
     def sample(self):
+        return self._crops(0)[0]
+
+    def sample_pair(self):
+        """(previous, current): the same crop window, flips and gain in two consecutive frames of
+        one scene (for the temporal term of the loss; the window is fixed in the image, so camera
+        and object motion show as they do in the output)."""
+        return tuple(self._crops(1))
+
+    def _crops(self, before):
+        """Crops of frames f-before..f of one random scene, f >= before, with shared augmentation."""
         s = self.scenes[self.rng.randint(len(self.scenes))]
-        f = self.rng.randint(s["c1"].shape[0])
+        frames = s["c1"].shape[0]
+        f = self.rng.randint(min(before, frames - 1), frames)
         h, w = s["c1"].shape[1:3]
         y = self.rng.randint(max(h - self.crop, 0) + 1)
         x = self.rng.randint(max(w - self.crop, 0) + 1)
-        out = {}
-        for k in KEYS:
-            a = s[k][f, y:y + self.crop, x:x + self.crop]
-            if a.shape[0] < self.crop or a.shape[1] < self.crop:
-                a = np.pad(a, ((0, self.crop - a.shape[0]), (0, self.crop - a.shape[1]), (0, 0)))
-            out[k] = a
-        if self.rng.rand() < 0.5:
-            out = {k: v[:, ::-1] for k, v in out.items()}
-        if self.rng.rand() < 0.5:
-            out = {k: v[::-1] for k, v in out.items()}
+        outs = []
+        for g in range(max(f - before, 0), f + 1):
+            out = {}
+            for k in KEYS:
+                a = s[k][g, y:y + self.crop, x:x + self.crop]
+                if a.shape[0] < self.crop or a.shape[1] < self.crop:
+                    a = np.pad(a, ((0, self.crop - a.shape[0]), (0, self.crop - a.shape[1]), (0, 0)))
+                out[k] = a
+            outs.append(out)
+        if len(outs) <= before:      # a one-frame scene: its frame is its own predecessor
+            outs = [outs[0]] * (before + 1)
+        flip_x, flip_y = self.rng.rand() < 0.5, self.rng.rand() < 0.5
         gain = np.float32(self.rng.uniform(0.8, 1.2))
-        for k in ("c1", "cta", "target"):
-            out[k] = out[k] * gain
-        return {k: np.ascontiguousarray(v, np.float32) for k, v in out.items()}
+        result = []
+        for out in outs:
+            if flip_x:
+                out = {k: v[:, ::-1] for k, v in out.items()}
+            if flip_y:
+                out = {k: v[::-1] for k, v in out.items()}
+            out = {k: (v * gain if k in ("c1", "cta", "target") else v) for k, v in out.items()}
+            result.append({k: np.ascontiguousarray(v, np.float32) for k, v in out.items()})
+        return result
 
     def batch(self, n):
         items = [self.sample() for _ in range(n)]
+        return {k: np.stack([it[k] for it in items]) for k in KEYS}
+
+    def pair_batch(self, n):
+        """2n crops: the current frames of n pairs, then their previous frames (same order)."""
+        pairs = [self.sample_pair() for _ in range(n)]
+        items = [p[1] for p in pairs] + [p[0] for p in pairs]
         return {k: np.stack([it[k] for it in items]) for k in KEYS}

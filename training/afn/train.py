@@ -27,7 +27,7 @@ from .afntool import AfntoolError
 from .dataset import (LAYOUT, CropSampler, SceneError, evaluation_scenes, find_scenes, load_scene,
                       to_tensors)
 from .generated import expand
-from .loss import smape
+from .loss import smape, temporal_gradient
 from .model import AFN, VARIANTS, AFNConfig
 from .weights import load_model, save_model
 
@@ -51,6 +51,9 @@ def parse_args(argv=None):
     ap.add_argument("-b", "--batch", type=int, default=16, help="batch size (paper: 16)")
     ap.add_argument("--lr", type=float, default=1e-3, help="Adam learning rate (paper: 1e-3)")
     ap.add_argument("--crop", type=int, default=128, help="crop size (paper: 128)")
+    ap.add_argument("--temporal-weight", type=float, default=0.0, help="weight of a temporal "
+                    "term added to SMAPE (loss.temporal_gradient; 0: the paper's loss): each batch "
+                    "is then batch/2 pairs of consecutive frames, the same crops in both")
     ap.add_argument("--max-frames", type=int, default=0, help="frames per scene (0: all)")
     ap.add_argument("--val-frames", type=int, default=4, help="validation frames per held-out "
                     "scene (evenly spaced; 0: all)")
@@ -240,12 +243,19 @@ class RunFolder:
         model.to(device)
 
 
-def train_epoch(model, opt, sampler, steps, batch, device):
-    """One epoch of SMAPE steps; returns (mean loss, batches skipped as non-finite)."""
+def train_epoch(model, opt, sampler, steps, batch, device, temporal_weight=0.0):
+    """One epoch of SMAPE steps (+ temporal_weight x the temporal term on batch/2 frame pairs);
+    returns (mean SMAPE, batches skipped as non-finite)."""
     losses, skipped = [], 0
     for _ in range(steps):
-        b = to_tensors(sampler.batch(batch), device)
-        loss = smape(forward(model, b), b["target"])
+        if temporal_weight > 0:
+            b = to_tensors(sampler.pair_batch(max(batch // 2, 1)), device)
+            out = forward(model, b)
+            spatial = smape(out, b["target"])
+            loss = spatial + temporal_weight * temporal_gradient(out, b["target"])
+        else:
+            b = to_tensors(sampler.batch(batch), device)
+            spatial = loss = smape(forward(model, b), b["target"])
         opt.zero_grad(set_to_none=True)
         loss.backward()
         grads_ok = all(torch.isfinite(p.grad).all() for p in model.parameters()
@@ -254,7 +264,7 @@ def train_epoch(model, opt, sampler, steps, batch, device):
             skipped += 1          # never let one bad batch poison the weights
             continue
         opt.step()
-        losses.append(loss.item())
+        losses.append(spatial.item())      # the log's train_smape: SMAPE alone
     return (float(np.mean(losses)) if losses else float("nan")), skipped
 
 
@@ -294,7 +304,8 @@ def main(argv=None):
     run_start = time.time()
     for epoch in range(start, args.epochs):
         t0 = time.time()
-        loss, skipped = train_epoch(model, opt, sampler, steps, args.batch, device)
+        loss, skipped = train_epoch(model, opt, sampler, steps, args.batch, device,
+                                    args.temporal_weight)
         vp, vs = validate(model, val, device, args.val_frames)
         dt = time.time() - t0
         run.append_log(epoch + 1, loss, vp, vs, dt)
