@@ -5,17 +5,19 @@
 # passes (afntool --aov ROLE=none), denoised by the model afn chooses for it, and compared with
 # the sequence's clean reference (afntool --compare; PSNR/SSIM on T(x), docs/metrics.md).
 #   bash eval-input-sets.sh DATA AFNTOOL [SPP] [--weights-color F] [--weights-albedo-normal F]
+#                           [--weights-all F]
 # Without --weights-* the built-in models run. Prints a markdown table (mean over frames, then
 # over sequences) and writes the per-run JSON in $OUT (default: a temporary folder; runs whose
 # JSON is there already are not repeated; CONFIGS="noisy all" runs only those combinations).
 set -euo pipefail
 data=$1 afntool=$2 spp=${3:-1}
 shift $(( $# < 3 ? $# : 3 ))
-wcolor="" wan=""
+wcolor="" wan="" wall=""
 while [ $# -gt 0 ]; do
   case $1 in
     --weights-color) wcolor=$2; shift 2 ;;
     --weights-albedo-normal) wan=$2; shift 2 ;;
+    --weights-all) wall=$2; shift 2 ;;
     *) echo "eval-input-sets.sh: unknown option $1" >&2; exit 2 ;;
   esac
 done
@@ -31,6 +33,7 @@ declare -A args=(
 )
 [ -n "$wcolor" ] && args[color]+=" --weights $wcolor"
 [ -n "$wan" ] && args[albedo+normal]+=" --weights $wan" && args[albedo+normal+depth]+=" --weights $wan"
+[ -n "$wall" ] && args[all]+=" --weights $wall"
 order="noisy color albedo+normal albedo+normal+depth all"
 seqs=""
 for d in "$data"/eval/*/; do

@@ -62,16 +62,18 @@ class AFNConfig:
     dec: tuple = field(default_factory=lambda: (32, 24))      # d2, d1 widths
     refine: int = 16                                    # refinement hidden width
     inputs: str = "albedo,normal,depth,temporal"        # input set trained for (input_sets.py)
+    spp: int = 1        # samples per pixel of the training inputs: the C++ core picks by it
 
     def to_dict(self):
         return {"variant": self.variant, "enc": list(self.enc), "dec": list(self.dec),
-                "refine": self.refine, "inputs": self.inputs}
+                "refine": self.refine, "inputs": self.inputs, "spp": self.spp}
 
     @staticmethod
     def from_dict(d):
         return AFNConfig(variant=d.get("variant", "full"), enc=tuple(d.get("enc", (16, 32, 64))),
                          dec=tuple(d.get("dec", (32, 24))), refine=int(d.get("refine", 16)),
-                         inputs=d.get("inputs", "albedo,normal,depth,temporal"))
+                         inputs=d.get("inputs", "albedo,normal,depth,temporal"),
+                         spp=int(d.get("spp", 1)))
 
 
 def down2(x: torch.Tensor) -> torch.Tensor:

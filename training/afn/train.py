@@ -193,9 +193,12 @@ def cached_scene(args, path, name, max_frames):
 
 def model_config(args):
     """The AFNConfig the arguments describe."""
+    # The sample count the archive declares (lib/core/methods/afn/model_set.h picks the model
+    # nearest a frame's count): the lowest level trained on, 1 for folders without levels.
+    spp = min(int(v) for v in args.spp.split(",") if v.strip()) if args.spp.strip() else 1
     return AFNConfig(variant=args.variant, enc=tuple(int(v) for v in args.enc.split(",")),
                      dec=tuple(int(v) for v in args.dec.split(",")), refine=args.refine,
-                     inputs=args.inputs)
+                     inputs=args.inputs, spp=spp)
 
 
 class RunFolder:

@@ -107,6 +107,8 @@ def save_model(path, model) -> None:
     cfg = model.cfg
     meta = {"format": "afn", "variant": cfg.variant, "enc": ",".join(map(str, cfg.enc)),
             "dec": ",".join(map(str, cfg.dec)), "refine": cfg.refine, "inputs": cfg.inputs}
+    if cfg.spp != 1:     # absent = 1 spp (every older archive); model_set.h chooses by it
+        meta["spp"] = cfg.spp
     with open(path, "wb") as f:
         f.write(dumps(model.state_dict(), meta))
 
@@ -122,7 +124,8 @@ def load_model(path, device="cpu"):
                     enc=tuple(int(v) for v in meta.get("enc", "16,32,64").split(",")),
                     dec=tuple(int(v) for v in meta.get("dec", "32,24").split(",")),
                     refine=int(meta.get("refine", 16)),
-                    inputs=meta.get("inputs", "albedo,normal,depth,temporal"))
+                    inputs=meta.get("inputs", "albedo,normal,depth,temporal"),
+                    spp=int(meta.get("spp", 1)))
     model = AFN(cfg)
     model.load_state_dict({k: torch.from_numpy(v) for k, v in tensors.items()})
     return model.to(device).eval()

@@ -31,6 +31,27 @@ def test_round_trip(tmp_path):
     assert data[:4] == b"AFNW" and struct.unpack_from("<I", data, 4)[0] == 1
 
 
+def test_sample_count_is_stored_only_where_it_is_not_one(tmp_path):
+    """The `spp` key the C++ core chooses models by (model_set.h); 1-spp archives stay as before."""
+    torch.manual_seed(0)
+    cfg = AFNConfig(enc=(4, 4, 4), dec=(4, 4), refine=4)
+    save_model(tmp_path / "low.afnw", AFN(cfg))
+    assert "spp" not in loads((tmp_path / "low.afnw").read_bytes())[1]
+    assert load_model(tmp_path / "low.afnw").cfg.spp == 1
+    cfg.spp = 16
+    save_model(tmp_path / "high.afnw", AFN(cfg))
+    assert loads((tmp_path / "high.afnw").read_bytes())[1]["spp"] == "16"
+    assert load_model(tmp_path / "high.afnw").cfg.spp == 16
+
+
+def test_training_declares_the_lowest_sample_count_it_trained_on():
+    from afn import train
+    base = ["--data", "d", "--out", "o"]
+    assert train.model_config(train.parse_args(base)).spp == 1
+    assert train.model_config(train.parse_args(base + ["--spp", "16"])).spp == 16
+    assert train.model_config(train.parse_args(base + ["--spp", "64,16"])).spp == 16
+
+
 def test_layout_by_hand():
     data = dumps({"a": np.array([1.5, -2.0], np.float32)}, {"k": "v"})
     # header 16 + meta "k=v\n" 4 + entry (2 + 1 + 1 + 1 + 4 + 16 = 25) = 45 -> data at 48

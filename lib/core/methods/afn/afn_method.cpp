@@ -10,8 +10,9 @@
 // which without a temporal history runs single-frame (network_inputs.h). The choice is
 // reported as AFN_STAT_AFN_MODEL; no fitting model is an error at commit and at execute.
 //
-// Settings (settings.h): `spp`, the input's samples per pixel, which will choose between the
-// low- and high-count models; read at commit.
+// Settings (settings.h): `spp`, the input's samples per pixel (afntool: from the file's
+// cycles.<layer>.samples unless given), which chooses among the models for the frame's input set
+// the one trained nearest that count (model_set.h); read at commit.
 //
 // Quality tiers (quality=fast|balanced|high): methods/afn/quality_tiers.h (fast: no refinement;
 // balanced: the network as trained; high: a four-flip self-ensemble of the network).
@@ -107,10 +108,10 @@ private:
         bound.depth = imageBound(AFN_IMAGE_DEPTH);
         bound.temporal
             = imageBound(AFN_IMAGE_MOTION) || (imageBound(AFN_IMAGE_POSITION) && cameraSet());
-        m_model = m_models.choose(bound);
+        m_model = m_models.choose(bound, m_settings.spp);
         if (!m_model)
             m_models.throwNoModelFor(bound);
-        m_path = describePath(bound, m_model->inputs);
+        m_path = describeChoice(bound, *m_model);
     }
     void denoise(const Frame& in, Image& out) override
     {
@@ -120,12 +121,12 @@ private:
         const InputSet available = inputSetOf(in);
         InputSet use = available;
         if (outputBound()) {
-            m_model = m_models.choose(available);
+            m_model = m_models.choose(available, m_settings.spp);
             if (!m_model)
                 m_models.throwNoModelFor(available);
             use = m_model->inputs;
         }
-        m_path = describePath(available, use);
+        m_path = outputBound() ? describeChoice(available, *m_model) : describePath(available, use);
         m_inputs.prepare(in, use, irradiance(), accumulator().color());
         writeFeature("irradiance", m_inputs.color1());
         writeFeature("accumulated", m_inputs.colorTa());

@@ -4,6 +4,9 @@
 
 #include "base/exception.h"
 
+#include <cmath>
+#include <cstdlib>
+
 extern "C" const unsigned char* const afnEmbeddedArchives[];
 extern "C" const unsigned long long* const afnEmbeddedArchives_size[];
 extern "C" const int afnEmbeddedArchives_count;
@@ -18,6 +21,13 @@ void ModelSet::add(const nn::WeightsArchive& archive)
     if (!parseInputSet(key, m.inputs))
         throwInvalidArgument("invalid or corrupted weights (" + source + "): unknown inputs '" + key
             + "' (expected color or a list of albedo, normal, depth, temporal)");
+    const std::string spp = archive.meta("spp", "1");
+    char* end = nullptr;
+    const long count = std::strtol(spp.c_str(), &end, 10);
+    if (spp.empty() || *end != '\0' || count < 1 || count > (1 << 20))
+        throwInvalidArgument("invalid or corrupted weights (" + source + "): spp '" + spp
+            + "' (expected the samples per pixel it was trained at, 1 to 1048576)");
+    m.spp = static_cast<int>(count);
     m.net.load(archive);
     m_models.push_back(std::move(m));
 }
@@ -39,7 +49,17 @@ ModelSet ModelSet::fromData(const void* data, std::size_t size)
     return set;
 }
 
-Model* ModelSet::choose(const InputSet& available)
+namespace {
+
+std::string modelName(const Model& m)
+{
+    const std::string name = inputSetName(m.inputs);
+    return m.spp == 1 ? name : name + " (" + std::to_string(m.spp) + " spp)";
+}
+
+} // namespace
+
+Model* ModelSet::choose(const InputSet& available, int spp)
 {
     Model* best = nullptr;
     for (Model& m : m_models) {
@@ -50,6 +70,18 @@ Model* ModelSet::choose(const InputSet& available)
                 && !best->inputs.temporal))
             best = &m;
     }
+    if (!best)
+        return nullptr;
+    // The sample count, among the models for the chosen input set.
+    const double want = std::log2(static_cast<double>(spp > 1 ? spp : 1));
+    auto distance = [&](const Model& m) { return std::fabs(std::log2(double(m.spp)) - want); };
+    for (Model& m : m_models) {
+        if (!(m.inputs == best->inputs) || &m == best)
+            continue;
+        const double dm = distance(m), db = distance(*best);
+        if (dm < db || (dm == db && m.spp < best->spp))
+            best = &m;
+    }
     return best;
 }
 
@@ -57,7 +89,7 @@ std::string ModelSet::listing() const
 {
     std::string out;
     for (const Model& m : m_models)
-        out += (out.empty() ? "" : "; ") + inputSetName(m.inputs);
+        out += (out.empty() ? "" : "; ") + modelName(m);
     return out.empty() ? "none" : out;
 }
 
@@ -67,6 +99,17 @@ void ModelSet::throwNoModelFor(const InputSet& available) const
         + " (the models available are for: " + listing()
         + "); give weights trained for these inputs or a subset of them with "
           "afnSetFilterData(filter, \"weights\", data, size) (afntool: --weights FILE)");
+}
+
+std::string describeChoice(const InputSet& available, const Model& used)
+{
+    std::string text = describePath(available, used.inputs);
+    if (used.spp != 1) {
+        const std::string name = inputSetName(used.inputs);
+        text.insert(
+            std::string("model ").size() + name.size(), " (" + std::to_string(used.spp) + " spp)");
+    }
+    return text;
 }
 
 std::string describePath(const InputSet& available, const InputSet& used)

@@ -8,7 +8,10 @@
 // replaces them all.
 //
 // The choice (fallback order): among the models whose input set the frame covers, the one with
-// the most inputs; on a tie the one with the temporal branch, then the one listed first. The frame
+// the most inputs; on a tie the one with the temporal branch, then the one listed first. Among
+// the models for that same input set, the one trained at the sample count nearest the frame's
+// (archive metadata `spp`, absent = 1; nearest in log2, a tie goes to the lower count; a frame
+// of unknown count, spp 0, counts as 1 spp: issue 13). The frame
 // inputs the chosen model was not trained for are not used (network_inputs.h: held at their neutral
 // values) and the report says so. No covered model: an error naming the frame's inputs and the
 // available sets, never a model run on inputs it was not trained for.
@@ -26,6 +29,7 @@ namespace afn::afnet {
 
 struct Model {
     InputSet inputs; ///< what it was trained for (the archive's `inputs` metadata)
+    int spp = 1; ///< samples per pixel of its training inputs (the archive's `spp` metadata)
     Network net;
 };
 
@@ -41,9 +45,11 @@ public:
     void add(const nn::WeightsArchive& archive);
 
     bool empty() const { return m_models.empty(); }
-    /// The model for a frame with `available` inputs; nullptr when no model is covered.
-    Model* choose(const InputSet& available);
-    /// The input sets of the models, e.g. "color; color+albedo+normal" ("none" when empty).
+    /// The model for a frame with `available` inputs and `spp` samples per pixel (0: unknown);
+    /// nullptr when no model is covered.
+    Model* choose(const InputSet& available, int spp = 0);
+    /// The models, e.g. "color; color+albedo+normal; color+albedo+normal (16 spp)" ("none" when
+    /// empty; the count is named where it is not 1).
     std::string listing() const;
     /// The error for a frame with `available` inputs when choose() found nothing.
     [[noreturn]] void throwNoModelFor(const InputSet& available) const;
@@ -53,8 +59,11 @@ private:
 };
 
 /// What the afn method says about a frame's path (afntool --info and the per-frame log):
-/// "color+albedo+normal, single-frame (no motion or position: no temporal branch); model
-/// color+albedo+normal; not used: depth".
+/// "model color+albedo+normal, single-frame (no temporal branch: no motion or position); not
+/// used: depth"; a model trained at more than 1 spp is named with its count ("model
+/// color+albedo+normal+depth+temporal (16 spp), temporal").
+std::string describeChoice(const InputSet& available, const Model& used);
+/// The same for an input set alone (feature-only runs, where no model is chosen).
 std::string describePath(const InputSet& available, const InputSet& used);
 
 } // namespace afn::afnet

@@ -13,6 +13,7 @@
 #include <gtest/gtest.h>
 
 #include <string>
+#include <utility>
 #include <vector>
 
 using afn::afnet::InputSet;
@@ -28,8 +29,9 @@ std::vector<InputSet> allSets()
     return out;
 }
 
-/// A random-weights archive trained "for" `inputs` ("" = no inputs key).
-afn::nn::WeightsArchive archiveFor(const std::string& inputs, unsigned seed)
+/// A random-weights archive trained "for" `inputs` ("" = no inputs key) at `spp` ("" = no key).
+afn::nn::WeightsArchive archiveFor(
+    const std::string& inputs, unsigned seed, const std::string& spp = "")
 {
     afn::afnet::Architecture narrow;
     narrow.enc = { 4, 4, 4 };
@@ -39,6 +41,8 @@ afn::nn::WeightsArchive archiveFor(const std::string& inputs, unsigned seed)
     std::map<std::string, std::string> meta = { { "variant", "full" }, { "format", "afn" } };
     if (!inputs.empty())
         meta["inputs"] = inputs;
+    if (!spp.empty())
+        meta["spp"] = spp;
     return afn::nn::WeightsArchive::fromTensors(a.tensors(), meta, "test " + inputs);
 }
 
@@ -81,6 +85,43 @@ TEST(AfnInputSet, ChoosesTheLargestCoveredModel)
         EXPECT_EQ(afn::afnet::inputSetName(m->inputs), expected)
             << "available " << afn::afnet::inputSetName(available);
     }
+}
+
+TEST(AfnInputSet, ChoosesTheModelTrainedNearestTheSampleCount)
+{
+    afn::afnet::ModelSet models;
+    models.add(archiveFor("", 1)); // no spp key: 1 spp
+    models.add(archiveFor("", 2, "64"));
+    models.add(archiveFor("", 3, "16"));
+    models.add(archiveFor("color", 4));
+    EXPECT_EQ(models.listing(),
+        "color+albedo+normal+depth+temporal; color+albedo+normal+depth+temporal (64 spp); "
+        "color+albedo+normal+depth+temporal (16 spp); color");
+    // Nearest in log2, ties to the lower count, unknown (0) as 1; written out by hand.
+    const std::vector<std::pair<int, int>> expected = { { 0, 1 }, { 1, 1 }, { 2, 1 }, { 3, 1 },
+        { 4, 1 }, { 5, 16 }, { 16, 16 }, { 32, 16 }, { 33, 64 }, { 64, 64 }, { 100000, 64 } };
+    for (const auto& [spp, want] : expected) {
+        const afn::afnet::Model* m = models.choose(InputSet::full(), spp);
+        ASSERT_NE(m, nullptr);
+        EXPECT_EQ(m->spp, want) << "frame at " << spp << " spp";
+        EXPECT_EQ(m->inputs, InputSet::full());
+    }
+    // The input set comes first: a colour-only frame at 64 spp gets the (1-spp) colour model.
+    const afn::afnet::Model* colour = models.choose(InputSet {}, 64);
+    ASSERT_NE(colour, nullptr);
+    EXPECT_EQ(colour->spp, 1);
+    EXPECT_EQ(afn::afnet::describeChoice(InputSet::full(), *models.choose(InputSet::full(), 16)),
+        "model color+albedo+normal+depth+temporal (16 spp), temporal");
+    EXPECT_EQ(afn::afnet::describeChoice(InputSet::full(), *models.choose(InputSet::full(), 1)),
+        "model color+albedo+normal+depth+temporal, temporal");
+}
+
+TEST(AfnInputSet, InvalidSampleCountMetadataIsRefused)
+{
+    afn::afnet::ModelSet models;
+    for (const char* bad : { "0", "-4", "16x", "abc", "2000000" })
+        EXPECT_THROW(models.add(archiveFor("", 1, bad)), afn::Exception) << bad;
+    EXPECT_TRUE(models.empty());
 }
 
 TEST(AfnInputSet, TiesPreferTheTemporalModel)
