@@ -5,6 +5,7 @@ afn_add_benchmark(afnBenchmarkAfn SOURCES bench_afn.cpp LIBS afn_core)
 if(AFN_HAS_DNNL) # the dnnl_sgemm yardstick in the same program
   target_link_libraries(afnBenchmarkAfn PRIVATE afn_dnnl)
   target_compile_definitions(afnBenchmarkAfn PRIVATE AFN_HAS_DNNL)
+  target_include_directories(afnBenchmarkAfn PRIVATE ${PROJECT_SOURCE_DIR}/cli)
 endif()
 
 # AFN's stages next to ta, svgf, bmfr and the whole afn filter, in one run (paper Table 10):

@@ -20,6 +20,8 @@
 #include <vector>
 
 #ifdef AFN_HAS_DNNL
+#include "keep_freed_memory_mapped.h" // cli/: the yardstick's scope, shared with afntool
+
 #include <dnnl.h>
 #include <omp.h>
 #include <thread>
@@ -154,6 +156,7 @@ void BM_DnnlSgemm(benchmark::State& state)
     omp_set_num_threads(t);
     std::vector<float> a(std::size_t(n) * n, 0.5f), b(std::size_t(n) * n, 0.25f),
         c(std::size_t(n) * n);
+    const afntool::KeepFreedMemoryMapped keepMapped; // no page faults of oneDNN's scratch per call
     dnnl_sgemm('N', 'N', n, n, n, 1.0f, a.data(), n, b.data(), n, 0.0f, c.data(), n); // warm-up
     for (auto _ : state)
         dnnl_sgemm('N', 'N', n, n, n, 1.0f, a.data(), n, b.data(), n, 0.0f, c.data(), n);
