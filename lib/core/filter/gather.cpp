@@ -100,8 +100,10 @@ void gatherFrame(const std::map<std::string, ImageBinding>& images,
         gather(
             *b, 3, f.albedo, counts,
             [](float* p) {
+                // std::fmin(std::fmax(p, 0), 1) for the finite values left here (-0 stays -0, as
+                // glibc's fmaxf(-0, 0) gives), without the two libm calls per channel.
                 for (int c = 0; c < 3; ++c)
-                    p[c] = std::fmin(std::fmax(p[c], 0.0f), 1.0f);
+                    p[c] = p[c] < 0.0f ? 0.0f : (p[c] > 1.0f ? 1.0f : p[c]);
             },
             1.0f);
     else

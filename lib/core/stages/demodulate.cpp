@@ -42,22 +42,37 @@ void demodulate(const Frame& frame, Image& irradiance)
     });
 }
 
+void remodulateRow(const Frame& frame, const Image& irradiance, int y, std::byte* out,
+    std::ptrdiff_t pixelStride)
+{
+    const float* i = irradiance.at(0, y);
+    const int w = frame.width;
+    if (!frame.hasAlbedo()) {
+        for (int x = 0; x < w; ++x, out += pixelStride) {
+            float* o = reinterpret_cast<float*>(out);
+            for (int k = 0; k < 3; ++k)
+                o[k] = clampIrradiance(i[3 * x + k]) * 1.0f;
+        }
+        return;
+    }
+    const float* a = frame.albedo.at(0, y);
+    const bool plain = frame.colorDemodulated;
+    for (int x = 0; x < w; ++x, out += pixelStride) {
+        float* o = reinterpret_cast<float*>(out);
+        for (int k = 0; k < 3; ++k)
+            o[k] = clampIrradiance(i[3 * x + k]) * albedoFactor(a[3 * x + k], plain);
+    }
+}
+
 void remodulate(const Frame& frame, const Image& irradiance, Image& radiance)
 {
     if (&radiance != &irradiance)
         radiance.resize(frame.width, frame.height, 3);
-    const bool hasAlbedo = frame.hasAlbedo();
-    const bool plain = frame.colorDemodulated;
+    const std::ptrdiff_t stride = 3 * sizeof(float);
     parallelRows(frame.height, [&](int y0, int y1) {
         for (int y = y0; y < y1; ++y)
-            for (int x = 0; x < frame.width; ++x) {
-                const float* i = irradiance.at(x, y);
-                float* o = radiance.at(x, y);
-                for (int k = 0; k < 3; ++k) {
-                    const float a = hasAlbedo ? albedoFactor(frame.albedo(x, y, k), plain) : 1.0f;
-                    o[k] = clampIrradiance(i[k]) * a;
-                }
-            }
+            remodulateRow(frame, irradiance, y, reinterpret_cast<std::byte*>(radiance.at(0, y)),
+                stride);
     });
 }
 

@@ -289,8 +289,18 @@ void Reprojector::compute(const Frame& f)
         for (int y = y0; y < y1; ++y) {
             TapBits* bits = m_bits.data() + static_cast<std::size_t>(y) * m_width;
             if (m_identityRow[static_cast<std::size_t>(y)]) {
-                for (int x = 0; x < f.width; ++x)
-                    bits[x] = pixelTaps(c, x, y, static_cast<float>(x), static_cast<float>(y));
+                // pixelTaps at prev = (x, y): weights (1, 0, 0, 0), so only the pixel's own tap is
+                // tested; the box fallback (rare: the pixel was rejected) takes the general path.
+                for (int x = 0; x < f.width; ++x) {
+                    TapBits b;
+                    b.onScreen = 1;
+                    float fp = -1.0f;
+                    if (accept(c, x, y, x, y, fp))
+                        b.mask = 1;
+                    else if (m_settings.boxFallback)
+                        b = pixelTaps(c, x, y, static_cast<float>(x), static_cast<float>(y));
+                    bits[x] = b;
+                }
                 continue;
             }
             Prev* prev = m_prev.data() + static_cast<std::size_t>(y) * m_width;
