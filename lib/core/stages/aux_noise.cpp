@@ -70,8 +70,9 @@ std::int64_t flagRows(const ImageView& img, float t, Image* flags, int y0, int y
     const int w = img.width, h = img.height;
     // AVX-512: the left-neighbour test of 16 inner pixels at once (aux_noise_avx512.cpp); the
     // pixels it does not settle take the scalar test.
-    const bool vector = K != AuxKind::Depth && cpu::activeIsa() == cpu::Isa::Avx512
-        && img.channels == 3 && img.pixelStride == static_cast<std::ptrdiff_t>(3 * sizeof(float));
+    const int channels = K == AuxKind::Depth ? 1 : 3;
+    const bool vector = cpu::activeIsa() == cpu::Isa::Avx512 && img.channels == channels
+        && img.pixelStride == static_cast<std::ptrdiff_t>(channels * sizeof(float));
     std::int64_t count = 0;
     for (int y = y0; y < y1; ++y) {
         const bool innerRow = y > 0 && y < h - 1;
@@ -87,7 +88,9 @@ std::int64_t flagRows(const ImageView& img, float t, Image* flags, int y0, int y
         if (vector && innerRow) {
             pixel(x++);
             for (; x + 16 <= w - 1; x += 16) {
-                const std::uint32_t within = leftNeighbourWithin16(img.at(x, y), K, t);
+                const std::uint32_t within = K == AuxKind::Depth
+                    ? depthSettled16(img.at(x, y), t)
+                    : leftNeighbourWithin16(img.at(x, y), K, t);
                 for (int l = 0; l < 16; ++l) {
                     if (within & (1u << l)) {
                         if (flags)

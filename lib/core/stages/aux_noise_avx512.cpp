@@ -72,7 +72,27 @@ AFN_CPU_AVX512 std::uint32_t leftNeighbourWithin16(const float* p, AuxKind kind,
     return _mm512_mask_cmp_ps_mask(ordered, d, _mm512_set1_ps(t), _CMP_LE_OQ);
 }
 
+AFN_CPU_AVX512 std::uint32_t depthSettled16(const float* p, float t)
+{
+    const __m512 z = _mm512_loadu_ps(p), q = _mm512_loadu_ps(p - 1);
+    const __m512 sky = _mm512_set1_ps(kAuxDepthSky);
+    // hasSurface: finite and |z| < 1e9 (NaN compares false, inf is not below 1e9).
+    const __mmask16 surface = _mm512_cmp_ps_mask(absv(z), sky, _CMP_LT_OQ);
+    const __mmask16 surfaceQ = _mm512_cmp_ps_mask(absv(q), sky, _CMP_LT_OQ);
+    const __m512 az = absv(z), aq = absv(q);
+    const __m512 d = _mm512_div_ps(
+        absv(_mm512_sub_ps(z, q)), _mm512_max_ps(_mm512_min_ps(az, aq), _mm512_set1_ps(1e-6f)));
+    const __mmask16 close = _mm512_mask_cmp_ps_mask(
+        static_cast<__mmask16>(surface & surfaceQ), d, _mm512_set1_ps(t), _CMP_LE_OQ);
+    return static_cast<std::uint32_t>(static_cast<__mmask16>(~surface) | close);
+}
+
 #else
+
+std::uint32_t depthSettled16(const float*, float)
+{
+    return 0; // never called: activeIsa() is Portable without the AVX-512 kernels
+}
 
 std::uint32_t leftNeighbourWithin16(const float*, AuxKind, float)
 {

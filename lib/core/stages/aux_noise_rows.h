@@ -14,4 +14,9 @@ namespace afn {
 /// Normal, stages/aux_noise.h). AVX-512F only (cpu::activeIsa() == Avx512).
 std::uint32_t leftNeighbourWithin16(const float* p, AuxKind kind, float t);
 
+/// Bit l set when pixel l of the 16 depths at `p` (p[-1] is pixel -1) is settled as not speckle:
+/// it has no surface, or it and its left neighbour have one and their relative distance is
+/// within `t`. AVX-512F only.
+std::uint32_t depthSettled16(const float* p, float t);
+
 } // namespace afn

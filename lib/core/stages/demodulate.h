@@ -32,7 +32,7 @@ void remodulate(const Frame& frame, const Image& irradiance, Image& radiance);
 
 /// Row y of remodulate() written to 3 floats per pixel at `out + x * pixelStride` (bytes), e.g.
 /// straight into a caller's buffer (Filter::denoiseDemodulated); the same values as remodulate().
-void remodulateRow(const Frame& frame, const Image& irradiance, int y, std::byte* out,
-    std::ptrdiff_t pixelStride);
+void remodulateRow(
+    const Frame& frame, const Image& irradiance, int y, std::byte* out, std::ptrdiff_t pixelStride);
 
 } // namespace afn

@@ -62,8 +62,8 @@ AFN_CPU_AVX512 IdentityDecision identityTaps16(const IdentityRow16& r)
     __mmask16 pass = same;
     if (r.testNormal) {
         const __mmask16 zero = zero3(r.normal) | zero3(r.prevNormal);
-        const __mmask16 close = _mm512_cmp_ps_mask(dist2(r.normal, r.prevNormal),
-            _mm512_set1_ps(r.normalLimitSquared), _CMP_LT_OQ);
+        const __mmask16 close = _mm512_cmp_ps_mask(
+            dist2(r.normal, r.prevNormal), _mm512_set1_ps(r.normalLimitSquared), _CMP_LT_OQ);
         pass = static_cast<__mmask16>(same & ~zero & close);
     }
     IdentityDecision d;
