@@ -5,7 +5,8 @@
 // visits first and then stops: this pass decides those pixels, and the scalar test runs only on
 // the others (from the start, so its answer is unchanged). The distances are the scalar ones
 // operation for operation (absolute differences, maxima, one division; the normal's sum of
-// squares in the same order, no FMA), so the decision d <= t is the same bit for bit.
+// squares in the same order, no FMA: compiled with -ffp-contract=off, see CMakeLists.txt), so the
+// decision d <= t is the same bit for bit.
 #include "cpu/avx512.h"
 #include "stages/aux_noise_rows.h"
 

@@ -5,7 +5,8 @@
 // usual cases, the previous position equal to the current one (then the normal test decides);
 // a pixel whose position moved (the footprint test) or whose distance is NaN is left to the
 // scalar test. The squared distances are the scalar ones operation for operation (differences,
-// products, the sum in the same order, no FMA), so the decisions are the same bit for bit.
+// products, the sum in the same order, no FMA: compiled with -ffp-contract=off, see
+// CMakeLists.txt), so the decisions are the same bit for bit.
 #include "cpu/avx512.h"
 #include "stages/reproject_rows.h"
 
