@@ -279,10 +279,14 @@ void Filter::execute()
                     self.m_reprojector.takeGeometry(self.m_frame);
             }
         } keep { *this };
-        m_output.resize(m_frame.width, m_frame.height, 3);
-        denoise(m_frame, m_output);
-        if (outputBound())
-            writeOutput(m_output);
+        if (const Image* irr = outputBound() ? denoiseDemodulated(m_frame) : nullptr) {
+            writeRemodulated(*irr);
+        } else {
+            m_output.resize(m_frame.width, m_frame.height, 3);
+            denoise(m_frame, m_output);
+            if (outputBound())
+                writeOutput(m_output);
+        }
     }
     reportProgress(1.0);
     m_prevWidth = color.width;
@@ -308,6 +312,22 @@ void Filter::writeOutput(const Image& radiance) const
                 if (dst.channels == 4)
                     o[3] = hasAlpha ? m_frame.alpha(x, y, 0) : 1.0f;
             }
+    });
+}
+
+void Filter::writeRemodulated(const Image& irradiance) const
+{
+    const ImageBinding& out = m_images.at(AFN_IMAGE_OUTPUT);
+    const ImageView dst = out.view();
+    const bool hasAlpha = !m_frame.alpha.empty();
+    parallelRows(dst.height, [&](int y0, int y1) {
+        for (int y = y0; y < y1; ++y) {
+            remodulateRow(m_frame, irradiance, y, reinterpret_cast<std::byte*>(dst.atMutable(0, y)),
+                dst.pixelStride);
+            if (dst.channels == 4)
+                for (int x = 0; x < dst.width; ++x)
+                    dst.atMutable(x, y)[3] = hasAlpha ? m_frame.alpha(x, y, 0) : 1.0f;
+        }
     });
 }
 

@@ -124,6 +124,11 @@ protected:
     /// Denoise one canonical frame into `out` (3 channels, frame size, preallocated). The stages
     /// the method asked for have run on this frame.
     virtual void denoise(const Frame& in, Image& out) = 0;
+    /// Methods whose output is the remodulation (stages/demodulate.h) of a demodulated result may
+    /// return that result here instead: the base then remodulates it straight into the bound
+    /// output (no frame-size radiance image, one pass less) and does not call denoise(). nullptr
+    /// (the default): the base calls denoise(). Called only when "output" is bound.
+    virtual const Image* denoiseDemodulated(const Frame& in) { return nullptr; }
     /// Drop the method's own temporal history (the stages' is dropped by the base).
     virtual void resetHistory() { }
     /// Report progress in [0, 1]; throws Cancelled when the callback asks to stop.
@@ -150,6 +155,8 @@ private:
     void validateBindings() const;
     void runStages();
     void writeOutput(const Image& radiance) const;
+    /// writeOutput(remodulate(irradiance)) in one pass (denoiseDemodulated()).
+    void writeRemodulated(const Image& irradiance) const;
 
     const FilterType& m_type;
     ParamSet m_params;

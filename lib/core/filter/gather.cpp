@@ -11,10 +11,13 @@
 
 #include "base/exception.h"
 #include "base/parallel.h"
+#include "cpu/isa.h"
+#include "filter/gather_avx512.h"
 
 #include <atomic>
 #include <cfloat>
 #include <cmath>
+#include <type_traits>
 
 namespace afn {
 
@@ -26,7 +29,8 @@ struct Counters {
 };
 
 /// Copy `channels` channels of a binding into `dst`, replacing non-finite values by `replacement`.
-/// `perPixel(float* px)` then converts one pixel in place. A binding whose pixels are packed with
+/// `perPixel(float* px)` then converts one pixel in place (or `perPixel(float* row, int width)`
+/// one packed row). A binding whose pixels are packed with
 /// exactly `channels` floats (the usual case) is copied row by row as one run of floats.
 template <typename PerPixel>
 void gather(const ImageBinding& b, int channels, Image& dst, Counters& counts, PerPixel&& perPixel,
@@ -60,8 +64,11 @@ void gather(const ImageBinding& b, int channels, Image& dst, Counters& counts, P
                     }
                 }
             }
-            for (int x = 0; x < src.width; ++x)
-                perPixel(d + x * channels);
+            if constexpr (std::is_invocable_v<PerPixel&, float*, int>)
+                perPixel(d, src.width); // a whole row at once
+            else
+                for (int x = 0; x < src.width; ++x)
+                    perPixel(d + x * channels);
         }
         counts.nonFinite += bad;
     });
@@ -100,8 +107,10 @@ void gatherFrame(const std::map<std::string, ImageBinding>& images,
         gather(
             *b, 3, f.albedo, counts,
             [](float* p) {
+                // std::fmin(std::fmax(p, 0), 1) for the finite values left here (-0 stays -0, as
+                // glibc's fmaxf(-0, 0) gives), without the two libm calls per channel.
                 for (int c = 0; c < 3; ++c)
-                    p[c] = std::fmin(std::fmax(p[c], 0.0f), 1.0f);
+                    p[c] = p[c] < 0.0f ? 0.0f : (p[c] > 1.0f ? 1.0f : p[c]);
             },
             1.0f);
     else
@@ -112,12 +121,19 @@ void gatherFrame(const std::map<std::string, ImageBinding>& images,
     f.normalSpace
         = conventions.normalSpace == Normals::World ? NormalSpace::World : NormalSpace::Camera;
     if (const ImageBinding* b = find(images, AFN_IMAGE_NORMAL))
-        gather(*b, 3, f.normal, counts, [zSign](float* p) {
-            p[2] *= zSign;
-            const float len = std::sqrt(p[0] * p[0] + p[1] * p[1] + p[2] * p[2]);
-            const float inv = len > 1e-12f ? 1.0f / len : 0.0f;
-            for (int c = 0; c < 3; ++c)
-                p[c] *= inv;
+        gather(*b, 3, f.normal, counts, [zSign](float* row, int width) {
+            int x = 0;
+            if (cpu::activeIsa() == cpu::Isa::Avx512) // 16 at a time, the same operations
+                for (; x + 16 <= width; x += 16)
+                    normalizeNormals16(row + 3 * x, zSign);
+            for (; x < width; ++x) {
+                float* p = row + 3 * x;
+                p[2] *= zSign;
+                const float len = std::sqrt(p[0] * p[0] + p[1] * p[1] + p[2] * p[2]);
+                const float inv = len > 1e-12f ? 1.0f / len : 0.0f;
+                for (int c = 0; c < 3; ++c)
+                    p[c] *= inv;
+            }
         });
     else
         f.normal = Image();

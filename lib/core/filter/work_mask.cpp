@@ -83,25 +83,43 @@ double buildWorkMask(
     const ImageView* depth = depthB ? &depthV : nullptr;
     const ImageView* position = positionB && !depthB ? &positionV : nullptr;
 
-    Image& work = f.work; // kept across frames: no allocation in steady state
+    auto needed = [&](int x, int y) {
+        bool n = !background(depth, position, s.denoisingRange, x, y);
+        if (n && alpha)
+            n = f.alpha(x, y, 0) != 0.0f;
+        if (n && maskB)
+            n = maskV.at(x, y)[0] > 0.0f; // NaN compares false: not needed
+        return n;
+    };
+    // A read-only pass first, stopping at the first pixel that needs no work: a frame where every
+    // pixel needs work (the usual case with a depth input and no sky) then writes and allocates
+    // nothing (a mask allocated and freed per frame cost page faults on every frame).
+    std::atomic<bool> anySkipped { false };
+    parallelRows(f.height, [&](int y0, int y1) {
+        for (int y = y0; y < y1 && !anySkipped.load(std::memory_order_relaxed); ++y)
+            for (int x = 0; x < f.width; ++x)
+                if (!needed(x, y)) {
+                    anySkipped = true;
+                    return;
+                }
+    });
+    if (!anySkipped) {
+        f.work = Image(); // every pixel needs work: methods run their unrestricted path
+        return 0.0;
+    }
+    Image& work = f.work; // kept across frames while frames have skipped pixels
     work.resize(f.width, f.height, 1);
     std::atomic<std::int64_t> skipped { 0 };
     parallelRows(f.height, [&](int y0, int y1) {
         std::int64_t n = 0;
         for (int y = y0; y < y1; ++y)
             for (int x = 0; x < f.width; ++x) {
-                bool needed = !background(depth, position, s.denoisingRange, x, y);
-                if (needed && alpha)
-                    needed = f.alpha(x, y, 0) != 0.0f;
-                if (needed && maskB)
-                    needed = maskV.at(x, y)[0] > 0.0f; // NaN compares false: not needed
-                work(x, y, 0) = needed ? 1.0f : 0.0f;
-                n += needed ? 0 : 1;
+                const bool need = needed(x, y);
+                work(x, y, 0) = need ? 1.0f : 0.0f;
+                n += need ? 0 : 1;
             }
         skipped += n;
     });
-    if (skipped == 0)
-        f.work = Image(); // every pixel needs work: methods run their unrestricted path
     return static_cast<double>(skipped) / (static_cast<double>(f.width) * f.height);
 }
 

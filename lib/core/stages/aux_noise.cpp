@@ -3,6 +3,8 @@
 #include "stages/aux_noise.h"
 
 #include "base/parallel.h"
+#include "cpu/isa.h"
+#include "stages/aux_noise_rows.h"
 
 #include <algorithm>
 #include <atomic>
@@ -66,17 +68,41 @@ template <AuxKind K>
 std::int64_t flagRows(const ImageView& img, float t, Image* flags, int y0, int y1)
 {
     const int w = img.width, h = img.height;
+    // AVX-512: the left-neighbour test of 16 inner pixels at once (aux_noise_avx512.cpp); the
+    // pixels it does not settle take the scalar test.
+    const int channels = K == AuxKind::Depth ? 1 : 3;
+    const bool vector = cpu::activeIsa() == cpu::Isa::Avx512 && img.channels == channels
+        && img.pixelStride == static_cast<std::ptrdiff_t>(channels * sizeof(float));
     std::int64_t count = 0;
     for (int y = y0; y < y1; ++y) {
         const bool innerRow = y > 0 && y < h - 1;
-        for (int x = 0; x < w; ++x) {
+        auto pixel = [&](int x) {
             const float* p = img.at(x, y);
             const bool speckle = (K != AuxKind::Depth || hasSurface(p[0]))
                 && isSpeckle<K>(img, x, y, p, t, innerRow && x > 0 && x < w - 1);
             if (flags)
                 (*flags)(x, y, 0) = speckle ? 1.0f : 0.0f;
             count += speckle ? 1 : 0;
+        };
+        int x = 0;
+        if (vector && innerRow) {
+            pixel(x++);
+            for (; x + 16 <= w - 1; x += 16) {
+                const std::uint32_t within = K == AuxKind::Depth
+                    ? depthSettled16(img.at(x, y), t)
+                    : leftNeighbourWithin16(img.at(x, y), K, t);
+                for (int l = 0; l < 16; ++l) {
+                    if (within & (1u << l)) {
+                        if (flags)
+                            (*flags)(x + l, y, 0) = 0.0f;
+                    } else {
+                        pixel(x + l);
+                    }
+                }
+            }
         }
+        for (; x < w; ++x)
+            pixel(x);
     }
     return count;
 }

@@ -28,36 +28,61 @@ void demodulate(const Frame& frame, Image& irradiance)
 {
     irradiance.resize(frame.width, frame.height, 3);
     const bool divide = frame.hasAlbedo() && !frame.colorDemodulated;
+    const int n = 3 * frame.width; // rows are packed: one run of floats per row (vectorised)
     parallelRows(frame.height, [&](int y0, int y1) {
-        for (int y = y0; y < y1; ++y)
-            for (int x = 0; x < frame.width; ++x) {
-                const float* c = frame.color.at(x, y);
-                float* o = irradiance.at(x, y);
-                for (int k = 0; k < 3; ++k) {
-                    const float d
-                        = divide ? c[k] / albedoFactor(frame.albedo(x, y, k), false) : c[k];
-                    o[k] = clampIrradiance(d);
-                }
+        for (int y = y0; y < y1; ++y) {
+            const float* c = frame.color.at(0, y);
+            float* o = irradiance.at(0, y);
+            if (divide) {
+                const float* a = frame.albedo.at(0, y);
+                for (int i = 0; i < n; ++i)
+                    o[i] = clampIrradiance(c[i] / albedoFactor(a[i], false));
+            } else {
+                for (int i = 0; i < n; ++i)
+                    o[i] = clampIrradiance(c[i]);
             }
+        }
     });
+}
+
+void remodulateRow(
+    const Frame& frame, const Image& irradiance, int y, std::byte* out, std::ptrdiff_t pixelStride)
+{
+    const float* i = irradiance.at(0, y);
+    const int w = frame.width;
+    if (!frame.hasAlbedo()) {
+        for (int x = 0; x < w; ++x, out += pixelStride) {
+            float* o = reinterpret_cast<float*>(out);
+            for (int k = 0; k < 3; ++k)
+                o[k] = clampIrradiance(i[3 * x + k]) * 1.0f;
+        }
+        return;
+    }
+    const float* a = frame.albedo.at(0, y);
+    const bool plain = frame.colorDemodulated;
+    if (pixelStride == static_cast<std::ptrdiff_t>(3 * sizeof(float))) {
+        // Packed output: one run of floats (vectorised), the same operations.
+        float* o = reinterpret_cast<float*>(out);
+        for (int k = 0; k < 3 * w; ++k)
+            o[k] = clampIrradiance(i[k]) * albedoFactor(a[k], plain);
+        return;
+    }
+    for (int x = 0; x < w; ++x, out += pixelStride) {
+        float* o = reinterpret_cast<float*>(out);
+        for (int k = 0; k < 3; ++k)
+            o[k] = clampIrradiance(i[3 * x + k]) * albedoFactor(a[3 * x + k], plain);
+    }
 }
 
 void remodulate(const Frame& frame, const Image& irradiance, Image& radiance)
 {
     if (&radiance != &irradiance)
         radiance.resize(frame.width, frame.height, 3);
-    const bool hasAlbedo = frame.hasAlbedo();
-    const bool plain = frame.colorDemodulated;
+    const std::ptrdiff_t stride = 3 * sizeof(float);
     parallelRows(frame.height, [&](int y0, int y1) {
         for (int y = y0; y < y1; ++y)
-            for (int x = 0; x < frame.width; ++x) {
-                const float* i = irradiance.at(x, y);
-                float* o = radiance.at(x, y);
-                for (int k = 0; k < 3; ++k) {
-                    const float a = hasAlbedo ? albedoFactor(frame.albedo(x, y, k), plain) : 1.0f;
-                    o[k] = clampIrradiance(i[k]) * a;
-                }
-            }
+            remodulateRow(
+                frame, irradiance, y, reinterpret_cast<std::byte*>(radiance.at(0, y)), stride);
     });
 }
 

@@ -14,6 +14,8 @@
 
 #include "filter/frame.h"
 
+#include <cstddef>
+
 namespace afn {
 
 /// Floor of the albedo divisor (2^-10).
@@ -27,5 +29,10 @@ void demodulate(const Frame& frame, Image& irradiance);
 /// Write `irradiance` (3 channels) times the frame's albedo factor into `radiance` (3 channels).
 /// `radiance` may be the same image as `irradiance`.
 void remodulate(const Frame& frame, const Image& irradiance, Image& radiance);
+
+/// Row y of remodulate() written to 3 floats per pixel at `out + x * pixelStride` (bytes), e.g.
+/// straight into a caller's buffer (Filter::denoiseDemodulated); the same values as remodulate().
+void remodulateRow(
+    const Frame& frame, const Image& irradiance, int y, std::byte* out, std::ptrdiff_t pixelStride);
 
 } // namespace afn

@@ -3,6 +3,8 @@
 #include "stages/reproject.h"
 
 #include "base/parallel.h"
+#include "cpu/isa.h"
+#include "stages/reproject_rows.h"
 
 #include <algorithm>
 #include <atomic>
@@ -285,12 +287,51 @@ void Reprojector::compute(const Frame& f)
     const bool position = f.hasPosition() && !m_prevPosition.empty();
     const Context c { f, position, m_settings.positionLimitSquared > 0.0f,
         !position && f.hasDepth() && !m_prevDepth.empty(), f.hasNormal() && !m_prevNormal.empty() };
+    // AVX-512 identity rows: the relative position test on packed geometry of this frame's size.
+    const bool vector = cpu::activeIsa() == cpu::Isa::Avx512 && c.position && !c.absolute
+        && m_prevPosition.sameShape(f.position) && f.position.channels() == 3
+        && (!c.normal || (m_prevNormal.sameShape(f.normal) && f.normal.channels() == 3));
     parallelRows(f.height, [&](int y0, int y1) {
         for (int y = y0; y < y1; ++y) {
             TapBits* bits = m_bits.data() + static_cast<std::size_t>(y) * m_width;
             if (m_identityRow[static_cast<std::size_t>(y)]) {
-                for (int x = 0; x < f.width; ++x)
-                    bits[x] = pixelTaps(c, x, y, static_cast<float>(x), static_cast<float>(y));
+                // pixelTaps at prev = (x, y): weights (1, 0, 0, 0), so only the pixel's own tap is
+                // tested; the box fallback (rare: the pixel was rejected) takes the general path.
+                auto pixel = [&](int x) {
+                    TapBits b;
+                    b.onScreen = 1;
+                    float fp = -1.0f;
+                    if (accept(c, x, y, x, y, fp))
+                        b.mask = 1;
+                    else if (m_settings.boxFallback)
+                        b = pixelTaps(c, x, y, static_cast<float>(x), static_cast<float>(y));
+                    bits[x] = b;
+                };
+                int x = 0;
+                if (vector) // 16 at a time (reproject_avx512.cpp), the rest as above
+                    for (; x + 16 <= f.width; x += 16) {
+                        IdentityRow16 r;
+                        r.position = f.position.at(x, y);
+                        r.prevPosition = m_prevPosition.at(x, y);
+                        if (c.normal) {
+                            r.normal = f.normal.at(x, y);
+                            r.prevNormal = m_prevNormal.at(x, y);
+                        }
+                        r.testNormal = c.normal;
+                        r.normalLimitSquared = m_settings.normalLimitSquared;
+                        const IdentityDecision d = identityTaps16(r);
+                        for (int l = 0; l < 16; ++l) {
+                            const std::uint32_t bit = 1u << l;
+                            if (d.accepted & bit)
+                                bits[x + l] = TapBits { 1, 0, 1 };
+                            else if ((d.rejected & bit) && !m_settings.boxFallback)
+                                bits[x + l] = TapBits { 0, 0, 1 };
+                            else
+                                pixel(x + l);
+                        }
+                    }
+                for (; x < f.width; ++x)
+                    pixel(x);
                 continue;
             }
             Prev* prev = m_prev.data() + static_cast<std::size_t>(y) * m_width;

@@ -103,6 +103,15 @@ public:
     /// True when row y of the last compute() was an identity row (prev = (x, y) for every pixel
     /// with history).
     bool identityRow(int y) const { return m_identityRow[static_cast<std::size_t>(y)] != 0; }
+    /// On an identity row (identityRow(y)) with history: true when the pixel's own previous
+    /// value was accepted, i.e. taps(x, y) is the single tap (x, y) of weight 1 and
+    /// gatherHistory() returns that value itself (0 + 1 * v, divided by 1: v, as the history holds
+    /// no -0). Lets the blends skip decoding the taps on a static camera's rows.
+    bool ownPixelAccepted(int x, int y) const
+    {
+        const TapBits& b = m_bits[static_cast<std::size_t>(y) * m_width + x];
+        return b.mask == 1 && !b.box;
+    }
     int width() const { return m_width; }
     int height() const { return m_height; }
 

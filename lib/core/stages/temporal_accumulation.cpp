@@ -34,12 +34,21 @@ void TemporalAccumulator::accumulate(const Reprojector& taps, const Image& irr)
     const bool history = m_hasHistory && taps.hasHistory() && m_prevColor.width() == w
         && m_prevColor.height() == h;
     parallelRows(h, [&](int y0, int y1) {
-        for (int y = y0; y < y1; ++y)
-            for (int x = 0; x < w; ++x) {
-                const float* c = irr.at(x, y);
-                float* acc = m_color.at(x, y);
+        for (int y = y0; y < y1; ++y) {
+            const bool identity = history && taps.identityRow(y);
+            const float* c = irr.at(0, y);
+            float* acc = m_color.at(0, y);
+            float* spp = m_spp.at(0, y);
+            for (int x = 0; x < w; ++x, c += 3, acc += 3) {
                 float prev[3], sppS = 0.0f, ws = 0.0f;
-                if (history) {
+                if (identity && taps.ownPixelAccepted(x, y)) {
+                    // A static camera's row, own pixel accepted: its previous value, no decoding.
+                    const float* p = m_prevColor.at(x, y);
+                    for (int k = 0; k < 3; ++k)
+                        prev[k] = p[k];
+                    sppS = m_prevSpp(x, y, 0);
+                    ws = 1.0f;
+                } else if (history) {
                     const PixelTaps& t = taps.taps(x, y);
                     ws = gatherHistory<3>(t, m_prevColor, prev);
                     gatherHistory<1>(t, m_prevSpp, &sppS);
@@ -48,13 +57,14 @@ void TemporalAccumulator::accumulate(const Reprojector& taps, const Image& irr)
                     const float alpha = std::max(1.0f / (sppS + 1.0f), m_alphaMin);
                     for (int k = 0; k < 3; ++k)
                         acc[k] = blendHistory(prev[k], c[k], alpha);
-                    m_spp(x, y, 0) = alpha < 1.0f ? std::min(sppS + 1.0f, kMaxHistoryLength) : 1.0f;
+                    spp[x] = alpha < 1.0f ? std::min(sppS + 1.0f, kMaxHistoryLength) : 1.0f;
                 } else {
                     for (int k = 0; k < 3; ++k)
                         acc[k] = c[k];
-                    m_spp(x, y, 0) = 1.0f;
+                    spp[x] = 1.0f;
                 }
             }
+        }
     });
     m_hasHistory = true;
 }

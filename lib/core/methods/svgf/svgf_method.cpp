@@ -22,8 +22,13 @@ private:
     void resetHistory() override { m_svgf.reset(); }
     void denoise(const Frame& in, Image& out) override
     {
+        remodulate(in, *denoiseDemodulated(in), out);
+    }
+    // The base remodulates straight into the bound output.
+    const Image* denoiseDemodulated(const Frame& in) override
+    {
         m_svgf.process(in, irradiance(), reprojector(), m_filtered);
-        remodulate(in, m_filtered, out);
+        return &m_filtered;
     }
 
     Denoiser m_svgf;

@@ -26,6 +26,7 @@ void Denoiser::integrate(const Image& irr, const Reprojector& taps)
         && m_prevHistory.height() == h;
     parallelRows(h, [&](int y0, int y1) {
         for (int y = y0; y < y1; ++y) {
+            const bool identity = history && taps.identityRow(y);
             float* planes[kIntegratedPlanes];
             for (int k = 0; k < kIntegratedPlanes; ++k)
                 planes[k] = m_integrated.row(k, y);
@@ -35,9 +36,15 @@ void Denoiser::integrate(const Image& irr, const Reprojector& taps)
                 const float m[2] = { l, l * l };
                 // Colour, moments and length share the taps: one renormalised gather of all six.
                 float prev[kHistoryChannels];
-                const float ws = history
-                    ? gatherHistory<kHistoryChannels>(taps.taps(x, y), m_prevHistory, prev)
-                    : 0.0f;
+                float ws = 0.0f;
+                if (identity && taps.ownPixelAccepted(x, y)) { // the gather's result, undecoded
+                    const float* p = m_prevHistory.at(x, y);
+                    for (int k = 0; k < kHistoryChannels; ++k)
+                        prev[k] = p[k];
+                    ws = 1.0f;
+                } else if (history) {
+                    ws = gatherHistory<kHistoryChannels>(taps.taps(x, y), m_prevHistory, prev);
+                }
                 float* o = m_history.at(x, y);
                 if (ws > 0.0f) {
                     const float len = std::min(prev[5] + 1.0f, 255.0f);

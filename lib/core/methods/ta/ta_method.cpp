@@ -21,6 +21,8 @@ private:
     {
         remodulate(in, accumulator().color(), out);
     }
+    // The base remodulates straight into the bound output.
+    const Image* denoiseDemodulated(const Frame&) override { return &accumulator().color(); }
 };
 
 } // namespace

@@ -1,0 +1,85 @@
+// SPDX-License-Identifier: Apache-2.0
+// The acceptance test of a static camera's rows (stages/reproject.h: identity rows, where each
+// pixel tests only its own previous pixel), 16 pixels at a time with AVX-512F, used where
+// cpu::activeIsa() is Avx512 (the function carries its own target attribute). It settles the
+// usual cases, the previous position equal to the current one (then the normal test decides);
+// a pixel whose position moved (the footprint test) or whose distance is NaN is left to the
+// scalar test. The squared distances are the scalar ones operation for operation (differences,
+// products, the sum in the same order, no FMA: compiled with -ffp-contract=off, see
+// CMakeLists.txt), so the decisions are the same bit for bit.
+#include "cpu/avx512.h"
+#include "stages/reproject_rows.h"
+
+namespace afn {
+
+#ifdef AFN_CPU_HAVE_AVX512
+
+namespace {
+
+/// Channel c of the 16 packed 3-float pixels at p (48 floats).
+AFN_CPU_AVX512_INLINE __m512 channel(const float* p, int c)
+{
+    const __m512 a = _mm512_loadu_ps(p), b = _mm512_loadu_ps(p + 16), d = _mm512_loadu_ps(p + 32);
+    alignas(64) int lo[16], hi[16];
+    __mmask16 fromD = 0;
+    for (int l = 0; l < 16; ++l) {
+        const int i = 3 * l + c;
+        lo[l] = i < 32 ? i : 0; // from a (0..15) or b (16..31)
+        hi[l] = i >= 32 ? i - 32 : 0; // from d
+        if (i >= 32)
+            fromD = static_cast<__mmask16>(fromD | (1u << l));
+    }
+    const __m512 ab = _mm512_permutex2var_ps(a, _mm512_load_si512(lo), b);
+    return _mm512_mask_permutexvar_ps(ab, fromD, _mm512_load_si512(hi), d);
+}
+
+/// |a - b|^2 of 16 pixels, as the scalar dist2: (d0 d0 + d1 d1) + d2 d2.
+AFN_CPU_AVX512_INLINE __m512 dist2(const float* a, const float* b)
+{
+    __m512 s = _mm512_setzero_ps();
+    for (int c = 0; c < 3; ++c) {
+        const __m512 d = _mm512_sub_ps(channel(a, c), channel(b, c));
+        s = c == 0 ? _mm512_mul_ps(d, d) : _mm512_add_ps(s, _mm512_mul_ps(d, d));
+    }
+    return s;
+}
+
+/// Lanes whose 3 channels are all 0.
+AFN_CPU_AVX512_INLINE __mmask16 zero3(const float* p)
+{
+    __mmask16 m = 0xffff;
+    for (int c = 0; c < 3; ++c)
+        m = _mm512_mask_cmp_ps_mask(m, channel(p, c), _mm512_setzero_ps(), _CMP_EQ_OQ);
+    return m;
+}
+
+} // namespace
+
+AFN_CPU_AVX512 IdentityDecision identityTaps16(const IdentityRow16& r)
+{
+    // Position: equal positions pass; any other (moved, NaN) is left to the scalar test.
+    const __mmask16 same
+        = _mm512_cmp_ps_mask(dist2(r.prevPosition, r.position), _mm512_setzero_ps(), _CMP_EQ_OQ);
+    __mmask16 pass = same;
+    if (r.testNormal) {
+        const __mmask16 zero = zero3(r.normal) | zero3(r.prevNormal);
+        const __mmask16 close = _mm512_cmp_ps_mask(
+            dist2(r.normal, r.prevNormal), _mm512_set1_ps(r.normalLimitSquared), _CMP_LT_OQ);
+        pass = static_cast<__mmask16>(same & ~zero & close);
+    }
+    IdentityDecision d;
+    d.accepted = pass;
+    d.rejected = static_cast<std::uint32_t>(same & ~pass);
+    return d;
+}
+
+#else
+
+IdentityDecision identityTaps16(const IdentityRow16&)
+{
+    return {}; // never called: activeIsa() is Portable without the AVX-512 kernels
+}
+
+#endif
+
+} // namespace afn
