@@ -53,19 +53,26 @@ void printEngineReport(const EngineYardstick& y, const std::vector<EnginePoint>&
             y.n, y.peak1, y.median1, y.threads, y.peakN, y.medianN);
     else
         std::printf("\nsgemm yardstick: not measured (afntool was built without oneDNN)\n");
-    std::printf("%-11s %11s %-8s %11s %10s %9s %14s\n", "afn stage", "size", "kernels",
-        "GFLOP/frame", "ms/frame", "GFLOP/s", "% sgemm peak");
+    const double ideal = y.peak1 * y.threads; // N threads at the 1-thread rate
+    std::printf("%-11s %11s %-8s %11s %10s %9s %14s %13s\n", "afn stage", "size", "kernels",
+        "GFLOP/frame", "ms/frame", "GFLOP/s", "% sgemm peak", "% N x 1-thr");
     for (const EnginePoint& p : points)
         for (const EngineStage& s : p.stages) {
-            char pct[32] = "-";
+            char pct[32] = "-", pctIdeal[32] = "-";
             if (y.available && y.peakN > 0.0)
                 std::snprintf(pct, sizeof pct, "%.0f %%", 100.0 * s.gflops() / y.peakN);
-            std::printf("%-11s %5dx%-5d %-8s %11.2f %10.2f %9.1f %14s\n", s.name.c_str(), p.width,
-                p.height, p.avx512 ? "avx512" : "portable", s.gflop, s.ms, s.gflops(), pct);
+            if (y.available && ideal > 0.0)
+                std::snprintf(pctIdeal, sizeof pctIdeal, "%.0f %%", 100.0 * s.gflops() / ideal);
+            std::printf("%-11s %5dx%-5d %-8s %11.2f %10.2f %9.1f %14s %13s\n", s.name.c_str(),
+                p.width, p.height, p.avx512 ? "avx512" : "portable", s.gflop, s.ms, s.gflops(), pct,
+                pctIdeal);
         }
-    std::printf("(afn stage times: median wall-clock ms of the timed frames, from the filter's "
-                "stats.afn.*; %% of the best %d-thread dnnl_sgemm call of this run)\n",
-        y.threads);
+    std::printf(
+        "(afn stage times: median wall-clock ms of the timed frames, from the filter's "
+        "stats.afn.*; %% of the best %d-thread dnnl_sgemm call of this run, and of %d x the "
+        "best 1-thread call: under glibc's malloc the multi-thread dnnl_sgemm falls short of "
+        "N x its 1-thread rate, docs/performance.md)\n",
+        y.threads, y.threads);
 }
 
 void writeEngineJson(

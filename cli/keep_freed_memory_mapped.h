@@ -11,12 +11,14 @@
 namespace afntool {
 
 /// dnnl_sgemm allocates its packing buffers (MiBs) on every call. glibc serves blocks that large
-/// with mmap and unmaps them on free, so each call page-faults its scratch memory in again: on
-/// the 2-core development machine that held the 2-thread rate at 224-240 GFLOP/s, against 400
-/// with the same library when freed memory stays mapped (measured with jemalloc preloaded, and
-/// with this guard). The yardstick is meant as the machine's GEMM peak, not glibc's page-fault
-/// rate, so while it runs freed memory stays in the heap; glibc's default thresholds (128 KiB)
-/// are set back and the memory returned afterwards, before any denoiser is timed.
+/// with mmap and unmaps them on free, so calls page-fault their scratch memory in again. Measured
+/// on the 2-core development machine (idle, 2026-12-01), best / median of 7 calls, GFLOP/s:
+///   1 thread:  glibc 204 / 115, with this scope 205 / 204, jemalloc preloaded 206 / 205;
+///   2 threads: glibc 224 / 220, with this scope about the same, jemalloc preloaded 391 / 387.
+/// So this scope steadies the 1-thread figure; the 2-thread one stays ~40 % below what the same
+/// library reaches on jemalloc (per-thread arenas; MALLOC_ARENA_MAX=1 did not help either), and
+/// afntool prints that caveat beside the yardstick. glibc's default thresholds (128 KiB) are set
+/// back and the memory returned afterwards, before any denoiser is timed.
 class KeepFreedMemoryMapped {
 public:
     KeepFreedMemoryMapped()
