@@ -23,8 +23,9 @@ struct Passes {
     bool albedo = false, normal = false, depth = false, motion = false;
 };
 
-/// A noisy checker moving 1 px right per frame, with only the passes asked for (generic names).
-void writeSequence(const TempDir& dir, const Passes& p)
+/// A noisy checker moving 1 px right per frame, with only the passes asked for (generic names);
+/// `samples`: the header's cycles.ViewLayer.samples, as Blender writes it (none when null).
+void writeSequence(const TempDir& dir, const Passes& p, const char* samples = nullptr)
 {
     std::vector<std::string> names = { "R", "G", "B" };
     if (p.albedo)
@@ -40,6 +41,8 @@ void writeSequence(const TempDir& dir, const Passes& p)
     for (int f = 0; f < kFrames; ++f) {
         OIIO::ImageSpec spec(kW, kH, int(names.size()), OIIO::TypeDesc::FLOAT);
         spec.channelnames = names;
+        if (samples)
+            spec.attribute("cycles.ViewLayer.samples", samples);
         std::vector<float> px;
         for (int y = 0; y < kH; ++y)
             for (int x = 0; x < kW; ++x) {
@@ -210,6 +213,37 @@ TEST(AfntoolInputSets, EveryQualityTierRunsTheChosenModel)
         EXPECT_GT(meanAbsDiff(out[1], out[2]), 0.0); // fast: no refinement
         EXPECT_GT(meanAbsDiff(out[1], out[3]), 0.0); // high: four-flip ensemble
     }
+}
+
+// The model trained nearest the frame's sample count (issue 13): the file's header decides,
+// :spp=N overrides, and the log says which model ran.
+TEST(AfntoolInputSets, SampleCountChoosesTheModel)
+{
+    if (!shippedModels() || !std::ifstream(std::string(AFN_SOURCE_DIR) + "/weights/afn-spp16.afnw"))
+        GTEST_SKIP() << "the 16-spp weights are not in weights/";
+    const std::string high = "model color+albedo+normal+depth+temporal (16 spp), temporal";
+    const std::string low = "model color+albedo+normal+depth+temporal, temporal";
+    TempDir dir;
+    writeSequence(dir, { true, true, true, true }, "64");
+    const CliResult info = runAfntool({ "--info", dir.file("in.0001.exr") });
+    ASSERT_EQ(info.exitCode, 0) << info.err;
+    EXPECT_NE(info.out.find("samples per pixel: 64"), std::string::npos) << info.out;
+    EXPECT_NE(info.out.find("  afn: " + high + "\n"), std::string::npos) << info.out;
+    std::vector<std::vector<float>> out;
+    for (const auto& [param, model] : { std::pair<std::string, std::string> { "", high },
+             { ":spp=1", low }, { ":spp=12", high }, { ":spp=3", low } }) {
+        SCOPED_TRACE(param);
+        const std::string o = "out" + std::to_string(out.size()) + ".####.exr";
+        const CliResult r = runAfntool({ "--frames", "1-3", dir.file("in.####.exr"),
+            "--denoise:method=afn" + param, "-o", dir.file(o) });
+        ASSERT_EQ(r.exitCode, 0) << r.err;
+        EXPECT_NE(r.err.find("afntool: --denoise: afn " + model + " "), std::string::npos) << r.err;
+        out.push_back(readImage(dir.file(o.substr(0, o.find('#')) + "0003.exr")).pixels);
+        ASSERT_EQ(out.back().size(), std::size_t(kW) * kH * 3);
+    }
+    EXPECT_GT(meanAbsDiff(out[0], out[1]), 0.0); // two models, two results
+    EXPECT_EQ(meanAbsDiff(out[0], out[2]), 0.0); // the same 16-spp model
+    EXPECT_EQ(meanAbsDiff(out[1], out[3]), 0.0); // the same 1-spp model
 }
 
 TEST(AfntoolInputSets, WeightsWithoutAModelForTheInputsAreAnError)
