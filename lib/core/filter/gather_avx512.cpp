@@ -7,28 +7,13 @@
 // with inv spread to the 3 channels.
 #include "filter/gather_avx512.h"
 #include "cpu/avx512.h"
+#include "cpu/avx512_rgb.h"
 
 namespace afn {
 
 #ifdef AFN_CPU_HAVE_AVX512
 
 namespace {
-
-/// Channel c of the 16 packed 3-float pixels held in v[0..2] (48 floats).
-AFN_CPU_AVX512_INLINE __m512 channel(const __m512* v, int c)
-{
-    alignas(64) int lo[16], hi[16];
-    __mmask16 fromHigh = 0;
-    for (int l = 0; l < 16; ++l) {
-        const int i = 3 * l + c;
-        lo[l] = i < 32 ? i : 0;
-        hi[l] = i >= 32 ? i - 32 : 0;
-        if (i >= 32)
-            fromHigh = static_cast<__mmask16>(fromHigh | (1u << l));
-    }
-    const __m512 ab = _mm512_permutex2var_ps(v[0], _mm512_load_si512(lo), v[1]);
-    return _mm512_mask_permutexvar_ps(ab, fromHigh, _mm512_load_si512(hi), v[2]);
-}
 
 /// Lane j of vector k (of 3) holds channel (16 k + j) % 3 of pixel (16 k + j) / 3: spread the
 /// per-pixel values of `perPixel` so.
@@ -55,7 +40,8 @@ AFN_CPU_AVX512 void normalizeNormals16(float* p, float zSign)
                 z = static_cast<__mmask16>(z | (1u << j));
         v[k] = _mm512_mask_mul_ps(v[k], z, v[k], _mm512_set1_ps(zSign));
     }
-    const __m512 x = channel(v, 0), y = channel(v, 1), zc = channel(v, 2);
+    const __m512 x = cpu::packedChannel(v, 0), y = cpu::packedChannel(v, 1),
+                 zc = cpu::packedChannel(v, 2);
     const __m512 len = _mm512_sqrt_ps(_mm512_add_ps(
         _mm512_add_ps(_mm512_mul_ps(x, x), _mm512_mul_ps(y, y)), _mm512_mul_ps(zc, zc)));
     const __mmask16 ok = _mm512_cmp_ps_mask(len, _mm512_set1_ps(1e-12f), _CMP_GT_OQ);

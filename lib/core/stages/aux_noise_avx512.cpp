@@ -8,6 +8,7 @@
 // squares in the same order, no FMA: compiled with -ffp-contract=off, see CMakeLists.txt), so the
 // decision d <= t is the same bit for bit.
 #include "cpu/avx512.h"
+#include "cpu/avx512_rgb.h"
 #include "stages/aux_noise_rows.h"
 
 namespace afn {
@@ -15,23 +16,6 @@ namespace afn {
 #ifdef AFN_CPU_HAVE_AVX512
 
 namespace {
-
-/// Channel c of the 16 packed RGB pixels at p (48 floats).
-AFN_CPU_AVX512_INLINE __m512 channel(const float* p, int c)
-{
-    const __m512 a = _mm512_loadu_ps(p), b = _mm512_loadu_ps(p + 16), d = _mm512_loadu_ps(p + 32);
-    alignas(64) int lo[16], hi[16];
-    for (int l = 0; l < 16; ++l) {
-        lo[l] = 3 * l + c < 32 ? 3 * l + c : 0; // from a (0..15) or b (16..31)
-        hi[l] = 3 * l + c >= 32 ? 3 * l + c - 32 : 0; // from d
-    }
-    __mmask16 fromD = 0;
-    for (int l = 0; l < 16; ++l)
-        if (3 * l + c >= 32)
-            fromD = static_cast<__mmask16>(fromD | (1u << l));
-    const __m512 ab = _mm512_permutex2var_ps(a, _mm512_load_si512(lo), b);
-    return _mm512_mask_permutexvar_ps(ab, fromD, _mm512_load_si512(hi), d);
-}
 
 AFN_CPU_AVX512_INLINE __m512 absv(__m512 v)
 {
@@ -45,8 +29,8 @@ AFN_CPU_AVX512 std::uint32_t leftNeighbourWithin16(const float* p, AuxKind kind,
 {
     __m512 a[3], q[3];
     for (int c = 0; c < 3; ++c) {
-        a[c] = channel(p, c);
-        q[c] = channel(p - 3, c);
+        a[c] = cpu::packedChannel(p, c);
+        q[c] = cpu::packedChannel(p - 3, c);
     }
     __m512 d;
     __mmask16 ordered = 0xffff;

@@ -8,6 +8,7 @@
 // products, the sum in the same order, no FMA: compiled with -ffp-contract=off, see
 // CMakeLists.txt), so the decisions are the same bit for bit.
 #include "cpu/avx512.h"
+#include "cpu/avx512_rgb.h"
 #include "stages/reproject_rows.h"
 
 namespace afn {
@@ -16,29 +17,12 @@ namespace afn {
 
 namespace {
 
-/// Channel c of the 16 packed 3-float pixels at p (48 floats).
-AFN_CPU_AVX512_INLINE __m512 channel(const float* p, int c)
-{
-    const __m512 a = _mm512_loadu_ps(p), b = _mm512_loadu_ps(p + 16), d = _mm512_loadu_ps(p + 32);
-    alignas(64) int lo[16], hi[16];
-    __mmask16 fromD = 0;
-    for (int l = 0; l < 16; ++l) {
-        const int i = 3 * l + c;
-        lo[l] = i < 32 ? i : 0; // from a (0..15) or b (16..31)
-        hi[l] = i >= 32 ? i - 32 : 0; // from d
-        if (i >= 32)
-            fromD = static_cast<__mmask16>(fromD | (1u << l));
-    }
-    const __m512 ab = _mm512_permutex2var_ps(a, _mm512_load_si512(lo), b);
-    return _mm512_mask_permutexvar_ps(ab, fromD, _mm512_load_si512(hi), d);
-}
-
 /// |a - b|^2 of 16 pixels, as the scalar dist2: (d0 d0 + d1 d1) + d2 d2.
 AFN_CPU_AVX512_INLINE __m512 dist2(const float* a, const float* b)
 {
     __m512 s = _mm512_setzero_ps();
     for (int c = 0; c < 3; ++c) {
-        const __m512 d = _mm512_sub_ps(channel(a, c), channel(b, c));
+        const __m512 d = _mm512_sub_ps(cpu::packedChannel(a, c), cpu::packedChannel(b, c));
         s = c == 0 ? _mm512_mul_ps(d, d) : _mm512_add_ps(s, _mm512_mul_ps(d, d));
     }
     return s;
@@ -49,7 +33,7 @@ AFN_CPU_AVX512_INLINE __mmask16 zero3(const float* p)
 {
     __mmask16 m = 0xffff;
     for (int c = 0; c < 3; ++c)
-        m = _mm512_mask_cmp_ps_mask(m, channel(p, c), _mm512_setzero_ps(), _CMP_EQ_OQ);
+        m = _mm512_mask_cmp_ps_mask(m, cpu::packedChannel(p, c), _mm512_setzero_ps(), _CMP_EQ_OQ);
     return m;
 }
 

@@ -101,30 +101,32 @@ void ModelSet::throwNoModelFor(const InputSet& available) const
           "afnSetFilterData(filter, \"weights\", data, size) (afntool: --weights FILE)");
 }
 
-std::string describeChoice(const InputSet& available, const Model& used)
-{
-    std::string text = describePath(available, used.inputs);
-    if (used.spp != 1) {
-        const std::string name = inputSetName(used.inputs);
-        text.insert(
-            std::string("model ").size() + name.size(), " (" + std::to_string(used.spp) + " spp)");
-    }
-    return text;
-}
+namespace {
 
-std::string describePath(const InputSet& available, const InputSet& used)
+/// describePath's text with `label` naming the model.
+std::string pathText(const InputSet& available, const InputSet& used, const std::string& label)
 {
-    std::string text = "model " + inputSetName(used);
+    std::string text = "model " + label;
     text += used.temporal ? ", temporal" : ", single-frame (no temporal branch";
     if (!used.temporal)
         text += available.temporal ? ": the model has none)" : ": no motion or position)";
     const InputSet unused { available.albedo && !used.albedo, available.normal && !used.normal,
         available.depth && !used.depth, available.temporal && !used.temporal };
-    if (unused.count() > 0) {
-        const std::string names = inputSetKey(unused);
-        text += "; not used: " + names;
-    }
+    if (unused.count() > 0)
+        text += "; not used: " + inputSetKey(unused);
     return text;
+}
+
+} // namespace
+
+std::string describeChoice(const InputSet& available, const Model& used)
+{
+    return pathText(available, used.inputs, modelName(used));
+}
+
+std::string describePath(const InputSet& available, const InputSet& used)
+{
+    return pathText(available, used, inputSetName(used));
 }
 
 } // namespace afn::afnet
