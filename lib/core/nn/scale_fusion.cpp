@@ -13,8 +13,8 @@ void fuseScales(Image& fine, const Image& coarse, const Image& logits, int chann
 {
     const int w = fine.width(), h = fine.height();
     if (fine.channels() != 3 || coarse.channels() != 3 || coarse.width() * 2 != w
-        || coarse.height() * 2 != h || logits.width() != w || logits.height() != h
-        || channel < 0 || channel >= logits.channels())
+        || coarse.height() * 2 != h || logits.width() != w || logits.height() != h || channel < 0
+        || channel >= logits.channels())
         throwInvalidArgument("scale fusion: level sizes differ");
     parallelRows(h / 2, [&](int y0, int y1) {
         for (int cy = y0; cy < y1; ++cy)

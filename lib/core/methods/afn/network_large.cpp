@@ -82,8 +82,8 @@ void LargeNetwork::load(const nn::WeightsArchive& a)
                 "invalid or corrupted weights (" + a.source() + "): heads must be 1x1");
     for (const nn::Conv& c : m_ref)
         if (c.kernelSize() != 3)
-            throwInvalidArgument("invalid or corrupted weights (" + a.source()
-                + "): refinement layers must be 3x3");
+            throwInvalidArgument(
+                "invalid or corrupted weights (" + a.source() + "): refinement layers must be 3x3");
 }
 
 void LargeNetwork::prepare(const Inputs& in)

@@ -120,11 +120,10 @@ TEST(AfnLarge, ChosenForFramesNearItsSampleCount)
         { { "variant", "large" }, { "inputs", "albedo,normal,depth,temporal" }, { "spp", "64" } },
         "large at 64 spp"));
     const afn::afnet::InputSet all = afn::afnet::InputSet::full();
-    for (const auto& [spp, variant] :
-        std::vector<std::pair<int, afn::afnet::Variant>> { { 0, afn::afnet::Variant::Full },
-            { 1, afn::afnet::Variant::Full }, { 4, afn::afnet::Variant::Full },
-            { 16, afn::afnet::Variant::Large }, { 64, afn::afnet::Variant::Large },
-            { 512, afn::afnet::Variant::Large } }) {
+    for (const auto& [spp, variant] : std::vector<std::pair<int, afn::afnet::Variant>> {
+             { 0, afn::afnet::Variant::Full }, { 1, afn::afnet::Variant::Full },
+             { 4, afn::afnet::Variant::Full }, { 16, afn::afnet::Variant::Large },
+             { 64, afn::afnet::Variant::Large }, { 512, afn::afnet::Variant::Large } }) {
         const afn::afnet::Model* m = models.choose(all, spp);
         ASSERT_NE(m, nullptr);
         EXPECT_EQ(m->net.variant(), variant) << "frame at " << spp << " spp";
