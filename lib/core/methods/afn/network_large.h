@@ -13,7 +13,7 @@
 //   o = i + refA(...); o = o + refB(...)                      two AFN refinement modules
 // Kernels: softmax over 25 taps, tap j = (dy + 2) * 5 + (dx + 2), the image read with edge
 // replication outside the frame. First version: whole frame (every layer stored at frame size,
-// about 100 floats per padded pixel: 400 MB per megapixel), not in stripes like AFN; a work mask
+// about 122 floats per padded pixel: 490 MB per megapixel), not in stripes like AFN; a work mask
 // is not used (every row is computed).
 #pragma once
 
