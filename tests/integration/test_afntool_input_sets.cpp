@@ -216,22 +216,27 @@ TEST(AfntoolInputSets, EveryQualityTierRunsTheChosenModel)
 }
 
 // The model trained nearest the frame's sample count (issue 13): the file's header decides,
-// :spp=N overrides, and the log says which model ran.
+// :spp=N overrides, and the log says which model ran. A 64-spp file gets AFN large where its
+// weights ship (weights/afn-large-spp64.afnw), else the 16-spp model.
 TEST(AfntoolInputSets, SampleCountChoosesTheModel)
 {
     if (!shippedModels() || !std::ifstream(std::string(AFN_SOURCE_DIR) + "/weights/afn-spp16.afnw"))
         GTEST_SKIP() << "the 16-spp weights are not in weights/";
+    const bool large
+        = std::ifstream(std::string(AFN_SOURCE_DIR) + "/weights/afn-large-spp64.afnw").good();
     const std::string high = "model color+albedo+normal+depth+temporal (16 spp), temporal";
     const std::string low = "model color+albedo+normal+depth+temporal, temporal";
+    const std::string top
+        = large ? "model color+albedo+normal+depth+temporal (64 spp, AFN large), temporal" : high;
     TempDir dir;
     writeSequence(dir, { true, true, true, true }, "64");
     const CliResult info = runAfntool({ "--info", dir.file("in.0001.exr") });
     ASSERT_EQ(info.exitCode, 0) << info.err;
     EXPECT_NE(info.out.find("samples per pixel: 64"), std::string::npos) << info.out;
-    EXPECT_NE(info.out.find("  afn: " + high + "\n"), std::string::npos) << info.out;
+    EXPECT_NE(info.out.find("  afn: " + top + "\n"), std::string::npos) << info.out;
     std::vector<std::vector<float>> out;
-    for (const auto& [param, model] : { std::pair<std::string, std::string> { "", high },
-             { ":spp=1", low }, { ":spp=12", high }, { ":spp=3", low } }) {
+    for (const auto& [param, model] : { std::pair<std::string, std::string> { "", top },
+             { ":spp=1", low }, { ":spp=12", high }, { ":spp=3", low }, { ":spp=16", high } }) {
         SCOPED_TRACE(param);
         const std::string o = "out" + std::to_string(out.size()) + ".####.exr";
         const CliResult r = runAfntool({ "--frames", "1-3", dir.file("in.####.exr"),
@@ -242,8 +247,12 @@ TEST(AfntoolInputSets, SampleCountChoosesTheModel)
         ASSERT_EQ(out.back().size(), std::size_t(kW) * kH * 3);
     }
     EXPECT_GT(meanAbsDiff(out[0], out[1]), 0.0); // two models, two results
-    EXPECT_EQ(meanAbsDiff(out[0], out[2]), 0.0); // the same 16-spp model
+    EXPECT_EQ(meanAbsDiff(out[2], out[4]), 0.0); // the same 16-spp model
     EXPECT_EQ(meanAbsDiff(out[1], out[3]), 0.0); // the same 1-spp model
+    if (large)
+        EXPECT_GT(meanAbsDiff(out[0], out[2]), 0.0); // AFN large is another model
+    else
+        EXPECT_EQ(meanAbsDiff(out[0], out[2]), 0.0);
 }
 
 TEST(AfntoolInputSets, WeightsWithoutAModelForTheInputsAreAnError)

@@ -12,7 +12,7 @@ import os
 
 import torch
 
-from .model import AFN, AFNConfig
+from .model import AFNConfig, make_model
 from .weights import load_model, save_model
 
 
@@ -24,7 +24,7 @@ def main(argv=None):
     ck_path = args.results if args.results.endswith(".pt") else \
         os.path.join(args.results, "checkpoints", "latest.pt")
     ck = torch.load(ck_path, map_location="cpu")
-    model = AFN(AFNConfig.from_dict(ck["config"]))
+    model = make_model(AFNConfig.from_dict(ck["config"]))
     model.load_state_dict(ck["model"])
     out = args.output or os.path.join(os.path.dirname(os.path.dirname(ck_path)), "model.afnw")
     os.makedirs(os.path.dirname(os.path.abspath(out)), exist_ok=True)

@@ -9,6 +9,8 @@ Files (all in the weights-archive format of weights.py, so the C++ reader is exe
   case_<variant>.afnw      inputs c1, cta, albedo, normal01, depth01 and the PyTorch outputs
                            o (cropped), i, d_ta, d_1spp, alpha (padded size); images are stored
                            (H, W, C) interleaved, float32.
+  weights_large.afnw, case_large.afnw   the same for AFN large (model_large.py): outputs o, i,
+                           f1, alpha1 (full res), o2 (1/2), f3 (1/4), padded size.
 (tests/data/afn_parity/ta_case.afnw, a golden case of the core's temporal accumulation, was made
 by an earlier numpy TA; the toolkit now prepares its inputs through afntool and has no TA of its
 own, so that file is kept as committed.)
@@ -21,7 +23,8 @@ import os
 import numpy as np
 import torch
 
-from .model import AFN, AFNConfig
+from .model import AFNConfig
+from .model import make_model as build_model
 from .weights import dumps, save_model
 
 WIDTH, HEIGHT = 37, 21
@@ -44,24 +47,30 @@ def make_inputs(seed: int = 1):
     return {"c1": c1, "cta": cta, "albedo": albedo, "normal01": normal01, "depth01": depth01}
 
 
-def make_model(variant: str, seed: int = 0) -> AFN:
+OUTPUTS = {"large": ("o", "i", "f1", "alpha1", "o2", "f3")}
+DEFAULT_OUTPUTS = ("o", "i", "d_ta", "d_1spp", "alpha")
+
+
+def make_model(variant: str, seed: int = 0):
     """Random-initialised model; heads scaled x4 so the kernels are far from uniform."""
     torch.manual_seed(seed)
-    model = AFN(AFNConfig(variant=variant, **PARITY_CONFIG)).eval()
+    model = build_model(AFNConfig(variant=variant, **PARITY_CONFIG)).eval()
+    heads = ("head1", "head2", "head3") if variant == "large" else ("head1", "headTA")
     with torch.no_grad():
-        for name in ("head1", "headTA"):
+        for name in heads:
             getattr(model, name).weight.mul_(4.0)
     return model
 
 
-def run(model: AFN, inputs: dict) -> dict:
+
+def run(model, inputs: dict) -> dict:
     """PyTorch forward on (H, W, C) numpy inputs; returns (H, W, C) numpy outputs."""
     def t(a):
         return torch.from_numpy(a).permute(2, 0, 1)[None]
     with torch.no_grad():
         out = model(*(t(inputs[k]) for k in ("c1", "cta", "albedo", "normal01", "depth01")))
     return {k: out[k][0].permute(1, 2, 0).contiguous().numpy()
-            for k in ("o", "i", "d_ta", "d_1spp", "alpha")}
+            for k in OUTPUTS.get(model.cfg.variant, DEFAULT_OUTPUTS)}
 
 
 def main(argv=None):
@@ -72,7 +81,7 @@ def main(argv=None):
     args = ap.parse_args(argv)
     os.makedirs(args.out, exist_ok=True)
     inputs = make_inputs()
-    for variant in ("full", "fusion"):
+    for variant in ("full", "fusion", "large"):
         model = make_model(variant)
         save_model(os.path.join(args.out, f"weights_{variant}.afnw"), model)
         outputs = run(model, inputs)

@@ -31,6 +31,8 @@ Chosen here (the paper leaves it open; see training/README.md and shared/referen
 * Ablation variants (Table 11 of the paper): ``full`` (fusion + refinement), ``fusion`` (no
   refinement), ``1spp`` (the TA input is replaced by the 1-spp frame everywhere, no refinement),
   ``ta`` (the 1-spp input is replaced by the TA frame everywhere, no refinement).
+* ``large``: AFN large, the paper's high-spp architecture (three scales of 5x5 kernels, no TA
+  input), a different graph in model_large.py; :func:`make_model` builds either.
 
 Cost (default widths, from :func:`cost_per_pixel`; FLOP = 2 per multiply-add, per full-res pixel):
 kernel prediction 15016 FLOP (13.8 GFLOP at 1280x720), filtering + fusion ~563 FLOP,
@@ -50,7 +52,7 @@ KERNEL_TAPS = KERNEL_SIZE * KERNEL_SIZE
 INPUT_CHANNELS = 13            # T(1spp) 3, T(TA) 3, albedo 3, normal01 3, depth01 1
 REFINE_INPUT_CHANNELS = 10     # T(i) 3, albedo 3, normal01 3, depth01 1
 PAD_MULTIPLE = 8               # three 2x pooling levels
-VARIANTS = ("full", "fusion", "1spp", "ta")
+VARIANTS = ("full", "fusion", "1spp", "ta", "large")
 
 
 @dataclass
@@ -142,8 +144,9 @@ class AFN(nn.Module):
     def __init__(self, cfg: AFNConfig = None):
         super().__init__()
         cfg = cfg or AFNConfig()
-        if cfg.variant not in VARIANTS:
-            raise ValueError(f"unknown AFN variant '{cfg.variant}' (known: {', '.join(VARIANTS)})")
+        if cfg.variant not in VARIANTS or cfg.variant == "large":
+            raise ValueError(f"unknown AFN variant '{cfg.variant}' (known: "
+                             f"{', '.join(VARIANTS[:-1])}; 'large' is built by make_model)")
         self.cfg = cfg
         c1, c2, c3 = cfg.enc
         d2, d1 = cfg.dec
@@ -205,12 +208,24 @@ class AFN(nn.Module):
                 "k_ta": k_ta, "k_1spp": k_1spp}
 
 
+def make_model(cfg: AFNConfig = None) -> nn.Module:
+    """The network of ``cfg``: :class:`AFN`, or ``AFNLarge`` (model_large.py) for "large"."""
+    cfg = cfg or AFNConfig()
+    if cfg.variant == "large":
+        from .model_large import AFNLarge
+        return AFNLarge(cfg)
+    return AFN(cfg)
+
+
 def cost_per_pixel(cfg: AFNConfig = None) -> dict:
     """FLOP per full-resolution pixel of each stage (2 FLOP per multiply-add) and parameter count.
 
     Filtering counts 2 FLOP per tap and channel plus ~3 per softmax tap (exp, sum, divide).
     """
     cfg = cfg or AFNConfig()
+    if cfg.variant == "large":
+        from . import model_large
+        return model_large.cost_per_pixel(cfg)
     c1, c2, c3 = cfg.enc
     d2, d1 = cfg.dec
 

@@ -28,7 +28,7 @@ from .dataset import (LAYOUT, CropSampler, SceneError, evaluation_scenes, find_s
                       to_tensors)
 from .generated import expand
 from .loss import smape, temporal_gradient
-from .model import AFN, VARIANTS, AFNConfig
+from .model import VARIANTS, AFNConfig, make_model
 from .weights import load_model, save_model
 
 
@@ -41,7 +41,8 @@ def parse_args(argv=None):
     ap.add_argument("--holdout", default="", help="comma list of validation scenes, never trained on")
     ap.add_argument("--spp", default="", help="input sample counts of a generated dataset "
                     "(afn-dataset-2), e.g. 1 or 16,64: its spp<S> folders are the scenes")
-    ap.add_argument("--variant", default="full", choices=VARIANTS, help="ablation variant")
+    ap.add_argument("--variant", default="full", choices=VARIANTS, help="ablation variant, or large (AFN large, model_large.py: no TA "
+                    "input, for high --spp)")
     ap.add_argument("--enc", default="16,32,64", help="encoder widths e1,e2,e3")
     ap.add_argument("--dec", default="32,24", help="decoder widths d2,d1")
     ap.add_argument("--refine", type=int, default=16, help="refinement width")
@@ -297,7 +298,7 @@ def main(argv=None):
     area = sum(s["c1"].shape[0] * s["c1"].shape[1] * s["c1"].shape[2] for s in train)
     steps = args.steps or max(1, area // (args.crop * args.crop) // args.batch)
 
-    model = AFN(cfg).to(device)
+    model = make_model(cfg).to(device)
     opt = torch.optim.Adam(model.parameters(), lr=args.lr)
     start = run.resume(model, opt, sampler, device)
     if start == 0 and args.init:

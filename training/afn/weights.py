@@ -117,7 +117,7 @@ def load_model(path, device="cpu"):
     """Read an archive written by save_model; returns an AFN in eval mode."""
     import torch
 
-    from .model import AFN, AFNConfig
+    from .model import AFNConfig, make_model
     with open(path, "rb") as f:
         tensors, meta = loads(f.read())
     cfg = AFNConfig(variant=meta.get("variant", "full"),
@@ -126,6 +126,6 @@ def load_model(path, device="cpu"):
                     refine=int(meta.get("refine", 16)),
                     inputs=meta.get("inputs", "albedo,normal,depth,temporal"),
                     spp=int(meta.get("spp", 1)))
-    model = AFN(cfg)
+    model = make_model(cfg)
     model.load_state_dict({k: torch.from_numpy(v) for k, v in tensors.items()})
     return model.to(device).eval()

@@ -83,7 +83,7 @@ def test_bad_magic_version_and_size():
         loads(bytes(bad))
 
 
-@pytest.mark.parametrize("variant", ["full", "fusion"])
+@pytest.mark.parametrize("variant", ["full", "fusion", "large"])
 def test_committed_parity_vectors_match_this_model(variant):
     """The committed PyTorch outputs still equal this code's forward pass (regenerate with
     `python3 -m afn.make_parity_vectors` when the model changes on purpose)."""
@@ -91,7 +91,7 @@ def test_committed_parity_vectors_match_this_model(variant):
         case, meta = loads(f.read())
     model = load_model(os.path.join(PARITY, f"weights_{variant}.afnw"))
     out = mpv.run(model, case)
-    for k in ("o", "i", "alpha"):
+    for k in ("o", "i", "alpha1" if variant == "large" else "alpha"):
         np.testing.assert_allclose(out[k], case[k], rtol=1e-5, atol=1e-6, err_msg=k)
     # the inputs are reproducible too
     for k, v in mpv.make_inputs().items():

@@ -34,6 +34,10 @@ void AfnCudaFilter::configure()
             "device for them (afntool: --device cpu)");
     if (!m_net.loaded())
         afnet::throwNoWeights();
+    if (m_net.variant() == afnet::Variant::Large) // no GPU graph for it yet
+        throw Exception(AFN_ERROR_UNSUPPORTED,
+            "afn on a CUDA device has no AFN large graph yet: weights with variant=large run on "
+            "the CPU device (afntool: --device cpu)");
     // No aux prefilter on the GPU yet (stages/aux_prefilter.h): aux=auto runs as clean here.
     if (auxBinding().read(params()).aux == AuxSettings::Mode::Noisy)
         throw Exception(AFN_ERROR_UNSUPPORTED,

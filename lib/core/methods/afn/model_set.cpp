@@ -54,7 +54,10 @@ namespace {
 std::string modelName(const Model& m)
 {
     const std::string name = inputSetName(m.inputs);
-    return m.spp == 1 ? name : name + " (" + std::to_string(m.spp) + " spp)";
+    const std::string large = m.net.variant() == Variant::Large ? "AFN large" : "";
+    if (m.spp == 1)
+        return large.empty() ? name : name + " (" + large + ")";
+    return name + " (" + std::to_string(m.spp) + " spp" + (large.empty() ? "" : ", " + large) + ")";
 }
 
 } // namespace

@@ -61,7 +61,8 @@ private:
 /// What the afn method says about a frame's path (afntool --info and the per-frame log):
 /// "model color+albedo+normal, single-frame (no temporal branch: no motion or position); not
 /// used: depth"; a model trained at more than 1 spp is named with its count ("model
-/// color+albedo+normal+depth+temporal (16 spp), temporal").
+/// color+albedo+normal+depth+temporal (16 spp), temporal"), AFN large as such ("(64 spp, AFN
+/// large)"; it reads no temporal accumulation even where its input set has the history).
 std::string describeChoice(const InputSet& available, const Model& used);
 /// The same for an input set alone (feature-only runs, where no model is chosen).
 std::string describePath(const InputSet& available, const InputSet& used);

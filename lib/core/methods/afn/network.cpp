@@ -35,9 +35,16 @@ void Network::load(const nn::WeightsArchive& a)
         m_variant = Variant::OneSpp;
     else if (v == "ta")
         m_variant = Variant::Ta;
+    else if (v == "large")
+        m_variant = Variant::Large;
     else
         throwInvalidArgument(
             "invalid or corrupted weights (" + a.source() + "): unknown variant '" + v + "'");
+    if (m_variant == Variant::Large) {
+        m_large.load(a);
+        m_loaded = true;
+        return;
+    }
     // Widths follow from the tensor shapes; each layer checks its input against its producer.
     m_enc1.load(a, "enc1", kInputChannels);
     m_enc2.load(a, "enc2", m_enc1.outChannels());
@@ -93,7 +100,7 @@ Inputs Network::checkInputs(const Inputs& given)
     if (!m_loaded)
         throwInvalidOperation("AFN: no weights loaded");
     Inputs in = given;
-    if (m_variant == Variant::OneSpp)
+    if (m_variant == Variant::OneSpp || m_variant == Variant::Large) // large reads no TA
         in.colorTa = in.color1;
     if (m_variant == Variant::Ta)
         in.color1 = in.colorTa;
@@ -139,6 +146,8 @@ void Network::fillInput(
 void Network::prepare(const Inputs& given)
 {
     const Inputs in = checkInputs(given);
+    if (m_variant == Variant::Large)
+        throwInvalidOperation("AFN large runs whole (run, runWholeFrame), not by stages");
     const int wp = paddedSize(m_width), hp = paddedSize(m_height);
     m_x.resize(wp, hp, kInputChannels);
     m_colorTa.resize(wp, hp, 3);
@@ -192,6 +201,8 @@ const char* Network::stageName(Stage s)
 
 double Network::stageFlop(Stage s) const
 {
+    if (m_variant == Variant::Large)
+        return m_large.stageFlop(static_cast<int>(s));
     const double full = static_cast<double>(paddedSize(m_width)) * paddedSize(m_height);
     const double half = full / 4, quarter = full / 16, eighth = full / 64;
     switch (s) {
@@ -216,6 +227,10 @@ void Network::runWholeFrame(const Inputs& in, Image& out)
     auto ms = [](Clock::time_point a, Clock::time_point b) {
         return std::chrono::duration<double, std::milli>(b - a).count();
     };
+    if (m_variant == Variant::Large) {
+        m_large.run(checkInputs(in), out, m_stageMs);
+        return;
+    }
     const Clock::time_point t0 = Clock::now();
     prepare(in);
     predict();

@@ -16,9 +16,12 @@
 // - runWholeFrame() = prepare, predict, filterAndFuse, refine, crop: every layer at frame size,
 //   kept for the tests (the intermediates below) and the per-stage Google benchmark.
 // The refinement runs in row strips with thread-local buffers in both (network_refine.cpp).
+// Weights with variant=large hold AFN large, another graph (network_large.h): run() and
+// runWholeFrame() then run it whole-frame, and the stage calls below are refused.
 #pragma once
 
 #include "base/image.h"
+#include "methods/afn/network_large.h"
 #include "nn/conv.h"
 #include "nn/weights.h"
 
@@ -27,8 +30,8 @@
 
 namespace afn::afnet {
 
-/// Ablation variants (paper Table 11); see training/afn/model.py.
-enum class Variant { Full, Fusion, OneSpp, Ta };
+/// Ablation variants (paper Table 11; training/afn/model.py) and AFN large (network_large.h).
+enum class Variant { Full, Fusion, OneSpp, Ta, Large };
 
 /// Network inputs, all W x H with the channel counts noted.
 struct Inputs {
@@ -61,7 +64,7 @@ public:
     /// non-zero pixel there are computed (runs of such blocks cut into stripes); the other rows
     /// take the cheap path, `out` = in.colorTa (the temporal accumulation, the input colour where
     /// there is no history). Computed rows are bit-identical to a run without mask (work=0 pixels
-    /// in them included).
+    /// in them included). AFN large computes every row whatever the mask.
     void run(const Inputs& in, Image& out, const Image* work = nullptr);
     /// The same result through the whole-frame stages; keeps the intermediates below.
     void runWholeFrame(const Inputs& in, Image& out);
@@ -71,6 +74,7 @@ public:
     int stripes() const { return m_stripes; }
 
     // The stages, callable one by one (benchmark): prepare + predict = kernel prediction.
+    // Not for AFN large (prepare() throws InvalidOperation).
     void prepare(const Inputs& in); ///< pad, tone map, build x and D(r_1spp)
     void predict(); ///< encoder-decoder up to d1
     void filterAndFuse(); ///< heads, softmax, filtering, fusion
@@ -100,6 +104,8 @@ public:
     const Image& filteredTa() const { return m_dTa; }
     const Image& alpha() const { return m_alpha; }
     const Image& filtered1Half() const { return m_d1Half; }
+    /// AFN large's graph and its intermediates (variant Large only).
+    const LargeNetwork& large() const { return m_large; }
 
 private:
     struct StripeWorkspace; // network_stripes.cpp
@@ -131,6 +137,7 @@ private:
     // Stripe workspaces of run(), reused across frames; copies of the Network share them (a
     // cache behind a mutex).
     std::shared_ptr<WorkspacePool> m_pool;
+    LargeNetwork m_large; ///< the graph of variant Large
 };
 
 } // namespace afn::afnet

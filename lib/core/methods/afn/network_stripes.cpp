@@ -176,6 +176,12 @@ void Network::run(const Inputs& given, Image& out, const Image* work)
     using Clock = std::chrono::steady_clock;
     const Clock::time_point start = Clock::now();
     const Inputs in = checkInputs(given);
+    if (m_variant == Variant::Large) { // whole frame, every row (network_large.h)
+        m_large.run(in, out, m_stageMs);
+        m_skippedRows = 0;
+        m_stripes = 1;
+        return;
+    }
     const int w = m_width, h = m_height, hp = paddedSize(h);
     const bool masked = work && !work->empty();
     if (masked && (work->width() != w || work->height() != h || work->channels() != 1))

@@ -4,7 +4,7 @@
 //             computed by the whole-frame stages (not striped: more memory per megapixel)
 //             (network.h). Refinement is a residual (o = i + ref(...)), so i is the network's own
 //             estimate before it; the weights are the same. Weights without a refinement
-//             (ablation variants) run as balanced.
+//             (ablation variants) and AFN large (network_large.h) run as balanced.
 //   balanced  the network as trained (Network::run), bit-identical to afn without the parameter.
 //   high      a self-ensemble over the flips the network was trained with (training/afn/dataset.py
 //             flips every crop horizontally and vertically, all inputs alike, normals unchanged):

@@ -5,6 +5,7 @@
 #include "base/exception.h"
 #include "methods/mrkp/kernels.h"
 #include "nn/pool.h"
+#include "nn/scale_fusion.h"
 
 #include <string>
 
@@ -102,7 +103,7 @@ void Network::run(const nn::BaselineFeatureViews& in, Image& out)
         m_head[l].run(nullptr, m_y[l], m_heads[l], false);
         applyKernels(m_color[l], m_heads[l], m_filtered[l]);
         if (l + 1 < kFilterLevels)
-            blendLevels(m_filtered[l], m_filtered[l + 1], m_heads[l]);
+            nn::fuseScales(m_filtered[l], m_filtered[l + 1], m_heads[l], kTaps);
         m_flop += px(l) * (m_head[l].flopPerPixel() + kTaps * (2.0 * 3 + 1));
     }
     nn::cropTo(m_filtered[0], in.colorTa->width(), in.colorTa->height(), out);

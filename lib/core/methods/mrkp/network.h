@@ -5,7 +5,7 @@
 //   e0 = relu(enc0(x)); e_l = relu(enc{l}(D e_{l-1}))                  l = 1..4 (1/16)
 //   y_4 = e_4; y_l = relu(dec{l}([relu(up{l}(y_{l+1})), e_l]))         up = 2x2 stride-2 transposed
 //   head_l = head{l}(y_l), 26 ch (25 kernel logits + blend logit)      l = 0, 1, 2
-//   filtering and level blending: methods/mrkp/kernels.h
+//   filtering: methods/mrkp/kernels.h; level blending: nn/scale_fusion.h
 // D = 2x2 average pooling.
 #pragma once
 
