@@ -228,10 +228,10 @@ void Filter::runStages()
         m_reprojector.compute(m_frame);
     if (m_stages.demodulate) {
         m_aux.finish(m_frame, reproject ? &m_reprojector : nullptr); // may rewrite the albedo
-        demodulate(m_frame, m_irradiance);
+        demodulate(m_frame, m_frame.color); // in place: the radiance is not read again
     }
     if (m_stages.accumulate)
-        m_accumulator.accumulate(m_reprojector, m_irradiance);
+        m_accumulator.accumulate(m_reprojector, m_frame.color);
 }
 
 void Filter::reportProgress(double fraction) const
@@ -279,8 +279,12 @@ void Filter::execute()
                     self.m_reprojector.takeGeometry(self.m_frame);
             }
         } keep { *this };
-        if (const Image* irr = outputBound() ? denoiseDemodulated(m_frame) : nullptr) {
+        const Image* irr = outputBound() ? denoiseDemodulated(m_frame) : nullptr;
+        const Image* rad = outputBound() && !irr ? denoiseRadiance(m_frame) : nullptr;
+        if (irr) {
             writeRemodulated(*irr);
+        } else if (rad) {
+            writeOutput(*rad);
         } else {
             m_output.resize(m_frame.width, m_frame.height, 3);
             denoise(m_frame, m_output);

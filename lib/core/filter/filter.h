@@ -129,6 +129,12 @@ protected:
     /// output (no frame-size radiance image, one pass less) and does not call denoise(). nullptr
     /// (the default): the base calls denoise(). Called only when "output" is bound.
     virtual const Image* denoiseDemodulated(const Frame& in) { return nullptr; }
+    /// Methods that keep their radiance result in an image of their own (e.g. as the next frame's
+    /// history) may return it here (3 channels, frame size): the base writes it into the bound
+    /// output and does not call denoise() (no frame-size copy in the base). nullptr (the
+    /// default): the base calls denoise(). Called only when "output" is bound and
+    /// denoiseDemodulated() returned nullptr.
+    virtual const Image* denoiseRadiance(const Frame& in) { return nullptr; }
     /// Drop the method's own temporal history (the stages' is dropped by the base).
     virtual void resetHistory() { }
     /// Report progress in [0, 1]; throws Cancelled when the callback asks to stop.
@@ -146,8 +152,17 @@ protected:
     /// caller bound it; `name` must be one of the type's features.
     void writeFeature(const std::string& name, const Image& image) const;
 
-    /// Results of the shared stages for the current frame.
-    const Image& irradiance() const { return m_irradiance; }
+    /// Results of the shared stages for the current frame. The demodulation runs in place:
+    /// irradiance() is the frame's colour buffer (Frame::color holds the irradiance once the
+    /// stage has run, issue 16: no second frame-size colour image).
+    const Image& irradiance() const { return m_frame.color; }
+    /// irradiance() itself, writable: a method that has read the irradiance may write its own
+    /// demodulated result (3 channels, frame size) in its place, e.g. as denoiseDemodulated()'s
+    /// result (no frame-size image of its own). Nothing reads the frame's colour after the method.
+    Image& irradianceForReuse() { return m_frame.color; }
+    /// The accumulation stage's scratch image (TemporalAccumulator::scratch()) for use within the
+    /// current frame; methods that ask for StageNeeds::accumulate only.
+    Image& accumulatorScratch() { return m_accumulator.scratch(); }
     const Reprojector& reprojector() const { return m_reprojector; }
     const TemporalAccumulator& accumulator() const { return m_accumulator; }
 
@@ -176,7 +191,6 @@ private:
     Image m_output;
     InputStats m_stats;
     std::string m_missingInputs;
-    Image m_irradiance;
     AuxPrefilter m_aux;
     Reprojector m_reprojector;
     TemporalAccumulator m_accumulator;

@@ -10,7 +10,9 @@
 //                  the previous frame: prev = (x + mx, y + my)
 //   alpha    1 ch  coverage, passed through to the output
 // Non-finite values in geometry buffers are replaced by 0 and counted; a pixel with a zero normal
-// never accepts history.
+// never accepts history. For methods that demodulate (StageNeeds::demodulate), the demodulation
+// stage overwrites `color` in place with the irradiance (stages/demodulate.h): the frame a method
+// sees then holds irradiance there (Filter::irradiance()), not radiance.
 #pragma once
 
 #include "base/image.h"

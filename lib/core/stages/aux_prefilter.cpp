@@ -105,8 +105,14 @@ void AuxPrefilter::prepare(Frame& f)
                 && std::max(m_report.albedoSpeckle, m_report.normalSpeckle) > kAuxNoisyShare);
         m_decided = true;
     }
-    if (!m_report.noisy)
+    if (!m_report.noisy) {
+        // A clean history never reads flags or prefilter buffers again: free them (issue 16:
+        // frame-size buffers kept only while in use), so they do not add to every later frame.
+        for (Image* img : { &m_albedoFlags, &m_normalFlags, &m_depthFlags, &m_share, &m_mean,
+                 &m_tmp, &m_depthValid, &m_hist, &m_prevHist })
+            *img = Image();
         return;
+    }
 
     if (f.hasNormal()) {
         boxMean(m_normalFlags, m_tmp, m_share);

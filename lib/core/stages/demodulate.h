@@ -23,7 +23,9 @@ constexpr float kAlbedoEpsilon = 1.0f / 1024.0f;
 /// Largest irradiance value kept (squares stay below FLT_MAX).
 constexpr float kMaxIrradiance = 1e15f;
 
-/// Write the frame's demodulated colour (3 channels, frame size) into `irradiance`.
+/// Write the frame's demodulated colour (3 channels, frame size) into `irradiance`, which may be
+/// frame.color itself (in place: each value is read before it is written; the Filter base does
+/// this, so that a frame holds one colour image).
 void demodulate(const Frame& frame, Image& irradiance);
 
 /// Write `irradiance` (3 channels) times the frame's albedo factor into `radiance` (3 channels).

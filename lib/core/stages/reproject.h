@@ -184,4 +184,38 @@ template <int C> inline float gatherHistory(const PixelTaps& t, const Image& pre
     return ws;
 }
 
+/// gatherHistory over any storage of the previous frame's values: `load(x, y, v)` writes the
+/// first C channels of pixel (x, y) into v (e.g. from structure-of-arrays planes); the same
+/// operations in the same order as gatherHistory, so the same result bit for bit.
+template <int C, typename Load>
+inline float gatherHistoryWith(const PixelTaps& t, Load&& load, float* out)
+{
+    for (int c = 0; c < C; ++c)
+        out[c] = 0.0f;
+    float ws = 0.0f, v[C];
+    if (!t.box) {
+        for (int k = 0; k < 4; ++k) {
+            if (!(t.mask & (1u << k)) || !(t.w[k] > 0.0f))
+                continue;
+            load(t.x0 + (k & 1), t.y0 + (k >> 1), v);
+            for (int c = 0; c < C; ++c)
+                out[c] += t.w[k] * v[c];
+            ws += t.w[k];
+        }
+    } else {
+        for (int k = 0; k < 9; ++k) {
+            if (!(t.mask & (1u << k)))
+                continue;
+            load(t.x0 + k % 3 - 1, t.y0 + k / 3 - 1, v);
+            for (int c = 0; c < C; ++c)
+                out[c] += v[c];
+            ws += 1.0f;
+        }
+    }
+    if (ws > 0.0f)
+        for (int c = 0; c < C; ++c)
+            out[c] /= ws;
+    return ws;
+}
+
 } // namespace afn

@@ -35,6 +35,11 @@ public:
     const Image& color() const { return m_color; }
     /// History length of the last frame (1 ch; 1 = reset this frame).
     const Image& historyLength() const { return m_spp; }
+    /// The previous frame's colour buffer, which nothing reads until the next accumulate()
+    /// overwrites it: scratch a method may use within the current frame (any shape; contents
+    /// unspecified, not kept across frames). Lending it saves the method a frame-size image
+    /// (issue 16).
+    Image& scratch() { return m_prevColor; }
 
 private:
     float m_alphaMin = 0.2f;

@@ -1,6 +1,8 @@
 # SPDX-License-Identifier: Apache-2.0
-# The C API's contract (every call's error state) and the metrics through the C API.
+# The C API's contract (every call's error state), the metrics through the C API, and the
+# frame-size heap per pixel of the main methods (test_api_memory: docs/performance.md).
 afn_add_gtest(test_api SOURCES unit/api/test_api.cpp LIBS afn)
 afn_add_gtest(test_metrics_api SOURCES unit/api/test_metrics_api.cpp LIBS afn)
 afn_add_gtest(test_api_missing_inputs SOURCES unit/api/test_api_missing_inputs.cpp LIBS afn)
 afn_add_gtest(test_api_quality SOURCES unit/api/test_api_quality.cpp LIBS afn)
+afn_add_gtest(test_api_memory SOURCES unit/api/test_api_memory.cpp LIBS afn)

@@ -115,6 +115,24 @@ private:
     }
     void denoise(const Frame& in, Image& out) override
     {
+        Image& result = accumulatorScratch();
+        if (run(in, result))
+            m_inputs.radiance(in, result, out);
+    }
+    // The network writes into the accumulation stage's scratch image, its result becomes the
+    // radiance in place and the base writes it into the bound output (issue 16: no frame-size
+    // result or radiance image of afn's or the base's own).
+    const Image* denoiseRadiance(const Frame& in) override
+    {
+        Image& result = accumulatorScratch();
+        run(in, result);
+        m_inputs.radiance(in, result, result);
+        return &result;
+    }
+    /// Prepare the inputs (and write the feature outputs) and, when "output" is bound, run the
+    /// network into `result`; false when only features were asked for.
+    bool run(const Frame& in, Image& result)
+    {
         reportProgress(0.1);
         // The model for this frame's inputs (model_set.h); feature-only runs (training data)
         // prepare the inputs of a model for exactly the frame's input set.
@@ -134,12 +152,12 @@ private:
         writeFeature("normal01", m_inputs.normal01());
         writeFeature("depth01", m_inputs.depth01());
         if (!outputBound())
-            return; // only the network's inputs were asked for
+            return false; // only the network's inputs were asked for
         // Every model runs through the same quality tier (quality_tiers.h) and work skipping
         // (network.h: skipped stripes take inputs().colorTa, the model's own TA input).
-        m_tiers.run(m_quality, m_model->net, m_inputs.inputs(), m_result, &in.work);
+        m_tiers.run(m_quality, m_model->net, m_inputs.inputs(), result, &in.work);
         reportProgress(0.95);
-        m_inputs.radiance(in, m_result, out);
+        return true;
     }
 
     Settings m_settings;
@@ -149,7 +167,6 @@ private:
     Model* m_model = nullptr; ///< the last frame's (in m_models)
     std::string m_path; ///< describePath() of the last frame
     NetworkInputs m_inputs;
-    Image m_result;
 };
 
 std::unique_ptr<Filter> create(const FilterType& t, const Device& device)

@@ -27,11 +27,13 @@ void NetworkInputs::prepare(
     m_use = use;
     m_color1 = &irradiance;
     m_colorTa = use.temporal ? &accumulated : &irradiance;
-    m_albedo.resize(in.width, in.height, 3);
     if (use.albedo) {
-        std::copy(in.albedo.data(), in.albedo.data() + in.albedo.size(), m_albedo.data());
+        m_albedo = &in.albedo; // the frame outlives the inputs (prepare's contract)
+        m_ones = Image();
     } else {
-        m_albedo.fill(1.0f);
+        m_ones.resize(in.width, in.height, 3);
+        m_ones.fill(1.0f);
+        m_albedo = &m_ones;
         if (in.hasAlbedo()) {
             // A model without albedo filters the colour itself (training/afn/input_sets.py mask).
             undemodulate(in, irradiance, m_colour);

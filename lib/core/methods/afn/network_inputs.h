@@ -21,24 +21,28 @@ namespace afn::afnet {
 class NetworkInputs {
 public:
     /// Assemble the inputs of `in` for a model of input set `use` (covered by the frame's), from
-    /// the shared stages' irradiance and temporal accumulation (both must outlive the inputs).
+    /// the shared stages' irradiance and temporal accumulation (these and `in` must outlive the
+    /// inputs).
     void prepare(
         const Frame& in, const InputSet& use, const Image& irradiance, const Image& accumulated);
-    Inputs inputs() const { return { m_color1, m_colorTa, &m_albedo, &m_normal01, &m_depth01 }; }
+    Inputs inputs() const { return { m_color1, m_colorTa, m_albedo, &m_normal01, &m_depth01 }; }
     const Image& color1() const { return *m_color1; }
     const Image& colorTa() const { return *m_colorTa; }
-    const Image& albedo() const { return m_albedo; }
+    const Image& albedo() const { return *m_albedo; }
     const Image& normal01() const { return m_normal01; }
     const Image& depth01() const { return m_depth01; }
     /// The radiance of the network output `result`: remodulated by the albedo when the model
-    /// uses it, else clamped to [0, kMaxIrradiance] as the remodulation does.
+    /// uses it, else clamped to [0, kMaxIrradiance] as the remodulation does. `out` may be
+    /// `result` (in place).
     void radiance(const Frame& in, const Image& result, Image& out) const;
 
 private:
     InputSet m_use;
     const Image* m_color1 = nullptr;
     const Image* m_colorTa = nullptr;
-    Image m_colour, m_colourTa, m_albedo, m_normal01, m_depth01;
+    /// The frame's albedo itself when the model uses it (no copy, issue 16), else m_ones.
+    const Image* m_albedo = nullptr;
+    Image m_colour, m_colourTa, m_ones, m_normal01, m_depth01;
 };
 
 } // namespace afn::afnet

@@ -21,7 +21,13 @@ private:
     void resetHistory() override { m_bmfr.reset(); }
     void denoise(const Frame& in, Image& out) override
     {
-        m_bmfr.process(in, reprojector(), accumulator(), out);
+        out = m_bmfr.process(in, reprojector(), accumulator(), accumulatorScratch());
+    }
+    // The base writes the denoiser's own output image (the TAA history, or the accumulation's
+    // scratch without TAA) into the bound output.
+    const Image* denoiseRadiance(const Frame& in) override
+    {
+        return &m_bmfr.process(in, reprojector(), accumulator(), accumulatorScratch());
     }
 
     Denoiser m_bmfr;

@@ -55,15 +55,19 @@ class Denoiser {
 public:
     void setSettings(const Settings& s) { m_settings = s; }
     void reset();
-    /// Denoise frame `f` into remodulated radiance `out` (3 ch), from the shared stages' results:
-    /// the taps of this frame and the temporal accumulation of its demodulated colour.
-    void process(
-        const Frame& f, const Reprojector& taps, const TemporalAccumulator& ta, Image& out);
+    /// Denoise frame `f` into remodulated radiance (3 ch, returned; valid until the next call and
+    /// while `scratch` is unchanged), from the shared stages' results: the taps of this frame and
+    /// the temporal accumulation of its demodulated colour. `scratch` is a frame-size image the
+    /// caller lends for this frame (TemporalAccumulator::scratch()).
+    const Image& process(
+        const Frame& f, const Reprojector& taps, const TemporalAccumulator& ta, Image& scratch);
 
 private:
     Settings m_settings;
     bool m_hasHistory = false;
-    Image m_regressed, m_filtered, m_prevFiltered, m_radiance, m_prevOutput;
+    /// Histories: m_filtered (second accumulation), m_output (TAA, the last output); scratch:
+    /// m_spare and the caller's (regression, then the remodulated radiance; pipeline.cpp).
+    Image m_filtered, m_spare, m_output;
 };
 
 } // namespace afn::bmfr

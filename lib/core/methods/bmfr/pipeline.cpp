@@ -16,30 +16,36 @@ void Denoiser::reset()
     m_hasHistory = false;
 }
 
-void Denoiser::process(
-    const Frame& f, const Reprojector& taps, const TemporalAccumulator& ta, Image& out)
+const Image& Denoiser::process(
+    const Frame& f, const Reprojector& taps, const TemporalAccumulator& ta, Image& scratch)
 {
+    // Four frame-size buffers (issue 16): m_filtered and m_output hold the histories between
+    // frames, m_spare and the caller's `scratch` are free. Each frame: regression -> `scratch`;
+    // second accumulation -> m_spare (the old m_filtered becomes the spare it reads); remodulated
+    // radiance -> `scratch` (the regression is dead by then); TAA -> the spare, which becomes
+    // m_output.
+    Image& regressed = scratch;
     if (f.hasWorkMask()) {
         const WorkRegion region = WorkRegion::fromMask(f.work).dilated(kWorkMargin);
-        regression(f, ta.color(), m_settings, f.frameIndex, m_regressed, &region);
+        regression(f, ta.color(), m_settings, f.frameIndex, regressed, &region);
     } else {
-        regression(f, ta.color(), m_settings, f.frameIndex, m_regressed);
+        regression(f, ta.color(), m_settings, f.frameIndex, regressed);
     }
-
     // Second accumulation with the TA's taps: alpha = max(1/len, secondAlphaMin), len after TA.
-    std::swap(m_filtered, m_prevFiltered);
+    std::swap(m_filtered, m_spare);
+    const Image& prevFiltered = m_spare;
     m_filtered.resize(f.width, f.height, 3);
-    const bool history = m_hasHistory && taps.hasHistory() && m_prevFiltered.width() == f.width
-        && m_prevFiltered.height() == f.height;
+    const bool history = m_hasHistory && taps.hasHistory() && prevFiltered.width() == f.width
+        && prevFiltered.height() == f.height;
     const Image& len = ta.historyLength();
     parallelRows(f.height, [&](int y0, int y1) {
         for (int y = y0; y < y1; ++y)
             for (int x = 0; x < f.width; ++x) {
-                const float* c = m_regressed.at(x, y);
+                const float* c = regressed.at(x, y);
                 float* o = m_filtered.at(x, y);
                 float prev[3];
                 const float ws
-                    = history ? gatherHistory<3>(taps.taps(x, y), m_prevFiltered, prev) : 0.0f;
+                    = history ? gatherHistory<3>(taps.taps(x, y), prevFiltered, prev) : 0.0f;
                 const float n = len(x, y, 0);
                 if (ws > 0.0f && n > 1.0f) {
                     const float a = std::max(1.0f / n, m_settings.secondAlphaMin);
@@ -51,15 +57,14 @@ void Denoiser::process(
                 }
             }
     });
-
-    if (!m_settings.taa) {
-        remodulate(f, m_filtered, out);
-    } else {
-        remodulate(f, m_filtered, m_radiance);
-        taa(taps, m_radiance, m_prevOutput, m_settings.taaAlpha, out);
-        m_prevOutput = out;
-    }
     m_hasHistory = true;
+    Image& radiance = regressed; // the regression is not read again
+    remodulate(f, m_filtered, radiance);
+    if (!m_settings.taa)
+        return radiance;
+    taa(taps, radiance, m_output, m_settings.taaAlpha, m_spare);
+    std::swap(m_output, m_spare); // this frame's output is the next frame's TAA history
+    return m_output;
 }
 
 const ParamBinding<Settings>& settingsBinding()

@@ -20,7 +20,8 @@ void atrousRows(const AtrousArgs& a, int y0, int y1)
 void Denoiser::atrous(const Planes& in, Planes& out, int step, const WorkRegion* region)
 {
     const int w = in.width(), h = in.height();
-    out.resize(w, h, kColorPlanes);
+    if (out.width() != w || out.height() != h || out.count() < kColorPlanes)
+        out.resize(w, h, kColorPlanes); // a larger buffer (the integration planes) serves as is
     AtrousArgs a;
     a.in = &in;
     a.sigmaL = m_settings.sigmaL;

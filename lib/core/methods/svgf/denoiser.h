@@ -16,8 +16,9 @@
 // to sum(w c_q) / sum(w), so a constant image stays bit-exactly constant. The variance estimate and
 // the à-trous passes run 8 pixels at a time on planes (methods/svgf/kernels.h), the à-trous passes
 // 16 at a time with AVX-512 where the CPU has it (atrous_avx512.cpp); phiL is computed inside the
-// pass. Colour, moments and history length are kept as one 6-channel history image, gathered
-// through the reprojection's taps once per pixel.
+// pass. Colour, moments and history length are kept in the integration's planes, which are the
+// next frame's history, gathered through the reprojection's taps once per pixel (all six values
+// per tap; stages/reproject.h gatherHistoryWith).
 // Work skipping (Frame::work, methods/svgf/work_skip.cpp): the variance estimate and the à-trous
 // passes run only on the work region dilated by what the later passes read; the other pixels put
 // out the temporally integrated colour.
@@ -37,7 +38,8 @@ public:
     void setSettings(const Settings& s) { m_settings = s; }
     void reset();
     /// Filter demodulated `irradiance` (3 ch) of frame `f`, reprojected by `taps` (bilinear with
-    /// SVGF's box fallback), into `filtered` (3 ch, demodulated).
+    /// SVGF's box fallback), into `filtered` (3 ch, demodulated), which may be `irradiance` itself
+    /// (it is read only by the temporal integration, before `filtered` is written).
     void process(const Frame& f, const Image& irradiance, const Reprojector& taps, Image& filtered);
 
 private:
@@ -49,16 +51,18 @@ private:
     bool planRegions(const Frame& f);
     /// Copy colour planes into `dst` (3 ch) over `region` (null: everywhere).
     static void copyColor(const Planes& src, int firstPlane, const WorkRegion* region, Image& dst);
+    /// Copy 3 colour planes into planes firstDst.. of `dst` over `region` (null: everywhere).
+    static void copyPlanes(
+        const Planes& src, int firstPlane, const WorkRegion* region, Planes& dst, int firstDst);
 
     Settings m_settings;
     Guide m_guide;
     bool m_hasHistory = false;
-    /// Channels of the history: colour (3; the feedback iteration's output), moments l and l^2,
-    /// history length.
-    static constexpr int kHistoryChannels = 6;
-    Image m_history, m_prevHistory; ///< this frame's, the previous frame's
-    Planes m_integrated; ///< this frame's integration as planes (kernels.h IntegratedPlane)
-    Planes m_cv, m_cvTmp; ///< colour, variance, luminance ping-pong (kernels.h ColorPlane)
+    /// This frame's integration (kernels.h IntegratedPlane), which is also the next frame's
+    /// history: colour (the feedback iteration's output), moments l and l^2, history length; and
+    /// the previous frame's, the à-trous ping-pong once this frame's is made (temporal.cpp).
+    Planes m_integrated, m_prevIntegrated;
+    Planes m_cv; ///< colour, variance, luminance (kernels.h ColorPlane), the variance's output
     std::vector<int> m_rowOrder; ///< à-trous rows by y mod step (kernels.h AtrousArgs)
     WorkRegion m_work; ///< pixels that need denoising (bounding spans of Frame::work)
     std::vector<WorkRegion> m_passRegions; ///< per à-trous iteration, the pixels it computes

@@ -33,6 +33,7 @@ public:
     }
     int width() const { return m_width; }
     int height() const { return m_height; }
+    int count() const { return m_count; }
     /// Floats from pixel x to pixel x of the next row.
     int stride() const { return m_stride; }
     /// Pixel 0 of row y of plane `plane`.

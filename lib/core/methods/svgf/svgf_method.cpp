@@ -24,15 +24,16 @@ private:
     {
         remodulate(in, *denoiseDemodulated(in), out);
     }
-    // The base remodulates straight into the bound output.
+    // The base remodulates straight into the bound output. The result takes the irradiance's
+    // place (read only by the temporal integration, before it is written).
     const Image* denoiseDemodulated(const Frame& in) override
     {
-        m_svgf.process(in, irradiance(), reprojector(), m_filtered);
-        return &m_filtered;
+        Image& filtered = irradianceForReuse();
+        m_svgf.process(in, irradiance(), reprojector(), filtered);
+        return &filtered;
     }
 
     Denoiser m_svgf;
-    Image m_filtered;
 };
 
 } // namespace

@@ -16,20 +16,37 @@ void Denoiser::reset()
     m_hasHistory = false;
 }
 
+namespace {
+
+/// The history's channels (colour, moments l and l^2, history length) in the integrated planes.
+constexpr int kHistoryPlanes[]
+    = { kIntRed, kIntGreen, kIntBlue, kMoment1, kMoment2, kHistoryLength };
+constexpr int kHistoryChannels = 6;
+
+} // namespace
+
 void Denoiser::integrate(const Image& irr, const Reprojector& taps)
 {
     const int w = irr.width(), h = irr.height();
-    std::swap(m_history, m_prevHistory);
-    m_history.resize(w, h, kHistoryChannels);
+    std::swap(m_integrated, m_prevIntegrated);
     m_integrated.resize(w, h, kIntegratedPlanes);
-    const bool history = m_hasHistory && taps.hasHistory() && m_prevHistory.width() == w
-        && m_prevHistory.height() == h;
+    const bool history = m_hasHistory && taps.hasHistory() && m_prevIntegrated.width() == w
+        && m_prevIntegrated.height() == h && m_prevIntegrated.count() == kIntegratedPlanes;
+    const Planes& prevPlanes = m_prevIntegrated;
     parallelRows(h, [&](int y0, int y1) {
+        const float* prevRow[kHistoryChannels] = {};
+        auto load = [&](int x, int y, float* v) {
+            for (int k = 0; k < kHistoryChannels; ++k)
+                v[k] = prevPlanes.row(kHistoryPlanes[k], y)[x];
+        };
         for (int y = y0; y < y1; ++y) {
             const bool identity = history && taps.identityRow(y);
             float* planes[kIntegratedPlanes];
             for (int k = 0; k < kIntegratedPlanes; ++k)
                 planes[k] = m_integrated.row(k, y);
+            if (history)
+                for (int k = 0; k < kHistoryChannels; ++k)
+                    prevRow[k] = prevPlanes.row(kHistoryPlanes[k], y);
             for (int x = 0; x < w; ++x) {
                 const float* c = irr.at(x, y);
                 const float l = luminance(c);
@@ -38,14 +55,13 @@ void Denoiser::integrate(const Image& irr, const Reprojector& taps)
                 float prev[kHistoryChannels];
                 float ws = 0.0f;
                 if (identity && taps.ownPixelAccepted(x, y)) { // the gather's result, undecoded
-                    const float* p = m_prevHistory.at(x, y);
                     for (int k = 0; k < kHistoryChannels; ++k)
-                        prev[k] = p[k];
+                        prev[k] = prevRow[k][x];
                     ws = 1.0f;
                 } else if (history) {
-                    ws = gatherHistory<kHistoryChannels>(taps.taps(x, y), m_prevHistory, prev);
+                    ws = gatherHistoryWith<kHistoryChannels>(taps.taps(x, y), load, prev);
                 }
-                float* o = m_history.at(x, y);
+                float o[kHistoryChannels];
                 if (ws > 0.0f) {
                     const float len = std::min(prev[5] + 1.0f, 255.0f);
                     const float a = std::max(m_settings.alpha, 1.0f / len);
@@ -62,12 +78,9 @@ void Denoiser::integrate(const Image& irr, const Reprojector& taps)
                     o[4] = m[1];
                     o[5] = 1.0f;
                 }
-                for (int k = 0; k < 3; ++k)
-                    planes[kIntRed + k][x] = o[k];
+                for (int k = 0; k < kHistoryChannels; ++k)
+                    planes[kHistoryPlanes[k]][x] = o[k];
                 planes[kIntLuminance][x] = luminance(o);
-                planes[kMoment1][x] = o[3];
-                planes[kMoment2][x] = o[4];
-                planes[kHistoryLength][x] = o[5];
             }
         }
     });
@@ -94,20 +107,26 @@ void Denoiser::process(const Frame& f, const Image& irr, const Reprojector& taps
     integrate(irr, taps);
     const bool skip = planRegions(f);
     estimateVariance(skip ? &m_varianceRegion : nullptr);
-    // m_history's colour is the feedback slot (the history of the next integrate()): it keeps the
-    // unfiltered integrated colour unless iteration feedbackTap overwrites it (with skipping: over
-    // the pixels that iteration computed, exact ones only).
+    filtered.resize(f.width, f.height, 3); // may be `irr`, which is not read again
+    if (skip) // the cheap path: the temporally integrated colour (before the feedback below)
+        copyColor(m_integrated, kIntRed, nullptr, filtered);
+    // The à-trous ping-pong: m_cv and the previous frame's integration, which nothing reads once
+    // this frame's is made (issue 16: no frame-size buffer of its own); its pads are zero as
+    // every kernel writes in-image pixels only. m_integrated's colour planes are the feedback
+    // slot (the history of the next integrate()): they keep the unfiltered integrated colour
+    // unless iteration feedbackTap overwrites them (with skipping: over the pixels that
+    // iteration computed, exact ones only).
+    m_prevIntegrated.resize(f.width, f.height, kIntegratedPlanes);
+    Planes* in = &m_cv;
+    Planes* out = &m_prevIntegrated;
     for (int i = 0; i < m_settings.iterations; ++i) {
         const WorkRegion* region = skip ? &m_passRegions[i] : nullptr;
-        atrous(m_cv, m_cvTmp, 1 << i, region);
-        std::swap(m_cv, m_cvTmp);
+        atrous(*in, *out, 1 << i, region);
+        std::swap(in, out);
         if (i == m_settings.feedbackTap)
-            copyColor(m_cv, kRed, region, m_history);
+            copyPlanes(*in, kRed, region, m_integrated, kIntRed);
     }
-    filtered.resize(f.width, f.height, 3);
-    if (skip) // the cheap path: the temporally integrated colour, then the work region's result
-        copyColor(m_integrated, kIntRed, nullptr, filtered);
-    copyColor(m_cv, kRed, skip ? &m_work : nullptr, filtered);
+    copyColor(*in, kRed, skip ? &m_work : nullptr, filtered);
 }
 
 } // namespace afn::svgf

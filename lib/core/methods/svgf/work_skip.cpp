@@ -18,6 +18,8 @@
 #include "methods/svgf/denoiser.h"
 #include "methods/svgf/kernels.h"
 
+#include <algorithm>
+
 namespace afn::svgf {
 
 namespace {
@@ -55,6 +57,20 @@ void Denoiser::copyColor(const Planes& src, int firstPlane, const WorkRegion* re
                 for (int x = x0; x < x1; ++x)
                     dst(x, y, k) = c[x];
             }
+        }
+    });
+}
+
+void Denoiser::copyPlanes(
+    const Planes& src, int firstPlane, const WorkRegion* region, Planes& dst, int firstDst)
+{
+    const int w = dst.width();
+    parallelRows(dst.height(), [&](int y0, int y1) {
+        for (int y = y0; y < y1; ++y) {
+            const int x0 = region ? region->x0(y) : 0, x1 = region ? region->x1(y) : w;
+            for (int k = 0; k < 3; ++k)
+                std::copy(src.row(firstPlane + k, y) + x0, src.row(firstPlane + k, y) + x1,
+                    dst.row(firstDst + k, y) + x0);
         }
     });
 }
