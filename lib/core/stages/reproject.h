@@ -152,41 +152,10 @@ inline float blendHistory(float prev, float cur, float alpha)
     return std::fabs(v) < FLT_MIN ? 0.0f : v;
 }
 
-/// Renormalised history: out[c] = sum(w_k * prev(tap_k)[c]) / sum(w_k) over the accepted taps of
-/// `t` for the first C channels of `prev`. Returns sum(w_k); 0 means no history (out = 0).
-template <int C> inline float gatherHistory(const PixelTaps& t, const Image& prev, float* out)
-{
-    for (int c = 0; c < C; ++c)
-        out[c] = 0.0f;
-    float ws = 0.0f;
-    if (!t.box) {
-        for (int k = 0; k < 4; ++k) {
-            if (!(t.mask & (1u << k)) || !(t.w[k] > 0.0f))
-                continue;
-            const float* v = prev.at(t.x0 + (k & 1), t.y0 + (k >> 1));
-            for (int c = 0; c < C; ++c)
-                out[c] += t.w[k] * v[c];
-            ws += t.w[k];
-        }
-    } else {
-        for (int k = 0; k < 9; ++k) {
-            if (!(t.mask & (1u << k)))
-                continue;
-            const float* v = prev.at(t.x0 + k % 3 - 1, t.y0 + k / 3 - 1);
-            for (int c = 0; c < C; ++c)
-                out[c] += v[c];
-            ws += 1.0f;
-        }
-    }
-    if (ws > 0.0f)
-        for (int c = 0; c < C; ++c)
-            out[c] /= ws;
-    return ws;
-}
-
-/// gatherHistory over any storage of the previous frame's values: `load(x, y, v)` writes the
-/// first C channels of pixel (x, y) into v (e.g. from structure-of-arrays planes); the same
-/// operations in the same order as gatherHistory, so the same result bit for bit.
+/// Renormalised history over any storage of the previous frame's values: out[c] = sum(w_k *
+/// v_k[c]) / sum(w_k) over the accepted taps of `t`, where `load(x, y, v)` writes the first C
+/// channels of pixel (x, y) into v (an Image: gatherHistory; structure-of-arrays planes: svgf).
+/// Returns sum(w_k); 0 means no history (out = 0).
 template <int C, typename Load>
 inline float gatherHistoryWith(const PixelTaps& t, Load&& load, float* out)
 {
@@ -216,6 +185,19 @@ inline float gatherHistoryWith(const PixelTaps& t, Load&& load, float* out)
         for (int c = 0; c < C; ++c)
             out[c] /= ws;
     return ws;
+}
+
+/// gatherHistoryWith for the first C channels of `prev` (the same operations, so the same bits).
+template <int C> inline float gatherHistory(const PixelTaps& t, const Image& prev, float* out)
+{
+    return gatherHistoryWith<C>(
+        t,
+        [&prev](int x, int y, float* v) {
+            const float* p = prev.at(x, y);
+            for (int c = 0; c < C; ++c)
+                v[c] = p[c];
+        },
+        out);
 }
 
 } // namespace afn

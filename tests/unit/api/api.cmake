@@ -5,4 +5,6 @@ afn_add_gtest(test_api SOURCES unit/api/test_api.cpp LIBS afn)
 afn_add_gtest(test_metrics_api SOURCES unit/api/test_metrics_api.cpp LIBS afn)
 afn_add_gtest(test_api_missing_inputs SOURCES unit/api/test_api_missing_inputs.cpp LIBS afn)
 afn_add_gtest(test_api_quality SOURCES unit/api/test_api_quality.cpp LIBS afn)
-afn_add_gtest(test_api_memory SOURCES unit/api/test_api_memory.cpp LIBS afn)
+afn_add_gtest(test_api_memory SOURCES unit/api/test_api_memory.cpp
+    ${PROJECT_SOURCE_DIR}/cli/heap_counter.cpp LIBS afn)
+target_include_directories(test_api_memory PRIVATE ${PROJECT_SOURCE_DIR}/cli)

@@ -1,101 +1,20 @@
 // SPDX-License-Identifier: Apache-2.0
 // The library's frame-size buffers per pixel stay within docs/performance.md's accounting
-// ("Memory at 8K", issue 16). This program replaces the global operator new/delete (as afntool's
-// heap counter does) to count the peak live heap bytes while a filter runs three frames. The peak
-// is measured at two frame heights of the same width: the difference per added pixel leaves out
-// everything that does not grow with the height (thread pool, weights, afn's stripe workspaces,
-// per-row tables), so it is the bytes per pixel of the frame-size buffers alone. A method that
-// gains one more frame-size float image (4 bytes per pixel) or more fails here.
+// ("Memory at 8K", issue 16). This program links afntool's heap counter (cli/heap_counter.cpp, the
+// replaced global operator new/delete) to count the peak live heap bytes while a filter runs three
+// frames. The peak is measured at two frame heights of the same width: the difference per added
+// pixel leaves out everything that does not grow with the height (thread pool, weights, afn's
+// stripe workspaces, per-row tables), so it is the bytes per pixel of the frame-size buffers alone.
+// A method that gains one more frame-size float image (4 bytes per pixel) or more fails here.
 #include "afn/afn.hpp"
 
 #include <gtest/gtest.h>
 
-#include <atomic>
+#include "heap_counter.h" // afntool's counting operator new/delete (cli/heap_counter.cpp)
+
 #include <cstdint>
-#include <cstdlib>
-#include <malloc.h>
-#include <new>
 #include <string>
 #include <vector>
-
-namespace {
-
-std::atomic<std::size_t> g_live { 0 }, g_peak { 0 };
-
-void* countedAllocate(std::size_t n, std::size_t align)
-{
-    void* p = nullptr;
-    if (align <= alignof(std::max_align_t))
-        p = std::malloc(n ? n : 1);
-    else if (posix_memalign(&p, align, n ? n : 1) != 0)
-        p = nullptr;
-    if (!p)
-        throw std::bad_alloc();
-    const std::size_t live = g_live.fetch_add(malloc_usable_size(p)) + malloc_usable_size(p);
-    std::size_t peak = g_peak.load(std::memory_order_relaxed);
-    while (live > peak && !g_peak.compare_exchange_weak(peak, live))
-        ;
-    return p;
-}
-
-void countedRelease(void* p)
-{
-    if (!p)
-        return;
-    g_live.fetch_sub(malloc_usable_size(p));
-    std::free(p);
-}
-
-} // namespace
-
-void* operator new(std::size_t n)
-{
-    return countedAllocate(n, 0);
-}
-void* operator new[](std::size_t n)
-{
-    return countedAllocate(n, 0);
-}
-void* operator new(std::size_t n, std::align_val_t a)
-{
-    return countedAllocate(n, static_cast<std::size_t>(a));
-}
-void* operator new[](std::size_t n, std::align_val_t a)
-{
-    return countedAllocate(n, static_cast<std::size_t>(a));
-}
-void operator delete(void* p) noexcept
-{
-    countedRelease(p);
-}
-void operator delete[](void* p) noexcept
-{
-    countedRelease(p);
-}
-void operator delete(void* p, std::size_t) noexcept
-{
-    countedRelease(p);
-}
-void operator delete[](void* p, std::size_t) noexcept
-{
-    countedRelease(p);
-}
-void operator delete(void* p, std::align_val_t) noexcept
-{
-    countedRelease(p);
-}
-void operator delete[](void* p, std::align_val_t) noexcept
-{
-    countedRelease(p);
-}
-void operator delete(void* p, std::size_t, std::align_val_t) noexcept
-{
-    countedRelease(p);
-}
-void operator delete[](void* p, std::size_t, std::align_val_t) noexcept
-{
-    countedRelease(p);
-}
 
 namespace {
 
@@ -135,8 +54,8 @@ std::size_t peakBytes(const std::string& method, int height)
         position[i * 3 + 1] = 1.0f - (y + 0.5f) / height * 2.0f;
         position[i * 3 + 2] = -5.0f;
     }
-    const std::size_t base = g_live.load();
-    g_peak.store(base);
+    const std::size_t base = afntool::heap::liveBytes();
+    afntool::heap::resetPeak();
     {
         afn::DeviceRef device = afn::newDevice();
         device.set("numThreads", 1);
@@ -162,7 +81,7 @@ std::size_t peakBytes(const std::string& method, int height)
             EXPECT_EQ(device.getError(&message), afn::Error::None) << method << ": " << message;
         }
     }
-    return g_peak.load() - base;
+    return afntool::heap::peakBytes() - base;
 }
 
 class ApiMemory : public testing::TestWithParam<const char*> { };
