@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: Apache-2.0
 // Packed 3-float pixels (RGB, XYZ) in AVX-512 kernels: one channel of 16 pixels held in three
 // vectors (48 floats), for the kernel files that include cpu/avx512.h (filter/gather_avx512.cpp,
-// stages/aux_noise_avx512.cpp, stages/reproject_avx512.cpp). Pure lane moves: no arithmetic.
+// stages/aux_noise_avx512.cpp, stages/reproject_avx512.cpp,
+// stages/temporal_accumulation_avx512.cpp). Pure lane moves: no arithmetic.
 #pragma once
 
 #include "cpu/avx512.h"
@@ -31,6 +32,16 @@ AFN_CPU_AVX512_INLINE __m512 packedChannel(const float* p, int c)
 {
     const __m512 v[3] = { _mm512_loadu_ps(p), _mm512_loadu_ps(p + 16), _mm512_loadu_ps(p + 32) };
     return packedChannel(v, c);
+}
+
+/// Vector k (0..2) of the packed 3-float layout with each pixel's value of `perPixel` in its 3
+/// channels: lane j holds perPixel's lane (16 k + j) / 3.
+AFN_CPU_AVX512_INLINE __m512 spreadToPacked(__m512 perPixel, int k)
+{
+    alignas(64) int idx[16];
+    for (int j = 0; j < 16; ++j)
+        idx[j] = (16 * k + j) / 3;
+    return _mm512_permutexvar_ps(_mm512_load_si512(idx), perPixel);
 }
 
 } // namespace afn::cpu

@@ -17,7 +17,6 @@
 #include <atomic>
 #include <cfloat>
 #include <cmath>
-#include <type_traits>
 
 namespace afn {
 
@@ -28,51 +27,46 @@ struct Counters {
     std::atomic<std::int64_t> negative { 0 };
 };
 
-/// Copy `channels` channels of a binding into `dst`, replacing non-finite values by `replacement`.
-/// `perPixel(float* px)` then converts one pixel in place (or `perPixel(float* row, int width)`
-/// one packed row). A binding whose pixels are packed with
-/// exactly `channels` floats (the usual case) is copied row by row as one run of floats.
-template <typename PerPixel>
-void gather(const ImageBinding& b, int channels, Image& dst, Counters& counts, PerPixel&& perPixel,
-    float replacement = 0.0f)
+/// Copy `channels` channels of a binding into `dst` through gatherValue (non-finite values become
+/// op.replacement, then op's per-value operation), then `perRow(float* row, int width)` converts
+/// each packed row in place. A binding whose pixels are packed with exactly `channels` floats (the
+/// usual case) is copied row by row as one run of floats, with AVX-512F where the CPU has it.
+template <typename PerRow>
+void gather(const ImageBinding& b, int channels, Image& dst, Counters& counts, const GatherOp& op,
+    PerRow&& perRow)
 {
     const ImageView src = b.view();
     dst.resize(src.width, src.height, channels);
     const bool packed = src.channels == channels
         && src.pixelStride == static_cast<std::ptrdiff_t>(channels * sizeof(float));
+    const bool avx512 = cpu::activeIsa() == cpu::Isa::Avx512;
     parallelRows(src.height, [&](int y0, int y1) {
-        std::int64_t bad = 0;
+        GatherCounts local;
         for (int y = y0; y < y1; ++y) {
             float* d = dst.at(0, y);
-            if (packed) {
+            if (packed && avx512) {
+                gatherRunAvx512(src.at(0, y), d, src.width * channels, op, local);
+            } else if (packed) {
                 const float* s = src.at(0, y);
                 const int n = src.width * channels;
-                for (int i = 0; i < n; ++i) {
-                    const float v = s[i];
-                    const bool finite = std::fabs(v) <= FLT_MAX; // false for NaN and +-Inf
-                    d[i] = finite ? v : replacement;
-                    bad += finite ? 0 : 1;
-                }
+                for (int i = 0; i < n; ++i)
+                    d[i] = gatherValue(s[i], i % channels, op, local);
             } else {
                 for (int x = 0; x < src.width; ++x) {
                     const float* s = src.at(x, y);
-                    for (int c = 0; c < channels; ++c) {
-                        const float v = c < src.channels ? s[c] : 0.0f;
-                        const bool finite = std::isfinite(v);
-                        d[x * channels + c] = finite ? v : replacement;
-                        bad += finite ? 0 : 1;
-                    }
+                    for (int c = 0; c < channels; ++c)
+                        d[x * channels + c]
+                            = gatherValue(c < src.channels ? s[c] : 0.0f, c, op, local);
                 }
             }
-            if constexpr (std::is_invocable_v<PerPixel&, float*, int>)
-                perPixel(d, src.width); // a whole row at once
-            else
-                for (int x = 0; x < src.width; ++x)
-                    perPixel(d + x * channels);
+            perRow(d, src.width);
         }
-        counts.nonFinite += bad;
+        counts.nonFinite += local.nonFinite;
+        counts.negative += local.negative;
     });
 }
+
+void noRowConversion(float*, int) { }
 
 const ImageBinding* find(const std::map<std::string, ImageBinding>& m, const char* name)
 {
@@ -92,27 +86,14 @@ void gatherFrame(const std::map<std::string, ImageBinding>& images,
     f.width = color->width;
     f.height = color->height;
 
-    std::atomic<std::int64_t> negative { 0 };
-    gather(*color, 3, f.color, counts, [&](float* p) {
-        for (int c = 0; c < 3; ++c)
-            if (p[c] < 0.0f) {
-                p[c] = 0.0f;
-                ++negative; // rare; contention is not a concern
-            }
-    });
+    gather(*color, 3, f.color, counts, { GatherOp::Kind::NonNegative }, noRowConversion);
 
     // A non-finite albedo is unknown and becomes 1 (no demodulation): 0 would divide the colour by
     // the albedo floor and carry it, amplified 1024x, into the filters and the history.
+    // The clamp is std::fmin(std::fmax(p, 0), 1) for the finite values (-0 stays -0, as glibc's
+    // fmaxf(-0, 0) gives), without the two libm calls per channel (GatherOp::Kind::Unit).
     if (const ImageBinding* b = find(images, AFN_IMAGE_ALBEDO))
-        gather(
-            *b, 3, f.albedo, counts,
-            [](float* p) {
-                // std::fmin(std::fmax(p, 0), 1) for the finite values left here (-0 stays -0, as
-                // glibc's fmaxf(-0, 0) gives), without the two libm calls per channel.
-                for (int c = 0; c < 3; ++c)
-                    p[c] = p[c] < 0.0f ? 0.0f : (p[c] > 1.0f ? 1.0f : p[c]);
-            },
-            1.0f);
+        gather(*b, 3, f.albedo, counts, { GatherOp::Kind::Unit, 1.0f }, noRowConversion);
     else
         f.albedo = Image();
 
@@ -121,7 +102,7 @@ void gatherFrame(const std::map<std::string, ImageBinding>& images,
     f.normalSpace
         = conventions.normalSpace == Normals::World ? NormalSpace::World : NormalSpace::Camera;
     if (const ImageBinding* b = find(images, AFN_IMAGE_NORMAL))
-        gather(*b, 3, f.normal, counts, [zSign](float* row, int width) {
+        gather(*b, 3, f.normal, counts, {}, [zSign](float* row, int width) {
             int x = 0;
             if (cpu::activeIsa() == cpu::Isa::Avx512) // 16 at a time, the same operations
                 for (; x + 16 <= width; x += 16)
@@ -140,12 +121,12 @@ void gatherFrame(const std::map<std::string, ImageBinding>& images,
 
     f.depthKind = conventions.depthKind;
     if (const ImageBinding* b = find(images, AFN_IMAGE_DEPTH))
-        gather(*b, 1, f.depth, counts, [](float*) {});
+        gather(*b, 1, f.depth, counts, {}, noRowConversion);
     else
         f.depth = Image();
 
     if (const ImageBinding* b = find(images, AFN_IMAGE_POSITION))
-        gather(*b, 3, f.position, counts, [](float*) {});
+        gather(*b, 3, f.position, counts, {}, noRowConversion);
     else
         f.position = Image();
 
@@ -168,10 +149,7 @@ void gatherFrame(const std::map<std::string, ImageBinding>& images,
             sx = -sx;
             sy = -sy;
         }
-        gather(*b, 2, f.motion, counts, [sx, sy](float* p) {
-            p[0] *= sx;
-            p[1] *= sy;
-        });
+        gather(*b, 2, f.motion, counts, { GatherOp::Kind::Scale2, 0.0f, sx, sy }, noRowConversion);
     } else {
         f.motion = Image();
     }
@@ -183,14 +161,14 @@ void gatherFrame(const std::map<std::string, ImageBinding>& images,
             a.byteOffset += 3 * sizeof(float);
             a.format = AFN_FORMAT_FLOAT;
         }
-        gather(a, 1, f.alpha, counts, [](float*) {});
+        gather(a, 1, f.alpha, counts, {}, noRowConversion);
     } else {
         f.alpha = Image();
     }
 
     f.colorDemodulated = conventions.colorDemodulated;
     stats.nonFinite = counts.nonFinite;
-    stats.negative = negative;
+    stats.negative = counts.negative;
 }
 
 } // namespace afn

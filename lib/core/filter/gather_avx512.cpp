@@ -1,10 +1,13 @@
 // SPDX-License-Identifier: Apache-2.0
-// The gather's normal conversion, 16 pixels at a time with AVX-512F (filter/gather_avx512.h); the
-// function carries its own target attribute. Operation for operation the scalar code of
-// filter/gather.cpp: p.z * zSign, len = sqrt((x x + y y) + z z) without FMA, inv = 1 / len where
-// len > 1e-12 (else 0), each channel times inv (no FMA: compiled with -ffp-contract=off). The
-// lengths are computed on the channels taken apart; the products are done in the interleaved layout
-// with inv spread to the 3 channels.
+// The gather's AVX-512F kernels (filter/gather_avx512.h); the functions carry their own target
+// attribute.
+// - gatherRunAvx512: the copy with the non-finite replacement and the per-value operation
+//   (gatherValue), 16 values at a time; the counts are kept per lane and summed at the end.
+// - normalizeNormals16: operation for operation the scalar code of filter/gather.cpp: p.z * zSign,
+//   len = sqrt((x x + y y) + z z) without FMA, inv = 1 / len where len > 1e-12 (else 0), each
+//   channel times inv (no FMA: compiled with -ffp-contract=off). The lengths are computed on the
+//   channels taken apart; the products are done in the interleaved layout with inv spread to the 3
+//   channels.
 #include "filter/gather_avx512.h"
 #include "cpu/avx512.h"
 #include "cpu/avx512_rgb.h"
@@ -15,17 +18,55 @@ namespace afn {
 
 namespace {
 
-/// Lane j of vector k (of 3) holds channel (16 k + j) % 3 of pixel (16 k + j) / 3: spread the
-/// per-pixel values of `perPixel` so.
-AFN_CPU_AVX512_INLINE __m512 spread(__m512 perPixel, int k)
+template <GatherOp::Kind K>
+AFN_CPU_AVX512 void gatherRun(
+    const float* s, float* d, int n, const GatherOp& op, GatherCounts& counts)
 {
-    alignas(64) int idx[16];
-    for (int j = 0; j < 16; ++j)
-        idx[j] = (16 * k + j) / 3;
-    return _mm512_permutexvar_ps(_mm512_load_si512(idx), perPixel);
+    const __m512 rep = _mm512_set1_ps(op.replacement), zero = _mm512_set1_ps(0.0f),
+                 one = _mm512_set1_ps(1.0f), maxFinite = _mm512_set1_ps(FLT_MAX);
+    // Scale2: lane j scales by sx for even j, sy for odd j (runs start at a pixel, 16 is even).
+    const __m512 scale = _mm512_mask_blend_ps(0xAAAA, _mm512_set1_ps(op.sx), _mm512_set1_ps(op.sy));
+    const __m512i ones = _mm512_set1_epi32(1);
+    __m512i bad = _mm512_set1_epi32(0), negative = _mm512_set1_epi32(0);
+    for (int i = 0; i < n; i += 16) {
+        const __mmask16 m = n - i >= 16 ? static_cast<__mmask16>(0xFFFF)
+                                        : static_cast<__mmask16>((1u << (n - i)) - 1u);
+        __m512 v = _mm512_maskz_loadu_ps(m, s + i);
+        const __mmask16 finite = _mm512_cmp_ps_mask(_mm512_abs_ps(v), maxFinite, _CMP_LE_OQ);
+        bad = _mm512_mask_add_epi32(bad, static_cast<__mmask16>(m & ~finite), bad, ones);
+        v = _mm512_mask_blend_ps(finite, rep, v);
+        if constexpr (K == GatherOp::Kind::NonNegative) {
+            const __mmask16 neg = _mm512_mask_cmp_ps_mask(m, v, zero, _CMP_LT_OQ);
+            negative = _mm512_mask_add_epi32(negative, neg, negative, ones);
+            v = _mm512_mask_mov_ps(v, neg, zero);
+        } else if constexpr (K == GatherOp::Kind::Unit) {
+            const __mmask16 below = _mm512_cmp_ps_mask(v, zero, _CMP_LT_OQ);
+            const __mmask16 above = _mm512_cmp_ps_mask(v, one, _CMP_GT_OQ);
+            v = _mm512_mask_mov_ps(_mm512_mask_mov_ps(v, below, zero), above, one);
+        } else if constexpr (K == GatherOp::Kind::Scale2) {
+            v = _mm512_mul_ps(v, scale);
+        }
+        _mm512_mask_storeu_ps(d + i, m, v);
+    }
+    counts.nonFinite += _mm512_reduce_add_epi32(bad);
+    counts.negative += _mm512_reduce_add_epi32(negative);
 }
 
 } // namespace
+
+void gatherRunAvx512(const float* s, float* d, int n, const GatherOp& op, GatherCounts& counts)
+{
+    switch (op.kind) {
+    case GatherOp::Kind::Copy:
+        return gatherRun<GatherOp::Kind::Copy>(s, d, n, op, counts);
+    case GatherOp::Kind::NonNegative:
+        return gatherRun<GatherOp::Kind::NonNegative>(s, d, n, op, counts);
+    case GatherOp::Kind::Unit:
+        return gatherRun<GatherOp::Kind::Unit>(s, d, n, op, counts);
+    case GatherOp::Kind::Scale2:
+        return gatherRun<GatherOp::Kind::Scale2>(s, d, n, op, counts);
+    }
+}
 
 AFN_CPU_AVX512 void normalizeNormals16(float* p, float zSign)
 {
@@ -47,11 +88,12 @@ AFN_CPU_AVX512 void normalizeNormals16(float* p, float zSign)
     const __mmask16 ok = _mm512_cmp_ps_mask(len, _mm512_set1_ps(1e-12f), _CMP_GT_OQ);
     const __m512 inv = _mm512_maskz_div_ps(ok, _mm512_set1_ps(1.0f), len);
     for (int k = 0; k < 3; ++k)
-        _mm512_storeu_ps(p + 16 * k, _mm512_mul_ps(v[k], spread(inv, k)));
+        _mm512_storeu_ps(p + 16 * k, _mm512_mul_ps(v[k], cpu::spreadToPacked(inv, k)));
 }
 
 #else
 
+void gatherRunAvx512(const float*, float*, int, const GatherOp&, GatherCounts&) { }
 void normalizeNormals16(float*, float) { }
 
 #endif

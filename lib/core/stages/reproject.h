@@ -112,6 +112,9 @@ public:
         const TapBits& b = m_bits[static_cast<std::size_t>(y) * m_width + x];
         return b.mask == 1 && !b.box;
     }
+    /// ownPixelAccepted for the 16 pixels [x, x + 16) of row y, as a mask (bit j: pixel x + j).
+    /// AVX-512F only (cpu::activeIsa() == Avx512; stages/reproject_avx512.cpp).
+    std::uint32_t ownPixelsAccepted16(int x, int y) const;
     int width() const { return m_width; }
     int height() const { return m_height; }
 

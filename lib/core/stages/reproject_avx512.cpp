@@ -9,6 +9,7 @@
 // CMakeLists.txt), so the decisions are the same bit for bit.
 #include "cpu/avx512.h"
 #include "cpu/avx512_rgb.h"
+#include "stages/reproject.h"
 #include "stages/reproject_rows.h"
 
 namespace afn {
@@ -57,7 +58,22 @@ AFN_CPU_AVX512 IdentityDecision identityTaps16(const IdentityRow16& r)
     return d;
 }
 
+AFN_CPU_AVX512 std::uint32_t Reprojector::ownPixelsAccepted16(int x, int y) const
+{
+    // TapBits is 4 bytes, little-endian: mask in the low 16 bits, box in bits 16-23; accepted
+    // alone and not a box footprint: (bits & 0xFFFFFF) == 1, as ownPixelAccepted.
+    static_assert(sizeof(TapBits) == 4);
+    const __m512i b = _mm512_loadu_si512(&m_bits[static_cast<std::size_t>(y) * m_width + x]);
+    return _mm512_cmpeq_epi32_mask(
+        _mm512_and_si512(b, _mm512_set1_epi32(0xFFFFFF)), _mm512_set1_epi32(1));
+}
+
 #else
+
+std::uint32_t Reprojector::ownPixelsAccepted16(int, int) const
+{
+    return 0; // never called: activeIsa() is Portable without the AVX-512 kernels
+}
 
 IdentityDecision identityTaps16(const IdentityRow16&)
 {

@@ -3,6 +3,8 @@
 #include "stages/temporal_accumulation.h"
 
 #include "base/parallel.h"
+#include "cpu/isa.h"
+#include "stages/temporal_accumulation_avx512.h"
 
 #include <algorithm>
 #include <utility>
@@ -33,13 +35,14 @@ void TemporalAccumulator::accumulate(const Reprojector& taps, const Image& irr)
     m_spp.resize(w, h, 1);
     const bool history = m_hasHistory && taps.hasHistory() && m_prevColor.width() == w
         && m_prevColor.height() == h;
+    const bool avx512 = cpu::activeIsa() == cpu::Isa::Avx512;
     parallelRows(h, [&](int y0, int y1) {
         for (int y = y0; y < y1; ++y) {
             const bool identity = history && taps.identityRow(y);
             const float* c = irr.at(0, y);
             float* acc = m_color.at(0, y);
             float* spp = m_spp.at(0, y);
-            for (int x = 0; x < w; ++x, c += 3, acc += 3) {
+            auto pixel = [&](int x) {
                 float prev[3], sppS = 0.0f, ws = 0.0f;
                 if (identity && taps.ownPixelAccepted(x, y)) {
                     // A static camera's row, own pixel accepted: its previous value, no decoding.
@@ -53,17 +56,33 @@ void TemporalAccumulator::accumulate(const Reprojector& taps, const Image& irr)
                     ws = gatherHistory<3>(t, m_prevColor, prev);
                     gatherHistory<1>(t, m_prevSpp, &sppS);
                 }
+                float* a = acc + 3 * x;
+                const float* cx = c + 3 * x;
                 if (ws > 0.0f) {
                     const float alpha = std::max(1.0f / (sppS + 1.0f), m_alphaMin);
                     for (int k = 0; k < 3; ++k)
-                        acc[k] = blendHistory(prev[k], c[k], alpha);
+                        a[k] = blendHistory(prev[k], cx[k], alpha);
                     spp[x] = alpha < 1.0f ? std::min(sppS + 1.0f, kMaxHistoryLength) : 1.0f;
                 } else {
                     for (int k = 0; k < 3; ++k)
-                        acc[k] = c[k];
+                        a[k] = cx[k];
                     spp[x] = 1.0f;
                 }
-            }
+            };
+            int x = 0;
+            if (identity && avx512)
+                // 16 pixels at a time where all 16 took their own previous pixel (the same
+                // operations, stages/temporal_accumulation_avx512.h); any other block per pixel.
+                for (; x + 16 <= w; x += 16) {
+                    if (taps.ownPixelsAccepted16(x, y) == 0xFFFFu)
+                        blendOwnHistory16(c + 3 * x, m_prevColor.at(x, y), &m_prevSpp(x, y, 0),
+                            m_alphaMin, acc + 3 * x, spp + x);
+                    else
+                        for (int i = x; i < x + 16; ++i)
+                            pixel(i);
+                }
+            for (; x < w; ++x)
+                pixel(x);
         }
     });
     m_hasHistory = true;

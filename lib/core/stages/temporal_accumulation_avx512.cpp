@@ -1,0 +1,54 @@
+// SPDX-License-Identifier: Apache-2.0
+// The accumulation's blend on a static camera's rows, 16 pixels at a time with AVX-512F
+// (stages/temporal_accumulation_avx512.h); the function carries its own target attribute. The
+// operations are the scalar ones of stages/temporal_accumulation.cpp and blendHistory
+// (stages/reproject.h), lane by lane: 1 / (s + 1) (division, correctly rounded as the scalar one),
+// the max with alphaMin (no NaN can occur: the history length is finite), prev + alpha * (c - prev)
+// without FMA (compiled with -ffp-contract=off, see CMakeLists.txt), then |v| < FLT_MIN flushed to
+// 0. The per-pixel alpha is spread to the 3 channels of the packed layout by lane moves.
+#include "stages/temporal_accumulation_avx512.h"
+
+#include "cpu/avx512.h"
+#include "cpu/avx512_rgb.h"
+#include "stages/temporal_accumulation.h"
+
+#include <cfloat>
+
+namespace afn {
+
+#ifdef AFN_CPU_HAVE_AVX512
+
+AFN_CPU_AVX512 void blendOwnHistory16(
+    const float* c, const float* prev, const float* prevSpp, float alphaMin, float* acc, float* spp)
+{
+    const __m512 one = _mm512_set1_ps(1.0f);
+    const __m512 s = _mm512_loadu_ps(prevSpp);
+    const __m512 s1 = _mm512_add_ps(s, one);
+    // std::max(1 / (s + 1), alphaMin): alphaMin where 1 / (s + 1) < alphaMin.
+    const __m512 inv = _mm512_div_ps(one, s1);
+    const __m512 alphaMinV = _mm512_set1_ps(alphaMin);
+    const __m512 alpha
+        = _mm512_mask_mov_ps(inv, _mm512_cmp_ps_mask(inv, alphaMinV, _CMP_LT_OQ), alphaMinV);
+    // alpha < 1 ? min(s + 1, kMaxHistoryLength) : 1 (std::min(a, b) is b where b < a).
+    const __m512 cap = _mm512_set1_ps(kMaxHistoryLength);
+    const __m512 capped = _mm512_mask_mov_ps(s1, _mm512_cmp_ps_mask(cap, s1, _CMP_LT_OQ), cap);
+    _mm512_storeu_ps(
+        spp, _mm512_mask_mov_ps(one, _mm512_cmp_ps_mask(alpha, one, _CMP_LT_OQ), capped));
+    const __m512 flushBelow = _mm512_set1_ps(FLT_MIN), zero = _mm512_set1_ps(0.0f);
+    for (int k = 0; k < 3; ++k) {
+        const __m512 p = _mm512_loadu_ps(prev + 16 * k);
+        const __m512 cur = _mm512_loadu_ps(c + 16 * k);
+        const __m512 v
+            = _mm512_add_ps(p, _mm512_mul_ps(cpu::spreadToPacked(alpha, k), _mm512_sub_ps(cur, p)));
+        const __mmask16 tiny = _mm512_cmp_ps_mask(_mm512_abs_ps(v), flushBelow, _CMP_LT_OQ);
+        _mm512_storeu_ps(acc + 16 * k, _mm512_mask_mov_ps(v, tiny, zero));
+    }
+}
+
+#else
+
+void blendOwnHistory16(const float*, const float*, const float*, float, float*, float*) { }
+
+#endif
+
+} // namespace afn

@@ -1,0 +1,200 @@
+// SPDX-License-Identifier: Apache-2.0
+// The AVX-512 kernels of the gather (filter/gather_avx512.cpp: the copy with the non-finite
+// replacement, the colour's negative clamp, the albedo's [0, 1] clamp, the motion's scale) and of
+// the accumulation on a static camera's rows (stages/temporal_accumulation_avx512.cpp) give the
+// portable path's bits and counts: on buffers wide enough for several 16-value blocks and a tail,
+// with NaN, +-inf, -0, negative and out-of-range values, and for the accumulation with histories
+// from 1 to the 255 cap, blends that underflow, and blocks where some pixels took other taps. On a
+// CPU without AVX-512F both runs take the portable path and the test checks nothing beyond it
+// (said in the output).
+#include "cpu/isa.h"
+#include "filter/filter.h"
+#include "stages/temporal_accumulation.h"
+#include "test_methods_util.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstring>
+#include <iostream>
+#include <limits>
+#include <map>
+#include <vector>
+
+namespace {
+
+using afn::Frame;
+using afn::Image;
+using afn::cpu::Isa;
+using methods_test::Lcg;
+
+constexpr int W = 53, H = 7; // 3 blocks of 16 pixels and a tail; runs of 3 x 53 floats
+
+struct IsaScope {
+    explicit IsaScope(Isa isa)
+        : before(afn::cpu::activeIsa())
+    {
+        afn::cpu::forceIsa(isa);
+    }
+    ~IsaScope() { afn::cpu::forceIsa(before); }
+    Isa before;
+};
+
+bool haveAvx512()
+{
+    IsaScope s(Isa::Avx512);
+    return afn::cpu::activeIsa() == Isa::Avx512;
+}
+
+bool sameBits(float a, float b)
+{
+    return std::memcmp(&a, &b, sizeof a) == 0;
+}
+
+void expectSameBits(const Image& a, const Image& b, const char* what)
+{
+    ASSERT_EQ(a.width(), b.width()) << what;
+    ASSERT_EQ(a.channels(), b.channels()) << what;
+    for (int y = 0; y < a.height(); ++y)
+        for (int x = 0; x < a.width(); ++x)
+            for (int c = 0; c < a.channels(); ++c)
+                ASSERT_TRUE(sameBits(a(x, y, c), b(x, y, c)))
+                    << what << " at " << x << "," << y << " channel " << c << ": " << a(x, y, c)
+                    << " vs " << b(x, y, c);
+}
+
+/// Values around the gather's thresholds: NaN, +-inf, +-0, negative, above 1, ordinary.
+std::vector<float> awkwardValues(int channels, std::uint32_t seed)
+{
+    Lcg rng { seed };
+    const float inf = std::numeric_limits<float>::infinity();
+    std::vector<float> v(static_cast<std::size_t>(W) * H * channels);
+    for (float& x : v) {
+        const float r = rng.next();
+        x = r < -0.9f   ? std::numeric_limits<float>::quiet_NaN()
+            : r < -0.8f ? (r < -0.85f ? inf : -inf)
+            : r < -0.7f ? -0.0f
+            : r < -0.6f ? 0.0f
+            : r < -0.4f ? -0.5f * std::fabs(rng.next())
+            : r > 0.8f  ? 1.0f + 3.0f * std::fabs(rng.next())
+                        : std::fabs(rng.next());
+    }
+    return v;
+}
+
+afn::ImageBinding packed(std::vector<float>& v, int channels)
+{
+    afn::ImageBinding b;
+    b.ptr = v.data();
+    b.format = static_cast<AFNFormat>(channels);
+    b.width = W;
+    b.height = H;
+    b.pixelStride = static_cast<std::ptrdiff_t>(channels * sizeof(float));
+    b.rowStride = b.pixelStride * W;
+    return b;
+}
+
+TEST(GatherAccumulateIsa, GatherMatchesThePortablePath)
+{
+    if (!haveAvx512())
+        std::cout << "[ info ] this CPU has no AVX-512F: both runs take the portable path\n";
+    std::vector<float> color = awkwardValues(3, 1u), albedo = awkwardValues(3, 2u),
+                       normal = awkwardValues(3, 3u), depth = awkwardValues(1, 4u),
+                       position = awkwardValues(3, 5u), motion = awkwardValues(2, 6u);
+    const std::map<std::string, afn::ImageBinding> images { { AFN_IMAGE_COLOR, packed(color, 3) },
+        { AFN_IMAGE_ALBEDO, packed(albedo, 3) }, { AFN_IMAGE_NORMAL, packed(normal, 3) },
+        { AFN_IMAGE_DEPTH, packed(depth, 1) }, { AFN_IMAGE_POSITION, packed(position, 3) },
+        { AFN_IMAGE_MOTION, packed(motion, 2) } };
+    afn::InputConventions conv;
+    conv.motionUnits = afn::InputConventions::MotionUnits::Ndc; // sx != sy
+    conv.motionYUp = true; // a negative scale: 0 * sy = -0
+    Frame v, p;
+    afn::InputStats sv, sp;
+    {
+        IsaScope s(Isa::Avx512);
+        afn::gatherFrame(images, conv, v, sv);
+    }
+    {
+        IsaScope s(Isa::Portable);
+        afn::gatherFrame(images, conv, p, sp);
+    }
+    EXPECT_EQ(sv.nonFinite, sp.nonFinite);
+    EXPECT_EQ(sv.negative, sp.negative);
+    EXPECT_GT(sp.nonFinite, 0);
+    EXPECT_GT(sp.negative, 0);
+    expectSameBits(v.color, p.color, "color");
+    expectSameBits(v.albedo, p.albedo, "albedo");
+    expectSameBits(v.normal, p.normal, "normal");
+    expectSameBits(v.depth, p.depth, "depth");
+    expectSameBits(v.position, p.position, "position");
+    expectSameBits(v.motion, p.motion, "motion");
+    // The rules themselves, on the portable result: colour >= 0 or -0, albedo in [0, 1], all
+    // finite.
+    for (int y = 0; y < H; ++y)
+        for (int x = 0; x < W; ++x)
+            for (int c = 0; c < 3; ++c) {
+                EXPECT_FALSE(p.color(x, y, c) < 0.0f);
+                EXPECT_TRUE(p.albedo(x, y, c) >= 0.0f && p.albedo(x, y, c) <= 1.0f);
+                EXPECT_TRUE(std::isfinite(p.position(x, y, c)));
+            }
+}
+
+/// A static camera's frame: positions fixed, some pixels moved this frame (their own tap is
+/// rejected or they take other taps, so blocks mix both paths); colour with tiny values whose blend
+/// underflows below FLT_MIN.
+Frame staticFrame(int t)
+{
+    Lcg rng { static_cast<std::uint32_t>(1000 + t) };
+    Frame f;
+    f.width = W;
+    f.height = H;
+    f.color = Image(W, H, 3);
+    f.position = Image(W, H, 3);
+    f.normal = Image(W, H, 3, 0.0f);
+    f.motion = Image(W, H, 2, 0.0f);
+    for (int y = 0; y < H; ++y)
+        for (int x = 0; x < W; ++x) {
+            const float r = rng.next();
+            f.position(x, y, 0) = 0.1f * x;
+            f.position(x, y, 1) = 0.1f * y;
+            f.position(x, y, 2) = r > 0.93f ? 3.0f : 0.0f; // moved: history reset there
+            f.normal(x, y, 2) = 1.0f;
+            for (int c = 0; c < 3; ++c) {
+                const float q = std::fabs(rng.next());
+                f.color(x, y, c) = y == 0 ? 3e-38f * q : (x % 11 == 0 ? 0.0f : 4.0f * q);
+            }
+        }
+    return f;
+}
+
+TEST(GatherAccumulateIsa, StaticRowAccumulationMatchesThePortablePath)
+{
+    for (float alphaMin : { 0.0f, 0.2f }) {
+        afn::Reprojector taps;
+        afn::TemporalAccumulator v, p;
+        v.setSettings({ alphaMin });
+        p.setSettings({ alphaMin });
+        int capped = 0;
+        for (int t = 0; t < 300; ++t) { // past the 255 cap
+            const Frame f = staticFrame(t);
+            taps.compute(f);
+            {
+                IsaScope s(Isa::Avx512);
+                v.accumulate(taps, f.color);
+            }
+            {
+                IsaScope s(Isa::Portable);
+                p.accumulate(taps, f.color);
+            }
+            expectSameBits(v.color(), p.color(), "accumulated colour");
+            expectSameBits(v.historyLength(), p.historyLength(), "history length");
+            Frame geometry = f;
+            taps.takeGeometry(geometry);
+            for (int x = 0; x < W; ++x)
+                capped += p.historyLength()(x, 3, 0) == afn::kMaxHistoryLength;
+        }
+        EXPECT_GT(capped, 0) << "no history reached the cap";
+    }
+}
+
+} // namespace
