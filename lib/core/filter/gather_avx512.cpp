@@ -12,44 +12,84 @@
 #include "cpu/avx512.h"
 #include "cpu/avx512_rgb.h"
 
+#include <algorithm>
+#include <cstdint>
+
 namespace afn {
 
 #ifdef AFN_CPU_HAVE_AVX512
 
 namespace {
 
+/// The constants and per-lane counts of one gatherRun.
+struct RunState {
+    __m512 rep, maxFinite, scaleEven, scaleOdd;
+    __m512i bad, negative;
+};
+
+/// 16 values from i (m: the lanes in the run). `stream`: d + i is 64-byte aligned and m is full;
+/// then a streaming store (the frame's buffers are read by later passes, not by this one: no read
+/// of the destination lines for ownership).
+template <GatherOp::Kind K>
+AFN_CPU_AVX512_INLINE void step(
+    RunState& r, const float* s, float* d, int i, __mmask16 m, bool stream)
+{
+    const __m512 zero = _mm512_set1_ps(0.0f), one = _mm512_set1_ps(1.0f);
+    const __m512i ones = _mm512_set1_epi32(1);
+    __m512 v = _mm512_maskz_loadu_ps(m, s + i);
+    const __mmask16 finite = _mm512_cmp_ps_mask(_mm512_abs_ps(v), r.maxFinite, _CMP_LE_OQ);
+    r.bad = _mm512_mask_add_epi32(r.bad, static_cast<__mmask16>(m & ~finite), r.bad, ones);
+    v = _mm512_mask_blend_ps(finite, r.rep, v);
+    if constexpr (K == GatherOp::Kind::NonNegative) {
+        const __mmask16 neg = _mm512_mask_cmp_ps_mask(m, v, zero, _CMP_LT_OQ);
+        r.negative = _mm512_mask_add_epi32(r.negative, neg, r.negative, ones);
+        v = _mm512_mask_mov_ps(v, neg, zero);
+    } else if constexpr (K == GatherOp::Kind::Unit) {
+        const __mmask16 below = _mm512_cmp_ps_mask(v, zero, _CMP_LT_OQ);
+        const __mmask16 above = _mm512_cmp_ps_mask(v, one, _CMP_GT_OQ);
+        v = _mm512_mask_mov_ps(_mm512_mask_mov_ps(v, below, zero), above, one);
+    } else if constexpr (K == GatherOp::Kind::Scale2) {
+        v = _mm512_mul_ps(v, (i & 1) ? r.scaleOdd : r.scaleEven);
+    }
+    if (stream)
+        _mm512_stream_ps(d + i, v);
+    else
+        _mm512_mask_storeu_ps(d + i, m, v);
+}
+
+inline __mmask16 lanes(int count)
+{
+    return count >= 16 ? static_cast<__mmask16>(0xFFFF)
+                       : static_cast<__mmask16>((1u << count) - 1u);
+}
+
 template <GatherOp::Kind K>
 AFN_CPU_AVX512 void gatherRun(
     const float* s, float* d, int n, const GatherOp& op, GatherCounts& counts)
 {
-    const __m512 rep = _mm512_set1_ps(op.replacement), zero = _mm512_set1_ps(0.0f),
-                 one = _mm512_set1_ps(1.0f), maxFinite = _mm512_set1_ps(FLT_MAX);
-    // Scale2: lane j scales by sx for even j, sy for odd j (runs start at a pixel, 16 is even).
-    const __m512 scale = _mm512_mask_blend_ps(0xAAAA, _mm512_set1_ps(op.sx), _mm512_set1_ps(op.sy));
-    const __m512i ones = _mm512_set1_epi32(1);
-    __m512i bad = _mm512_set1_epi32(0), negative = _mm512_set1_epi32(0);
-    for (int i = 0; i < n; i += 16) {
-        const __mmask16 m = n - i >= 16 ? static_cast<__mmask16>(0xFFFF)
-                                        : static_cast<__mmask16>((1u << (n - i)) - 1u);
-        __m512 v = _mm512_maskz_loadu_ps(m, s + i);
-        const __mmask16 finite = _mm512_cmp_ps_mask(_mm512_abs_ps(v), maxFinite, _CMP_LE_OQ);
-        bad = _mm512_mask_add_epi32(bad, static_cast<__mmask16>(m & ~finite), bad, ones);
-        v = _mm512_mask_blend_ps(finite, rep, v);
-        if constexpr (K == GatherOp::Kind::NonNegative) {
-            const __mmask16 neg = _mm512_mask_cmp_ps_mask(m, v, zero, _CMP_LT_OQ);
-            negative = _mm512_mask_add_epi32(negative, neg, negative, ones);
-            v = _mm512_mask_mov_ps(v, neg, zero);
-        } else if constexpr (K == GatherOp::Kind::Unit) {
-            const __mmask16 below = _mm512_cmp_ps_mask(v, zero, _CMP_LT_OQ);
-            const __mmask16 above = _mm512_cmp_ps_mask(v, one, _CMP_GT_OQ);
-            v = _mm512_mask_mov_ps(_mm512_mask_mov_ps(v, below, zero), above, one);
-        } else if constexpr (K == GatherOp::Kind::Scale2) {
-            v = _mm512_mul_ps(v, scale);
-        }
-        _mm512_mask_storeu_ps(d + i, m, v);
+    RunState r;
+    r.rep = _mm512_set1_ps(op.replacement);
+    r.maxFinite = _mm512_set1_ps(FLT_MAX);
+    // Scale2: value i scales by sx for even i, sy for odd i (runs start at a pixel).
+    const __m512 sx = _mm512_set1_ps(op.sx), sy = _mm512_set1_ps(op.sy);
+    r.scaleEven = _mm512_mask_blend_ps(0xAAAA, sx, sy);
+    r.scaleOdd = _mm512_mask_blend_ps(0xAAAA, sy, sx);
+    r.bad = r.negative = _mm512_set1_epi32(0);
+    // Up to 64-byte alignment of d with a masked step, then whole aligned vectors, then the tail.
+    const int peel = std::min(n,
+        static_cast<int>(((64 - (reinterpret_cast<std::uintptr_t>(d) & 63)) & 63) / sizeof(float)));
+    int i = 0;
+    if (peel > 0) {
+        step<K>(r, s, d, 0, lanes(peel), false);
+        i = peel;
     }
-    counts.nonFinite += _mm512_reduce_add_epi32(bad);
-    counts.negative += _mm512_reduce_add_epi32(negative);
+    for (; i + 16 <= n; i += 16)
+        step<K>(r, s, d, i, lanes(16), true);
+    if (i < n)
+        step<K>(r, s, d, i, lanes(n - i), false);
+    _mm_sfence();
+    counts.nonFinite += _mm512_reduce_add_epi32(r.bad);
+    counts.negative += _mm512_reduce_add_epi32(r.negative);
 }
 
 } // namespace
