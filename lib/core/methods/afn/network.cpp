@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <vector>
 
 namespace afn::afnet {
 
@@ -17,11 +18,6 @@ namespace {
 constexpr int kInputChannels = 13; // T(1spp) 3, T(TA) 3, albedo 3, normal01 3, depth01 1
 constexpr int kRefineChannels = 10; // T(i) 3, albedo 3, normal01 3, depth01 1
 } // namespace
-
-float toneMap(float x)
-{
-    return std::min(std::max(std::pow(std::max(x, 0.0f), 1.0f / 2.2f), 0.0f), 1.0f);
-}
 
 void Network::load(const nn::WeightsArchive& a)
 {
@@ -123,17 +119,24 @@ void Network::fillInput(
     const Inputs& in, int y0, int y1, int origin, Image& x, Image& color1, Image& colorTa) const
 {
     const int w = m_width, h = m_height, wp = x.width();
-    for (int y = y0; y < y1; ++y)
+    thread_local std::vector<float> tone; // the row's two tone-mapped colours
+    tone.resize(static_cast<std::size_t>(6) * w);
+    for (int y = y0; y < y1; ++y) {
+        const int sy = std::min(y, h - 1); // edge replication
+        toneMapRun(in.color1->at(0, sy), tone.data(), 3 * w);
+        toneMapRun(in.colorTa->at(0, sy), tone.data() + 3 * w, 3 * w);
         for (int xx = 0; xx < wp; ++xx) {
-            const int sx = std::min(xx, w - 1), sy = std::min(y, h - 1); // edge replication
+            const int sx = std::min(xx, w - 1);
             const float* a = in.color1->at(sx, sy);
             const float* b = in.colorTa->at(sx, sy);
+            const float* ta = tone.data() + 3 * sx;
+            const float* tb = tone.data() + 3 * (w + sx);
             float* o = x.at(xx, y - origin);
             float* c1 = color1.at(xx, y - origin);
             float* cta = colorTa.at(xx, y - origin);
             for (int c = 0; c < 3; ++c) {
-                o[c] = toneMap(a[c]);
-                o[3 + c] = toneMap(b[c]);
+                o[c] = ta[c];
+                o[3 + c] = tb[c];
                 o[6 + c] = in.albedo->at(sx, sy)[c];
                 o[9 + c] = in.normal01->at(sx, sy)[c];
                 c1[c] = a[c];
@@ -141,6 +144,7 @@ void Network::fillInput(
             }
             o[12] = in.depth01->at(sx, sy)[0];
         }
+    }
 }
 
 void Network::prepare(const Inputs& given)

@@ -22,6 +22,7 @@
 
 #include "base/image.h"
 #include "methods/afn/network_large.h"
+#include "methods/afn/tone_map.h"
 #include "nn/conv.h"
 #include "nn/weights.h"
 
@@ -48,9 +49,6 @@ inline int paddedSize(int n)
 {
     return (n + kPadMultiple - 1) / kPadMultiple * kPadMultiple;
 }
-
-/// Tone map of the network inputs: clip(max(x, 0)^(1/2.2), 0, 1).
-float toneMap(float x);
 
 class Network {
 public:

@@ -30,6 +30,7 @@ constexpr int kRefineChannels = 10; // T(i) 3, albedo 3, normal01 3, depth01 1
 struct StripBuffers {
     Image in, r1, r2;
     std::vector<float> r3;
+    std::vector<float> tone; ///< one row of the tone-mapped fused image
 };
 
 } // namespace
@@ -44,16 +45,19 @@ void Network::refineRows(
     b.in.resize(wp, rows, kRefineChannels);
     b.r1.resize(wp, rows, m_ref1.outChannels());
     b.r2.resize(wp, rows, m_ref2.outChannels());
-    for (int y = a0; y < a1; ++y)
+    b.tone.resize(static_cast<std::size_t>(3) * wp);
+    for (int y = a0; y < a1; ++y) {
+        toneMapRun(fused.at(0, y), b.tone.data(), 3 * wp);
         for (int xx = 0; xx < wp; ++xx) {
-            const float* i = fused.at(xx, y);
+            const float* t = b.tone.data() + 3 * xx;
             const float* f = x.at(xx, y);
             float* o = b.in.at(xx, y - a0);
             for (int c = 0; c < 3; ++c)
-                o[c] = toneMap(i[c]);
+                o[c] = t[c];
             for (int c = 0; c < 7; ++c)
                 o[3 + c] = f[6 + c]; // albedo, normal01, depth01
         }
+    }
     // Local output rows of each layer: ref1 [y0 - 2, y1 + 2), ref2 [y0 - 1, y1 + 1).
     auto local = [&](int y) { return std::clamp(y, a0, a1) - a0; };
     const int n1 = m_ref1.outChannels(), n2 = m_ref2.outChannels();

@@ -1,0 +1,72 @@
+// SPDX-License-Identifier: Apache-2.0
+// The AFN input tone map with AVX-512F, operation for operation the scalar toneMap
+// (methods/afn/tone_map.cpp; the method in tone_map.h): getexp/getmant give the exponent and the
+// mantissa in [1, 2) exactly as frexp does (denormals included); q = floor(e / 11) from a
+// correctly rounded division (exact for multiples of 11, never an integer otherwise) and j = e -
+// 11 q are exact; the polynomials are evaluated in the same order without FMA (-ffp-contract=off,
+// see CMakeLists.txt); the table is read by a lane permute; scalef multiplies by 2^(5 q) as ldexp.
+#include "methods/afn/tone_map_avx512.h"
+
+#include "cpu/avx512.h"
+#include "methods/afn/tone_map_poly.h"
+
+namespace afn::afnet {
+
+#ifdef AFN_CPU_HAVE_AVX512
+
+AFN_CPU_AVX512 int toneMapRunAvx512(const float* in, float* out, int n)
+{
+    using namespace tonemap;
+    const __m512 zero = _mm512_set1_ps(0.0f), one = _mm512_set1_ps(1.0f),
+                 two = _mm512_set1_ps(2.0f), half = _mm512_set1_ps(0.5f),
+                 eleven = _mm512_set1_ps(11.0f), five = _mm512_set1_ps(5.0f);
+    const __m512 table = _mm512_loadu_ps(kPow2Fifths);
+    int i = 0;
+    for (; i + 16 <= n; i += 16) {
+        const __m512 x = _mm512_loadu_ps(in + i);
+        const __mmask16 positive = _mm512_cmp_ps_mask(x, zero, _CMP_GT_OQ); // false for NaN
+        const __mmask16 atLeastOne = _mm512_cmp_ps_mask(x, one, _CMP_GE_OQ);
+        // Lanes outside (0, 1) compute on 0.5 (any value in range) and are replaced below.
+        const __m512 xs = _mm512_mask_mov_ps(half, positive & ~atLeastOne, x);
+        __m512 m = _mm512_getmant_ps(xs, _MM_MANT_NORM_1_2, _MM_MANT_SIGN_zero);
+        __m512 e = _mm512_getexp_ps(xs);
+        const __mmask16 big = _mm512_cmp_ps_mask(m, _mm512_set1_ps(kSqrt2), _CMP_GE_OQ);
+        m = _mm512_mask_mul_ps(m, big, m, half);
+        e = _mm512_mask_add_ps(e, big, e, one);
+        const __m512 q = _mm512_roundscale_ps(
+            _mm512_div_ps(e, eleven), _MM_FROUND_TO_NEG_INF | _MM_FROUND_NO_EXC);
+        const __m512 j = _mm512_sub_ps(e, _mm512_mul_ps(eleven, q));
+        const __m512 t = _mm512_permutexvar_ps(_mm512_cvttps_epi32(j), table);
+        const __m512 s = _mm512_div_ps(_mm512_sub_ps(m, one), _mm512_add_ps(m, one));
+        const __m512 s2 = _mm512_mul_ps(s, s);
+        __m512 l = _mm512_mul_ps(s2, _mm512_set1_ps(kLogC9));
+        l = _mm512_mul_ps(s2, _mm512_add_ps(_mm512_set1_ps(kLogC7), l));
+        l = _mm512_mul_ps(s2, _mm512_add_ps(_mm512_set1_ps(kLogC5), l));
+        l = _mm512_mul_ps(s2, _mm512_add_ps(_mm512_set1_ps(kLogC3), l));
+        const __m512 lnm = _mm512_mul_ps(_mm512_mul_ps(two, s), _mm512_add_ps(one, l));
+        const __m512 u = _mm512_mul_ps(lnm, _mm512_set1_ps(kInvGamma));
+        __m512 p = _mm512_mul_ps(u, _mm512_set1_ps(kExpC6));
+        p = _mm512_mul_ps(u, _mm512_add_ps(_mm512_set1_ps(kExpC5), p));
+        p = _mm512_mul_ps(u, _mm512_add_ps(_mm512_set1_ps(kExpC4), p));
+        p = _mm512_mul_ps(u, _mm512_add_ps(_mm512_set1_ps(kExpC3), p));
+        p = _mm512_mul_ps(u, _mm512_add_ps(_mm512_set1_ps(kExpC2), p));
+        p = _mm512_mul_ps(u, _mm512_add_ps(one, p));
+        p = _mm512_add_ps(one, p);
+        __m512 y = _mm512_scalef_ps(_mm512_mul_ps(t, p), _mm512_mul_ps(five, q));
+        y = _mm512_mask_mov_ps(zero, positive, y);
+        y = _mm512_mask_mov_ps(y, atLeastOne, one);
+        _mm512_storeu_ps(out + i, y);
+    }
+    return i;
+}
+
+#else
+
+int toneMapRunAvx512(const float*, float*, int)
+{
+    return 0;
+}
+
+#endif
+
+} // namespace afn::afnet
