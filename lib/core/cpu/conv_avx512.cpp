@@ -165,6 +165,66 @@ template <int NV> void rowsForWidth(const RowPass& r, int nRows)
     }
 }
 
+/// P pixels from x (np of them stored) of rowsFewOutputs: P x NO independent accumulators (the
+/// FMA latency is covered), each weight vector loaded once for the P pixels.
+template <int NO, int P>
+AFN_CPU_AVX512_INLINE void fewOutputsBlock(
+    const ConvArgs& a, const float* src, long bandRow, int c, int x, int np, float* d)
+{
+    const int groups = c / 16, taps = a.k * a.k;
+    __m512 acc[P][NO];
+    for (int p = 0; p < P; ++p)
+        for (int co = 0; co < NO; ++co)
+            acc[p][co] = _mm512_set1_ps(0.0f);
+    const float* wt = a.wt16;
+    for (int t = 0; t < taps; ++t) {
+        const float* s = src + (t / a.k) * bandRow + static_cast<long>(x + t % a.k) * c;
+        for (int g = 0; g < groups; ++g) {
+            __m512 wv[NO];
+            for (int co = 0; co < NO; ++co)
+                wv[co] = _mm512_loadu_ps(wt + static_cast<long>(co) * c + 16 * g);
+            for (int p = 0; p < P; ++p) {
+                const __m512 v = _mm512_loadu_ps(s + static_cast<long>(p) * c + 16 * g);
+                for (int co = 0; co < NO; ++co)
+                    acc[p][co] = _mm512_fmadd_ps(v, wv[co], acc[p][co]);
+            }
+        }
+        wt += static_cast<long>(NO) * c;
+    }
+    for (int p = 0; p < P && p < np; ++p) {
+        float* o = d + static_cast<long>(x + p) * a.dstPix;
+        for (int co = 0; co < NO; ++co) {
+            const float v = _mm512_reduce_add_ps(acc[p][co]) + a.bp16[co];
+            o[co] = a.relu ? (v < 0.0f ? 0.0f : v) : v; // NaN kept, as the other kernels
+        }
+    }
+}
+
+/// Layers of NO <= kFewOutputs output channels (the AFN refinement's last layer, 16 -> 3): 16
+/// input channels per vector instead of 16 output channels, so that no lane computes a padded
+/// output. Blocks of P pixels, P x NO accumulators; per tap and group of 16 input channels NO
+/// weight loads, then per pixel one load of the band pixel and NO FMAs; at the end each
+/// accumulator's 16 lanes are summed (_mm512_reduce_add_ps), the bias added, ReLU applied.
+/// Summation order: per lane the taps (ky, kx) and channel groups in order, then the lanes as a
+/// fixed tree, then the bias: independent of the rows' split among threads and of the block
+/// (bit-identical for every thread count), not the order of the portable kernel
+/// (rounding-level differences, as the AFN engine's other AVX-512 stages). The last block's reads
+/// past the row stay in the band's zeroed slack (kMaxPixels).
+template <int NO>
+AFN_CPU_AVX512 void rowsFewOutputs(
+    const ConvArgs& a, const float* band, long bandRow, int c, int nRows, float* dst)
+{
+    constexpr int P = 24 / NO > 8 ? 8 : 24 / NO;
+    static_assert(P <= kMaxPixels);
+    const int w = a.same->width();
+    for (int i = 0; i < nRows; ++i) {
+        const float* src = band + i * bandRow;
+        float* d = dst + i * a.dstRow;
+        for (int x = 0; x < w; x += P)
+            fewOutputsBlock<NO, P>(a, src, bandRow, c, x, w - x, d);
+    }
+}
+
 #endif // AFN_CPU_HAVE_AVX512
 
 } // namespace
@@ -176,6 +236,20 @@ void convRowsAvx512(const ConvArgs& a, int y0, int y1)
     thread_local std::vector<float> band;
     fillBand(a, y0, y1, c, band);
     const int w = a.same->width();
+    if (a.wt16 && a.outC <= kFewOutputs) {
+        const long bandRow = static_cast<long>(w + 2 * (a.k / 2)) * c;
+        float* dst = a.dst + (y0 - a.dstY0) * a.dstRow;
+        switch (a.outC) {
+        case 1:
+            return rowsFewOutputs<1>(a, band.data(), bandRow, c, y1 - y0, dst);
+        case 2:
+            return rowsFewOutputs<2>(a, band.data(), bandRow, c, y1 - y0, dst);
+        case 3:
+            return rowsFewOutputs<3>(a, band.data(), bandRow, c, y1 - y0, dst);
+        default:
+            return rowsFewOutputs<4>(a, band.data(), bandRow, c, y1 - y0, dst);
+        }
+    }
     for (int cb = 0; cb < a.cp16; cb += 64) {
         const int nv = std::min(4, (a.cp16 - cb) / 16);
         const RowPass r { band.data(), static_cast<long>(w + 2 * (a.k / 2)) * c, c, a.wp16 + cb,

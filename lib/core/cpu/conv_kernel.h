@@ -7,6 +7,9 @@
 
 namespace afn::cpu {
 
+/// Most output channels of a layer that the AVX-512 code runs with input channels in the lanes.
+constexpr int kFewOutputs = 4;
+
 /// One convolution's operands (see nn::Conv::run for the meaning of `up` and `same`).
 struct ConvArgs {
     const Image* up; ///< half-size input read through nearest 2x upsampling, or null
@@ -18,6 +21,9 @@ struct ConvArgs {
     const float* wp16 = nullptr; ///< weights [ky][kx][ci][cp16] (AVX-512 kernels)
     const float* bp16 = nullptr; ///< bias [cp16]
     int cp16 = 0; ///< output channels rounded up to 16
+    /// Layers of at most kFewOutputs output channels: weights [ky][kx][co][ci padded to 16] for
+    /// the AVX-512 kernel that puts input channels in the lanes (null for other layers).
+    const float* wt16 = nullptr;
     float* dst = nullptr; ///< output row dstY0 (outC channels of each pixel are written)
     long dstRow = 0; ///< floats from one output row to the next
     int dstPix = 0; ///< floats from one output pixel to the next (>= outC)

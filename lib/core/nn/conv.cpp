@@ -63,6 +63,16 @@ void Conv::load(const WeightsArchive& a, const std::string& name, int expectedIn
     m_wp16.assign(static_cast<std::size_t>(k) * k * in * m_outPadded16, 0.0f);
     for (std::size_t row = 0; row < static_cast<std::size_t>(k) * k * in; ++row)
         std::copy_n(&m_wp[row * m_outPadded], out, &m_wp16[row * m_outPadded16]);
+    m_wt16.clear();
+    if (out <= cpu::kFewOutputs) {
+        const int inPadded = (in + 15) / 16 * 16;
+        m_wt16.assign(static_cast<std::size_t>(k) * k * out * inPadded, 0.0f);
+        for (int t = 0; t < k * k; ++t)
+            for (int co = 0; co < out; ++co)
+                for (int ci = 0; ci < in; ++ci)
+                    m_wt16[(static_cast<std::size_t>(t) * out + co) * inPadded + ci]
+                        = w.data[(static_cast<std::size_t>(co) * in + ci) * k * k + t];
+    }
 }
 
 cpu::ConvArgs Conv::args(const Image* up, const Image& same, bool relu) const
@@ -76,6 +86,7 @@ cpu::ConvArgs Conv::args(const Image* up, const Image& same, bool relu) const
     a.wp16 = m_wp16.data();
     a.bp16 = m_bp16.data();
     a.cp16 = m_outPadded16;
+    a.wt16 = m_wt16.empty() ? nullptr : m_wt16.data();
     return a;
 }
 

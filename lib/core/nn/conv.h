@@ -65,6 +65,7 @@ private:
     int m_outPadded16 = 0; ///< output channels rounded up to 16 (AVX-512 lanes)
     std::vector<float> m_wp16; ///< [ky][kx][ci][co padded to 16], zero padding
     std::vector<float> m_bp16; ///< [co padded to 16]
+    std::vector<float> m_wt16; ///< at most cpu::kFewOutputs outputs: [ky][kx][co][ci padded to 16]
 };
 
 /// D: 2x2 average pooling of an image with even size into `out` (half size).

@@ -102,4 +102,9 @@ TEST(Conv5, Avx512MatchesScalarReference)
     checkConv5(afn::cpu::Isa::Avx512, 0, 20, 5, 31, 5, true);
     checkConv5(afn::cpu::Isa::Avx512, 0, 14, 14, 37, 11, true);
     checkConv5(afn::cpu::Isa::Avx512, 3, 2, 17, 9, 7, false);
+    // At most 4 outputs: input channels in the lanes (cpu/conv_avx512.cpp rowsFewOutputs).
+    checkConv5(afn::cpu::Isa::Avx512, 0, 16, 3, 21, 6, false); // as the refinement's last layer
+    checkConv5(afn::cpu::Isa::Avx512, 3, 2, 1, 9, 7, true); // upsampled input, one output
+    checkConv5(afn::cpu::Isa::Avx512, 0, 20, 4, 17, 5, true); // two groups of 16 channels
+    checkConv5(afn::cpu::Isa::Avx512, 0, 7, 2, 5, 3, false);
 }
