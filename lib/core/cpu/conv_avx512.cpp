@@ -48,6 +48,15 @@ void fillBand(const ConvArgs& a, int y0, int y1, int c, std::vector<float>& band
             std::memset(row, 0, sizeof(float) * rowFloats);
             continue;
         }
+        if (a.nu == 0 && a.ns == c) {
+            // The band pixel is the input pixel (no upsampled part, no channel padding): the row
+            // in one copy, the r zero pixels on each side apart.
+            std::memset(row, 0, sizeof(float) * r * c);
+            std::memcpy(row + static_cast<std::size_t>(r) * c, a.same->at(0, yy),
+                sizeof(float) * static_cast<std::size_t>(w) * c);
+            std::memset(row + static_cast<std::size_t>(r + w) * c, 0, sizeof(float) * r * c);
+            continue;
+        }
         for (int bx = 0; bx < bw; ++bx) {
             const int x = bx - r;
             float* d = row + static_cast<std::size_t>(bx) * c;
