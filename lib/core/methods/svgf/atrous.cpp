@@ -7,6 +7,8 @@
 #include "methods/svgf/denoiser.h"
 #include "methods/svgf/kernels.h"
 
+#include <algorithm>
+
 namespace afn::svgf {
 
 void atrousRows(const AtrousArgs& a, int y0, int y1)
@@ -34,7 +36,12 @@ void Denoiser::atrous(const Planes& in, Planes& out, int step, const WorkRegion*
         for (int y = r; y < h; y += step)
             m_rowOrder.push_back(y);
     a.rowOrder = m_rowOrder.data();
-    parallelRows(h, [&](int y0, int y1) { atrousRows(a, y0, y1); });
+    // Column tiles (kernels.h AtrousArgs::x0): one pass over all rows per tile.
+    for (int x0 = 0; x0 < w; x0 += kAtrousTile) {
+        a.x0 = x0;
+        a.x1 = std::min(w, x0 + kAtrousTile);
+        parallelRows(h, [&](int y0, int y1) { atrousRows(a, y0, y1); });
+    }
 }
 
 const ParamBinding<Settings>& settingsBinding()

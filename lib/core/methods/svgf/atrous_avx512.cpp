@@ -18,6 +18,7 @@
 #include "methods/svgf/kernels.h"
 #include "methods/svgf/tap_vector.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace afn::svgf {
@@ -248,6 +249,8 @@ AFN_CPU_AVX512 void atrousRows16(const AtrousArgs& a, int y0, int y1, const Norm
         const int y = a.rowOrder ? a.rowOrder[v] : v;
         int xBegin, xEnd; // work skipping: the row's span of AtrousArgs::region
         regionColumns(a.region, y, w, xBegin, xEnd, 16);
+        xBegin = std::max(xBegin, a.x0);
+        xEnd = std::min(xEnd, a.x1);
         if (xBegin >= xEnd)
             continue;
         TapRow rows[5];

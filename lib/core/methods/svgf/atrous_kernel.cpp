@@ -7,6 +7,8 @@
 #include "methods/svgf/kernels.h"
 #include "methods/svgf/tap_vector.h"
 
+#include <algorithm>
+
 #pragma GCC diagnostic ignored "-Wpsabi"
 
 namespace afn::svgf {
@@ -114,6 +116,8 @@ AFN_SVGF_INLINE void atrousRowsOf(const AtrousArgs& a, int y0, int y1)
         const int y = a.rowOrder ? a.rowOrder[v] : v;
         int xBegin, xEnd;
         regionColumns(a.region, y, w, xBegin, xEnd);
+        xBegin = std::max(xBegin, a.x0);
+        xEnd = std::min(xEnd, a.x1);
         for (int x = xBegin; x < xEnd; x += kLanes) {
             V8 cp[3];
             for (int k = 0; k < 3; ++k)

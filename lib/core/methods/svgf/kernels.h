@@ -51,7 +51,13 @@ struct AtrousArgs {
     /// tap rows and those stay in the cache at large steps.
     const int* rowOrder = nullptr;
     const WorkRegion* region = nullptr; ///< per row, the columns to compute (null: all)
+    /// The column tile [x0, x1) to compute (multiples of 16 but the image's end): Denoiser::atrous
+    /// runs a frame wider than kAtrousTile in tiles, so that the 5 tap rows of consecutive rows
+    /// stay in the core's cache at 8K (the same pixels, the same bits).
+    int x0 = 0, x1 = 1 << 30;
 };
+/// Widest column tile of an à-trous pass (a multiple of 16).
+constexpr int kAtrousTile = 2048;
 /// The kernel family of cpu::activeIsa(): atrousRowsAvx512 or atrousRowsPortable.
 void atrousRows(const AtrousArgs& a, int y0, int y1);
 /// 8 lanes, GCC vector extensions, cloned per instruction set (atrous_kernel.cpp).
