@@ -73,6 +73,10 @@ void printEngineReport(const EngineYardstick& y, const std::vector<EnginePoint>&
         "best 1-thread call: under glibc's malloc the multi-thread dnnl_sgemm falls short of "
         "N x its 1-thread rate, docs/performance.md)\n",
         y.threads, y.threads);
+    std::printf("(filtering cannot reach the GEMM rate: besides its two 1x1 heads it is a softmax "
+                "over 49 taps per pixel (49 exponentials, not counted as FLOP) and two 7x7 x "
+                "3-channel filters whose weights differ per pixel, 2 FLOP per value loaded and no "
+                "reuse: memory-bound)\n");
 }
 
 void writeEngineJson(
