@@ -4,6 +4,7 @@
 // an odd frame (borders on every side) and the implicit-upsampling input.
 #include "afn_test_util.h"
 #include "cpu/isa.h"
+#include "isa_scope.h"
 #include "nn/conv.h"
 
 #include <gtest/gtest.h>
@@ -13,6 +14,8 @@
 using afn::Image;
 
 namespace {
+
+using isa_test::IsaScope;
 
 using afntest::randomImage;
 using afntest::randomVec;
@@ -36,16 +39,6 @@ double reference(const Image* up, const Image& same, const std::vector<float>& w
 }
 
 /// Forces an ISA for its lifetime and restores the one before.
-struct IsaScope {
-    explicit IsaScope(afn::cpu::Isa isa)
-        : before(afn::cpu::activeIsa())
-    {
-        afn::cpu::forceIsa(isa);
-    }
-    ~IsaScope() { afn::cpu::forceIsa(before); }
-    afn::cpu::Isa before;
-};
-
 void checkConv5(afn::cpu::Isa isa, int cu, int cs, int co, int w, int h, bool relu)
 {
     const IsaScope scope(isa);

@@ -9,6 +9,7 @@
 // (said in the output).
 #include "cpu/isa.h"
 #include "filter/filter.h"
+#include "isa_scope.h"
 #include "stages/temporal_accumulation.h"
 #include "test_methods_util.h"
 
@@ -23,28 +24,15 @@
 
 namespace {
 
+using isa_test::haveAvx512;
+using isa_test::IsaScope;
+
 using afn::Frame;
 using afn::Image;
 using afn::cpu::Isa;
 using methods_test::Lcg;
 
 constexpr int W = 53, H = 7; // 3 blocks of 16 pixels and a tail; runs of 3 x 53 floats
-
-struct IsaScope {
-    explicit IsaScope(Isa isa)
-        : before(afn::cpu::activeIsa())
-    {
-        afn::cpu::forceIsa(isa);
-    }
-    ~IsaScope() { afn::cpu::forceIsa(before); }
-    Isa before;
-};
-
-bool haveAvx512()
-{
-    IsaScope s(Isa::Avx512);
-    return afn::cpu::activeIsa() == Isa::Avx512;
-}
 
 bool sameBits(float a, float b)
 {

@@ -6,6 +6,7 @@
 // -0, sky depth, zero normals, moved positions). On a CPU without AVX-512F both runs take the
 // portable path and the test checks nothing beyond it (said in the output).
 #include "cpu/isa.h"
+#include "isa_scope.h"
 #include "stages/aux_noise.h"
 #include "stages/reproject.h"
 #include "test_methods_util.h"
@@ -18,28 +19,15 @@
 
 namespace {
 
+using isa_test::haveAvx512;
+using isa_test::IsaScope;
+
 using afn::Frame;
 using afn::Image;
 using afn::cpu::Isa;
 using methods_test::Lcg;
 
 constexpr int W = 53, H = 9; // 3 blocks of 16 after column 0, and a tail
-
-struct IsaScope {
-    explicit IsaScope(Isa isa)
-        : before(afn::cpu::activeIsa())
-    {
-        afn::cpu::forceIsa(isa);
-    }
-    ~IsaScope() { afn::cpu::forceIsa(before); }
-    Isa before;
-};
-
-bool haveAvx512()
-{
-    IsaScope s(Isa::Avx512);
-    return afn::cpu::activeIsa() == Isa::Avx512;
-}
 
 /// A buffer of `channels` that is mostly smooth (constant runs), with speckle, NaN, inf, -0 and
 /// (depth) sky pixels sprinkled in.

@@ -4,6 +4,7 @@
 // clip points, and the AVX-512 run gives the scalar function's bits (on a CPU without AVX-512F
 // both take the scalar path, said in the output).
 #include "cpu/isa.h"
+#include "isa_scope.h"
 #include "methods/afn/tone_map.h"
 
 #include <gtest/gtest.h>
@@ -86,13 +87,8 @@ TEST(AfnToneMap, ClipsAndSpecialValues)
 
 TEST(AfnToneMap, VectorRunGivesTheScalarBits)
 {
-    {
-        const afn::cpu::Isa before = afn::cpu::activeIsa();
-        afn::cpu::forceIsa(afn::cpu::Isa::Avx512);
-        if (afn::cpu::activeIsa() != afn::cpu::Isa::Avx512)
-            std::cout << "[ info ] this CPU has no AVX-512F: both runs take the scalar path\n";
-        afn::cpu::forceIsa(before);
-    }
+    if (!isa_test::haveAvx512())
+        std::cout << "[ info ] this CPU has no AVX-512F: both runs take the scalar path\n";
     std::vector<float> in = sweep();
     const float inf = std::numeric_limits<float>::infinity();
     for (float s : { 0.0f, -0.0f, -1.0f, 1.0f, 2.0f, inf, -inf,
@@ -100,10 +96,10 @@ TEST(AfnToneMap, VectorRunGivesTheScalarBits)
         in.push_back(s);
     in.push_back(0.25f); // a tail that is not a multiple of 16
     std::vector<float> out(in.size());
-    const afn::cpu::Isa before = afn::cpu::activeIsa();
-    afn::cpu::forceIsa(afn::cpu::Isa::Avx512);
-    toneMapRun(in.data(), out.data(), static_cast<int>(in.size()));
-    afn::cpu::forceIsa(before);
+    {
+        const isa_test::IsaScope scope(afn::cpu::Isa::Avx512);
+        toneMapRun(in.data(), out.data(), static_cast<int>(in.size()));
+    }
     std::size_t mismatches = 0;
     for (std::size_t i = 0; i < in.size(); ++i)
         if (bitsOf(out[i]) != bitsOf(toneMap(in[i])) && ++mismatches < 5)
