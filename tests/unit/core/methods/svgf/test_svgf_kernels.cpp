@@ -3,7 +3,8 @@
 // documented formulas (methods/svgf/guide.h, kernels.h), in double precision, on random planes:
 // both kernel families (portable 8 lanes, AVX-512 16 lanes where the CPU has it), every guide
 // combination (normal and/or depth or neither), steps 1 to 32 (beyond the planes' padding
-// included), a width that is not a multiple of the vector width. A kernel that reads the wrong
+// included), widths that are not a multiple of the vector width: 37, and 101, where every step up
+// to 16 has blocks whose taps all lie inside the image (the AVX-512 kernel's unmasked path). A kernel that reads the wrong
 // plane, offset or weight (as a depth tap reading the normals' y once did, or a mirrored tap
 // taking its partner's column mask) fails here even where the method-level tests still see a
 // plausible image.
@@ -15,6 +16,7 @@
 #include <algorithm>
 #include <cmath>
 #include <random>
+#include <string>
 #include <vector>
 
 namespace {
@@ -22,6 +24,7 @@ namespace {
 using namespace afn::svgf;
 
 constexpr int kW = 37, kH = 23; // not multiples of the 8 lanes; step 16 leaves the padded row
+constexpr int kWide = 101; // blocks at x = 32 and 48 have all taps of step 16 inside
 
 constexpr float kSigmaL = 4.0f;
 
@@ -30,7 +33,7 @@ struct Scene {
     Guide guide;
 };
 
-Scene randomScene(bool hasNormal, bool hasDepth, unsigned seed)
+Scene randomScene(bool hasNormal, bool hasDepth, unsigned seed, int kW = ::kW)
 {
     std::mt19937 rng(seed);
     std::uniform_real_distribution<float> u(0.0f, 1.0f);
@@ -70,6 +73,7 @@ float plane(const Planes& p, int k, int x, int y)
 /// renormalised over in-image taps.
 double scalarInvPhi(const Scene& s, int x, int y)
 {
+    const int kW = s.in.width();
     const double g[3] = { 0.25, 0.5, 0.25 }; // per axis
     double sum = 0.0, wsum = 0.0;
     for (int dy = -1; dy <= 1; ++dy)
@@ -91,6 +95,7 @@ struct Expected {
 
 Expected scalarAtrous(const Scene& s, int step, int x, int y)
 {
+    const int kW = s.in.width();
     const double b3[3] = { 3.0 / 8.0, 1.0 / 4.0, 1.0 / 16.0 };
     const Guide& g = s.guide;
     double cp[3];
@@ -167,19 +172,22 @@ TEST_P(SvgfAtrousKernel, MatchesTheScalarFormula)
     const UseIsa use(isa);
     if (!use.active(isa))
         GTEST_SKIP() << "this CPU has no " << afn::cpu::isaName(isa);
-    const Scene s = randomScene(hasNormal, hasDepth, 7u + step);
-    Planes out;
-    out.resize(kW, kH, kColorPlanes);
-    const AtrousArgs args { &s.in, kSigmaL, &s.guide, &out, step };
-    atrousRows(args, 0, kH);
-    for (int y = 0; y < kH; ++y)
-        for (int x = 0; x < kW; ++x) {
-            const Expected e = scalarAtrous(s, step, x, y);
-            for (int k = 0; k < 3; ++k)
-                expectNear(e.rgb[k], plane(out, k, x, y), "colour", x, y);
-            expectNear(e.variance, plane(out, kVariance, x, y), "variance", x, y);
-            expectNear(e.luminance, plane(out, kLuminance, x, y), "luminance", x, y);
-        }
+    for (const int width : { kW, kWide }) {
+        SCOPED_TRACE("width " + std::to_string(width));
+        const Scene s = randomScene(hasNormal, hasDepth, 7u + step, width);
+        Planes out;
+        out.resize(width, kH, kColorPlanes);
+        const AtrousArgs args { &s.in, kSigmaL, &s.guide, &out, step };
+        atrousRows(args, 0, kH);
+        for (int y = 0; y < kH; ++y)
+            for (int x = 0; x < width; ++x) {
+                const Expected e = scalarAtrous(s, step, x, y);
+                for (int k = 0; k < 3; ++k)
+                    expectNear(e.rgb[k], plane(out, k, x, y), "colour", x, y);
+                expectNear(e.variance, plane(out, kVariance, x, y), "variance", x, y);
+                expectNear(e.luminance, plane(out, kLuminance, x, y), "luminance", x, y);
+            }
+    }
 }
 
 // The rows in any order and any split give the same bits (Denoiser::atrous orders them by y mod
