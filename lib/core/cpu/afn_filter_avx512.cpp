@@ -65,7 +65,7 @@ AFN_CPU_AVX512 void softmaxApplyAvx512(float* l, const Image& img, int x, int y,
     _mm512_storeu_ps(l, _mm512_mul_ps(v0, inv));
     _mm512_storeu_ps(l + 16, _mm512_mul_ps(v1, inv));
     _mm512_storeu_ps(l + 32, _mm512_mul_ps(v2, inv));
-    _mm512_mask_storeu_ps(l + 48, last, _mm512_mul_ps(v3, inv));
+    l[48] = _mm512_cvtss_f32(_mm512_mul_ps(v3, inv));
 
     constexpr int r = afnet::kKernelSize / 2;
     if (x < r || y < r || x + r >= img.width() || y + r >= img.height()) {
@@ -77,12 +77,15 @@ AFN_CPU_AVX512 void softmaxApplyAvx512(float* l, const Image& img, int x, int y,
     const __m512i spreadB = _mm512_setr_epi32(5, 5, 6, 6, 6, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0);
     constexpr __mmask16 tail = 0x001f;
     __m512 accA = _mm512_set1_ps(0.0f), accB = _mm512_set1_ps(0.0f);
+    // Below the last row, the window's 21 floats plus 11 more lie inside the image: one plain load
+    // (lanes 5..15 of accB are never summed); on the last rows a masked one.
+    const bool room = y + r + 1 < img.height();
     for (int dy = 0; dy < afnet::kKernelSize; ++dy) {
         const float* p = img.at(x - r, y + dy - r);
         const __m512 k = _mm512_loadu_ps(l + dy * afnet::kKernelSize); // 7 used, 64 readable
         accA = _mm512_fmadd_ps(_mm512_loadu_ps(p), _mm512_permutexvar_ps(spreadA, k), accA);
-        accB = _mm512_fmadd_ps(
-            _mm512_maskz_loadu_ps(tail, p + 16), _mm512_permutexvar_ps(spreadB, k), accB);
+        const __m512 t = room ? _mm512_loadu_ps(p + 16) : _mm512_maskz_loadu_ps(tail, p + 16);
+        accB = _mm512_fmadd_ps(t, _mm512_permutexvar_ps(spreadB, k), accB);
     }
     alignas(64) float s[32];
     _mm512_store_ps(s, accA);
