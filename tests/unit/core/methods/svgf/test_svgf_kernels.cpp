@@ -4,10 +4,10 @@
 // both kernel families (portable 8 lanes, AVX-512 16 lanes where the CPU has it), every guide
 // combination (normal and/or depth or neither), steps 1 to 32 (beyond the planes' padding
 // included), widths that are not a multiple of the vector width: 37, and 101, where every step up
-// to 16 has blocks whose taps all lie inside the image (the AVX-512 kernel's unmasked path). A kernel that reads the wrong
-// plane, offset or weight (as a depth tap reading the normals' y once did, or a mirrored tap
-// taking its partner's column mask) fails here even where the method-level tests still see a
-// plausible image.
+// to 16 has blocks whose taps all lie inside the image (the AVX-512 kernel's unmasked path). A
+// kernel that reads the wrong plane, offset or weight (as a depth tap reading the normals' y once
+// did, or a mirrored tap taking its partner's column mask) fails here even where the method-level
+// tests still see a plausible image.
 #include "cpu/isa.h"
 #include "methods/svgf/kernels.h"
 
@@ -33,19 +33,19 @@ struct Scene {
     Guide guide;
 };
 
-Scene randomScene(bool hasNormal, bool hasDepth, unsigned seed, int kW = ::kW)
+Scene randomScene(bool hasNormal, bool hasDepth, unsigned seed, int width = kW)
 {
     std::mt19937 rng(seed);
     std::uniform_real_distribution<float> u(0.0f, 1.0f);
     Scene s;
-    s.in.resize(kW, kH, kColorPlanes);
-    s.guide.planes.resize(kW, kH, kGuidePlanes);
+    s.in.resize(width, kH, kColorPlanes);
+    s.guide.planes.resize(width, kH, kGuidePlanes);
     s.guide.hasNormal = hasNormal;
     s.guide.hasDepth = hasDepth;
     s.guide.sigmaZ = 1.0f;
     s.guide.sigmaN = 16.0f; // a power of two, as the default 128, with fewer vanishing weights
     for (int y = 0; y < kH; ++y)
-        for (int x = 0; x < kW; ++x) {
+        for (int x = 0; x < width; ++x) {
             float c[3];
             for (int k = 0; k < 3; ++k)
                 s.in.row(k, y)[x] = c[k] = 2.0f * u(rng);
@@ -73,13 +73,13 @@ float plane(const Planes& p, int k, int x, int y)
 /// renormalised over in-image taps.
 double scalarInvPhi(const Scene& s, int x, int y)
 {
-    const int kW = s.in.width();
+    const int width = s.in.width();
     const double g[3] = { 0.25, 0.5, 0.25 }; // per axis
     double sum = 0.0, wsum = 0.0;
     for (int dy = -1; dy <= 1; ++dy)
         for (int dx = -1; dx <= 1; ++dx) {
             const int qx = x + dx, qy = y + dy;
-            if (qx < 0 || qx >= kW || qy < 0 || qy >= kH)
+            if (qx < 0 || qx >= width || qy < 0 || qy >= kH)
                 continue;
             const double w = g[dx + 1] * g[dy + 1];
             sum += w * plane(s.in, kVariance, qx, qy);
@@ -95,7 +95,7 @@ struct Expected {
 
 Expected scalarAtrous(const Scene& s, int step, int x, int y)
 {
-    const int kW = s.in.width();
+    const int width = s.in.width();
     const double b3[3] = { 3.0 / 8.0, 1.0 / 4.0, 1.0 / 16.0 };
     const Guide& g = s.guide;
     double cp[3];
@@ -106,7 +106,7 @@ Expected scalarAtrous(const Scene& s, int step, int x, int y)
     for (int j = -2; j <= 2; ++j)
         for (int i = -2; i <= 2; ++i) {
             const int qx = x + i * step, qy = y + j * step;
-            if (qx < 0 || qx >= kW || qy < 0 || qy >= kH)
+            if (qx < 0 || qx >= width || qy < 0 || qy >= kH)
                 continue;
             const double h = b3[std::abs(i)] * b3[std::abs(j)];
             double w = h;
