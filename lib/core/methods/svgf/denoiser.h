@@ -41,6 +41,9 @@ public:
     /// SVGF's box fallback), into `filtered` (3 ch, demodulated), which may be `irradiance` itself
     /// (it is read only by the temporal integration, before `filtered` is written).
     void process(const Frame& f, const Image& irradiance, const Reprojector& taps, Image& filtered);
+    /// This frame's temporal integration (kernels.h IntegratedPlane; its colour planes the
+    /// feedback iteration's output): for tests.
+    const Planes& integrated() const { return m_integrated; }
 
 private:
     void integrate(const Image& irradiance, const Reprojector& taps);

@@ -4,6 +4,8 @@
 #include "methods/svgf/denoiser.h"
 
 #include "base/parallel.h"
+#include "cpu/isa.h"
+#include "methods/svgf/integrate_avx512.h"
 #include "methods/svgf/kernels.h"
 
 #include <algorithm>
@@ -33,6 +35,7 @@ void Denoiser::integrate(const Image& irr, const Reprojector& taps)
     const bool history = m_hasHistory && taps.hasHistory() && m_prevIntegrated.width() == w
         && m_prevIntegrated.height() == h && m_prevIntegrated.count() == kIntegratedPlanes;
     const Planes& prevPlanes = m_prevIntegrated;
+    const bool avx512 = cpu::activeIsa() == cpu::Isa::Avx512;
     parallelRows(h, [&](int y0, int y1) {
         const float* prevRow[kHistoryChannels] = {};
         auto load = [&](int x, int y, float* v) {
@@ -47,7 +50,7 @@ void Denoiser::integrate(const Image& irr, const Reprojector& taps)
             if (history)
                 for (int k = 0; k < kHistoryChannels; ++k)
                     prevRow[k] = prevPlanes.row(kHistoryPlanes[k], y);
-            for (int x = 0; x < w; ++x) {
+            auto pixel = [&](int x) {
                 const float* c = irr.at(x, y);
                 const float l = luminance(c);
                 const float m[2] = { l, l * l };
@@ -81,7 +84,30 @@ void Denoiser::integrate(const Image& irr, const Reprojector& taps)
                 for (int k = 0; k < kHistoryChannels; ++k)
                     planes[kHistoryPlanes[k]][x] = o[k];
                 planes[kIntLuminance][x] = luminance(o);
+            };
+            int x = 0;
+            if (identity && avx512) {
+                // 16 pixels at a time where all 16 took their own previous pixel (the same
+                // operations, methods/svgf/integrate_avx512.h); any other block per pixel.
+                const float* prev16[kHistoryChannels];
+                float* out16[kHistoryChannels + 1];
+                for (; x + 16 <= w; x += 16) {
+                    if (taps.ownPixelsAccepted16(x, y) != 0xFFFFu) {
+                        for (int i = x; i < x + 16; ++i)
+                            pixel(i);
+                        continue;
+                    }
+                    for (int k = 0; k < kHistoryChannels; ++k) {
+                        prev16[k] = prevRow[k] + x;
+                        out16[k] = planes[kHistoryPlanes[k]] + x;
+                    }
+                    out16[kHistoryChannels] = planes[kIntLuminance] + x;
+                    integrateOwnHistory16(
+                        irr.at(x, y), prev16, m_settings.alpha, m_settings.momentsAlpha, out16);
+                }
             }
+            for (; x < w; ++x)
+                pixel(x);
         }
     });
     m_hasHistory = true;

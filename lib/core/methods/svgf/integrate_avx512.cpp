@@ -1,0 +1,81 @@
+// SPDX-License-Identifier: Apache-2.0
+// SVGF's temporal integration on a static camera's rows, 16 pixels at a time with AVX-512F
+// (methods/svgf/integrate_avx512.h); the function carries its own target attribute. The
+// operations are the scalar ones of Denoiser::integrate (methods/svgf/temporal.cpp), lane by
+// lane: the luminance as (0.2126 r + 0.7152 g) + 0.0722 b, std::min / std::max as their
+// comparisons, 1 / len a division (correctly rounded as the scalar one), and blendHistory's
+// prev + a (c - prev) without FMA (compiled with -ffp-contract=off, see CMakeLists.txt), then
+// |v| < FLT_MIN flushed to 0. tests/unit/core/methods/svgf/test_svgf_integrate.cpp compares the
+// two paths bit for bit.
+#include "methods/svgf/integrate_avx512.h"
+
+#include "cpu/avx512.h"
+#include "cpu/avx512_rgb.h"
+
+#include <cfloat>
+
+namespace afn::svgf {
+
+#ifdef AFN_CPU_HAVE_AVX512
+
+namespace {
+
+AFN_CPU_AVX512_INLINE __m512 luminance16(__m512 r, __m512 g, __m512 b)
+{
+    return _mm512_add_ps(_mm512_add_ps(_mm512_mul_ps(_mm512_set1_ps(0.2126f), r),
+                             _mm512_mul_ps(_mm512_set1_ps(0.7152f), g)),
+        _mm512_mul_ps(_mm512_set1_ps(0.0722f), b));
+}
+
+/// blendHistory (stages/reproject.h) lane by lane.
+AFN_CPU_AVX512_INLINE __m512 blend16(__m512 prev, __m512 cur, __m512 a)
+{
+    const __m512 v = _mm512_add_ps(prev, _mm512_mul_ps(a, _mm512_sub_ps(cur, prev)));
+    const __mmask16 tiny
+        = _mm512_cmp_ps_mask(_mm512_abs_ps(v), _mm512_set1_ps(FLT_MIN), _CMP_LT_OQ);
+    return _mm512_mask_mov_ps(v, tiny, _mm512_setzero_ps());
+}
+
+/// std::max(floor, v): v where floor < v.
+AFN_CPU_AVX512_INLINE __m512 maxOf(__m512 floor, __m512 v)
+{
+    return _mm512_mask_mov_ps(floor, _mm512_cmp_ps_mask(floor, v, _CMP_LT_OQ), v);
+}
+
+} // namespace
+
+AFN_CPU_AVX512 void integrateOwnHistory16(
+    const float* c, const float* const* prev, float alpha, float momentsAlpha, float* const* out)
+{
+    const __m512 packed[3]
+        = { _mm512_loadu_ps(c), _mm512_loadu_ps(c + 16), _mm512_loadu_ps(c + 32) };
+    __m512 cur[3];
+    for (int k = 0; k < 3; ++k)
+        cur[k] = cpu::packedChannel(packed, k);
+    const __m512 l = luminance16(cur[0], cur[1], cur[2]);
+    const __m512 m[2] = { l, _mm512_mul_ps(l, l) };
+    // len = std::min(prev + 1, 255): 255 where 255 < prev + 1.
+    const __m512 cap = _mm512_set1_ps(255.0f);
+    __m512 len = _mm512_add_ps(_mm512_loadu_ps(prev[5]), _mm512_set1_ps(1.0f));
+    len = _mm512_mask_mov_ps(len, _mm512_cmp_ps_mask(cap, len, _CMP_LT_OQ), cap);
+    const __m512 inv = _mm512_div_ps(_mm512_set1_ps(1.0f), len);
+    const __m512 a = maxOf(_mm512_set1_ps(alpha), inv);
+    const __m512 am = maxOf(_mm512_set1_ps(momentsAlpha), inv);
+    __m512 o[3];
+    for (int k = 0; k < 3; ++k) {
+        o[k] = blend16(_mm512_loadu_ps(prev[k]), cur[k], a);
+        _mm512_storeu_ps(out[k], o[k]);
+    }
+    for (int k = 0; k < 2; ++k)
+        _mm512_storeu_ps(out[3 + k], blend16(_mm512_loadu_ps(prev[3 + k]), m[k], am));
+    _mm512_storeu_ps(out[5], len);
+    _mm512_storeu_ps(out[6], luminance16(o[0], o[1], o[2]));
+}
+
+#else
+
+void integrateOwnHistory16(const float*, const float* const*, float, float, float* const*) { }
+
+#endif
+
+} // namespace afn::svgf

@@ -1,0 +1,18 @@
+// SPDX-License-Identifier: Apache-2.0
+// Internal to methods/svgf/temporal.cpp: SVGF's temporal integration of a static camera's pixels
+// with AVX-512F (integrate_avx512.cpp).
+#pragma once
+
+namespace afn::svgf {
+
+/// 16 consecutive pixels whose own previous pixel was accepted (Reprojector::ownPixelAccepted),
+/// the scalar operations of Denoiser::integrate lane by lane (the same bits): l = luminance(c),
+/// len = min(prevLength + 1, 255), alpha = max(alpha, 1 / len) and momentsAlpha likewise, colour
+/// and moments (l, l^2) blended with blendHistory (stages/reproject.h), length = len, and the
+/// luminance of the blended colour. `c` is 48 packed floats (RGB); `prev` the previous frame's
+/// colour, moment 1, moment 2 and length (6 pointers to 16 floats); `out` the same 6 and the
+/// luminance (7 pointers). AVX-512F only (cpu::activeIsa() == Avx512).
+void integrateOwnHistory16(
+    const float* c, const float* const* prev, float alpha, float momentsAlpha, float* const* out);
+
+} // namespace afn::svgf

@@ -1,0 +1,96 @@
+// SPDX-License-Identifier: Apache-2.0
+// SVGF's temporal integration on a static camera's rows: the AVX-512 path
+// (methods/svgf/integrate_avx512.cpp, 16 pixels whose own previous pixel was accepted) gives the
+// per-pixel path's bits in all seven integrated planes (colour, luminance, both moments, history
+// length), over 300 frames (past the 255 cap on the history length), on a frame wide enough for
+// three 16-pixel blocks and a tail, with pixels that move (their history restarts, so blocks mix
+// both paths), black pixels, and values whose blend underflows below FLT_MIN. On a CPU without
+// AVX-512F both runs take the per-pixel path and the test says so.
+#include "isa_scope.h"
+#include "methods/svgf/denoiser.h"
+#include "methods/svgf/kernels.h"
+#include "stages/reproject.h"
+#include "test_methods_util.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstring>
+#include <iostream>
+
+namespace {
+
+using afn::Frame;
+using afn::Image;
+using afn::cpu::Isa;
+using isa_test::IsaScope;
+
+constexpr int W = 53, H = 7;
+
+Frame staticFrame(int t)
+{
+    methods_test::Lcg rng { static_cast<std::uint32_t>(7000 + t) };
+    Frame f;
+    f.width = W;
+    f.height = H;
+    f.color = Image(W, H, 3);
+    f.albedo = Image(W, H, 3, 1.0f);
+    f.position = Image(W, H, 3);
+    f.normal = Image(W, H, 3, 0.0f);
+    f.motion = Image(W, H, 2, 0.0f);
+    for (int y = 0; y < H; ++y)
+        for (int x = 0; x < W; ++x) {
+            const float r = rng.next();
+            f.position(x, y, 0) = 0.1f * x;
+            f.position(x, y, 1) = 0.1f * y;
+            f.position(x, y, 2) = r > 0.93f ? 3.0f : 0.0f; // moved: history restarts there
+            f.normal(x, y, 2) = 1.0f;
+            for (int c = 0; c < 3; ++c) {
+                const float q = std::fabs(rng.next());
+                f.color(x, y, c) = y == 0 ? 3e-38f * q : (x % 11 == 0 ? 0.0f : 4.0f * q);
+            }
+        }
+    return f;
+}
+
+TEST(SvgfIntegrate, StaticRowsMatchThePerPixelPath)
+{
+    if (!isa_test::haveAvx512())
+        std::cout << "[ NOTE ] no AVX-512F: both runs take the per-pixel path\n";
+    for (const float alpha : { 0.05f, 0.2f }) {
+        afn::svgf::Settings settings;
+        settings.alpha = alpha;
+        settings.momentsAlpha = 0.2f;
+        settings.feedbackTap = -1; // the colour history is the integration, not an à-trous output
+        afn::svgf::Denoiser vector, perPixel;
+        vector.setSettings(settings);
+        perPixel.setSettings(settings);
+        afn::Reprojector taps;
+        int capped = 0;
+        for (int t = 0; t < 300; ++t) {
+            Frame f = staticFrame(t);
+            taps.compute(f);
+            Image out;
+            {
+                IsaScope s(Isa::Avx512);
+                vector.process(f, f.color, taps, out);
+            }
+            {
+                IsaScope s(Isa::Portable);
+                perPixel.process(f, f.color, taps, out);
+            }
+            const afn::svgf::Planes& a = vector.integrated();
+            const afn::svgf::Planes& b = perPixel.integrated();
+            for (int k = 0; k < afn::svgf::kIntegratedPlanes; ++k)
+                for (int y = 0; y < H; ++y)
+                    ASSERT_EQ(std::memcmp(a.row(k, y), b.row(k, y), W * sizeof(float)), 0)
+                        << "plane " << k << " row " << y << " frame " << t;
+            for (int x = 0; x < W; ++x)
+                capped += b.row(afn::svgf::kHistoryLength, 3)[x] == 255.0f;
+            taps.takeGeometry(f);
+        }
+        EXPECT_GT(capped, 0) << "no history reached the cap";
+    }
+}
+
+} // namespace
