@@ -2,7 +2,9 @@
 // --benchmark:size=1280x720,1920x1080,...: time the denoise stage alone on generated inputs of each
 // size, for scaling curves (time against pixel count). Modifiers: methods=a,b (default: every type
 // but "identity"; settings as method/param=value, e.g. afn/quality=fast), frames=N timed frames
-// (default 5) after warmup=W untimed ones (default 2).
+// (default 5) after warmup=W untimed ones (default 2), rounds=R repetitions of the whole sweep
+// (default 1; sizes and methods alternate, the medians are over all rounds' frames, so that a
+// shared host's slow minutes fall on every size alike).
 // Per point also the peak heap of the run (heap_counter.h: every operator new of the process,
 // filter creation to the last frame; the generated input frame, allocated before, is left out),
 // and for afn the engine report (engine_report.h: GFLOP/s per stage beside dnnl_sgemm).
@@ -38,6 +40,7 @@ struct SizePoint {
     double medianCpuMs = 0.0; ///< process CPU time, all threads
     double cpuMsPerMegapixel = 0.0;
     double heapPeakMiB = 0.0; ///< peak heap of the run above what was live before it
+    int frames = 0; ///< timed frames of all rounds behind the medians
 };
 
 std::pair<int, int> parseSize(const std::string& text)
@@ -86,12 +89,13 @@ int runSizeBenchmark(const Options& opts, const Action& action)
                 methods.push_back(m);
     if (methods.empty())
         throw CliError("--benchmark:size: no method to time");
-    int timed = 5, warmup = 2;
+    int timed = 5, warmup = 2, rounds = 1;
     try {
         timed = std::max(1, std::stoi(mod("frames", "5")));
         warmup = std::max(0, std::stoi(mod("warmup", "2")));
+        rounds = std::max(1, std::stoi(mod("rounds", "1")));
     } catch (const std::exception&) {
-        throw CliError("--benchmark: frames and warmup expect integers");
+        throw CliError("--benchmark: frames, warmup and rounds expect integers");
     }
 
     // The yardstick first (afn only), so that its threads are idle again when afn runs.
@@ -100,56 +104,81 @@ int runSizeBenchmark(const Options& opts, const Action& action)
     EngineYardstick yardstick;
     if (engine)
         yardstick = measureYardstick(opts.threads);
-    std::vector<EnginePoint> enginePoints;
 
-    std::vector<SizePoint> points;
-    Progress progress(static_cast<int>(sizes.size() * methods.size()), opts.quiet);
+    // Per (size, method): every timed frame of every round. Rounds repeat the whole sweep, so
+    // each size sees the same minutes of a shared host; the medians are over all rounds' frames.
+    struct Run {
+        std::vector<double> times, cpuTimes;
+        double heapPeakMiB = 0.0;
+        EngineCollector collector;
+        bool failed = false;
+    };
+    std::vector<Run> runs(sizes.size() * methods.size());
+    Progress progress(static_cast<int>(sizes.size() * methods.size()) * rounds, opts.quiet);
     int done = 0;
-    for (const auto& [w, h] : sizes) {
-        LoadedFrame frame;
-        makeFrame(frame, w, h, 0); // allocated before the heap baseline of each run
-        for (const std::string& m : methods) {
-            progress.update(done++, m + " " + std::to_string(w) + "x" + std::to_string(h));
-            const MethodResult setting = parseSetting(m);
-            Action denoise { "denoise", "", setting.params };
-            denoise.mods["method"] = setting.method;
-            std::vector<double> times, cpuTimes;
-            EngineCollector collector;
-            heap::resetPeak();
-            const std::size_t heapBase = heap::liveBytes();
-            try {
-                SequenceDenoiser denoiser(opts, denoise);
-                for (int i = 0; i < warmup + timed; ++i) {
-                    makeFrame(frame, w, h, i);
-                    const double cpu0 = processCpuMs();
-                    const auto t0 = std::chrono::steady_clock::now();
-                    denoiser.process(frame, &progress);
-                    const double ms = std::chrono::duration<double, std::milli>(
-                        std::chrono::steady_clock::now() - t0)
-                                          .count();
-                    if (i < warmup)
-                        continue;
-                    times.push_back(ms);
-                    cpuTimes.push_back(processCpuMs() - cpu0);
-                    if (m == "afn" && engine)
-                        collector.add([&](const char* s) { return denoiser.statistic(s); });
+    for (int round = 0; round < rounds; ++round)
+        for (std::size_t si = 0; si < sizes.size(); ++si) {
+            const auto [w, h] = sizes[si];
+            LoadedFrame frame;
+            makeFrame(frame, w, h, 0); // allocated before the heap baseline of each run
+            for (std::size_t mi = 0; mi < methods.size(); ++mi) {
+                const std::string& m = methods[mi];
+                Run& run = runs[si * methods.size() + mi];
+                progress.update(done++, m + " " + std::to_string(w) + "x" + std::to_string(h));
+                if (run.failed)
+                    continue;
+                const MethodResult setting = parseSetting(m);
+                Action denoise { "denoise", "", setting.params };
+                denoise.mods["method"] = setting.method;
+                heap::resetPeak();
+                const std::size_t heapBase = heap::liveBytes();
+                try {
+                    SequenceDenoiser denoiser(opts, denoise);
+                    for (int i = 0; i < warmup + timed; ++i) {
+                        makeFrame(frame, w, h, i);
+                        const double cpu0 = processCpuMs();
+                        const auto t0 = std::chrono::steady_clock::now();
+                        denoiser.process(frame, &progress);
+                        const double ms = std::chrono::duration<double, std::milli>(
+                            std::chrono::steady_clock::now() - t0)
+                                              .count();
+                        if (i < warmup)
+                            continue;
+                        run.times.push_back(ms);
+                        run.cpuTimes.push_back(processCpuMs() - cpu0);
+                        if (m == "afn" && engine)
+                            run.collector.add([&](const char* s) { return denoiser.statistic(s); });
+                    }
+                } catch (const CliError& e) {
+                    // One method failing (e.g. "afn" without weights) does not end the benchmark.
+                    warn("method '" + m + "' failed at " + std::to_string(w) + "x"
+                            + std::to_string(h) + " and is left out: " + e.what(),
+                        opts.quiet, &progress);
+                    run.failed = true;
+                    continue;
                 }
-            } catch (const CliError& e) {
-                // One method failing (e.g. "afn" without weights) does not end the benchmark.
-                warn("method '" + m + "' failed at " + std::to_string(w) + "x" + std::to_string(h)
-                        + " and is left out: " + e.what(),
-                    opts.quiet, &progress);
-                continue;
+                run.heapPeakMiB = std::max(
+                    run.heapPeakMiB, static_cast<double>(heap::peakBytes() - heapBase) / (1 << 20));
             }
-            SizePoint p { m, w, h, median(times), 0.0, median(cpuTimes), 0.0 };
-            p.heapPeakMiB = static_cast<double>(heap::peakBytes() - heapBase) / (1 << 20);
+        }
+    std::vector<SizePoint> points;
+    std::vector<EnginePoint> enginePoints;
+    for (std::size_t si = 0; si < sizes.size(); ++si)
+        for (std::size_t mi = 0; mi < methods.size(); ++mi) {
+            const Run& run = runs[si * methods.size() + mi];
+            if (run.failed || run.times.empty())
+                continue;
+            const auto [w, h] = sizes[si];
+            const std::string& m = methods[mi];
+            SizePoint p { m, w, h, median(run.times), 0.0, median(run.cpuTimes), 0.0 };
+            p.heapPeakMiB = run.heapPeakMiB;
+            p.frames = static_cast<int>(run.times.size());
             if (m == "afn" && engine)
-                enginePoints.push_back(collector.finish(w, h));
+                enginePoints.push_back(run.collector.finish(w, h));
             p.msPerMegapixel = p.medianMs / (static_cast<double>(w) * h / 1e6);
             p.cpuMsPerMegapixel = p.medianCpuMs / (static_cast<double>(w) * h / 1e6);
             points.push_back(p);
         }
-    }
     progress.clear();
 
     // Linearity: ms per megapixel relative to the first listed size of the same method.
@@ -163,6 +192,7 @@ int runSizeBenchmark(const Options& opts, const Action& action)
     j.beginObject()
         .field("timedFrames", timed)
         .field("warmupFrames", warmup)
+        .field("rounds", rounds)
         .field("threads", opts.threads)
         .field("device", opts.device);
     j.key("points").beginArray();
@@ -187,6 +217,7 @@ int runSizeBenchmark(const Options& opts, const Action& action)
         j.field("relativeToFirst", rel).field("medianCpuMs", p.medianCpuMs);
         j.field("cpuMsPerMegapixel", p.cpuMsPerMegapixel).field("cpuRelativeToFirst", relCpu);
         j.field("heapPeakMiB", p.heapPeakMiB).field("heapMiBPerMegapixel", p.heapPeakMiB / mp);
+        j.field("frames", p.frames);
         j.endObject();
         char line[320];
         std::snprintf(line, sizeof line, "%s,%d,%d,%.6f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.2f,%.2f\n",
@@ -201,11 +232,12 @@ int runSizeBenchmark(const Options& opts, const Action& action)
     if (opts.json)
         std::printf("%s\n", j.str().c_str());
     else
-        std::printf("(median of %d timed frames after %d warm-up frames on --device %s; rel. = "
-                    "per-megapixel time against the method's first size: 1.0 = linear in pixel "
-                    "count; cpu = process CPU time of all threads; heap = peak operator-new bytes "
-                    "of the run, input frame excluded)\n",
-            timed, warmup, opts.device.c_str());
+        std::printf("(median of %d timed frames after %d warm-up frames, over %d round(s) of "
+                    "the whole sweep, on --device %s; rel. = per-megapixel time against the "
+                    "method's first size: 1.0 = linear in pixel count; cpu = process CPU time of "
+                    "all threads; heap = peak operator-new bytes of the run, input frame "
+                    "excluded)\n",
+            timed, warmup, rounds, opts.device.c_str());
     if (!opts.json && engine)
         printEngineReport(yardstick, enginePoints);
     if (!opts.report.empty()) {

@@ -145,6 +145,21 @@ TEST(AfntoolCompare, SizeBenchmarkTimesGeneratedFrames)
         runAfntool({ "--benchmark:size=64by36" }).err.find("WIDTHxHEIGHT"), std::string::npos);
 }
 
+// rounds=R repeats the sweep: each point's medians are over R x frames timed frames.
+TEST(AfntoolCompare, SizeBenchmarkRoundsRepeatTheSweep)
+{
+    const CliResult r = runAfntool(
+        { "--benchmark:size=64x36,32x18:methods=ta:frames=2:warmup=0:rounds=3", "--json", "-q" });
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_EQ(jsonNumbers(r.out, "rounds"), std::vector<double> { 3.0 }) << r.out;
+    EXPECT_EQ(jsonNumbers(r.out, "frames"), (std::vector<double> { 6.0, 6.0 })) << r.out;
+    const CliResult bad = runAfntool({ "--benchmark:size=64x36:methods=ta:rounds=two" });
+    EXPECT_NE(bad.exitCode, 0);
+    EXPECT_NE(bad.err.find("afntool ERROR: --benchmark: frames, warmup and rounds expect integers"),
+        std::string::npos)
+        << bad.err;
+}
+
 // afn's engine report: GFLOP/s per stage beside the dnnl_sgemm yardstick, heap per megapixel.
 TEST(AfntoolCompare, SizeBenchmarkReportsEngineAndHeap)
 {
