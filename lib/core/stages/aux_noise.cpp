@@ -161,6 +161,45 @@ std::int64_t speckleCount(const ImageView& img, AuxKind kind)
     return img.empty() ? 0 : speckleRows(img, kind, nullptr);
 }
 
+namespace {
+
+template <AuxKind K> void discontinuityRows(const ImageView& img, Image& out, int y0, int y1)
+{
+    static constexpr int kDx[4] = { -1, 1, 0, 0 };
+    static constexpr int kDy[4] = { 0, 0, -1, 1 };
+    const float t = threshold(K);
+    for (int y = y0; y < y1; ++y)
+        for (int x = 0; x < img.width; ++x) {
+            const float* p = img.at(x, y);
+            int n = 0, far = 0;
+            for (int k = 0; k < 4; ++k) {
+                const int qx = x + kDx[k], qy = y + kDy[k];
+                if (qx < 0 || qy < 0 || qx >= img.width || qy >= img.height)
+                    continue;
+                ++n;
+                far += distance<K>(p, img.at(qx, qy)) > t ? 1 : 0; // NaN: not far
+            }
+            out(x, y, 0) = n > 0 ? static_cast<float>(far) / static_cast<float>(n) : 0.0f;
+        }
+}
+
+} // namespace
+
+void discontinuityShares(const ImageView& img, AuxKind kind, Image& out)
+{
+    if (img.empty() || kind == AuxKind::Depth) {
+        out = Image();
+        return;
+    }
+    out.resize(img.width, img.height, 1);
+    parallelRows(img.height, [&](int y0, int y1) {
+        if (kind == AuxKind::Albedo)
+            discontinuityRows<AuxKind::Albedo>(img, out, y0, y1);
+        else
+            discontinuityRows<AuxKind::Normal>(img, out, y0, y1);
+    });
+}
+
 double speckleShare(const ImageView& img, AuxKind kind)
 {
     if (img.empty())

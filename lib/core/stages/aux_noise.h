@@ -65,4 +65,15 @@ std::int64_t speckleCount(const ImageView& image, AuxKind kind);
 /// Share of speckle pixels of `image` in [0, 1] (0 for an empty image).
 double speckleShare(const ImageView& image, AuxKind kind);
 
+/// Dense speckle, which the test above misses (neighbouring speckles hide each other: Blender's
+/// Denoising Albedo on a coated floor at 1 spp is a two-level pattern over 30-50 % of the pixels,
+/// where most pixels have a neighbour of the same level). Per pixel, the share of its 4 edge
+/// neighbours (inside the image) farther than the kind's threshold, into `out` (1 channel, in
+/// [0, 1]); albedo and normal only. Averaged over a 5x5 window (stages/aux_prefilter.h) it is the
+/// share of differing adjacent pairs: about 2 p (1 - p) for speckle of density p (0.42-0.5 at
+/// 30-50 %), 0.1 across a straight edge, 0.2-0.3 on a checker of 4-pixel squares, 0.25 on stripes
+/// two pixels wide, 0.5 on one-pixel stripes (texture that fine is not told from noise at one
+/// pixel's scale).
+void discontinuityShares(const ImageView& image, AuxKind kind, Image& out);
+
 } // namespace afn

@@ -63,6 +63,24 @@ void boxMean(const Image& src, Image& tmp, Image& out)
     });
 }
 
+/// The speckle share of each pixel's 5x5 window of `img` (flags: its speckle flags), raised where
+/// the window's differing adjacent pairs say dense speckle (aux_prefilter.h, step 2), into `share`.
+void windowShare(const Image& img, AuxKind kind, const Image& flags, Image& tmp, Image& edges,
+    Image& dense, Image& share)
+{
+    boxMean(flags, tmp, share);
+    discontinuityShares(img.view(), kind, edges);
+    boxMean(edges, tmp, dense);
+    parallelRows(img.height(), [&](int y0, int y1) {
+        for (int y = y0; y < y1; ++y)
+            for (int x = 0; x < img.width(); ++x) {
+                const float ramp = std::clamp(
+                    (dense(x, y, 0) - kAuxDenseLow) / (kAuxDenseHigh - kAuxDenseLow), 0.0f, 1.0f);
+                share(x, y, 0) = std::max(share(x, y, 0), kAuxUnreliableShare * ramp);
+            }
+    });
+}
+
 inline float reliability(float share)
 {
     return std::clamp(1.0f - share / kAuxUnreliableShare, 0.0f, 1.0f);
@@ -109,13 +127,13 @@ void AuxPrefilter::prepare(Frame& f)
         // A clean history never reads flags or prefilter buffers again: free them (issue 16:
         // frame-size buffers kept only while in use), so they do not add to every later frame.
         for (Image* img : { &m_albedoFlags, &m_normalFlags, &m_depthFlags, &m_share, &m_mean,
-                 &m_tmp, &m_depthValid, &m_hist, &m_prevHist })
+                 &m_tmp, &m_depthValid, &m_hist, &m_prevHist, &m_edges, &m_dense })
             *img = Image();
         return;
     }
 
     if (f.hasNormal()) {
-        boxMean(m_normalFlags, m_tmp, m_share);
+        windowShare(f.normal, AuxKind::Normal, m_normalFlags, m_tmp, m_edges, m_dense, m_share);
         boxMean(f.normal, m_tmp, m_mean);
         parallelRows(f.height, [&](int y0, int y1) {
             for (int y = y0; y < y1; ++y)
@@ -170,7 +188,7 @@ void AuxPrefilter::finish(Frame& f, const Reprojector* taps)
     }
     const int w = f.width, h = f.height;
     // Current (smoothed albedo, flag share) per pixel, then its temporal accumulation.
-    boxMean(m_albedoFlags, m_tmp, m_share);
+    windowShare(f.albedo, AuxKind::Albedo, m_albedoFlags, m_tmp, m_edges, m_dense, m_share);
     boxMean(f.albedo, m_tmp, m_mean);
     std::swap(m_hist, m_prevHist);
     m_hist.resize(w, h, 5);

@@ -14,7 +14,10 @@
 // A per-pixel factor is worth having where it is reliable (it takes texture out of the signal);
 // where it is noise it should be smooth. So, in "noisy" mode:
 //   1. flags    speckle pixels of each buffer (stages/aux_noise.h: differs from all 8 neighbours);
-//   2. u        share of flagged pixels in the 5x5 window, accumulated over time through the
+//   2. u        share of flagged pixels in the 5x5 window, or, where more is the denser speckle
+//               of the 5x5 window's differing adjacent pairs (stages/aux_noise.h
+//               discontinuityShares; ramped from kAuxDenseLow to kAuxDenseHigh onto the same
+//               0..kAuxUnreliableShare scale), accumulated over time through the
 //               reprojection (the "variance over neighbourhood and history");
 //   3. r        reliability = clamp(1 - u / kAuxUnreliableShare, 0, 1): 1 on clean surfaces
 //               (flag-free windows), 0 where 4 or more of 25 neighbours are speckle;
@@ -60,6 +63,12 @@ const ParamBinding<AuxSettings>& auxBinding();
 
 /// Share of speckle pixels in a 5x5 window at which a buffer is fully unreliable (4 of 25).
 constexpr float kAuxUnreliableShare = 0.16f;
+/// The 5x5 mean of discontinuityShares (stages/aux_noise.h) from which a buffer counts as dense
+/// speckle (its reliability falls from 1 at kAuxDenseLow to 0 at kAuxDenseHigh). A checker of
+/// 4-pixel squares gives 0.2-0.3 depending on the window's phase, stripes two pixels wide 0.25:
+/// left as they are; speckle of density 30 % gives about 0.42, 40-50 % about 0.48-0.5.
+constexpr float kAuxDenseLow = 0.3f;
+constexpr float kAuxDenseHigh = 0.45f;
 /// Minimum blend factor of the albedo's temporal accumulation.
 constexpr float kAuxAlbedoAlphaMin = 0.1f;
 /// Floor of the demodulation factor where it is unreliable (2^-5; scaled by 1 - r).
@@ -95,6 +104,7 @@ private:
     bool m_hasHistory = false;
     Image m_albedoFlags, m_normalFlags, m_depthFlags; ///< speckle flags (kept in noisy mode)
     Image m_share, m_mean, m_tmp, m_depthValid;
+    Image m_edges, m_dense; ///< discontinuity shares and their 5x5 mean (albedo, normal)
     Image m_hist, m_prevHist; ///< per pixel: smoothed albedo (3), flag share (1), length (1)
 };
 

@@ -9,6 +9,7 @@ afn_add_gtest(test_methods
   SOURCES
     unit/core/stages/test_methods_reproject.cpp
     unit/core/stages/test_aux_prefilter.cpp
+    unit/core/stages/test_aux_dense_speckle.cpp
     unit/core/stages/test_reproject_identity.cpp
     unit/core/stages/test_stage_kernels_isa.cpp
     unit/core/stages/test_gather_accumulate_isa.cpp
