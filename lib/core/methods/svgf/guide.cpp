@@ -3,8 +3,53 @@
 #include "methods/svgf/guide.h"
 
 #include "base/parallel.h"
+#include "cpu/target.h"
+
+#include <cmath>
 
 namespace afn::svgf {
+
+namespace {
+
+/// The one-sided difference of smaller magnitude: the forward one (next - z) where it is smaller,
+/// else the backward one, written as -(previous - z) (the same bits as before, -0 included).
+inline float smallerDifference(float previous, float z, float next)
+{
+    const float backward = -(previous - z), forward = next - z;
+    return std::fabs(forward) < std::fabs(backward) ? forward : backward;
+}
+
+/// Row y's depth gradient per axis (guide.h: the one-sided difference of smaller magnitude; one
+/// side at the image's border, 0 without either): `up` and `down` are rows y - 1 and y + 1, null
+/// outside the image. Branch-free over the inner columns, so the compiler vectorises it (the
+/// clones of cpu/target.h); only subtractions, negations and comparisons: the same values on
+/// every instruction set (tests/unit/core/methods/svgf/test_svgf_guide.cpp).
+AFN_CPU_KERNEL_CLONES void depthGradientRow(
+    const float* z, const float* up, const float* down, int w, float* dx, float* dy)
+{
+    if (w == 1)
+        dx[0] = 0.0f;
+    else {
+        dx[0] = z[1] - z[0];
+        dx[w - 1] = -(z[w - 2] - z[w - 1]);
+    }
+    for (int x = 1; x + 1 < w; ++x)
+        dx[x] = smallerDifference(z[x - 1], z[x], z[x + 1]);
+    if (up && down)
+        for (int x = 0; x < w; ++x)
+            dy[x] = smallerDifference(up[x], z[x], down[x]);
+    else if (down)
+        for (int x = 0; x < w; ++x)
+            dy[x] = down[x] - z[x];
+    else if (up)
+        for (int x = 0; x < w; ++x)
+            dy[x] = -(up[x] - z[x]);
+    else
+        for (int x = 0; x < w; ++x)
+            dy[x] = 0.0f;
+}
+
+} // namespace
 
 void Guide::build(const Frame& f, const Settings& s)
 {
@@ -40,28 +85,11 @@ void Guide::build(const Frame& f, const Settings& s)
     });
     if (!hasDepth)
         return;
-    auto depth = [&](int x, int y) { return planes.row(kDepth, y)[x]; };
     parallelRows(h, [&](int y0, int y1) {
         for (int y = y0; y < y1; ++y)
-            for (int x = 0; x < w; ++x) {
-                const float z = depth(x, y);
-                auto axis = [&](int dx, int dy) {
-                    float best = 0.0f;
-                    bool any = false;
-                    for (int sgn = -1; sgn <= 1; sgn += 2) {
-                        const int nx = x + sgn * dx, ny = y + sgn * dy;
-                        if (nx < 0 || ny < 0 || nx >= w || ny >= h)
-                            continue;
-                        const float d = sgn * (depth(nx, ny) - z);
-                        if (!any || std::fabs(d) < std::fabs(best))
-                            best = d;
-                        any = true;
-                    }
-                    return best;
-                };
-                planes.row(kDepthDx, y)[x] = axis(1, 0);
-                planes.row(kDepthDy, y)[x] = axis(0, 1);
-            }
+            depthGradientRow(planes.row(kDepth, y), y > 0 ? planes.row(kDepth, y - 1) : nullptr,
+                y + 1 < h ? planes.row(kDepth, y + 1) : nullptr, w, planes.row(kDepthDx, y),
+                planes.row(kDepthDy, y));
     });
 }
 
