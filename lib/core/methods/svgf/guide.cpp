@@ -4,6 +4,7 @@
 
 #include "base/parallel.h"
 #include "cpu/target.h"
+#include "methods/svgf/rgb_rows.h"
 
 #include <cmath>
 
@@ -63,13 +64,9 @@ void Guide::build(const Frame& f, const Settings& s)
     const auto& M = f.camera.viewProjection;
     parallelRows(h, [&](int y0, int y1) {
         for (int y = y0; y < y1; ++y) {
-            if (hasNormal) {
-                float* n[3]
-                    = { planes.row(kNormalX, y), planes.row(kNormalY, y), planes.row(kNormalZ, y) };
-                for (int x = 0; x < w; ++x)
-                    for (int k = 0; k < 3; ++k)
-                        n[k][x] = f.normal(x, y, k);
-            }
+            if (hasNormal)
+                deinterleaveRgbRow(f.normal.at(0, y), planes.row(kNormalX, y),
+                    planes.row(kNormalY, y), planes.row(kNormalZ, y), w);
             if (!hasDepth)
                 continue;
             float* z = planes.row(kDepth, y);

@@ -17,6 +17,7 @@
 #include "base/parallel.h"
 #include "methods/svgf/denoiser.h"
 #include "methods/svgf/kernels.h"
+#include "methods/svgf/rgb_rows.h"
 
 #include <algorithm>
 
@@ -52,11 +53,8 @@ void Denoiser::copyColor(const Planes& src, int firstPlane, const WorkRegion* re
     parallelRows(dst.height(), [&](int y0, int y1) {
         for (int y = y0; y < y1; ++y) {
             const int x0 = region ? region->x0(y) : 0, x1 = region ? region->x1(y) : w;
-            for (int k = 0; k < 3; ++k) {
-                const float* c = src.row(firstPlane + k, y);
-                for (int x = x0; x < x1; ++x)
-                    dst(x, y, k) = c[x];
-            }
+            interleaveRgbRow(src.row(firstPlane, y), src.row(firstPlane + 1, y),
+                src.row(firstPlane + 2, y), dst.at(0, y), x0, x1);
         }
     });
 }
