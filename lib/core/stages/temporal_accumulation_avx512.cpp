@@ -10,9 +10,8 @@
 
 #include "cpu/avx512.h"
 #include "cpu/avx512_rgb.h"
+#include "stages/blend_history_avx512.h"
 #include "stages/temporal_accumulation.h"
-
-#include <cfloat>
 
 namespace afn {
 
@@ -34,15 +33,10 @@ AFN_CPU_AVX512 void blendOwnHistory16(
     const __m512 capped = _mm512_mask_mov_ps(s1, _mm512_cmp_ps_mask(cap, s1, _CMP_LT_OQ), cap);
     _mm512_storeu_ps(
         spp, _mm512_mask_mov_ps(one, _mm512_cmp_ps_mask(alpha, one, _CMP_LT_OQ), capped));
-    const __m512 flushBelow = _mm512_set1_ps(FLT_MIN), zero = _mm512_set1_ps(0.0f);
-    for (int k = 0; k < 3; ++k) {
-        const __m512 p = _mm512_loadu_ps(prev + 16 * k);
-        const __m512 cur = _mm512_loadu_ps(c + 16 * k);
-        const __m512 v
-            = _mm512_add_ps(p, _mm512_mul_ps(cpu::spreadToPacked(alpha, k), _mm512_sub_ps(cur, p)));
-        const __mmask16 tiny = _mm512_cmp_ps_mask(_mm512_abs_ps(v), flushBelow, _CMP_LT_OQ);
-        _mm512_storeu_ps(acc + 16 * k, _mm512_mask_mov_ps(v, tiny, zero));
-    }
+    for (int k = 0; k < 3; ++k)
+        _mm512_storeu_ps(acc + 16 * k,
+            blendHistory16(_mm512_loadu_ps(prev + 16 * k), _mm512_loadu_ps(c + 16 * k),
+                cpu::spreadToPacked(alpha, k)));
 }
 
 #else

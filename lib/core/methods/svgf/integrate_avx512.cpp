@@ -11,8 +11,7 @@
 
 #include "cpu/avx512.h"
 #include "cpu/avx512_rgb.h"
-
-#include <cfloat>
+#include "stages/blend_history_avx512.h"
 
 namespace afn::svgf {
 
@@ -25,15 +24,6 @@ AFN_CPU_AVX512_INLINE __m512 luminance16(__m512 r, __m512 g, __m512 b)
     return _mm512_add_ps(_mm512_add_ps(_mm512_mul_ps(_mm512_set1_ps(0.2126f), r),
                              _mm512_mul_ps(_mm512_set1_ps(0.7152f), g)),
         _mm512_mul_ps(_mm512_set1_ps(0.0722f), b));
-}
-
-/// blendHistory (stages/reproject.h) lane by lane.
-AFN_CPU_AVX512_INLINE __m512 blend16(__m512 prev, __m512 cur, __m512 a)
-{
-    const __m512 v = _mm512_add_ps(prev, _mm512_mul_ps(a, _mm512_sub_ps(cur, prev)));
-    const __mmask16 tiny
-        = _mm512_cmp_ps_mask(_mm512_abs_ps(v), _mm512_set1_ps(FLT_MIN), _CMP_LT_OQ);
-    return _mm512_mask_mov_ps(v, tiny, _mm512_setzero_ps());
 }
 
 /// std::max(floor, v): v where floor < v.
@@ -63,11 +53,11 @@ AFN_CPU_AVX512 void integrateOwnHistory16(
     const __m512 am = maxOf(_mm512_set1_ps(momentsAlpha), inv);
     __m512 o[3];
     for (int k = 0; k < 3; ++k) {
-        o[k] = blend16(_mm512_loadu_ps(prev[k]), cur[k], a);
+        o[k] = blendHistory16(_mm512_loadu_ps(prev[k]), cur[k], a);
         _mm512_storeu_ps(out[k], o[k]);
     }
     for (int k = 0; k < 2; ++k)
-        _mm512_storeu_ps(out[3 + k], blend16(_mm512_loadu_ps(prev[3 + k]), m[k], am));
+        _mm512_storeu_ps(out[3 + k], blendHistory16(_mm512_loadu_ps(prev[3 + k]), m[k], am));
     _mm512_storeu_ps(out[5], len);
     _mm512_storeu_ps(out[6], luminance16(o[0], o[1], o[2]));
 }
