@@ -4,6 +4,7 @@
 
 #include "base/image.h"
 #include "bind_image.h"
+#include "filter/frame.h"
 #include "filter/registry.h"
 
 #include <cmath>
@@ -101,6 +102,37 @@ inline std::vector<float> shiftedCamera(int w, int h, float tx, float ty)
     m[3 * 4 + 1] = 2.0f * ty / static_cast<float>(h) - 1.0f;
     m[3 * 4 + 3] = 1.0f;
     return m;
+}
+
+/// A static camera's w x h frame for the kernels' AVX-512 against portable tests: positions fixed,
+/// about 7 % of the pixels moved this frame (their own previous pixel is rejected, so 16-pixel
+/// blocks mix both paths), colour with black pixels (every 11th column) and, in row 0, values
+/// whose temporal blend underflows below FLT_MIN; albedo 1, normals +z, no motion. `seed` picks the
+/// frame's random values (a test passes a different one per frame).
+inline afn::Frame staticCameraFrame(int w, int h, std::uint32_t seed)
+{
+    Lcg rng { seed };
+    afn::Frame f;
+    f.width = w;
+    f.height = h;
+    f.color = Image(w, h, 3);
+    f.albedo = Image(w, h, 3, 1.0f);
+    f.position = Image(w, h, 3);
+    f.normal = Image(w, h, 3, 0.0f);
+    f.motion = Image(w, h, 2, 0.0f);
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) {
+            const float r = rng.next();
+            f.position(x, y, 0) = 0.1f * x;
+            f.position(x, y, 1) = 0.1f * y;
+            f.position(x, y, 2) = r > 0.93f ? 3.0f : 0.0f; // moved: history restarts there
+            f.normal(x, y, 2) = 1.0f;
+            for (int c = 0; c < 3; ++c) {
+                const float q = std::fabs(rng.next());
+                f.color(x, y, c) = y == 0 ? 3e-38f * q : (x % 11 == 0 ? 0.0f : 4.0f * q);
+            }
+        }
+    return f;
 }
 
 } // namespace methods_test

@@ -127,34 +127,6 @@ TEST(GatherAccumulateIsa, GatherMatchesThePortablePath)
             }
 }
 
-/// A static camera's frame: positions fixed, some pixels moved this frame (their own tap is
-/// rejected or they take other taps, so blocks mix both paths); colour with tiny values whose blend
-/// underflows below FLT_MIN.
-Frame staticFrame(int t)
-{
-    Lcg rng { static_cast<std::uint32_t>(1000 + t) };
-    Frame f;
-    f.width = W;
-    f.height = H;
-    f.color = Image(W, H, 3);
-    f.position = Image(W, H, 3);
-    f.normal = Image(W, H, 3, 0.0f);
-    f.motion = Image(W, H, 2, 0.0f);
-    for (int y = 0; y < H; ++y)
-        for (int x = 0; x < W; ++x) {
-            const float r = rng.next();
-            f.position(x, y, 0) = 0.1f * x;
-            f.position(x, y, 1) = 0.1f * y;
-            f.position(x, y, 2) = r > 0.93f ? 3.0f : 0.0f; // moved: history reset there
-            f.normal(x, y, 2) = 1.0f;
-            for (int c = 0; c < 3; ++c) {
-                const float q = std::fabs(rng.next());
-                f.color(x, y, c) = y == 0 ? 3e-38f * q : (x % 11 == 0 ? 0.0f : 4.0f * q);
-            }
-        }
-    return f;
-}
-
 TEST(GatherAccumulateIsa, StaticRowAccumulationMatchesThePortablePath)
 {
     for (float alphaMin : { 0.0f, 0.2f }) {
@@ -164,7 +136,8 @@ TEST(GatherAccumulateIsa, StaticRowAccumulationMatchesThePortablePath)
         p.setSettings({ alphaMin });
         int capped = 0;
         for (int t = 0; t < 300; ++t) { // past the 255 cap
-            const Frame f = staticFrame(t);
+            const Frame f
+                = methods_test::staticCameraFrame(W, H, static_cast<std::uint32_t>(1000 + t));
             taps.compute(f);
             {
                 IsaScope s(Isa::Avx512);

@@ -27,32 +27,6 @@ using isa_test::IsaScope;
 
 constexpr int W = 53, H = 7;
 
-Frame staticFrame(int t)
-{
-    methods_test::Lcg rng { static_cast<std::uint32_t>(7000 + t) };
-    Frame f;
-    f.width = W;
-    f.height = H;
-    f.color = Image(W, H, 3);
-    f.albedo = Image(W, H, 3, 1.0f);
-    f.position = Image(W, H, 3);
-    f.normal = Image(W, H, 3, 0.0f);
-    f.motion = Image(W, H, 2, 0.0f);
-    for (int y = 0; y < H; ++y)
-        for (int x = 0; x < W; ++x) {
-            const float r = rng.next();
-            f.position(x, y, 0) = 0.1f * x;
-            f.position(x, y, 1) = 0.1f * y;
-            f.position(x, y, 2) = r > 0.93f ? 3.0f : 0.0f; // moved: history restarts there
-            f.normal(x, y, 2) = 1.0f;
-            for (int c = 0; c < 3; ++c) {
-                const float q = std::fabs(rng.next());
-                f.color(x, y, c) = y == 0 ? 3e-38f * q : (x % 11 == 0 ? 0.0f : 4.0f * q);
-            }
-        }
-    return f;
-}
-
 TEST(SvgfIntegrate, StaticRowsMatchThePerPixelPath)
 {
     if (!isa_test::haveAvx512())
@@ -68,7 +42,7 @@ TEST(SvgfIntegrate, StaticRowsMatchThePerPixelPath)
         afn::Reprojector taps;
         int capped = 0;
         for (int t = 0; t < 300; ++t) {
-            Frame f = staticFrame(t);
+            Frame f = methods_test::staticCameraFrame(W, H, static_cast<std::uint32_t>(7000 + t));
             taps.compute(f);
             Image out;
             {
