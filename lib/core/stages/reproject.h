@@ -112,6 +112,14 @@ public:
         const TapBits& b = m_bits[static_cast<std::size_t>(y) * m_width + x];
         return b.mask == 1 && !b.box;
     }
+    /// On an identity row (identityRow(y)) with history: true when the previous position was
+    /// computed and did not fall back to the 3x3 box, i.e. taps(x, y) is on screen with bilinear
+    /// weights (1, 0, 0, 0) at (x, y), whether or not the tap was accepted (TAA samples it).
+    bool ownPixelSampled(int x, int y) const
+    {
+        const TapBits& b = m_bits[static_cast<std::size_t>(y) * m_width + x];
+        return b.onScreen && !b.box;
+    }
     /// ownPixelAccepted for the 16 pixels [x, x + 16) of row y, as a mask (bit j: pixel x + j).
     /// AVX-512F only (cpu::activeIsa() == Avx512; stages/reproject_avx512.cpp).
     std::uint32_t ownPixelsAccepted16(int x, int y) const;

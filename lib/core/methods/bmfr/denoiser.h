@@ -8,7 +8,7 @@
 //      shifts every frame by one of 16 offsets; one Householder QR per block fits all channels;
 //   3. second accumulation of the regression output with the same taps and
 //      alpha = max(1/len, secondAlphaMin) (len = TA history length after this frame);
-//   4. remodulation by albedo, then TAA (taa.cpp) on the linear radiance.
+//   4. remodulation by albedo, then TAA (stages/taa.h) on the linear radiance.
 // Work skipping (Frame::work): only the blocks that hold a pixel of the work region dilated by
 // kWorkMargin are fitted; the others pass the accumulated colour on (the cheap path) through the
 // second accumulation and TAA, which run everywhere (per pixel, cheap). The margin covers TAA's
@@ -18,6 +18,7 @@
 #pragma once
 
 #include "filter/work_region.h"
+#include "stages/taa.h"
 #include "stages/temporal_accumulation.h"
 
 namespace afn::bmfr {
@@ -29,7 +30,7 @@ struct Settings {
     int blockSize = 32; ///< block edge in pixels (BMFR supports only 32)
     float noise = 0.01f; ///< uniform feature noise amplitude (NOISE_AMOUNT 1e-2)
     bool taa = true; ///< apply the final TAA step
-    float taaAlpha = 0.2f; ///< TAA weight of the current frame (BMFR 0.2)
+    float taaAlpha = kTaaAlpha; ///< TAA weight of the current frame (BMFR 0.2)
 };
 
 /// The descriptors of Settings (the method's own parameters).
@@ -42,14 +43,8 @@ const ParamBinding<Settings>& settingsBinding();
 void regression(const Frame& f, const Image& noisy, const Settings& s, int blockFrame,
     Image& filtered, const WorkRegion* region = nullptr);
 
-/// Temporal anti-aliasing: blend `current` (3 ch radiance) with `history` sampled bilinearly at the
-/// reprojected position, the history clamped in YCoCg to the average of the 3x3 box and 5-tap cross
-/// min/max boxes of `current`. Writes `out` (may not alias the inputs).
-void taa(
-    const Reprojector& taps, const Image& current, const Image& history, float alpha, Image& out);
-
 /// Pixels around the work region whose regression must be exact (see the file comment).
-constexpr int kWorkMargin = 3;
+constexpr int kWorkMargin = kTaaWorkMargin;
 
 class Denoiser {
 public:
@@ -65,9 +60,10 @@ public:
 private:
     Settings m_settings;
     bool m_hasHistory = false;
-    /// Histories: m_filtered (second accumulation), m_output (TAA, the last output); scratch:
-    /// m_spare and the caller's (regression, then the remodulated radiance; pipeline.cpp).
-    Image m_filtered, m_spare, m_output;
+    /// Histories: m_filtered (second accumulation), m_taa (the last output); scratch: m_spare
+    /// and the caller's (regression, then the remodulated radiance; pipeline.cpp).
+    Image m_filtered, m_spare;
+    TemporalAntialiasing m_taa;
 };
 
 } // namespace afn::bmfr

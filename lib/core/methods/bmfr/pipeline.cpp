@@ -14,16 +14,17 @@ namespace afn::bmfr {
 void Denoiser::reset()
 {
     m_hasHistory = false;
+    m_taa.reset();
 }
 
 const Image& Denoiser::process(
     const Frame& f, const Reprojector& taps, const TemporalAccumulator& ta, Image& scratch)
 {
-    // Four frame-size buffers (issue 16): m_filtered and m_output hold the histories between
+    // Frame-size buffers (issue 16): m_filtered and the TAA's output hold the histories between
     // frames, m_spare and the caller's `scratch` are free. Each frame: regression -> `scratch`;
     // second accumulation -> m_spare (the old m_filtered becomes the spare it reads); remodulated
-    // radiance -> `scratch` (the regression is dead by then); TAA -> the spare, which becomes
-    // m_output.
+    // radiance -> `scratch` (the regression is dead by then); TAA -> m_spare, which becomes its
+    // history (stages/taa.h), m_spare getting the old history's buffer.
     Image& regressed = scratch;
     if (f.hasWorkMask()) {
         const WorkRegion region = WorkRegion::fromMask(f.work).dilated(kWorkMargin);
@@ -62,9 +63,7 @@ const Image& Denoiser::process(
     remodulate(f, m_filtered, radiance);
     if (!m_settings.taa)
         return radiance;
-    taa(taps, radiance, m_output, m_settings.taaAlpha, m_spare);
-    std::swap(m_output, m_spare); // this frame's output is the next frame's TAA history
-    return m_output;
+    return m_taa.apply(taps, radiance, m_settings.taaAlpha, m_spare);
 }
 
 const ParamBinding<Settings>& settingsBinding()

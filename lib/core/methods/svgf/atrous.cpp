@@ -67,7 +67,13 @@ const ParamBinding<Settings>& settingsBinding()
               .add(&S::momentsAlpha, "momentsAlpha", 0.0, 1.0, "Moments blend factor",
                   "minimum weight of the current frame in the moments history (paper 0.2)")
               .add(&S::varianceHistory, "varianceHistory", 1, 255, "Spatial variance below",
-                  "history length (frames) below which variance is estimated over 7x7 (paper 4)");
+                  "history length (frames) below which variance is estimated over 7x7 (paper 4)")
+              .add(&S::taa, "taa", "TAA",
+                  "temporal anti-aliasing of the remodulated output, the paper's last step "
+                  "(history clamped to the current frame's 3x3 neighbourhood in YCoCg); smooths "
+                  "silhouettes at 1 spp; off by default because with it no pixel is skipped")
+              .add(&S::taaAlpha, "taaAlpha", 0.0, 1.0, "TAA blend factor",
+                  "weight of the current frame in the TAA blend (0.2, as BMFR's)");
     return binding;
 }
 

@@ -16,6 +16,9 @@ struct Settings {
     float alpha = 0.2f; ///< minimum colour blend factor
     float momentsAlpha = 0.2f; ///< minimum moments blend factor
     int varianceHistory = 4; ///< history length below which variance is estimated over 7x7
+    bool taa = false; ///< temporal anti-aliasing of the output (paper, Fig. 2; stages/taa.h);
+                      ///< off by default while it disables work skipping (work_skip.cpp)
+    float taaAlpha = 0.2f; ///< TAA weight of the current frame (stages/taa.h kTaaAlpha)
 };
 
 /// The descriptors of Settings (the method's own parameters).

@@ -1,10 +1,12 @@
 // SPDX-License-Identifier: Apache-2.0
 // "svgf": spatiotemporal variance-guided filtering (methods/svgf/denoiser.h) on albedo-demodulated
-// colour, reprojected by the shared stage with SVGF's box fallback.
+// colour, reprojected by the shared stage with SVGF's box fallback, remodulated, then temporally
+// anti-aliased (stages/taa.h; the paper's last step, parameter taa, off by default).
 #include "filter/quality.h"
 #include "filter/registry.h"
 #include "methods/svgf/denoiser.h"
 #include "stages/demodulate.h"
+#include "stages/taa.h"
 
 namespace afn::svgf {
 
@@ -18,21 +20,47 @@ public:
     }
 
 private:
-    void configure() override { m_svgf.setSettings(settingsBinding().read(params())); }
-    void resetHistory() override { m_svgf.reset(); }
+    void configure() override
+    {
+        m_settings = settingsBinding().read(params());
+        m_svgf.setSettings(m_settings);
+    }
+    void resetHistory() override
+    {
+        m_svgf.reset();
+        m_taa.reset();
+    }
     void denoise(const Frame& in, Image& out) override
     {
-        remodulate(in, *denoiseDemodulated(in), out);
+        remodulate(in, *filter(in), out);
+        if (m_settings.taa) {
+            const Image& aa = m_taa.apply(reprojector(), out, m_settings.taaAlpha, m_taaSpare);
+            out = aa;
+        }
     }
-    // The base remodulates straight into the bound output. The result takes the irradiance's
-    // place (read only by the temporal integration, before it is written).
+    // Without TAA the base remodulates straight into the bound output. The result takes the
+    // irradiance's place (read only by the temporal integration, before it is written).
     const Image* denoiseDemodulated(const Frame& in) override
+    {
+        return m_settings.taa ? nullptr : filter(in);
+    }
+    // With TAA: remodulated in place, then the TAA's output (its next history) is the result.
+    const Image* denoiseRadiance(const Frame& in) override
+    {
+        Image& radiance = *filter(in);
+        remodulate(in, radiance, radiance);
+        return &m_taa.apply(reprojector(), radiance, m_settings.taaAlpha, m_taaSpare);
+    }
+    Image* filter(const Frame& in)
     {
         Image& filtered = irradianceForReuse();
         m_svgf.process(in, irradiance(), reprojector(), filtered);
         return &filtered;
     }
 
+    Settings m_settings;
+    TemporalAntialiasing m_taa;
+    Image m_taaSpare; ///< the TAA's output buffer (stages/taa.h TemporalAntialiasing::apply)
     Denoiser m_svgf;
 };
 
@@ -56,10 +84,12 @@ FilterType filterType()
     t.inputs = { { { AFN_IMAGE_NORMAL }, "edge-stopping" },
         { { AFN_IMAGE_DEPTH, AFN_IMAGE_POSITION }, "edge-stopping", true } };
     t.create = factoryOf<SvgfFilter>();
-    t.skipHelp = "the variance estimate and the a-trous passes run only over the needed pixels "
-                 "dilated by what later passes read; skipped pixels take the temporally "
-                 "integrated colour; needed pixels bit-identical to skip=off where the region "
-                 "ends at a depth edge (docs/work-skipping.md)";
+    t.skipHelp
+        = "(taa=0, the default) the variance estimate and the a-trous passes run only over the "
+          "needed pixels dilated by what later passes read; skipped pixels take the "
+          "temporally integrated colour; needed pixels bit-identical to skip=off where the "
+          "region ends at a depth edge. With taa=1 every pixel is filtered "
+          "(docs/work-skipping.md)";
     return t;
 }
 

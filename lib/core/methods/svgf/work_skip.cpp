@@ -14,6 +14,12 @@
 //   reads; the temporal integration runs everywhere (the history stays complete).
 // With 5 iterations the variance estimate computes W dilated by 62 pixels (2 * (1+2+4+8+16)), the
 // last iteration W itself. Pixels outside W put out the integrated colour (the cheap path).
+// With TAA (Settings::taa, off by default for this reason) nothing is skipped: the TAA samples its
+// history at any on-screen position, not only where the reprojection accepted it (that is what
+// smooths a silhouette against the sky), so under camera motion a needed pixel's history reaches
+// one pixel further into the skipped ones every frame, and no fixed margin keeps it exact. Making
+// skipped sky pixels skip-independent (Falcor leaves environment pixels unfiltered) is the way
+// back.
 #include "base/parallel.h"
 #include "methods/svgf/denoiser.h"
 #include "methods/svgf/kernels.h"
@@ -31,7 +37,7 @@ constexpr int kHistoryMargin = 2; ///< pixels: bilinear 2x2 + 3x3 box fallback a
 
 bool Denoiser::planRegions(const Frame& f)
 {
-    if (!f.hasWorkMask())
+    if (!f.hasWorkMask() || m_settings.taa)
         return false;
     m_work = WorkRegion::fromMask(f.work);
     const int n = m_settings.iterations;

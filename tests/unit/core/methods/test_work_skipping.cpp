@@ -188,6 +188,37 @@ TEST(WorkSkippingSvgf, BothAtrousKernelsKeepNeededPixelsBitIdentical)
                     }
 }
 
+TEST(WorkSkippingSvgf, WithTaaNothingIsSkippedAndSkipChangesNoPixel)
+{
+    // svgf's TAA (taa=1) samples history across the region's edge, so svgf then filters every
+    // pixel (methods/svgf/work_skip.cpp): skip on and off give the same bits everywhere, with
+    // camera motion; the TAA changed the output (it is not the taa=0 result).
+    auto runTaa = [](bool skip, bool taa) {
+        auto f = afn::createFilter("svgf");
+        f->params().setNumber("skip", skip ? 1.0 : 0.0, AFN_PARAM_BOOL);
+        f->params().setNumber("taa", taa ? 1.0 : 0.0, AFN_PARAM_BOOL);
+        std::vector<Image> outs;
+        for (int i = 0; i < 5; ++i) {
+            Buffers b = scene(i, 0.3f, -0.2f);
+            methods_test::runFrame(*f, b);
+            outs.push_back(b.out);
+        }
+        return outs;
+    };
+    const std::vector<Image> on = runTaa(true, true), off = runTaa(false, true);
+    const std::vector<Image> plain = runTaa(false, false);
+    const Image everywhere(kW, kH, 1, 1.0f);
+    double changedByTaa = 0.0;
+    for (std::size_t i = 0; i < on.size(); ++i) {
+        double needed = 0.0, other = 0.0;
+        differences(on[i], off[i], everywhere, needed, other);
+        EXPECT_EQ(needed, 0.0) << "frame " << i;
+        differences(off[i], plain[i], everywhere, needed, other);
+        changedByTaa = std::max(changedByTaa, needed);
+    }
+    EXPECT_GT(changedByTaa, 1e-3);
+}
+
 TEST(WorkSkippingHelp, EveryMethodSaysWhatSkipDoes)
 {
     // The help of "skip" states the method's behaviour; the ones that skip nothing say so.
