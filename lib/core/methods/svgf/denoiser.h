@@ -67,8 +67,7 @@ private:
     Planes m_integrated, m_prevIntegrated;
     Planes m_cv; ///< colour, variance, luminance (kernels.h ColorPlane), the variance's output
     std::vector<int> m_rowOrder; ///< à-trous rows by y mod step (kernels.h AtrousArgs)
-    WorkRegion m_work; ///< pixels that need denoising (bounding spans of Frame::work), dilated
-                       ///< by kTaaWorkMargin with TAA: the pixels the last pass computes
+    WorkRegion m_work; ///< pixels that need denoising (bounding spans of Frame::work)
     std::vector<WorkRegion> m_passRegions; ///< per à-trous iteration, the pixels it computes
     WorkRegion m_varianceRegion; ///< the pixels the variance estimate computes
 };
