@@ -70,8 +70,9 @@ const ParamBinding<Settings>& settingsBinding()
                   "history length (frames) below which variance is estimated over 7x7 (paper 4)")
               .add(&S::taa, "taa", "TAA",
                   "temporal anti-aliasing of the remodulated output, the paper's last step "
-                  "(history clamped to the current frame's 3x3 neighbourhood in YCoCg); smooths "
-                  "silhouettes at 1 spp; off by default because with it no pixel is skipped")
+                  "(history clamped to the current frame's 3x3 neighbourhood in YCoCg): smooths "
+                  "silhouettes and flicker at 1 spp; blurs sharper 16-spp results; with it no "
+                  "pixel is skipped")
               .add(&S::taaAlpha, "taaAlpha", 0.0, 1.0, "TAA blend factor",
                   "weight of the current frame in the TAA blend (0.2, as BMFR's)");
     return binding;
