@@ -238,6 +238,8 @@ void temporalAntialias(
     out.resize(w, h, 3);
     const bool haveHistory = taps.hasHistory() && history.width() == w && history.height() == h
         && taps.width() == w && taps.height() == h;
+    if (w == 0 || h == 0)
+        return;
     if (!haveHistory) {
         std::copy(current.data(), current.data() + current.size(), out.data());
         return;
