@@ -4,11 +4,10 @@
 // ring, its history from the reprojection, and clamps and blends in one branch-free loop.
 #include "stages/taa.h"
 
-#include "cpu/isa.h"
-#include "stages/taa_rows.h"
-
 #include "base/parallel.h"
+#include "cpu/isa.h"
 #include "cpu/target.h"
+#include "stages/taa_rows.h"
 
 #include <algorithm>
 #include <cfloat>
@@ -217,9 +216,7 @@ void historyRow(const Reprojector& taps, const Image& history, int y, int w, Row
                 h[2] = p[2];
             }
         } else {
-            has = sampleHistory(taps.taps(x, y), history, h);
-            if (!has)
-                h[0] = h[1] = h[2] = 0.0f;
+            has = sampleHistory(taps.taps(x, y), history, h); // h stays 0 without history
         }
         for (int k = 0; k < 3; ++k)
             s.hist[k][x] = h[k];
@@ -283,9 +280,8 @@ void temporalAntialias(
 const Image& TemporalAntialiasing::apply(
     const Reprojector& taps, const Image& current, float alpha, Image& spare)
 {
-    if (!m_hasHistory)
-        m_output = Image();
-    temporalAntialias(taps, current, m_output, alpha, spare);
+    static const Image kNoHistory; // after a reset: the output is the current frame
+    temporalAntialias(taps, current, m_hasHistory ? m_output : kNoHistory, alpha, spare);
     std::swap(m_output, spare); // this frame's output is the next frame's history
     m_hasHistory = true;
     return m_output;

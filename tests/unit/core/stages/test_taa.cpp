@@ -226,7 +226,7 @@ TEST(Taa, AnAlternatingEdgePixelFlickersLess)
     afn::Reprojector taps;
     afn::TemporalAntialiasing taa;
     Image spare;
-    float inputSwing = 0.0f, outputSwing = 0.0f, previous = -1.0f;
+    float inputSwing = 0.0f, outputSwing = 0.0f, previous = -1.0f, previousInput = -1.0f;
     for (int frame = 0; frame < 12; ++frame) {
         if (frame > 0)
             taps.storeGeometry(geometry);
@@ -236,10 +236,11 @@ TEST(Taa, AnAlternatingEdgePixelFlickersLess)
         });
         const float out = taa.apply(taps, cur, afn::kTaaAlpha, spare)(18, 5, 0);
         if (frame >= 6) { // after the history has settled
-            inputSwing = std::max(inputSwing, 0.8f);
+            inputSwing = std::max(inputSwing, std::fabs(cur(18, 5, 0) - previousInput));
             outputSwing = std::max(outputSwing, std::fabs(out - previous));
         }
         previous = out;
+        previousInput = cur(18, 5, 0);
         EXPECT_GE(out, 0.1f);
         EXPECT_LE(out, 0.9f);
     }
