@@ -4,6 +4,9 @@
 // allocates and zero-fills a string attribute of the declared size before it notices that the file
 // is too short, so a corrupt 2 kB file declaring a 1.8 GB attribute took 30 s and 2 GB of memory to
 // reject (found by fuzz_exr_reader; regression inputs tests/fuzz/corpus/fuzz_exr_reader/regress-*).
+// It also rejects a channel whose pixel type is none of OpenEXR's three: OpenEXR 3.1 reads it
+// without complaint and OpenImageIO 2.4 then aborts the process on an assertion (found by
+// fuzz_exr_reader; regress-unknown-pixel-type).
 // Files that are not EXRs and everything beyond the attribute sizes are left to OpenImageIO and
 // OpenEXR.
 #include "io_internal.h"
@@ -19,6 +22,7 @@ namespace {
 constexpr std::uint32_t kExrMagic = 20000630; // bytes 76 2f 31 01
 constexpr std::uint32_t kMultiPartFlag = 0x1000; // version field bit 12
 constexpr int kMaxNameLength = 255; // attribute and type names (long-name files)
+constexpr int kLastPixelType = 2; // UINT 0, HALF 1, FLOAT 2
 
 std::uint32_t le32(const unsigned char* b)
 {
@@ -58,8 +62,13 @@ public:
             fail("attribute '" + attribute + "' (" + type + ") declares " + std::to_string(size)
                 + " bytes");
         if (type == "chlist") {
-            while (!name("channel name").empty())
-                skip(16, attribute, type); // pixel type, pLinear, reserved, x and y sampling
+            for (std::string channel; !(channel = name("channel name")).empty();) {
+                const std::int64_t pixelType = int32();
+                if (pixelType < 0 || pixelType > kLastPixelType)
+                    fail("channel '" + channel + "' has pixel type " + std::to_string(pixelType)
+                        + " (OpenEXR knows 0 uint, 1 half and 2 float)");
+                skip(12, attribute, type); // pLinear, reserved, x and y sampling
+            }
         } else if (type == "preview") {
             const std::int64_t w = static_cast<std::uint32_t>(int32());
             const std::int64_t h = static_cast<std::uint32_t>(int32());

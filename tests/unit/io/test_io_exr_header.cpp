@@ -95,3 +95,29 @@ TEST(IoExrHeader, NegativeSizeAndTruncatedHeaderAreRejected)
     writeBytes(path, good.substr(0, good.find(key) + 3));
     EXPECT_NE(inspectError(path).find("the file ends inside the header"), std::string::npos);
 }
+
+// OpenEXR 3.1 accepts a channel of pixel type 3 and OpenImageIO 2.4 then aborts the process on an
+// assertion (found by fuzz_exr_reader); the check names the channel instead.
+TEST(IoExrHeader, UnknownPixelTypeIsRejectedWithTheChannelsName)
+{
+    ScratchDir dir;
+    const std::string path = dir.file("frame.exr");
+    afn_test::writeExr(path, { partWithFrame() });
+    const std::string good = readBytes(path);
+    for (const std::string& type : { std::string("\x03\x00\x00\x00", 4), std::string(4, '\xff') }) {
+        std::string bytes = good;
+        const std::string key = std::string("G") + '\0';
+        const std::size_t at = bytes.find(key, bytes.find(std::string("chlist") + '\0'));
+        ASSERT_NE(at, std::string::npos);
+        ASSERT_EQ(bytes.substr(at + key.size(), 4), std::string("\x02\x00\x00\x00", 4)); // float
+        bytes.replace(at + key.size(), 4, type);
+        writeBytes(path, bytes);
+        const std::string msg = inspectError(path);
+        EXPECT_NE(msg.find("corrupt EXR header: channel 'G' has pixel type "
+                      + std::to_string(type[0] == 3 ? 3 : -1)),
+            std::string::npos)
+            << msg;
+    }
+    writeBytes(path, good);
+    EXPECT_NO_THROW(inspect(path));
+}
