@@ -131,9 +131,21 @@ private:
         return c;
     }
 
+    /// Names in the message come from a corrupt file: bytes outside printable ASCII are shown as
+    /// \xNN so the message stays one readable line.
     [[noreturn]] void fail(const std::string& what) const
     {
-        throw IoError("corrupt EXR header: " + what, m_path);
+        std::string shown;
+        for (const char c : what) {
+            const auto u = static_cast<unsigned char>(c);
+            if (u >= 0x20 && u < 0x7f) {
+                shown += c;
+            } else {
+                static const char kHex[] = "0123456789abcdef";
+                shown += { '\\', 'x', kHex[u >> 4], kHex[u & 15] };
+            }
+        }
+        throw IoError("corrupt EXR header: " + shown, m_path);
     }
 
     std::ifstream& m_file;

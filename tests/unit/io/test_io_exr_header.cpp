@@ -121,3 +121,25 @@ TEST(IoExrHeader, UnknownPixelTypeIsRejectedWithTheChannelsName)
     writeBytes(path, good);
     EXPECT_NO_THROW(inspect(path));
 }
+
+// Names in the error come from a corrupt file: non-printable bytes are escaped, so the message
+// stays one readable line (a multi-part flag set on a single-part file printed raw bytes).
+TEST(IoExrHeader, NonPrintableNamesAreEscapedInTheMessage)
+{
+    ScratchDir dir;
+    const std::string path = dir.file("frame.exr");
+    afn_test::writeExr(path, { partWithFrame() });
+    std::string bytes = readBytes(path);
+    const std::string key = std::string("Frame") + '\0' + "string" + '\0';
+    const std::size_t at = bytes.find(key);
+    ASSERT_NE(at, std::string::npos);
+    bytes[at] = '\xa8';
+    bytes[at + 1] = '\n';
+    bytes.replace(at + key.size(), 4, std::string("\x13\x00\x00\x6d", 4));
+    writeBytes(path, bytes);
+    const std::string msg = inspectError(path);
+    EXPECT_NE(msg.find("corrupt EXR header: attribute '\\xa8\\x0aame' (string) declares"),
+        std::string::npos)
+        << msg;
+    EXPECT_EQ(msg.find('\n'), std::string::npos) << msg;
+}
