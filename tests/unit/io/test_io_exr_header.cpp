@@ -6,7 +6,6 @@
 
 #include <gtest/gtest.h>
 
-#include <chrono>
 #include <fstream>
 #include <iterator>
 
@@ -73,9 +72,9 @@ TEST(IoExrHeader, AttributeLargerThanTheFileIsRejectedAtOnce)
     ASSERT_NE(at, std::string::npos);
     bytes.replace(at + key.size(), 4, std::string("\x13\x00\x00\x6d", 4)); // 1.8 GB
     writeBytes(path, bytes);
-    const auto start = std::chrono::steady_clock::now();
+    // The message is the header check's own: the file was rejected before OpenEXR allocated the
+    // declared 1.8 GB (no wall-clock bound here: speed is for benchmarks, not tests).
     const std::string msg = inspectError(path);
-    EXPECT_LT(std::chrono::steady_clock::now() - start, std::chrono::seconds(2));
     EXPECT_NE(msg.find("corrupt EXR header: attribute 'Frame' (string) declares 1828716563"),
         std::string::npos)
         << msg;
