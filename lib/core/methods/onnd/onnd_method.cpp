@@ -1,20 +1,12 @@
 // SPDX-License-Identifier: Apache-2.0
 // "onnd": the recurrent denoising autoencoder of Chaitanya et al. 2017 (the paper's baseline
-// ONND). Per frame, after the shared stages (aux prefilter, demodulation, BMFR temporal
-// accumulation; the same inputs as the afn method, so `afntool --features:method=onnd` writes
-// what the toolkit trains on): scale normal and depth, run the recurrent network (network.h) and
-// remodulate (clamped to >= 0). The recurrent state is the filter's history: kept between
-// executes, dropped by afnResetFilter, a frame-size change or new weights. Weights: the archive
-// embedded at build time (weights/onnd.afnw), or afnSetFilterData(filter, "weights", ...).
-#include "base/exception.h"
-#include "filter/quality.h"
-#include "filter/registry.h"
+// ONND). Per frame, after the shared stages: scale normal and depth, run the recurrent network
+// (network.h) and remodulate (methods/ta_network_filter.h, shared with mrkp). The recurrent state
+// is the filter's history: kept between executes, dropped by afnResetFilter, a frame-size change
+// or new weights. Weights: the archive embedded at build time (weights/onnd.afnw), or
+// afnSetFilterData(filter, "weights", ...).
 #include "methods/onnd/network.h"
-#include "nn/weights.h"
-#include "stages/demodulate.h"
-#include "stages/feature_scaling.h" // the shared feature scaling (normal01, depth01)
-
-#include <algorithm>
+#include "methods/ta_network_filter.h"
 
 #ifdef AFN_HAS_ONND_WEIGHTS
 extern "C" const unsigned char onndEmbeddedWeights[];
@@ -25,64 +17,24 @@ namespace afn::onnd {
 
 namespace {
 
-class OnndFilter final : public Filter {
+EmbeddedWeights embeddedWeights()
+{
+#ifdef AFN_HAS_ONND_WEIGHTS
+    return { onndEmbeddedWeights, static_cast<std::size_t>(onndEmbeddedWeights_size) };
+#else
+    return {};
+#endif
+}
+
+class OnndFilter final : public TaNetworkFilter<Network> {
 public:
     explicit OnndFilter(const FilterType& t)
-        : Filter(t)
+        : TaNetworkFilter(t, { "onnd", "ONND" }, embeddedWeights())
     {
-#ifdef AFN_HAS_ONND_WEIGHTS
-        m_net.load(nn::WeightsArchive::parse(onndEmbeddedWeights,
-            static_cast<std::size_t>(onndEmbeddedWeights_size), "embedded ONND weights"));
-#endif
-    }
-
-    void setData(const std::string& name, const void* data, std::size_t size) override
-    {
-        if (name != AFN_DATA_WEIGHTS)
-            Filter::setData(name, data, size);
-        Network net; // only valid weights replace the current ones
-        net.load(nn::WeightsArchive::parse(data, size, "weights set with afnSetFilterData"));
-        m_net = std::move(net);
-        markDirty();
-        reset();
     }
 
 private:
-    void configure() override
-    {
-        if (outputBound() && !m_net.loaded())
-            throwInvalidOperation("onnd: no weights: this build embeds no trained ONND model; "
-                                  "set an .afnw file with afnSetFilterData(filter, \"weights\", "
-                                  "data, size) (afntool: --weights FILE)");
-    }
-    void resetHistory() override
-    {
-        m_net.resetState();
-    }
-    void denoise(const Frame& in, Image& out) override
-    {
-        reportProgress(0.1);
-        m_albedo.resize(in.width, in.height, 3);
-        if (in.hasAlbedo())
-            std::copy(in.albedo.data(), in.albedo.data() + in.albedo.size(), m_albedo.data());
-        else
-            m_albedo.fill(1.0f);
-        normalToUnitRange(in.normal, in.width, in.height, m_normal01);
-        depthToUnitRange(in.depth, in.width, in.height, m_depth01);
-        writeFeature("irradiance", irradiance());
-        writeFeature("accumulated", accumulator().color());
-        writeFeature("albedo", m_albedo);
-        writeFeature("normal01", m_normal01);
-        writeFeature("depth01", m_depth01);
-        if (!outputBound())
-            return; // only the network's inputs were asked for
-        m_net.run({ &accumulator().color(), &m_albedo, &m_normal01, &m_depth01 }, m_result);
-        reportProgress(0.95);
-        remodulate(in, m_result, out);
-    }
-
-    Network m_net;
-    Image m_albedo, m_normal01, m_depth01, m_result;
+    void resetHistory() override { m_net.resetState(); }
 };
 
 } // namespace
@@ -93,24 +45,8 @@ FilterType filterType()
     t.name = "onnd";
     t.description = "recurrent denoising autoencoder (Chaitanya et al. 2017, the paper's ONND "
                     "baseline) on the TA-accumulated frame";
-#ifdef AFN_HAS_ONND_WEIGHTS
-    t.ready = true;
-#else
-    t.ready = false;
-#endif
-    t.stages = { true, StageNeeds::Reproject::Bilinear, true };
-    t.inputs = { { { AFN_IMAGE_NORMAL }, "network features" },
-        { { AFN_IMAGE_DEPTH }, "network features" } };
-    t.features = {
-        { "irradiance", 3, "1-spp colour divided by max(albedo, 2^-10), linear HDR, >= 0" },
-        { "accumulated", 3, "BMFR temporal accumulation of the irradiance (TA-1spp), linear HDR" },
-        { "albedo", 3, "demodulation factor (the albedo after the aux prefilter), [0, 1]" },
-        { "normal01", 3, "prefiltered shading normal * 0.5 + 0.5, [0, 1]" },
-        { "depth01", 1, "prefiltered per-frame min-max depth, [0, 1]" },
-    };
-    // Quality tiers (filter/quality.h): the baseline is reproduced as its paper defines it, one
-    // network; a cheaper or dearer variant would be another model.
-    t.qualityHelp = std::string(kQualityOneLevel) + " (a paper baseline: one trained model)";
+    t.ready = embeddedWeights().data != nullptr;
+    describeTaNetworkMethod(t);
     t.create = factoryOf<OnndFilter>();
     return t;
 }
