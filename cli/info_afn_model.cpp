@@ -59,7 +59,7 @@ std::string afnModelFor(const Options& opts, const afn::io::FrameImages& frame)
         filter.setFloats(AFN_ARRAY_PIXEL_OFFSET, frame.camera->pixelOffset, 2);
     }
     if (frame.samples) // the model trained nearest the file's sample count, as --denoise runs
-        filter.set("spp", *frame.samples);
+        filter.set(AFN_PARAM_SPP, *frame.samples);
     std::vector<float> output(static_cast<std::size_t>(width) * height * 3);
     filter.setImage(AFN_IMAGE_OUTPUT, output.data(), afn::Format::Float3, width, height);
     filter.commit();

@@ -96,7 +96,7 @@ SequenceDenoiser::SequenceDenoiser(const Options& opts, const Action& action)
     if (m_features && afn::filterTypeFeatures(m_method.c_str()).empty())
         throw CliError("--features: method '" + m_method + "' has no feature outputs");
     for (const AFNParamInfo& p : afn::filterTypeParams(m_method.c_str()))
-        m_hasSpp = m_hasSpp || std::string(p.name) == "spp";
+        m_hasSpp = m_hasSpp || std::string(p.name) == AFN_PARAM_SPP;
 
     // Weights: ":weights=FILE" on this action, else --weights FILE; read once, handed over as data.
     std::string weights = opts.weights;
@@ -159,7 +159,8 @@ void SequenceDenoiser::run(LoadedFrame& frame, Progress* progress)
     for (const auto& [name, value] : img.mapping.tag.parameters())
         m_filter.set(name.c_str(), value);
     if (const std::optional<int> spp = sampleCountParam(m_hasSpp, m_params, img.samples))
-        m_filter.set("spp", *spp); // the sample count in the file's header, 0 when it has none
+        m_filter.set(
+            AFN_PARAM_SPP, *spp); // the sample count in the file's header, 0 when it has none
     for (const auto& [key, value] : m_params)
         m_filter.set(key.c_str(), value);
     check(m_flag, frame.ref.path);
@@ -292,9 +293,12 @@ void SequenceDenoiser::logAux(const LoadedFrame& frame, Progress* progress)
         return; // the method does not demodulate
     const std::string mode = m_filter.get<std::string>(AFN_PARAM_AUX);
     const bool noisy = m_filter.get<bool>(AFN_STAT_AUX_NOISY);
-    note(m_flag + ": aux " + (noisy ? "noisy" : "clean") + " (aux=" + mode + "; speckle: albedo "
-            + shareText(m_filter.get<float>(AFN_STAT_ALBEDO_SPECKLE)) + ", normal "
-            + shareText(m_filter.get<float>(AFN_STAT_NORMAL_SPECKLE)) + ", depth "
+    // The sample count takes part in aux=auto's decision (stages/aux_prefilter.h): say it.
+    const int spp = m_hasSpp ? m_filter.get<int>(AFN_PARAM_SPP) : 0;
+    const std::string sppText = spp > 0 ? ", " + std::to_string(spp) + " spp" : "";
+    note(m_flag + ": aux " + (noisy ? "noisy" : "clean") + " (aux=" + mode + sppText
+            + "; speckle: albedo " + shareText(m_filter.get<float>(AFN_STAT_ALBEDO_SPECKLE))
+            + ", normal " + shareText(m_filter.get<float>(AFN_STAT_NORMAL_SPECKLE)) + ", depth "
             + shareText(m_filter.get<float>(AFN_STAT_DEPTH_SPECKLE)) + ") " + frame.ref.path,
         m_opts.quiet, progress);
 }

@@ -68,9 +68,12 @@ void estimateNoise(const afn::io::FrameImages& fi, std::map<Role, AFNAuxNoise>& 
     }
 }
 
-/// What aux=auto would decide for this frame: noisy when the albedo or the normal is.
+/// What aux=auto would decide for this frame: noisy when the albedo or the normal is, below
+/// AFN_AUX_TRUSTED_SPP samples per pixel (the file's count; unknown counts as low).
 bool autoNoisy(const FileReport& r)
 {
+    if (r.samples && *r.samples >= AFN_AUX_TRUSTED_SPP)
+        return false;
     for (Role role : { Role::Albedo, Role::Normal }) {
         auto it = r.noise.find(role);
         if (it != r.noise.end() && it->second.noisy)

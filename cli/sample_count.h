@@ -1,7 +1,10 @@
 // SPDX-License-Identifier: Apache-2.0
-// The sample count afntool gives a method with an "spp" parameter (the afn method picks its model
-// by it): the user's ":spp=N" wins, else the count the file's header records, else 0 (unknown).
+// The sample count afntool gives a method with an "spp" parameter (AFN_PARAM_SPP: the afn method
+// picks its model by it, aux=auto trusts the auxiliary buffers from AFN_AUX_TRUSTED_SPP): the
+// user's ":spp=N" wins, else the count the file's header records, else 0 (unknown).
 #pragma once
+
+#include <afn/afn.h>
 
 #include <map>
 #include <optional>
@@ -14,7 +17,7 @@ namespace afntool {
 inline std::optional<int> sampleCountParam(bool methodHasSpp,
     const std::map<std::string, std::string>& userParams, std::optional<int> fileSamples)
 {
-    if (!methodHasSpp || userParams.count("spp"))
+    if (!methodHasSpp || userParams.count(AFN_PARAM_SPP))
         return std::nullopt;
     return fileSamples.value_or(0);
 }

@@ -114,6 +114,11 @@ typedef enum AFNDeviceType {
 /// Quality of the auxiliary buffers (albedo, normal, depth): "auto" (default), "clean", "noisy"
 /// (a parameter of every method that demodulates; lib/core/stages/aux_prefilter.h).
 #define AFN_PARAM_AUX "aux"
+/// Samples per pixel of the colour input (int, 0 = unknown; the same methods): the afn method
+/// picks its model by it, and from AFN_AUX_TRUSTED_SPP on "aux=auto" uses the auxiliary buffers as
+/// given (the speckle test cannot tell their remaining noise from fine texture there).
+#define AFN_PARAM_SPP "spp"
+#define AFN_AUX_TRUSTED_SPP 16
 /// Work skipping, parameters of every method (docs/work-skipping.md): "skip" (bool, default true)
 /// lets pixels that need no denoising (depth non-finite or >= "denoisingRange" (float, scene units,
 /// default 1e9), alpha 0, AFN_IMAGE_MASK <= 0) take the method's cheap path where it has one
@@ -357,7 +362,8 @@ AFN_API bool afnComputeTemporalMetrics(AFNDevice device, const float* testPrev, 
 /// blur at low sample counts has many. The "aux=auto" decision uses the same number.
 typedef struct AFNAuxNoise {
     double speckle; ///< [0, 1] share of speckle pixels
-    bool noisy; ///< speckle above the "auto" threshold (0.5 %)
+    bool noisy; ///< speckle above the "auto" threshold (0.5 %); aux=auto also needs the colour
+                ///< below AFN_AUX_TRUSTED_SPP samples per pixel
 } AFNAuxNoise;
 
 /// Estimate the noise of an auxiliary buffer of `role` "albedo", "normal" (3 floats read per

@@ -111,13 +111,19 @@ TEST(Afntool, DenoiseLogsTheAuxModePerFrame)
     const CliResult r = runAfntool({ "--frames", "0-1", kSequence, "--denoise:method=ta:aux=clean",
         "-o", dir.file("out.####.exr") });
     ASSERT_EQ(r.exitCode, 0) << r.err;
-    EXPECT_NE(r.err.find("--denoise: aux clean (aux=clean; speckle: albedo "), std::string::npos)
+    EXPECT_NE(
+        r.err.find("--denoise: aux clean (aux=clean, 1 spp; speckle: albedo "), std::string::npos)
         << r.err;
     EXPECT_NE(r.err.find("frame.0001.exr"), std::string::npos) << r.err;
     const CliResult a = runAfntool(
         { "--frames", "0-1", kSequence, "--denoise:method=ta", "-o", dir.file("auto.####.exr") });
     ASSERT_EQ(a.exitCode, 0) << a.err;
-    EXPECT_NE(a.err.find("aux noisy (aux=auto;"), std::string::npos) << a.err;
+    EXPECT_NE(a.err.find("aux noisy (aux=auto, 1 spp;"), std::string::npos) << a.err;
+    // From 16 spp (AFN_AUX_TRUSTED_SPP) aux=auto uses the buffers as given: the same speckle.
+    const CliResult t = runAfntool({ "--frames", "0-1", kSequence, "--denoise:method=ta:spp=16",
+        "-o", dir.file("trusted.####.exr") });
+    ASSERT_EQ(t.exitCode, 0) << t.err;
+    EXPECT_NE(t.err.find("aux clean (aux=auto, 16 spp;"), std::string::npos) << t.err;
 }
 
 TEST(Afntool, ConvertWritesTopLevelBeautyAndKeepsAovsOnRequest)

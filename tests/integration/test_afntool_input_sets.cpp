@@ -281,3 +281,34 @@ TEST(AfntoolInputSets, WeightsWithoutAModelForTheInputsAreAnError)
         "--denoise:method=afn", "-o", all.file("out.####.exr") });
     EXPECT_EQ(ok.exitCode, 0) << ok.err;
 }
+
+// aux=auto and the sample count (AFN_AUX_TRUSTED_SPP, stages/aux_prefilter.h): the example frame's
+// albedo follows the gold torus' specular bounces and is found noisy at its own 1 spp; the same
+// pixels declared 16 spp are used as given, in --info's prediction and in the run.
+TEST(AfntoolInputSets, AuxAutoUsesTheBuffersAsGivenFromSixteenSpp)
+{
+    TempDir dir;
+    const ReadBack frame = readImage(std::string(AFN_EXAMPLES_DIR) + "/sequence/frame.0000.exr");
+    ASSERT_FALSE(frame.pixels.empty());
+    for (const char* samples : { "1", "16" }) {
+        SCOPED_TRACE(samples);
+        OIIO::ImageSpec spec = frame.spec;
+        spec.set_format(OIIO::TypeFloat);
+        spec.channelformats.clear();
+        spec.attribute("cycles.ViewLayer.samples", samples);
+        const std::string path = dir.file(std::string("s") + samples + ".exr");
+        ASSERT_TRUE(writeImage(path, spec, frame.pixels));
+        const bool trusted = std::string(samples) == "16";
+        const CliResult info = runAfntool({ "--info", path });
+        ASSERT_EQ(info.exitCode, 0) << info.err;
+        EXPECT_NE(info.out.find(trusted ? "aux=auto: clean" : "aux=auto: noisy"), std::string::npos)
+            << info.out;
+        const CliResult run
+            = runAfntool({ path, "--denoise:method=svgf", "-o", dir.file("out.exr") });
+        ASSERT_EQ(run.exitCode, 0) << run.err;
+        EXPECT_NE(run.err.find(std::string(trusted ? "aux clean" : "aux noisy") + " (aux=auto, "
+                      + samples + " spp;"),
+            std::string::npos)
+            << run.err;
+    }
+}

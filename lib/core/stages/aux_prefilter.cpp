@@ -13,13 +13,22 @@ namespace afn {
 const ParamBinding<AuxSettings>& auxBinding()
 {
     using M = AuxSettings::Mode;
-    static const ParamBinding<AuxSettings> binding = ParamBinding<AuxSettings>().add(
-        &AuxSettings::aux, AFN_PARAM_AUX,
-        { { "auto", M::Auto }, { "clean", M::Clean }, { "noisy", M::Noisy } }, "Auxiliary buffers",
-        "albedo/normal/depth quality: clean (first-hit AOVs, used as given), noisy (AOVs that "
-        "follow specular bounces or carry DOF/motion-blur noise: prefiltered, demodulation "
-        "blended towards a smooth albedo where unreliable) or auto (decided on the first frame "
-        "from the share of speckle pixels, reported as stats.auxNoisy)");
+    static const ParamBinding<AuxSettings> binding
+        = ParamBinding<AuxSettings>()
+              .add(&AuxSettings::aux, AFN_PARAM_AUX,
+                  { { "auto", M::Auto }, { "clean", M::Clean }, { "noisy", M::Noisy } },
+                  "Auxiliary buffers",
+                  "albedo/normal/depth quality: clean (first-hit AOVs, used as given), noisy "
+                  "(AOVs that follow specular bounces or carry DOF/motion-blur noise: "
+                  "prefiltered, demodulation blended towards a smooth albedo where unreliable) "
+                  "or auto (below 16 spp decided on the first frame from the share of speckle "
+                  "pixels, clean from 16 spp on; reported as stats.auxNoisy)")
+              .add(&AuxSettings::spp, AFN_PARAM_SPP, 0, 1 << 20, "Samples per pixel",
+                  "samples per pixel of the colour input (0 = unknown, taken as low): "
+                  "with aux=auto the auxiliary buffers are used as given from 16 spp on, "
+                  "and the afn method picks the model trained nearest this count; "
+                  "afntool reads it from the file (Blender: cycles.<layer>.samples) "
+                  "unless given");
     return binding;
 }
 
@@ -141,7 +150,7 @@ void AuxPrefilter::prepare(Frame& f)
     if (!m_decided) {
         using M = AuxSettings::Mode;
         m_report.noisy = m_settings.aux == M::Noisy
-            || (m_settings.aux == M::Auto
+            || (m_settings.aux == M::Auto && m_settings.spp < kAuxTrustedSpp
                 && std::max(m_report.albedoSpeckle, m_report.normalSpeckle) > kAuxNoisyShare);
         m_decided = true;
     }

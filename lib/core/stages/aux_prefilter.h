@@ -38,7 +38,13 @@
 //
 // "clean" leaves every buffer untouched (bit-identical to the behaviour before this stage);
 // "auto" (default) decides on the first frame of each history: noisy when the albedo's or the
-// normal's speckle share exceeds kAuxNoisyShare (0.5 %), clean otherwise; the decision holds
+// normal's speckle share exceeds kAuxNoisyShare (0.5 %) and the colour's sample count ("spp",
+// 0 = unknown) is below kAuxTrustedSpp, clean otherwise. The speckle test cannot tell noise from
+// texture at the pixel scale (a fine texture, or one refracted through glass, differs from its 8
+// neighbours too), and the auxiliary buffers' own sampling noise falls with the sample count: on
+// the afn-v2 renders the 16-spp albedo flags as much "speckle" as the 1-spp one (2-9 % on the
+// atrium scenes), and there prefiltering it cost svgf, bmfr and afn 0.6-1.7 dB on average
+// (docs/afn-evaluation.md, tenth session). The decision holds
 // until the history is reset, so a sequence is filtered in one mode (a changed "aux" parameter,
 // too, takes effect at the next reset: afnResetFilter or a new filter). With colour that is already
 // demodulated (AFN_CONVENTION_COLOR_DEMODULATED) the albedo is never changed (the colour was
@@ -56,7 +62,14 @@ namespace afn {
 struct AuxSettings {
     enum class Mode { Auto, Clean, Noisy };
     Mode aux = Mode::Auto; ///< auto: decided from the data on the first frame of a history
+    /// Samples per pixel of the colour input, 0 = unknown (the host reads it from the file:
+    /// afntool, Blender's cycles.<layer>.samples). Shared with the afn method, which picks its
+    /// model by it (methods/afn/model_set.h).
+    int spp = 0;
 };
+
+/// From this sample count on, aux=auto uses the auxiliary buffers as given (see the file comment).
+constexpr int kAuxTrustedSpp = AFN_AUX_TRUSTED_SPP; // 16 (afn/afn.h)
 
 /// Descriptors of AuxSettings (in the table of every method that demodulates).
 const ParamBinding<AuxSettings>& auxBinding();

@@ -10,9 +10,10 @@
 // which without a temporal history runs single-frame (network_inputs.h). The choice is
 // reported as AFN_STAT_AFN_MODEL; no fitting model is an error at commit and at execute.
 //
-// Settings (settings.h): `spp`, the input's samples per pixel (afntool: from the file's
-// cycles.<layer>.samples unless given), which chooses among the models for the frame's input set
-// the one trained nearest that count (model_set.h); read at commit.
+// `spp`, the input's samples per pixel (the parameter shared with the aux prefilter,
+// stages/aux_prefilter.h; afntool: from the file's cycles.<layer>.samples unless given), chooses
+// among the models for the frame's input set the one trained nearest that count (model_set.h);
+// read at commit.
 //
 // Quality tiers (quality=fast|balanced|high): methods/afn/quality_tiers.h (fast: no refinement;
 // balanced: the network as trained; high: a four-flip self-ensemble of the network).
@@ -27,8 +28,8 @@
 #include "methods/afn/network.h"
 #include "methods/afn/network_inputs.h"
 #include "methods/afn/quality_tiers.h"
-#include "methods/afn/settings.h"
 #include "methods/afn/weights_source.h"
+#include "stages/aux_prefilter.h"
 #include "stages/demodulate.h"
 
 #ifdef AFN_HAS_CUDA
@@ -94,7 +95,7 @@ public:
 private:
     void configure() override
     {
-        m_settings = settingsBinding().read(params());
+        m_spp = auxBinding().read(params()).spp; // the shared "spp" parameter
         m_quality = qualityBinding().read(params()).quality;
         if (!outputBound())
             return;
@@ -108,7 +109,7 @@ private:
         bound.depth = imageBound(AFN_IMAGE_DEPTH);
         bound.temporal
             = imageBound(AFN_IMAGE_MOTION) || (imageBound(AFN_IMAGE_POSITION) && cameraSet());
-        m_model = m_models.choose(bound, m_settings.spp);
+        m_model = m_models.choose(bound, m_spp);
         if (!m_model)
             m_models.throwNoModelFor(bound);
         m_path = describeChoice(bound, *m_model);
@@ -139,7 +140,7 @@ private:
         const InputSet available = inputSetOf(in);
         InputSet use = available;
         if (outputBound()) {
-            m_model = m_models.choose(available, m_settings.spp);
+            m_model = m_models.choose(available, m_spp);
             if (!m_model)
                 m_models.throwNoModelFor(available);
             use = m_model->inputs;
@@ -160,7 +161,7 @@ private:
         return true;
     }
 
-    Settings m_settings;
+    int m_spp = 0; ///< samples per pixel of the input, 0 = unknown
     QualitySettings::Tier m_quality = QualitySettings::Tier::Balanced;
     TierRunner m_tiers;
     ModelSet m_models;
@@ -182,17 +183,6 @@ std::unique_ptr<Filter> create(const FilterType& t, const Device& device)
 
 } // namespace
 
-const ParamBinding<Settings>& settingsBinding()
-{
-    using S = Settings;
-    static const ParamBinding<S> binding
-        = ParamBinding<S>().add(&S::spp, "spp", 0, 1 << 20, "Samples per pixel",
-            "samples per pixel of the colour input, which chooses the model trained for that count "
-            "(0 = unknown: the low-count model); afntool reads it from the file (Blender: "
-            "cycles.<layer>.samples) unless given");
-    return binding;
-}
-
 FilterType filterType()
 {
     FilterType t;
@@ -205,7 +195,6 @@ FilterType filterType()
     t.ready = false;
 #endif
     t.stages = { true, StageNeeds::Reproject::Bilinear, true };
-    t.params = settingsBinding().descriptors();
     t.qualityHelp = "fast: no refinement network (the fused output; about 0.85x balanced's "
                     "time at 1080p, 0.5 dB less PSNR on the held-out scenes); balanced: the "
                     "network as trained; high: the network on the frame and its three flips, "

@@ -87,10 +87,11 @@ Sequence makeSequence()
 /// frame against the reference.
 template <typename AlbedoOf>
 double runSequence(const std::string& method, const char* aux, const Sequence& s, AlbedoOf albedo,
-    Image* out = nullptr, bool* noisy = nullptr)
+    Image* out = nullptr, bool* noisy = nullptr, int spp = 0)
 {
     auto f = afn::createFilter(method);
     f->params().setString("aux", aux);
+    f->params().setNumber(AFN_PARAM_SPP, spp, AFN_PARAM_INT);
     Buffers b;
     b.normal = makeImage(kW, kH, 3, [](int, int, int c) { return c == 2 ? 1.0f : 0.0f; });
     b.depth = makeImage(kW, kH, 1, [](int, int, int) { return 3.0f; });
@@ -158,6 +159,29 @@ TEST(AuxPrefilter, CleanAlbedoAutoIsBitIdenticalToClean)
             m, "clean", s, [&](int) { return clean; }, &cleanOut);
         EXPECT_FALSE(decided) << m;
         EXPECT_TRUE(methods_test::bitEqual(autoOut, cleanOut)) << m;
+    }
+}
+
+// From AFN_AUX_TRUSTED_SPP samples per pixel aux=auto uses the buffers as given, speckle or not
+// (the speckle test cannot tell noise from fine texture; stages/aux_prefilter.h): the same bits as
+// aux=clean. One sample fewer, the same speckle still decides noisy; aux=noisy is still obeyed.
+TEST(AuxPrefilter, AutoUsesTheBuffersAsGivenFromTheTrustedSampleCount)
+{
+    const Sequence s = makeSequence();
+    auto noisyAlbedo = [&](int k) { return s.noisyAlbedo[k]; };
+    for (const std::string& m : methods()) {
+        Image trusted, clean;
+        bool decided = true;
+        runSequence(m, "auto", s, noisyAlbedo, &trusted, &decided, AFN_AUX_TRUSTED_SPP);
+        EXPECT_FALSE(decided) << m << ": at " << AFN_AUX_TRUSTED_SPP << " spp";
+        runSequence(m, "clean", s, noisyAlbedo, &clean, nullptr, AFN_AUX_TRUSTED_SPP);
+        EXPECT_TRUE(methods_test::bitEqual(trusted, clean)) << m;
+        decided = false;
+        runSequence(m, "auto", s, noisyAlbedo, nullptr, &decided, AFN_AUX_TRUSTED_SPP - 1);
+        EXPECT_TRUE(decided) << m << ": at " << AFN_AUX_TRUSTED_SPP - 1 << " spp";
+        decided = false;
+        runSequence(m, "noisy", s, noisyAlbedo, nullptr, &decided, 4 * AFN_AUX_TRUSTED_SPP);
+        EXPECT_TRUE(decided) << m << ": aux=noisy at any count";
     }
 }
 

@@ -4,7 +4,7 @@
 #include "afn_test_util.h"
 #include "base/exception.h"
 #include "filter/registry.h"
-#include "methods/afn/settings.h"
+#include "stages/aux_prefilter.h"
 #include "stages/feature_scaling.h"
 #include "still_frame.h"
 
@@ -83,8 +83,8 @@ TEST(AfnFilter, SampleCountParameter)
     EXPECT_EQ(it->type, AFN_PARAM_INT);
     EXPECT_EQ(it->defaultValue, 0.0); // unknown until the host reads the file
     afn::ParamSet params(&t->params);
-    EXPECT_EQ(afn::afnet::settingsBinding().read(params).spp, 0);
+    EXPECT_EQ(afn::auxBinding().read(params).spp, 0);
     params.setNumber("spp", 64, AFN_PARAM_INT);
-    EXPECT_EQ(afn::afnet::settingsBinding().read(params).spp, 64);
+    EXPECT_EQ(afn::auxBinding().read(params).spp, 64);
     EXPECT_THROW(params.setNumber("spp", -1, AFN_PARAM_INT), afn::Exception);
 }
