@@ -296,9 +296,14 @@ void SequenceDenoiser::logAux(const LoadedFrame& frame, Progress* progress)
     // The sample count takes part in aux=auto's decision (stages/aux_prefilter.h): say it.
     const int spp = m_hasSpp ? m_filter.get<int>(AFN_PARAM_SPP) : 0;
     const std::string sppText = spp > 0 ? ", " + std::to_string(spp) + " spp" : "";
-    note(m_flag + ": aux " + (noisy ? "noisy" : "clean") + " (aux=" + mode + sppText
-            + "; speckle: albedo " + shareText(m_filter.get<float>(AFN_STAT_ALBEDO_SPECKLE))
-            + ", normal " + shareText(m_filter.get<float>(AFN_STAT_NORMAL_SPECKLE)) + ", depth "
+    const bool grain = m_filter.get<bool>(AFN_STAT_AUX_GRAIN_LIMITED);
+    note(m_flag + ": aux "
+            + (noisy        ? "noisy"
+                    : grain ? "clean, albedo grain limited"
+                            : "clean")
+            + " (aux=" + mode + sppText + "; speckle: albedo "
+            + shareText(m_filter.get<float>(AFN_STAT_ALBEDO_SPECKLE)) + ", normal "
+            + shareText(m_filter.get<float>(AFN_STAT_NORMAL_SPECKLE)) + ", depth "
             + shareText(m_filter.get<float>(AFN_STAT_DEPTH_SPECKLE)) + ") " + frame.ref.path,
         m_opts.quiet, progress);
 }

@@ -72,14 +72,26 @@ void estimateNoise(const afn::io::FrameImages& fi, std::map<Role, AFNAuxNoise>& 
 /// AFN_AUX_TRUSTED_SPP samples per pixel (the file's count; unknown counts as low).
 bool autoNoisy(const FileReport& r)
 {
-    if (r.samples && *r.samples >= AFN_AUX_TRUSTED_SPP)
-        return false;
     for (Role role : { Role::Albedo, Role::Normal }) {
         auto it = r.noise.find(role);
         if (it != r.noise.end() && it->second.noisy)
-            return true;
+            return !(r.samples && *r.samples >= AFN_AUX_TRUSTED_SPP);
     }
     return false;
+}
+
+/// aux=auto's choice in words: from AFN_AUX_TRUSTED_SPP samples, buffers with speckle are used as
+/// given with the albedo's grain limited over time (lib/core/stages/aux_prefilter.h).
+std::string autoChoice(const FileReport& r)
+{
+    if (autoNoisy(r))
+        return "noisy";
+    for (Role role : { Role::Albedo, Role::Normal }) {
+        auto it = r.noise.find(role);
+        if (it != r.noise.end() && it->second.noisy)
+            return "clean, albedo grain limited";
+    }
+    return "clean";
 }
 
 FileReport collect(const Options& opts, const FrameRef& ref)
@@ -168,7 +180,7 @@ void printText(const FileReport& r)
                 "    %-9s (not found; looked for %s)\n", afn::io::roleName(role), tried.c_str());
         }
     }
-    std::printf("  aux=auto: %s\n", autoNoisy(r) ? "noisy" : "clean");
+    std::printf("  aux=auto: %s\n", autoChoice(r).c_str());
     if (!r.afnModel.empty())
         std::printf("  afn: %s\n", r.afnModel.c_str());
     std::printf("  conventions:");

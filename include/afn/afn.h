@@ -116,7 +116,8 @@ typedef enum AFNDeviceType {
 #define AFN_PARAM_AUX "aux"
 /// Samples per pixel of the colour input (int, 0 = unknown; the same methods): the afn method
 /// picks its model by it, and from AFN_AUX_TRUSTED_SPP on "aux=auto" uses the auxiliary buffers as
-/// given (the speckle test cannot tell their remaining noise from fine texture there).
+/// given, the albedo's grain limited over time (the speckle test cannot tell their remaining noise
+/// from fine texture there).
 #define AFN_PARAM_SPP "spp"
 #define AFN_AUX_TRUSTED_SPP 16
 /// Work skipping, parameters of every method (docs/work-skipping.md): "skip" (bool, default true)
@@ -143,6 +144,9 @@ typedef enum AFNDeviceType {
 #define AFN_STAT_HEIGHT "height"
 /// 1 when the auxiliary buffers are prefiltered as noisy for the current history, else 0.
 #define AFN_STAT_AUX_NOISY "stats.auxNoisy"
+/// 1 when, from AFN_AUX_TRUSTED_SPP with aux=auto, the buffers are used as given but the albedo's
+/// grain is limited over time (within 10 % of each given value), else 0.
+#define AFN_STAT_AUX_GRAIN_LIMITED "stats.auxGrainLimited"
 /// Share in [0, 1] of speckle pixels (afnEstimateAuxNoise) of the last frame's albedo, normal and
 /// depth inputs as given; -1 when the input is absent (afnGetFilterFloat).
 #define AFN_STAT_ALBEDO_SPECKLE "stats.albedoSpeckle"
@@ -292,7 +296,8 @@ AFN_API void afnSetFilterData(
 
 /// Read a parameter or a statistic of the last execute: "stats.nonFinite" (input values replaced
 /// because NaN/Inf), "stats.negative" (negative colour values clamped), "frameIndex" (frames since
-/// the last reset), "width", "height", "stats.auxNoisy" and "stats.*Speckle" (AFN_STAT_*).
+/// the last reset), "width", "height", "stats.auxNoisy", "stats.auxGrainLimited" and
+/// "stats.*Speckle" (AFN_STAT_*).
 AFN_API bool afnGetFilterBool(AFNFilter filter, const char* name);
 AFN_API int afnGetFilterInt(AFNFilter filter, const char* name);
 AFN_API float afnGetFilterFloat(AFNFilter filter, const char* name);

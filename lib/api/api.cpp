@@ -341,6 +341,8 @@ static double filterNumber(AFNFilterImpl* f, const std::string& name)
         return flt.lastSkippedShare();
     if (name == AFN_STAT_AUX_NOISY)
         return flt.auxReport().noisy ? 1.0 : 0.0;
+    if (name == AFN_STAT_AUX_GRAIN_LIMITED)
+        return flt.auxReport().grainLimited ? 1.0 : 0.0;
     if (name == AFN_STAT_ALBEDO_SPECKLE)
         return flt.auxReport().albedoSpeckle;
     if (name == AFN_STAT_NORMAL_SPECKLE)

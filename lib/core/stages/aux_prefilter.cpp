@@ -22,7 +22,9 @@ const ParamBinding<AuxSettings>& auxBinding()
                   "(AOVs that follow specular bounces or carry DOF/motion-blur noise: "
                   "prefiltered, demodulation blended towards a smooth albedo where unreliable) "
                   "or auto (below 16 spp decided on the first frame from the share of speckle "
-                  "pixels, clean from 16 spp on; reported as stats.auxNoisy)")
+                  "pixels, reported as stats.auxNoisy; from 16 spp the buffers as given, with "
+                  "the albedo's grain limited over time where speckle is found, reported as "
+                  "stats.auxGrainLimited)")
               .add(&AuxSettings::spp, AFN_PARAM_SPP, 0, 1 << 20, "Samples per pixel",
                   "samples per pixel of the colour input (0 = unknown, taken as low): "
                   "with aux=auto the auxiliary buffers are used as given from 16 spp on, "
@@ -149,17 +151,22 @@ void AuxPrefilter::prepare(Frame& f)
 
     if (!m_decided) {
         using M = AuxSettings::Mode;
+        const bool speckled
+            = std::max(m_report.albedoSpeckle, m_report.normalSpeckle) > kAuxNoisyShare;
         m_report.noisy = m_settings.aux == M::Noisy
-            || (m_settings.aux == M::Auto && m_settings.spp < kAuxTrustedSpp
-                && std::max(m_report.albedoSpeckle, m_report.normalSpeckle) > kAuxNoisyShare);
+            || (m_settings.aux == M::Auto && m_settings.spp < kAuxTrustedSpp && speckled);
+        m_report.grainLimited
+            = m_settings.aux == M::Auto && m_settings.spp >= kAuxTrustedSpp && speckled;
         m_decided = true;
     }
     if (!m_report.noisy) {
         // A clean history never reads flags or prefilter buffers again: free them (issue 16:
         // frame-size buffers kept only while in use), so they do not add to every later frame.
         for (Image* img : { &m_albedoFlags, &m_normalFlags, &m_depthFlags, &m_share, &m_mean,
-                 &m_tmp, &m_depthValid, &m_hist, &m_prevHist, &m_edges, &m_dense })
+                 &m_tmp, &m_depthValid, &m_edges, &m_dense })
             *img = Image();
+        if (!m_report.grainLimited)
+            m_hist = m_prevHist = Image();
         return;
     }
 
@@ -213,6 +220,10 @@ void AuxPrefilter::prepare(Frame& f)
 
 void AuxPrefilter::finish(Frame& f, const Reprojector* taps)
 {
+    if (m_report.grainLimited && f.hasAlbedo() && !f.colorDemodulated) {
+        limitGrain(f, taps);
+        return;
+    }
     if (!m_report.noisy || !f.hasAlbedo() || f.colorDemodulated) {
         m_hasHistory = false;
         return;
@@ -252,6 +263,47 @@ void AuxPrefilter::finish(Frame& f, const Reprojector* taps)
                 const float floor = (1.0f - r) * kAuxNoisyAlbedoFloor;
                 for (int k = 0; k < 3; ++k)
                     a[k] = std::max(r * a[k] + (1.0f - r) * o[k], floor);
+            }
+    });
+    m_hasHistory = true;
+}
+
+// From kAuxTrustedSpp (aux=auto, speckle found): the albedo as given, except that its grain (the
+// sub-pixel texture sampling noise a 16-spp albedo still carries) is averaged over time: the
+// temporal accumulation of the per-pixel albedo (the colour's taps and history rule, alpha >=
+// kAuxAlbedoAlphaMin), clamped to within kAuxGrainLimit of this frame's value, so texture,
+// edges and changes larger than that follow the given albedo at once.
+void AuxPrefilter::limitGrain(Frame& f, const Reprojector* taps)
+{
+    const int w = f.width, h = f.height;
+    constexpr float kGrain = kAuxGrainLimit;
+    std::swap(m_hist, m_prevHist);
+    m_hist.resize(w, h, 4);
+    const bool history = m_hasHistory && taps && taps->hasHistory() && m_prevHist.width() == w
+        && m_prevHist.height() == h && m_prevHist.channels() == 4;
+    parallelRows(h, [&](int y0, int y1) {
+        for (int y = y0; y < y1; ++y)
+            for (int x = 0; x < w; ++x) {
+                float* a = f.albedo.at(x, y);
+                float* o = m_hist.at(x, y);
+                float prev[4];
+                const float ws
+                    = history ? gatherHistory<4>(taps->taps(x, y), m_prevHist, prev) : 0.0f;
+                if (ws > 0.0f) {
+                    const float len = std::min(prev[3] + 1.0f, kMaxHistoryLength);
+                    const float alpha = std::max(1.0f / len, kAuxAlbedoAlphaMin);
+                    for (int k = 0; k < 3; ++k) {
+                        const float t = prev[k] + alpha * (a[k] - prev[k]);
+                        o[k] = std::clamp(t, a[k] * (1.0f - kGrain), a[k] * (1.0f + kGrain));
+                    }
+                    o[3] = len;
+                } else {
+                    for (int k = 0; k < 3; ++k)
+                        o[k] = a[k];
+                    o[3] = 1.0f;
+                }
+                for (int k = 0; k < 3; ++k)
+                    a[k] = o[k];
             }
     });
     m_hasHistory = true;

@@ -44,7 +44,10 @@
 // neighbours too), and the auxiliary buffers' own sampling noise falls with the sample count: on
 // the afn-v2 renders the 16-spp albedo flags as much "speckle" as the 1-spp one (2-9 % on the
 // atrium scenes), and there prefiltering it cost svgf, bmfr and afn 0.6-1.7 dB on average
-// (docs/afn-evaluation.md, tenth session). The decision holds
+// (docs/afn-evaluation.md, tenth session). There, where speckle is found, the albedo keeps its
+// given values except for its grain: the sub-pixel texture sampling noise a 16-spp albedo still
+// has, which remodulation would put back as a faint grain, is averaged over time within
+// kAuxGrainLimit of each given value (limitGrain; stats.auxGrainLimited). The decision holds
 // until the history is reset, so a sequence is filtered in one mode (a changed "aux" parameter,
 // too, takes effect at the next reset: afnResetFilter or a new filter). With colour that is already
 // demodulated (AFN_CONVENTION_COLOR_DEMODULATED) the albedo is never changed (the colour was
@@ -68,8 +71,12 @@ struct AuxSettings {
     int spp = 0;
 };
 
-/// From this sample count on, aux=auto uses the auxiliary buffers as given (see the file comment).
+/// From this sample count on, aux=auto uses the auxiliary buffers as given, the albedo's grain
+/// limited over time (see the file comment).
 constexpr int kAuxTrustedSpp = AFN_AUX_TRUSTED_SPP; // 16 (afn/afn.h)
+/// Largest relative change the grain limit makes to a given albedo value (AuxPrefilter::
+/// limitGrain): 10 %, the speckle test's albedo threshold (aux_noise.h).
+constexpr float kAuxGrainLimit = 0.1f;
 
 /// Descriptors of AuxSettings (in the table of every method that demodulates).
 const ParamBinding<AuxSettings>& auxBinding();
@@ -90,6 +97,7 @@ constexpr float kAuxNoisyAlbedoFloor = 1.0f / 32.0f;
 /// What the stage measured and decided for the last frame (afnGetFilterFloat "stats.aux*").
 struct AuxReport {
     bool noisy = false; ///< prefiltering in effect for this frame's history
+    bool grainLimited = false; ///< from kAuxTrustedSpp: the albedo's grain limited over time
     double albedoSpeckle = -1.0; ///< share of speckle pixels, -1 without the input
     double normalSpeckle = -1.0;
     double depthSpeckle = -1.0;
@@ -111,6 +119,8 @@ public:
     const AuxReport& report() const { return m_report; }
 
 private:
+    void limitGrain(Frame& frame, const Reprojector* taps);
+
     AuxSettings m_settings;
     AuxReport m_report;
     bool m_decided = false;
