@@ -68,30 +68,36 @@ void estimateNoise(const afn::io::FrameImages& fi, std::map<Role, AFNAuxNoise>& 
     }
 }
 
-/// What aux=auto would decide for this frame: noisy when the albedo or the normal is, below
-/// AFN_AUX_TRUSTED_SPP samples per pixel (the file's count; unknown counts as low).
-bool autoNoisy(const FileReport& r)
+/// The albedo or the normal has speckle above aux=auto's threshold (afnEstimateAuxNoise).
+bool speckled(const FileReport& r)
 {
     for (Role role : { Role::Albedo, Role::Normal }) {
         auto it = r.noise.find(role);
         if (it != r.noise.end() && it->second.noisy)
-            return !(r.samples && *r.samples >= AFN_AUX_TRUSTED_SPP);
+            return true;
     }
     return false;
+}
+
+bool trustedSampleCount(const FileReport& r)
+{
+    return r.samples && *r.samples >= AFN_AUX_TRUSTED_SPP;
+}
+
+/// What aux=auto would decide for this frame: noisy when the albedo or the normal is, below
+/// AFN_AUX_TRUSTED_SPP samples per pixel (the file's count; unknown counts as low).
+bool autoNoisy(const FileReport& r)
+{
+    return speckled(r) && !trustedSampleCount(r);
 }
 
 /// aux=auto's choice in words: from AFN_AUX_TRUSTED_SPP samples, buffers with speckle are used as
 /// given with the albedo's grain limited over time (lib/core/stages/aux_prefilter.h).
 std::string autoChoice(const FileReport& r)
 {
-    if (autoNoisy(r))
-        return "noisy";
-    for (Role role : { Role::Albedo, Role::Normal }) {
-        auto it = r.noise.find(role);
-        if (it != r.noise.end() && it->second.noisy)
-            return "clean, albedo grain limited";
-    }
-    return "clean";
+    if (!speckled(r))
+        return "clean";
+    return trustedSampleCount(r) ? "clean, albedo grain limited" : "noisy";
 }
 
 FileReport collect(const Options& opts, const FrameRef& ref)

@@ -2,8 +2,10 @@
 // The filter shared by the learned baselines that run one trained network on the shared stages'
 // output (onnd, mrkp): after the aux prefilter, the demodulation and the BMFR temporal
 // accumulation (the same inputs as the afn method, so `afntool --features:method=M` writes what
-// the toolkit trains on), scale normal and depth, run the network on the TA-accumulated
-// irradiance with albedo, normal and depth, and remodulate (clamped to >= 0).
+// the toolkit trains on), scale normal and depth (nn::BaselineFeatures, as wskpn and nbgd), run
+// the network on the TA-accumulated irradiance with albedo, normal and depth, and remodulate
+// (clamped to >= 0). Unlike nn::BaselineFilter (wskpn, nbgd) the network takes the four images
+// itself, and the 1-spp irradiance is a feature output too.
 //
 // Weights: the archive embedded at build time (weights/<method>.afnw), or
 // afnSetFilterData(filter, "weights", ...); only a valid archive replaces the current one.
@@ -11,15 +13,14 @@
 #pragma once
 
 #include "base/exception.h"
-#include "filter/quality.h"
 #include "filter/registry.h"
+#include "nn/baseline_filter.h" // nn::EmbeddedWeights, nn::baselineFilterType
+#include "nn/baseline_input.h"
 #include "nn/weights.h"
 #include "stages/demodulate.h"
-#include "stages/feature_scaling.h" // the shared feature scaling (normal01, depth01)
 
-#include <algorithm>
 #include <string>
-#include <vector>
+#include <utility>
 
 namespace afn {
 
@@ -29,38 +30,22 @@ struct TaNetworkNames {
     const char* model;
 };
 
-/// The archive embedded at build time, or { nullptr, 0 } when the build has none.
-struct EmbeddedWeights {
-    const unsigned char* data = nullptr;
-    std::size_t size = 0;
-};
-
-/// The FilterType fields every TA-network method shares: the stages (demodulation, bilinear
-/// reprojection, temporal accumulation), the inputs, the feature outputs (the network's inputs,
-/// `afntool --features:method=M`) and the quality help. The caller sets name, description,
-/// ready and create.
-inline void describeTaNetworkMethod(FilterType& t)
+/// The FilterType of a TA-network method: the learned baselines' (nn::baselineFilterType: stages,
+/// inputs, feature outputs, quality help) with the 1-spp irradiance as a first feature output.
+/// The caller sets create.
+inline FilterType taNetworkFilterType(const char* name, const char* description, bool ready)
 {
-    t.stages = { true, StageNeeds::Reproject::Bilinear, true };
-    t.inputs = { { { AFN_IMAGE_NORMAL }, "network features" },
-        { { AFN_IMAGE_DEPTH }, "network features" } };
-    t.features = {
-        { "irradiance", 3, "1-spp colour divided by max(albedo, 2^-10), linear HDR, >= 0" },
-        { "accumulated", 3, "BMFR temporal accumulation of the irradiance (TA-1spp), linear HDR" },
-        { "albedo", 3, "demodulation factor (the albedo after the aux prefilter), [0, 1]" },
-        { "normal01", 3, "prefiltered shading normal * 0.5 + 0.5, [0, 1]" },
-        { "depth01", 1, "prefiltered per-frame min-max depth, [0, 1]" },
-    };
-    // Quality tiers (filter/quality.h): the baseline is reproduced as its paper defines it, one
-    // network; a cheaper or dearer variant would be another model.
-    t.qualityHelp = std::string(kQualityOneLevel) + " (a paper baseline: one trained model)";
+    FilterType t = nn::baselineFilterType(name, description, ready);
+    t.features.insert(t.features.begin(),
+        { "irradiance", 3, "1-spp colour divided by max(albedo, 2^-10), linear HDR, >= 0" });
+    return t;
 }
 
 /// Network: load(const nn::WeightsArchive&), loaded(), and
 /// run({ &accumulated, &albedo, &normal01, &depth01 }, Image& out).
 template <class Network> class TaNetworkFilter : public Filter {
 public:
-    TaNetworkFilter(const FilterType& t, TaNetworkNames names, EmbeddedWeights embedded)
+    TaNetworkFilter(const FilterType& t, TaNetworkNames names, nn::EmbeddedWeights embedded)
         : Filter(t)
         , m_names(names)
     {
@@ -96,27 +81,24 @@ private:
     void denoise(const Frame& in, Image& out) override
     {
         reportProgress(0.1);
-        m_albedo.resize(in.width, in.height, 3);
-        if (in.hasAlbedo())
-            std::copy(in.albedo.data(), in.albedo.data() + in.albedo.size(), m_albedo.data());
-        else
-            m_albedo.fill(1.0f);
-        normalToUnitRange(in.normal, in.width, in.height, m_normal01);
-        depthToUnitRange(in.depth, in.width, in.height, m_depth01);
+        m_features.compute(in);
         writeFeature("irradiance", irradiance());
         writeFeature("accumulated", accumulator().color());
-        writeFeature("albedo", m_albedo);
-        writeFeature("normal01", m_normal01);
-        writeFeature("depth01", m_depth01);
+        writeFeature("albedo", m_features.albedo);
+        writeFeature("normal01", m_features.normal01);
+        writeFeature("depth01", m_features.depth01);
         if (!outputBound())
             return; // only the network's inputs were asked for
-        m_net.run({ &accumulator().color(), &m_albedo, &m_normal01, &m_depth01 }, m_result);
+        m_net.run({ &accumulator().color(), &m_features.albedo, &m_features.normal01,
+                      &m_features.depth01 },
+            m_result);
         reportProgress(0.95);
         remodulate(in, m_result, out);
     }
 
     TaNetworkNames m_names;
-    Image m_albedo, m_normal01, m_depth01, m_result;
+    nn::BaselineFeatures m_features;
+    Image m_result;
 };
 
 } // namespace afn

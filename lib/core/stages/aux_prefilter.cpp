@@ -119,6 +119,29 @@ inline float reliability(float share)
     return std::clamp(1.0f - share / kAuxUnreliableShare, 0.0f, 1.0f);
 }
 
+/// One step of the aux history's temporal accumulation at (x, y): o[0..N) = prev + alpha (cur -
+/// prev) with alpha = max(1 / len, kAuxAlbedoAlphaMin) and o[N] = len = min(prev length + 1,
+/// kMaxHistoryLength), prev gathered from `hist` (N + 1 channels) through the taps; without taps
+/// or an accepted tap, o = cur and length 1.
+template <int N>
+void accumulateStep(
+    const Reprojector* taps, int x, int y, const Image& hist, const float* cur, float* o)
+{
+    float prev[N + 1];
+    const float ws = taps ? gatherHistory<N + 1>(taps->taps(x, y), hist, prev) : 0.0f;
+    if (ws > 0.0f) {
+        const float len = std::min(prev[N] + 1.0f, kMaxHistoryLength);
+        const float alpha = std::max(1.0f / len, kAuxAlbedoAlphaMin);
+        for (int k = 0; k < N; ++k)
+            o[k] = prev[k] + alpha * (cur[k] - prev[k]);
+        o[N] = len;
+    } else {
+        for (int k = 0; k < N; ++k)
+            o[k] = cur[k];
+        o[N] = 1.0f;
+    }
+}
+
 inline bool hasSurface(float z)
 {
     return std::isfinite(z) && std::fabs(z) < kAuxDepthSky;
@@ -242,20 +265,7 @@ void AuxPrefilter::finish(Frame& f, const Reprojector* taps)
                 const float cur[4]
                     = { m_mean(x, y, 0), m_mean(x, y, 1), m_mean(x, y, 2), m_share(x, y, 0) };
                 float* o = m_hist.at(x, y);
-                float prev[5];
-                const float ws
-                    = history ? gatherHistory<5>(taps->taps(x, y), m_prevHist, prev) : 0.0f;
-                if (ws > 0.0f) {
-                    const float len = std::min(prev[4] + 1.0f, kMaxHistoryLength);
-                    const float alpha = std::max(1.0f / len, kAuxAlbedoAlphaMin);
-                    for (int k = 0; k < 4; ++k)
-                        o[k] = prev[k] + alpha * (cur[k] - prev[k]);
-                    o[4] = len;
-                } else {
-                    for (int k = 0; k < 4; ++k)
-                        o[k] = cur[k];
-                    o[4] = 1.0f;
-                }
+                accumulateStep<4>(history ? taps : nullptr, x, y, m_prevHist, cur, o);
                 const float r = reliability(o[3]);
                 if (r >= 1.0f)
                     continue; // reliable: the albedo stays exactly as given
@@ -286,24 +296,9 @@ void AuxPrefilter::limitGrain(Frame& f, const Reprojector* taps)
             for (int x = 0; x < w; ++x) {
                 float* a = f.albedo.at(x, y);
                 float* o = m_hist.at(x, y);
-                float prev[4];
-                const float ws
-                    = history ? gatherHistory<4>(taps->taps(x, y), m_prevHist, prev) : 0.0f;
-                if (ws > 0.0f) {
-                    const float len = std::min(prev[3] + 1.0f, kMaxHistoryLength);
-                    const float alpha = std::max(1.0f / len, kAuxAlbedoAlphaMin);
-                    for (int k = 0; k < 3; ++k) {
-                        const float t = prev[k] + alpha * (a[k] - prev[k]);
-                        o[k] = std::clamp(t, a[k] * (1.0f - kGrain), a[k] * (1.0f + kGrain));
-                    }
-                    o[3] = len;
-                } else {
-                    for (int k = 0; k < 3; ++k)
-                        o[k] = a[k];
-                    o[3] = 1.0f;
-                }
-                for (int k = 0; k < 3; ++k)
-                    a[k] = o[k];
+                accumulateStep<3>(history ? taps : nullptr, x, y, m_prevHist, a, o);
+                for (int k = 0; k < 3; ++k) // no history: o = a, inside the band already
+                    a[k] = o[k] = std::clamp(o[k], a[k] * (1.0f - kGrain), a[k] * (1.0f + kGrain));
             }
     });
     m_hasHistory = true;

@@ -16,7 +16,7 @@ namespace afn::mrkp {
 
 namespace {
 
-EmbeddedWeights embeddedWeights()
+nn::EmbeddedWeights embeddedWeights()
 {
 #ifdef AFN_HAS_MRKP_WEIGHTS
     return { mrkpEmbeddedWeights, static_cast<std::size_t>(mrkpEmbeddedWeights_size) };
@@ -37,12 +37,10 @@ public:
 
 FilterType filterType()
 {
-    FilterType t;
-    t.name = "mrkp";
-    t.description = "multi-resolution kernel prediction (KPCN with level blending, the paper's "
-                    "MR-KP baseline) on the TA-accumulated frame";
-    t.ready = embeddedWeights().data != nullptr;
-    describeTaNetworkMethod(t);
+    FilterType t = taNetworkFilterType("mrkp",
+        "multi-resolution kernel prediction (KPCN with level blending, the paper's "
+        "MR-KP baseline) on the TA-accumulated frame",
+        embeddedWeights().data != nullptr);
     t.create = factoryOf<MrkpFilter>();
     return t;
 }

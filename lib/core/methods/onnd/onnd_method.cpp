@@ -17,7 +17,7 @@ namespace afn::onnd {
 
 namespace {
 
-EmbeddedWeights embeddedWeights()
+nn::EmbeddedWeights embeddedWeights()
 {
 #ifdef AFN_HAS_ONND_WEIGHTS
     return { onndEmbeddedWeights, static_cast<std::size_t>(onndEmbeddedWeights_size) };
@@ -41,12 +41,10 @@ private:
 
 FilterType filterType()
 {
-    FilterType t;
-    t.name = "onnd";
-    t.description = "recurrent denoising autoencoder (Chaitanya et al. 2017, the paper's ONND "
-                    "baseline) on the TA-accumulated frame";
-    t.ready = embeddedWeights().data != nullptr;
-    describeTaNetworkMethod(t);
+    FilterType t = taNetworkFilterType("onnd",
+        "recurrent denoising autoencoder (Chaitanya et al. 2017, the paper's ONND "
+        "baseline) on the TA-accumulated frame",
+        embeddedWeights().data != nullptr);
     t.create = factoryOf<OnndFilter>();
     return t;
 }
