@@ -17,6 +17,7 @@
 #include <atomic>
 #include <cfloat>
 #include <cmath>
+#include <type_traits>
 
 namespace afn {
 
@@ -35,6 +36,8 @@ template <typename PerRow>
 void gather(const ImageBinding& b, int channels, Image& dst, Counters& counts, const GatherOp& op,
     PerRow&& perRow)
 {
+    // Rows converted in place right after their copy stay in cache (no streaming stores).
+    constexpr bool stream = std::is_same_v<std::decay_t<PerRow>, void (*)(float*, int)>;
     const ImageView src = b.view();
     dst.resize(src.width, src.height, channels);
     const bool packed = src.channels == channels
@@ -45,7 +48,7 @@ void gather(const ImageBinding& b, int channels, Image& dst, Counters& counts, c
         for (int y = y0; y < y1; ++y) {
             float* d = dst.at(0, y);
             if (packed && avx512) {
-                gatherRunAvx512(src.at(0, y), d, src.width * channels, op, local);
+                gatherRunAvx512(src.at(0, y), d, src.width * channels, op, local, stream);
             } else if (packed) {
                 const float* s = src.at(0, y);
                 const int n = src.width * channels;

@@ -29,7 +29,8 @@ struct RunState {
 
 /// 16 values from i (m: the lanes in the run). `stream`: d + i is 64-byte aligned and m is full;
 /// then a streaming store (the frame's buffers are read by later passes, not by this one: no read
-/// of the destination lines for ownership).
+/// of the destination lines for ownership). A run converted in place right after (normals, the
+/// colour's demodulation) is stored normally: streamed, it would be read back from memory.
 template <GatherOp::Kind K>
 AFN_CPU_AVX512_INLINE void step(
     RunState& r, const float* s, float* d, int i, __mmask16 m, bool stream)
@@ -65,7 +66,7 @@ inline __mmask16 lanes(int count)
 
 template <GatherOp::Kind K>
 AFN_CPU_AVX512 void gatherRun(
-    const float* s, float* d, int n, const GatherOp& op, GatherCounts& counts)
+    const float* s, float* d, int n, const GatherOp& op, GatherCounts& counts, bool stream)
 {
     RunState r;
     r.rep = _mm512_set1_ps(op.replacement);
@@ -83,28 +84,34 @@ AFN_CPU_AVX512 void gatherRun(
         step<K>(r, s, d, 0, lanes(peel), false);
         i = peel;
     }
-    for (; i + 16 <= n; i += 16)
-        step<K>(r, s, d, i, lanes(16), true);
+    if (stream)
+        for (; i + 16 <= n; i += 16)
+            step<K>(r, s, d, i, lanes(16), true);
+    else
+        for (; i + 16 <= n; i += 16)
+            step<K>(r, s, d, i, lanes(16), false);
     if (i < n)
         step<K>(r, s, d, i, lanes(n - i), false);
-    _mm_sfence();
+    if (stream)
+        _mm_sfence();
     counts.nonFinite += _mm512_reduce_add_epi32(r.bad);
     counts.negative += _mm512_reduce_add_epi32(r.negative);
 }
 
 } // namespace
 
-void gatherRunAvx512(const float* s, float* d, int n, const GatherOp& op, GatherCounts& counts)
+void gatherRunAvx512(
+    const float* s, float* d, int n, const GatherOp& op, GatherCounts& counts, bool stream)
 {
     switch (op.kind) {
     case GatherOp::Kind::Copy:
-        return gatherRun<GatherOp::Kind::Copy>(s, d, n, op, counts);
+        return gatherRun<GatherOp::Kind::Copy>(s, d, n, op, counts, stream);
     case GatherOp::Kind::NonNegative:
-        return gatherRun<GatherOp::Kind::NonNegative>(s, d, n, op, counts);
+        return gatherRun<GatherOp::Kind::NonNegative>(s, d, n, op, counts, stream);
     case GatherOp::Kind::Unit:
-        return gatherRun<GatherOp::Kind::Unit>(s, d, n, op, counts);
+        return gatherRun<GatherOp::Kind::Unit>(s, d, n, op, counts, stream);
     case GatherOp::Kind::Scale2:
-        return gatherRun<GatherOp::Kind::Scale2>(s, d, n, op, counts);
+        return gatherRun<GatherOp::Kind::Scale2>(s, d, n, op, counts, stream);
     }
 }
 
@@ -133,7 +140,7 @@ AFN_CPU_AVX512 void normalizeNormals16(float* p, float zSign)
 
 #else
 
-void gatherRunAvx512(const float*, float*, int, const GatherOp&, GatherCounts&) { }
+void gatherRunAvx512(const float*, float*, int, const GatherOp&, GatherCounts&, bool) { }
 void normalizeNormals16(float*, float) { }
 
 #endif

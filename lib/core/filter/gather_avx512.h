@@ -55,7 +55,11 @@ inline float gatherValue(float v, int channel, const GatherOp& op, GatherCounts&
 /// `n` packed values from `s` to `d` through gatherValue (value i of channel i % 2 for Scale2,
 /// which needs runs that start at a pixel), 16 at a time with masked loads and stores for the
 /// tail: the same bits and counts as the scalar code. AVX-512F only (cpu::activeIsa() == Avx512).
-void gatherRunAvx512(const float* s, float* d, int n, const GatherOp& op, GatherCounts& counts);
+/// `stream`: whole aligned vectors are written with streaming stores (for a run no one reads
+/// soon); false keeps the run in cache for a conversion that reads it next (normals, the colour's
+/// demodulation).
+void gatherRunAvx512(
+    const float* s, float* d, int n, const GatherOp& op, GatherCounts& counts, bool stream = true);
 
 /// The 16 packed normals at `p` (48 floats), in place: z times zSign, then divided by the length
 /// (0 below 1e-12), the gather's scalar operations lane by lane (the same bits). AVX-512F only

@@ -6,6 +6,7 @@
 
 #include <atomic>
 #include <cmath>
+#include <limits>
 
 namespace afn {
 
@@ -94,14 +95,31 @@ double buildWorkMask(
     // A read-only pass first, stopping at the first pixel that needs no work: a frame where every
     // pixel needs work (the usual case with a depth input and no sky) then writes and allocates
     // nothing (a mask allocated and freed per frame cost page faults on every frame).
+    // With only a packed depth to test, a row is read as one branch-free (vectorised) run:
+    // needed(x, y) is then z < range and z > -inf (NaN fails both; +inf is >= any range).
+    const bool depthOnly = depth && !alpha && !maskB
+        && depthV.pixelStride == static_cast<std::ptrdiff_t>(sizeof(float));
+    auto rowNeedsAll = [&](int y) {
+        if (depthOnly) {
+            const float* z = depthV.at(0, y);
+            const float range = s.denoisingRange, below = -std::numeric_limits<float>::infinity();
+            int all = 1;
+            for (int x = 0; x < f.width; ++x)
+                all &= static_cast<int>(z[x] < range) & static_cast<int>(z[x] > below);
+            return all != 0;
+        }
+        for (int x = 0; x < f.width; ++x)
+            if (!needed(x, y))
+                return false;
+        return true;
+    };
     std::atomic<bool> anySkipped { false };
     parallelRows(f.height, [&](int y0, int y1) {
         for (int y = y0; y < y1 && !anySkipped.load(std::memory_order_relaxed); ++y)
-            for (int x = 0; x < f.width; ++x)
-                if (!needed(x, y)) {
-                    anySkipped = true;
-                    return;
-                }
+            if (!rowNeedsAll(y)) {
+                anySkipped = true;
+                return;
+            }
     });
     if (!anySkipped) {
         f.work = Image(); // every pixel needs work: methods run their unrestricted path

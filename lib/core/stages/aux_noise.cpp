@@ -91,14 +91,12 @@ std::int64_t flagRows(const ImageView& img, float t, Image* flags, int y0, int y
                 const std::uint32_t within = K == AuxKind::Depth
                     ? depthSettled16(img.at(x, y), t)
                     : leftNeighbourWithin16(img.at(x, y), K, t);
-                for (int l = 0; l < 16; ++l) {
-                    if (within & (1u << l)) {
-                        if (flags)
-                            (*flags)(x + l, y, 0) = 0.0f;
-                    } else {
-                        pixel(x + l);
-                    }
-                }
+                // Settled lanes are not speckle; the others take the scalar test.
+                if (flags)
+                    for (std::uint32_t m = within & 0xFFFFu; m != 0; m &= m - 1)
+                        (*flags)(x + __builtin_ctz(m), y, 0) = 0.0f;
+                for (std::uint32_t m = ~within & 0xFFFFu; m != 0; m &= m - 1)
+                    pixel(x + __builtin_ctz(m));
             }
         }
         for (; x < w; ++x)

@@ -246,11 +246,18 @@ PixelTaps Reprojector::taps(int x, int y) const
 
 bool Reprojector::motionRowIsZero(const Frame& f, int y) const
 {
+    // Branch-free (vectorised) over blocks of 64 values, stopping after the first block with a
+    // non-zero value; -0 counts as zero and NaN as non-zero, as m != 0 says.
     const float* m = f.motion.at(0, y);
     const int n = 2 * f.width;
-    for (int i = 0; i < n; ++i)
-        if (m[i] != 0.0f)
+    for (int i0 = 0; i0 < n; i0 += 64) {
+        const int i1 = std::min(i0 + 64, n);
+        int moving = 0;
+        for (int i = i0; i < i1; ++i)
+            moving |= static_cast<int>(m[i] != 0.0f);
+        if (moving)
             return false;
+    }
     return true;
 }
 
@@ -320,15 +327,12 @@ void Reprojector::compute(const Frame& f)
                         r.testNormal = c.normal;
                         r.normalLimitSquared = m_settings.normalLimitSquared;
                         const IdentityDecision d = identityTaps16(r);
-                        for (int l = 0; l < 16; ++l) {
-                            const std::uint32_t bit = 1u << l;
-                            if (d.accepted & bit)
-                                bits[x + l] = TapBits { 1, 0, 1 };
-                            else if ((d.rejected & bit) && !m_settings.boxFallback)
-                                bits[x + l] = TapBits { 0, 0, 1 };
-                            else
-                                pixel(x + l);
-                        }
+                        // The settled lanes in one store ({1, 0, 1} accepted, {0, 0, 1}
+                        // rejected), the others one by one.
+                        for (std::uint32_t rest = storeIdentityBits16(
+                                 bits + x, d.accepted, d.rejected, m_settings.boxFallback);
+                             rest != 0; rest &= rest - 1)
+                            pixel(x + __builtin_ctz(rest));
                     }
                 for (; x < f.width; ++x)
                     pixel(x);

@@ -138,6 +138,12 @@ private:
     };
     struct Context;
 
+    /// Store the tap bits an identity row's AVX-512 decision settles for the 16 pixels at `bits`
+    /// (accepted: the own tap; rejected without the box fallback: none) in one store; returns the
+    /// lanes left to the per-pixel test. AVX-512F only (stages/reproject_avx512.cpp).
+    static std::uint32_t storeIdentityBits16(
+        TapBits* bits, std::uint32_t accepted, std::uint32_t rejected, bool boxFallback);
+
     void previousPosition(const Frame& f, int x, int y, float& px, float& py, bool& ok) const;
     bool accept(const Context& c, int x, int y, int tx, int ty, float& footprint) const;
     float footprint(const Frame& f, int x, int y) const;

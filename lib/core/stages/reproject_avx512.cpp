@@ -68,11 +68,29 @@ AFN_CPU_AVX512 std::uint32_t Reprojector::ownPixelsAccepted16(int x, int y) cons
         _mm512_and_si512(b, _mm512_set1_epi32(0xFFFFFF)), _mm512_set1_epi32(1));
 }
 
+AFN_CPU_AVX512 std::uint32_t Reprojector::storeIdentityBits16(
+    TapBits* bits, std::uint32_t accepted, std::uint32_t rejected, bool boxFallback)
+{
+    // TapBits {mask, box, onScreen} as one little-endian 32-bit word: {1, 0, 1} = 0x01000001,
+    // {0, 0, 1} = 0x01000000.
+    static_assert(sizeof(TapBits) == 4);
+    const std::uint32_t settled = accepted | (boxFallback ? 0u : rejected);
+    const __m512i word = _mm512_mask_blend_epi32(static_cast<__mmask16>(accepted),
+        _mm512_set1_epi32(0x01000000), _mm512_set1_epi32(0x01000001));
+    _mm512_mask_storeu_epi32(bits, static_cast<__mmask16>(settled), word);
+    return ~settled & 0xFFFFu;
+}
+
 #else
 
 std::uint32_t Reprojector::ownPixelsAccepted16(int, int) const
 {
     return 0; // never called: activeIsa() is Portable without the AVX-512 kernels
+}
+
+std::uint32_t Reprojector::storeIdentityBits16(TapBits*, std::uint32_t, std::uint32_t, bool)
+{
+    return 0xFFFFu; // never called: activeIsa() is Portable without the AVX-512 kernels
 }
 
 IdentityDecision identityTaps16(const IdentityRow16&)

@@ -254,6 +254,35 @@ TEST(WorkSkipping, MaskRulesAndShare)
     EXPECT_EQ(f->lastSkippedShare(), 1.0);
 }
 
+TEST(WorkSkipping, OneBackgroundDepthAnywhereIsFound)
+{
+    // A frame whose pixels all need work except one, whose depth is each kind of background in
+    // turn: the row check that looks for such a pixel before the mask is built (a vectorised run
+    // over a packed depth row) finds it at every position of a 16-value block and in the tail.
+    const float inf = std::numeric_limits<float>::infinity();
+    const float range = 100.0f;
+    for (float z : { std::numeric_limits<float>::quiet_NaN(), inf, -inf, range, 2.0f * range })
+        for (int x : { 0, 5, 15, 16, 47, 80, kW - 1 }) {
+            auto f = afn::createFilter("ta");
+            f->params().setNumber("denoisingRange", range, AFN_PARAM_FLOAT);
+            Buffers b = scene(0, 0.0f, 0.0f);
+            b.depth = Image(kW, kH, 1, 3.0f);
+            b.depth(x, 40, 0) = z;
+            methods_test::runFrame(*f, b);
+            EXPECT_EQ(f->lastSkippedShare(), 1.0 / (kW * kH)) << "depth " << z << " at x " << x;
+        }
+    // Just below the range, -FLT_MAX and -0 need work: nothing is skipped.
+    for (float z : { std::nextafter(range, 0.0f), -std::numeric_limits<float>::max(), -0.0f }) {
+        auto f = afn::createFilter("ta");
+        f->params().setNumber("denoisingRange", range, AFN_PARAM_FLOAT);
+        Buffers b = scene(0, 0.0f, 0.0f);
+        b.depth = Image(kW, kH, 1, 3.0f);
+        b.depth(33, 40, 0) = z;
+        methods_test::runFrame(*f, b);
+        EXPECT_EQ(f->lastSkippedShare(), 0.0) << "depth " << z;
+    }
+}
+
 TEST(WorkRegion, SpansDilationAndIntersection)
 {
     Image work(20, 10, 1);

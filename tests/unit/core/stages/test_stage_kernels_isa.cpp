@@ -1,19 +1,22 @@
 // SPDX-License-Identifier: Apache-2.0
 // The AVX-512 pre-tests of the shared stages (stages/aux_noise_avx512.cpp: speckle estimate;
-// stages/reproject_avx512.cpp: a static camera's rows) settle only what the scalar tests would
-// decide the same way: flags, counts and taps are identical to the portable path's, on buffers
-// wide enough for several 16-pixel blocks and a tail, with the values that need care (NaN, inf,
-// -0, sky depth, zero normals, moved positions). On a CPU without AVX-512F both runs take the
-// portable path and the test checks nothing beyond it (said in the output).
+// stages/reproject_avx512.cpp: a static camera's rows; stages/demodulate_avx512.cpp) settle only
+// what the scalar tests would decide the same way: flags, counts and taps are identical to the
+// portable path's, on buffers wide enough for several 16-pixel blocks and a tail, with the values
+// that need care (NaN, inf, -0, sky depth, zero normals, moved positions); the demodulation's
+// kernels give the scalar loops' bits. On a CPU without AVX-512F both runs take the portable path
+// and the test checks nothing beyond it (said in the output).
 #include "cpu/isa.h"
 #include "isa_scope.h"
 #include "stages/aux_noise.h"
+#include "stages/demodulate.h"
 #include "stages/reproject.h"
 #include "test_methods_util.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstring>
 #include <iostream>
 #include <limits>
 
@@ -159,3 +162,68 @@ TEST(StageKernelsIsa, StaticRowTapsMatchThePortablePath)
 }
 
 } // namespace
+
+TEST(StageKernelsIsa, DemodulationAndRemodulationMatchThePortablePath)
+{
+    // stages/demodulate_avx512.cpp against the scalar loops: colour and albedo with NaN, +-inf,
+    // -0, negative, tiny (below the 2^-10 floor) and huge values (above kMaxIrradiance after the
+    // division), with and without an albedo, for colour given as radiance and as irradiance.
+    auto awkward = [](std::uint32_t seed) {
+        Lcg rng { seed };
+        Image img(W, H, 3);
+        const float inf = std::numeric_limits<float>::infinity();
+        for (int y = 0; y < H; ++y)
+            for (int x = 0; x < W; ++x)
+                for (int c = 0; c < 3; ++c) {
+                    const float r = rng.next();
+                    img(x, y, c) = r < -0.9f ? std::numeric_limits<float>::quiet_NaN()
+                        : r < -0.8f          ? (r < -0.85f ? inf : -inf)
+                        : r < -0.7f          ? -0.0f
+                        : r < -0.6f          ? -0.25f * std::fabs(rng.next())
+                        : r < -0.5f          ? 1e-6f * std::fabs(rng.next())
+                        : r > 0.9f           ? 1e13f * (1.0f + std::fabs(rng.next()))
+                                             : std::fabs(rng.next());
+                }
+        return img;
+    };
+    const Image color = awkward(31u), albedo = awkward(32u), filtered = awkward(33u);
+    auto bitsOf = [](float v) {
+        std::uint32_t u;
+        std::memcpy(&u, &v, sizeof u);
+        return u;
+    };
+    int compared = 0;
+    for (bool withAlbedo : { true, false })
+        for (bool demodulatedInput : { false, true }) {
+            Frame f;
+            f.width = W;
+            f.height = H;
+            f.color = color;
+            if (withAlbedo)
+                f.albedo = albedo;
+            f.colorDemodulated = demodulatedInput;
+            Image irrV, irrP, radV, radP;
+            {
+                IsaScope s(Isa::Avx512);
+                afn::demodulate(f, irrV);
+                afn::remodulate(f, filtered, radV);
+            }
+            {
+                IsaScope s(Isa::Portable);
+                afn::demodulate(f, irrP);
+                afn::remodulate(f, filtered, radP);
+            }
+            for (int y = 0; y < H; ++y)
+                for (int x = 0; x < W; ++x)
+                    for (int c = 0; c < 3; ++c) {
+                        ASSERT_EQ(bitsOf(irrV(x, y, c)), bitsOf(irrP(x, y, c)))
+                            << "demodulated at " << x << "," << y << " channel " << c << " albedo "
+                            << withAlbedo << " irradiance input " << demodulatedInput;
+                        ASSERT_EQ(bitsOf(radV(x, y, c)), bitsOf(radP(x, y, c)))
+                            << "remodulated at " << x << "," << y << " channel " << c << " albedo "
+                            << withAlbedo << " irradiance input " << demodulatedInput;
+                        ++compared;
+                    }
+        }
+    EXPECT_EQ(compared, 4 * W * H * 3);
+}
