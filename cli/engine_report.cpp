@@ -23,6 +23,16 @@ EnginePoint EngineCollector::finish(int width, int height) const
         EngineStage s { names[k], m_gflop[k], median(m_ms[k]) };
         total.gflop += s.gflop, total.ms += s.ms;
         p.stages.push_back(s);
+        if (k == 0 && !m_inputMs.empty()) {
+            // The prediction's convolutions alone: per frame its time less its input
+            // preparation's (the median of the differences), the same FLOP.
+            std::vector<double> convMs;
+            for (std::size_t i = 0; i < m_ms[0].size() && i < m_inputMs.size(); ++i)
+                if (m_inputMs[i] > 0.0)
+                    convMs.push_back(m_ms[0][i] - m_inputMs[i]);
+            if (!convMs.empty())
+                p.stages.push_back({ "pred-convs", m_gflop[0], median(convMs) });
+        }
     }
     p.stages.push_back(total);
     return p;
@@ -73,6 +83,9 @@ void printEngineReport(const EngineYardstick& y, const std::vector<EnginePoint>&
         "best 1-thread call: under glibc's malloc the multi-thread dnnl_sgemm falls short of "
         "N x its 1-thread rate, docs/performance.md)\n",
         y.threads, y.threads);
+    std::printf("(pred-convs: the prediction stage less its input preparation, which does no FLOP: "
+                "the tone map and the 13-channel input over each stripe's window with its halos, "
+                "and the 1-spp colour's pooling; network = prediction + filtering + refinement)\n");
     std::printf("(filtering cannot reach the GEMM rate: besides its two 1x1 heads it is a softmax "
                 "over 49 taps per pixel (49 exponentials, not counted as FLOP) and two 7x7 x "
                 "3-channel filters whose weights differ per pixel, 2 FLOP per value loaded and no "

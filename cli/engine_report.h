@@ -13,7 +13,9 @@ namespace afntool {
 
 /// One network stage at one size: medians over the timed frames.
 struct EngineStage {
-    std::string name; ///< prediction | filtering | refinement | network (their sum)
+    /// prediction | pred-convs (prediction without its input preparation: the same FLOP) |
+    /// filtering | refinement | network (prediction + filtering + refinement)
+    std::string name;
     double gflop = 0.0; ///< per frame
     double ms = 0.0; ///< median wall-clock ms per frame
     double gflops() const { return ms > 0.0 ? gflop / ms * 1e3 : 0.0; }
@@ -47,12 +49,14 @@ public:
             m_ms[k].push_back(stat((base + ".ms").c_str()));
             m_gflop[k] = stat((base + ".gflop").c_str());
         }
+        m_inputMs.push_back(stat("stats.afn.prediction.inputMs"));
         m_avx512 = stat("stats.afn.avx512") != 0.0;
     }
     EnginePoint finish(int width, int height) const;
 
 private:
     std::vector<double> m_ms[3];
+    std::vector<double> m_inputMs; ///< of the prediction's ms, the input preparation's
     double m_gflop[3] = {};
     bool m_avx512 = false;
 };

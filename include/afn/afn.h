@@ -171,6 +171,9 @@ typedef enum AFNDeviceType {
 /// when the AVX-512 kernels ran (chosen at run time), 0 for the portable ones.
 #define AFN_STAT_AFN_PREDICTION_MS "stats.afn.prediction.ms"
 #define AFN_STAT_AFN_PREDICTION_GFLOP "stats.afn.prediction.gflop"
+/// Of AFN_STAT_AFN_PREDICTION_MS, the milliseconds that prepare the network input (tone map,
+/// input channels, the 1-spp colour's pooling: no FLOP counted); 0 where not measured.
+#define AFN_STAT_AFN_PREDICTION_INPUT_MS "stats.afn.prediction.inputMs"
 #define AFN_STAT_AFN_FILTERING_MS "stats.afn.filtering.ms"
 #define AFN_STAT_AFN_FILTERING_GFLOP "stats.afn.filtering.gflop"
 #define AFN_STAT_AFN_REFINEMENT_MS "stats.afn.refinement.ms"

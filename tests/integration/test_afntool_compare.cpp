@@ -173,8 +173,16 @@ TEST(AfntoolCompare, SizeBenchmarkReportsEngineAndHeap)
     if (r.out.find("\"engine\"") == std::string::npos)
         GTEST_SKIP() << "afn has no weights in this build: no engine report";
     const std::vector<double> gflop = jsonNumbers(r.out, "gflopPerFrame");
-    ASSERT_EQ(gflop.size(), 4u) << r.out; // prediction, filtering, refinement, network
-    EXPECT_NEAR(gflop[3], gflop[0] + gflop[1] + gflop[2], 1e-9);
+    // prediction, pred-convs (the prediction less its input preparation), filtering, refinement,
+    // network (the three stages)
+    ASSERT_EQ(gflop.size(), 5u) << r.out;
+    EXPECT_EQ(gflop[1], gflop[0]);
+    EXPECT_NEAR(gflop[4], gflop[0] + gflop[2] + gflop[3], 1e-9);
+    const std::vector<double> ms = jsonNumbers(r.out, "msPerFrame");
+    ASSERT_EQ(ms.size(), 5u) << r.out;
+    EXPECT_GT(ms[1], 0.0);
+    EXPECT_LT(ms[1], ms[0]); // the input preparation took some time
+    EXPECT_NEAR(ms[4], ms[0] + ms[2] + ms[3], 1e-6); // as written in the JSON
     for (double v : jsonNumbers(r.out, "gflops"))
         EXPECT_GT(v, 0.0);
 #ifdef AFN_HAS_DNNL

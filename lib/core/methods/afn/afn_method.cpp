@@ -78,6 +78,10 @@ public:
             value = cpu::activeIsa() == cpu::Isa::Avx512 ? 1.0 : 0.0;
             return true;
         }
+        if (rest == "prediction.inputMs") {
+            value = m_tiers.totals().inputMs;
+            return true;
+        }
         for (int k = 0; k < Network::kStages; ++k) {
             const auto s = static_cast<Network::Stage>(k);
             const std::string stage = Network::stageName(s);

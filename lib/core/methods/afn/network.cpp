@@ -233,10 +233,12 @@ void Network::runWholeFrame(const Inputs& in, Image& out)
     };
     if (m_variant == Variant::Large) {
         m_large.run(checkInputs(in), out, m_stageMs);
+        m_inputMs = 0.0;
         return;
     }
     const Clock::time_point t0 = Clock::now();
     prepare(in);
+    m_inputMs = ms(t0, Clock::now());
     predict();
     const Clock::time_point t1 = Clock::now();
     filterAndFuse();

@@ -89,6 +89,10 @@ public:
     /// Wall-clock milliseconds of `s` in the last run(). In stripes the stages interleave across
     /// threads: the run's wall time is split in proportion to the thread time each stage took.
     double stageMs(Stage s) const { return m_stageMs[static_cast<int>(s)]; }
+    /// Of stageMs(Prediction), the part that prepares the network input and does no FLOP: the
+    /// tone map, the 13-channel input and the colours (fillInput) and the 1-spp colour's pooling.
+    /// Split from the wall time like the stages. 0 where not measured (AFN large).
+    double predictionInputMs() const { return m_inputMs; }
 
     /// The layers, for engines that pack them in their own layout (lib/core/cuda).
     enum class Layer { Enc1, Enc2, Enc3, Dec2, Dec1, Head1, HeadTa, Ref1, Ref2, Ref3 };
@@ -117,9 +121,9 @@ private:
         const Image& fused, const Image& x, int y0, int y1, float* dst, long dstRow) const;
     struct WorkspacePool; // network_stripes.cpp
     /// Output rows [y0, y1) of the padded frame (cropped into `out`); adds each stage's thread
-    /// milliseconds to ms[].
-    void runStripe(
-        const Inputs& in, int y0, int y1, StripeWorkspace& ws, Image& out, double* ms) const;
+    /// milliseconds to ms[] and, of the prediction's, the input preparation's to *inputMs.
+    void runStripe(const Inputs& in, int y0, int y1, StripeWorkspace& ws, Image& out, double* ms,
+        double* inputMs) const;
     /// The inputs with the variant's substitution applied, shapes checked; sets the size.
     Inputs checkInputs(const Inputs& in);
 
@@ -129,6 +133,7 @@ private:
     nn::Conv m_enc1, m_enc2, m_enc3, m_dec2, m_dec1, m_head1, m_headTa, m_ref1, m_ref2, m_ref3;
     int m_width = 0, m_height = 0;
     double m_stageMs[kStages] = {};
+    double m_inputMs = 0.0; ///< predictionInputMs()
     // Buffers, reused across frames of one size.
     Image m_x, m_colorTa, m_color1, m_color1Half, m_xHalf, m_e1, m_e1Pool, m_e2, m_e2Pool, m_e3;
     Image m_d2, m_d1, m_fused, m_dTa, m_alpha, m_d1Half, m_out;

@@ -79,6 +79,7 @@ struct Network::WorkspacePool {
     std::mutex mutex;
     std::vector<std::unique_ptr<StripeWorkspace>> free;
     double ms[kStages] = {}; ///< thread milliseconds per stage of the current run
+    double inputMs = 0.0; ///< of ms[prediction], the input preparation's
 
     std::unique_ptr<StripeWorkspace> take()
     {
@@ -89,17 +90,18 @@ struct Network::WorkspacePool {
         free.pop_back();
         return ws;
     }
-    void give(std::unique_ptr<StripeWorkspace> ws, const double* stageMs)
+    void give(std::unique_ptr<StripeWorkspace> ws, const double* stageMs, double stripeInputMs)
     {
         std::lock_guard<std::mutex> lock(mutex);
+        inputMs += stripeInputMs;
         free.push_back(std::move(ws));
         for (int k = 0; k < kStages; ++k)
             ms[k] += stageMs[k];
     }
 };
 
-void Network::runStripe(
-    const Inputs& in, int y0, int y1, StripeWorkspace& ws, Image& out, double* ms) const
+void Network::runStripe(const Inputs& in, int y0, int y1, StripeWorkspace& ws, Image& out,
+    double* ms, double* inputMs) const
 {
     using Clock = std::chrono::steady_clock;
     const Clock::time_point t0 = Clock::now();
@@ -124,6 +126,7 @@ void Network::runStripe(
     ws.colorTa.resize(wp, n, 3);
     fillInput(in, w0, w1, w0, ws.x, ws.color1, ws.colorTa);
     pool(ws.color1, ws.color1Half, rows(1, y0 / 2 - 5, y1 / 2 + 5));
+    const Clock::time_point tInput = Clock::now(); // the input is ready (predictionInputMs)
     pool(ws.x, ws.xHalf, rows(1, y0 / 2 - 15, y1 / 2 + 15));
     conv(m_enc1, nullptr, ws.xHalf, ws.e1, rows(1, y0 / 2 - 14, y1 / 2 + 14));
     pool(ws.e1, ws.e1Pool, rows(2, y0 / 4 - 7, y1 / 4 + 7));
@@ -166,6 +169,7 @@ void Network::runStripe(
     auto msOf = [](Clock::time_point a, Clock::time_point b) {
         return std::chrono::duration<double, std::milli>(b - a).count();
     };
+    *inputMs += msOf(t0, tInput);
     ms[0] += msOf(t0, t1);
     ms[1] += msOf(t1, t2);
     ms[2] += msOf(t2, t3);
@@ -178,6 +182,7 @@ void Network::run(const Inputs& given, Image& out, const Image* work)
     const Inputs in = checkInputs(given);
     if (m_variant == Variant::Large) { // whole frame, every row (network_large.h)
         m_large.run(in, out, m_stageMs);
+        m_inputMs = 0.0;
         m_skippedRows = 0;
         m_stripes = 1;
         return;
@@ -191,6 +196,7 @@ void Network::run(const Inputs& given, Image& out, const Image* work)
         m_pool = std::make_shared<WorkspacePool>();
     WorkspacePool& pool = *m_pool;
     std::fill(pool.ms, pool.ms + kStages, 0.0);
+    pool.inputMs = 0.0;
     const Image& cheap = given.colorTa ? *given.colorTa : *in.colorTa;
     // Stripes [y0, y1) of padded rows; rows of the frame in none take the cheap path.
     std::vector<std::pair<int, int>> stripes;
@@ -229,9 +235,9 @@ void Network::run(const Inputs& given, Image& out, const Image* work)
         });
     parallelFor(static_cast<int>(stripes.size()), [&](int s) {
         std::unique_ptr<StripeWorkspace> ws = pool.take();
-        double ms[kStages] = {};
-        runStripe(in, stripes[s].first, stripes[s].second, *ws, out, ms);
-        pool.give(std::move(ws), ms);
+        double ms[kStages] = {}, inputMs = 0.0;
+        runStripe(in, stripes[s].first, stripes[s].second, *ws, out, ms, &inputMs);
+        pool.give(std::move(ws), ms, inputMs);
     });
     m_stripes = static_cast<int>(stripes.size());
     // The stages interleave across threads: split the wall time by their thread time.
@@ -241,6 +247,7 @@ void Network::run(const Inputs& given, Image& out, const Image* work)
         total += v;
     for (int k = 0; k < kStages; ++k)
         m_stageMs[k] = total > 0.0 ? wall * pool.ms[k] / total : 0.0;
+    m_inputMs = total > 0.0 ? wall * pool.inputMs / total : 0.0;
 }
 
 } // namespace afn::afnet

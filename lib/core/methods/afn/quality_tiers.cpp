@@ -59,12 +59,14 @@ void TierRunner::add(const Network& net)
         m_totals.ms[k] += net.stageMs(s);
         m_totals.flop[k] += net.stageFlop(s);
     }
+    m_totals.inputMs += net.predictionInputMs();
 }
 
 void TierRunner::runFast(Network& net, const Inputs& in, Image& out)
 {
     const Clock::time_point t0 = Clock::now();
     net.prepare(in);
+    m_totals.inputMs = msBetween(t0, Clock::now());
     net.predict();
     const Clock::time_point t1 = Clock::now();
     net.filterAndFuse();

@@ -26,6 +26,7 @@ namespace afn::afnet {
 struct TierStageTotals {
     double ms[Network::kStages] = {};
     double flop[Network::kStages] = {};
+    double inputMs = 0.0; ///< of ms[prediction], Network::predictionInputMs
 };
 
 /// Runs `net` on `in` as `tier` asks; `out` = o (3 ch, demodulated, W x H, not clamped).
