@@ -70,6 +70,9 @@ public:
     /// stripes it computed.
     int skippedRows() const { return m_skippedRows; }
     int stripes() const { return m_stripes; }
+    /// Input rows of the last run() that a stripe took over from the previous stripe's window
+    /// instead of computing them again (network_stripes.cpp).
+    int inputRowsReused() const { return m_inputRowsReused; }
 
     // The stages, callable one by one (benchmark): prepare + predict = kernel prediction.
     // Not for AFN large (prepare() throws InvalidOperation).
@@ -122,13 +125,14 @@ private:
     struct WorkspacePool; // network_stripes.cpp
     /// Output rows [y0, y1) of the padded frame (cropped into `out`); adds each stage's thread
     /// milliseconds to ms[] and, of the prediction's, the input preparation's to *inputMs.
+    /// `runId` identifies the run() (its inputs), for the input rows `ws` may still hold.
     void runStripe(const Inputs& in, int y0, int y1, StripeWorkspace& ws, Image& out, double* ms,
-        double* inputMs) const;
+        double* inputMs, std::uint64_t runId, int* rowsReused) const;
     /// The inputs with the variant's substitution applied, shapes checked; sets the size.
     Inputs checkInputs(const Inputs& in);
 
     bool m_loaded = false;
-    int m_skippedRows = 0, m_stripes = 0;
+    int m_skippedRows = 0, m_stripes = 0, m_inputRowsReused = 0;
     Variant m_variant = Variant::Full;
     nn::Conv m_enc1, m_enc2, m_enc3, m_dec2, m_dec1, m_head1, m_headTa, m_ref1, m_ref2, m_ref3;
     int m_width = 0, m_height = 0;

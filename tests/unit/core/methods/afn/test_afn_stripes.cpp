@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: Apache-2.0
 // The AFN stripe path (methods/afn/network_stripes.cpp): bit-identical to the whole-frame stages
-// for frames of one and of many stripes (odd sizes, both variants, 1 thread and all), and its work
-// mask (issue 19): stripes without work take the cheap path, the others are unchanged.
+// for frames of one and of many stripes (odd sizes, both variants, 1 thread and all), also where a
+// stripe takes input rows over from the previous one, and its work mask (issue 19): stripes
+// without work take the cheap path, the others are unchanged.
 #include "afn_random_inputs.h"
 #include "methods/afn/network.h"
 #include "methods/afn/random_weights.h"
@@ -63,6 +64,33 @@ TEST(AfnStripes, EqualWholeFramePathBitForBit)
             }
             EXPECT_EQ(differingValues(whole, oneThread), 0) << variant << " 1 thread";
         }
+}
+
+TEST(AfnStripes, InputRowsTakenOverFromThePreviousStripeAreBitIdentical)
+{
+    // 330 rows pad to 336: stripes of 64 from 0 to 320, windows of 128 rows for the three in the
+    // middle, so a workspace that runs consecutive stripes moves the 64 shared input rows of the
+    // last window instead of computing them (on one thread every stripe follows its neighbour).
+    // A second run of other inputs must not take rows over from the first.
+    for (const std::string variant : { "full", "fusion" }) {
+        Network net = randomNetwork(variant);
+        Frame f(29, 330);
+        const afntest::RandomAfnInputs g(29, 330, 12u);
+        Image whole, wholeG, striped, stripedG, again;
+        net.runWholeFrame(f.in, whole);
+        net.runWholeFrame(g.in, wholeG);
+        {
+            tbb::global_control one(tbb::global_control::max_allowed_parallelism, 1);
+            net.run(f.in, striped);
+            EXPECT_EQ(net.inputRowsReused(), 2 * 64) << variant;
+            net.run(g.in, stripedG);
+            EXPECT_EQ(net.inputRowsReused(), 2 * 64) << variant;
+        }
+        EXPECT_EQ(differingValues(whole, striped), 0) << variant;
+        EXPECT_EQ(differingValues(wholeG, stripedG), 0) << variant << " second inputs";
+        net.run(f.in, again); // all threads: whatever is taken over, the same values
+        EXPECT_EQ(differingValues(whole, again), 0) << variant << " all threads";
+    }
 }
 
 TEST(AfnStripes, WorkMaskSkipsStripesWithoutWorkOnly)
