@@ -1,17 +1,64 @@
 // SPDX-License-Identifier: Apache-2.0
-// AVX-512 softmax + 7x7 filtering (cpu/afn_filter_avx512.h). The 49 logits are 4 vectors; the
-// exponential is the portable kernel's Cephes polynomial (cpu/simd.h exp8) on 16 lanes. A kernel
-// row covers 7 pixels x 3 channels = 21 contiguous floats of the image, multiplied by the row's
-// 7 weights spread to 21 lanes by a permute: 2 FMAs per kernel row instead of 21 scalar ones.
-// Pixels within 3 of the border use the scalar kernel (zero padding, methods/afn/fusion.h).
+// AVX-512 softmax + 7x7 filtering (cpu/afn_filter_avx512.h), 16 pixels of a row per call, one
+// pixel per lane: the 49 logits of the 16 pixels are gathered tap by tap, the maximum, the
+// exponentials (the portable kernel's Cephes polynomial, cpu/simd.h exp8, on 16 lanes) and their
+// sum run lane-wise, and each tap is then 3 FMAs (one per channel) on 16 pixels of the
+// channel-planar image rows (PlanarRows), whose zero pad and zero rows give the zero padding of
+// methods/afn/fusion.h with no border test. Per pixel the operations are those of the portable
+// kernel (normalised weights e_j / sum, taps summed in order j = 0..48) except the exponential's
+// polynomial and the order of the sum of the exponentials: within the parity tolerance
+// (AfnEngine.PortableAndAvx512KernelsAgree, AfnParity.*). The earlier kernel (one pixel per call,
+// horizontal reductions, tenth session) took about 4x the time (docs/performance.md).
 #include "cpu/afn_filter_avx512.h"
 
 #include "cpu/avx512.h"
 #include "methods/afn/fusion.h"
 
+#include <algorithm>
+#include <cassert>
 #include <cfloat>
+#include <limits>
 
 namespace afn::cpu {
+
+void PlanarRows::reset(const Image& img)
+{
+    m_img = &img;
+    m_stride = img.width() + 2 * 3 + 16;
+    const std::size_t size = static_cast<std::size_t>(8) * 3 * m_stride;
+    if (m_buf.size() < size)
+        m_buf.resize(size);
+    for (int& row : m_slotRow)
+        row = std::numeric_limits<int>::min();
+}
+
+void PlanarRows::ensure(int yy)
+{
+    int& slot = m_slotRow[yy & 7];
+    if (slot == yy)
+        return;
+    slot = yy;
+    float* base = m_buf.data() + static_cast<std::size_t>(yy & 7) * 3 * m_stride;
+    const int w = m_img->width();
+    if (yy < 0 || yy >= m_img->height()) {
+        std::fill(base, base + 3 * m_stride, 0.0f);
+        return;
+    }
+    const float* src = m_img->at(0, yy);
+    for (int c = 0; c < 3; ++c) {
+        float* p = base + c * m_stride;
+        std::fill(p, p + 3, 0.0f);
+        for (int x = 0; x < w; ++x)
+            p[3 + x] = src[3 * x + c];
+        std::fill(p + 3 + w, p + m_stride, 0.0f);
+    }
+}
+
+const float* PlanarRows::plane(int yy, int c) const
+{
+    assert(m_slotRow[yy & 7] == yy);
+    return m_buf.data() + (static_cast<std::size_t>(yy & 7) * 3 + c) * m_stride + 3;
+}
 
 #ifdef AFN_CPU_HAVE_AVX512
 
@@ -48,63 +95,52 @@ AFN_CPU_AVX512_INLINE __m512 finite16(__m512 v)
 
 } // namespace
 
-AFN_CPU_AVX512 void softmaxApplyAvx512(float* l, const Image& img, int x, int y, float* rgb)
+AFN_CPU_AVX512 void softmaxApplyRowAvx512(
+    const float* logits, int stride, int n, const PlanarRows& rows, int x0, int y, float* rgb)
 {
-    constexpr __mmask16 last = 0x0001; // logit 48
-    __m512 v0 = finite16(_mm512_loadu_ps(l)), v1 = finite16(_mm512_loadu_ps(l + 16));
-    __m512 v2 = finite16(_mm512_loadu_ps(l + 32));
-    __m512 v3 = finite16(_mm512_mask_loadu_ps(_mm512_set1_ps(-FLT_MAX), last, l + 48));
-    const __m512 m = _mm512_set1_ps(
-        _mm512_reduce_max_ps(_mm512_max_ps(_mm512_max_ps(v0, v1), _mm512_max_ps(v2, v3))));
-    v0 = exp16(_mm512_sub_ps(v0, m));
-    v1 = exp16(_mm512_sub_ps(v1, m));
-    v2 = exp16(_mm512_sub_ps(v2, m));
-    v3 = _mm512_maskz_mov_ps(last, exp16(_mm512_sub_ps(v3, m)));
-    const __m512 inv = _mm512_set1_ps(
-        1.0f / _mm512_reduce_add_ps(_mm512_add_ps(_mm512_add_ps(v0, v1), _mm512_add_ps(v2, v3))));
-    _mm512_storeu_ps(l, _mm512_mul_ps(v0, inv));
-    _mm512_storeu_ps(l + 16, _mm512_mul_ps(v1, inv));
-    _mm512_storeu_ps(l + 32, _mm512_mul_ps(v2, inv));
-    l[48] = _mm512_cvtss_f32(_mm512_mul_ps(v3, inv));
-
+    const __mmask16 valid = n >= 16 ? __mmask16(0xFFFF) : static_cast<__mmask16>((1u << n) - 1u);
+    const __m512i idx = _mm512_mullo_epi32(
+        _mm512_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15),
+        _mm512_set1_epi32(stride));
+    const __m512 zero = _mm512_set1_ps(0.0f);
+    // Tap j of the 16 pixels: one gather (the heads write each pixel's logits contiguously).
+    alignas(64) float e[afnet::kKernelTaps][16];
+    __m512 m = _mm512_set1_ps(-FLT_MAX);
+    for (int j = 0; j < afnet::kKernelTaps; ++j) {
+        const __m512 v = finite16(_mm512_mask_i32gather_ps(zero, valid, idx, logits + j, 4));
+        _mm512_store_ps(e[j], v);
+        m = _mm512_max_ps(m, v);
+    }
+    __m512 s = zero;
+    for (int j = 0; j < afnet::kKernelTaps; ++j) {
+        const __m512 v = exp16(_mm512_sub_ps(_mm512_load_ps(e[j]), m));
+        _mm512_store_ps(e[j], v);
+        s = _mm512_add_ps(s, v);
+    }
+    const __m512 inv = _mm512_div_ps(_mm512_set1_ps(1.0f), s);
     constexpr int r = afnet::kKernelSize / 2;
-    if (x < r || y < r || x + r >= img.width() || y + r >= img.height()) {
-        afnet::applyKernel(img, x, y, l, rgb);
-        return;
-    }
-    // Lane i of the first 16 floats of a kernel row is pixel i / 3; lanes 16..20 are pixels 5, 6.
-    const __m512i spreadA = _mm512_setr_epi32(0, 0, 0, 1, 1, 1, 2, 2, 2, 3, 3, 3, 4, 4, 4, 5);
-    const __m512i spreadB = _mm512_setr_epi32(5, 5, 6, 6, 6, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0);
-    constexpr __mmask16 tail = 0x001f;
-    __m512 accA = _mm512_set1_ps(0.0f), accB = _mm512_set1_ps(0.0f);
-    // Below the last row, the window's 21 floats plus 11 more lie inside the image: one plain load
-    // (lanes 5..15 of accB are never summed); on the last rows a masked one.
-    const bool room = y + r + 1 < img.height();
+    __m512 acc[3] = { zero, zero, zero };
     for (int dy = 0; dy < afnet::kKernelSize; ++dy) {
-        const float* p = img.at(x - r, y + dy - r);
-        const __m512 k = _mm512_loadu_ps(l + dy * afnet::kKernelSize); // 7 used, 64 readable
-        accA = _mm512_fmadd_ps(_mm512_loadu_ps(p), _mm512_permutexvar_ps(spreadA, k), accA);
-        const __m512 t = room ? _mm512_loadu_ps(p + 16) : _mm512_maskz_loadu_ps(tail, p + 16);
-        accB = _mm512_fmadd_ps(t, _mm512_permutexvar_ps(spreadB, k), accB);
+        const float* p[3];
+        for (int c = 0; c < 3; ++c)
+            p[c] = rows.plane(y + dy - r, c) + x0 - r;
+        for (int dx = 0; dx < afnet::kKernelSize; ++dx) {
+            const __m512 wv = _mm512_mul_ps(_mm512_load_ps(e[dy * afnet::kKernelSize + dx]), inv);
+            for (int c = 0; c < 3; ++c)
+                acc[c] = _mm512_fmadd_ps(wv, _mm512_loadu_ps(p[c] + dx), acc[c]);
+        }
     }
-    alignas(64) float s[32];
-    _mm512_store_ps(s, accA);
-    _mm512_store_ps(s + 16, accB);
-    for (int c = 0; c < 3; ++c) {
-        float sum = 0.0f;
-        for (int i = c; i < 21; i += 3)
-            sum += s[i];
-        rgb[c] = sum;
-    }
+    alignas(64) float out[3][16];
+    for (int c = 0; c < 3; ++c)
+        _mm512_store_ps(out[c], acc[c]);
+    for (int i = 0; i < n; ++i)
+        for (int c = 0; c < 3; ++c)
+            rgb[3 * i + c] = out[c][i];
 }
 
 #else
 
-void softmaxApplyAvx512(float* l, const Image& img, int x, int y, float* rgb)
-{
-    afnet::softmax(l, afnet::kKernelTaps);
-    afnet::applyKernel(img, x, y, l, rgb);
-}
+void softmaxApplyRowAvx512(const float*, int, int, const PlanarRows&, int, int, float*) { }
 
 #endif
 

@@ -114,7 +114,9 @@ inline __attribute__((always_inline)) void softmax49(float* l)
 
 // Rows [y0, y1) of half-resolution blocks. The heads run per row through nn::Conv::runRows (the
 // engine's conv kernels) into thread-local row buffers: one half-res row of head1 logits and the
-// two full-res rows of headTA logits, then the softmax, filtering and fusion per 2x2 block.
+// two full-res rows of headTA logits. Softmax and filtering then fill a half-res row of d_1spp and
+// two full-res rows of d_TA (AVX-512: 16 pixels per call, cpu/afn_filter_avx512.h; otherwise per
+// pixel), and the fusion runs per 2x2 block.
 AFN_CPU_CLONES void filterAndFuseRows(
     const FusionInputs& in, const FusionOutputs& out, int y0, int y1)
 {
@@ -123,37 +125,64 @@ AFN_CPU_CLONES void filterAndFuseRows(
     const int wh = d1.width(), w = x.width();
     const int s1 = (in.head1->outChannels() + 15) / 16 * 16; // floats per pixel of the buffers
     const int sTa = (in.headTa->outChannels() + 15) / 16 * 16;
-    thread_local std::vector<float> rows1, rowsTa;
+    thread_local std::vector<float> rows1, rowsTa, d1Row, dTaRows;
+    thread_local cpu::PlanarRows planar1, planarTa;
     rows1.resize(static_cast<std::size_t>(wh) * s1);
     rowsTa.resize(static_cast<std::size_t>(2 * w) * sTa);
+    d1Row.resize(static_cast<std::size_t>(wh) * 3);
+    dTaRows.resize(static_cast<std::size_t>(2 * w) * 3);
     const bool avx512 = cpu::activeIsa() == cpu::Isa::Avx512;
-    auto filter = [avx512](float* logits, const Image& img, int px, int py, float* rgb) {
-        if (avx512) {
-            cpu::softmaxApplyAvx512(logits, img, px, py, rgb);
-        } else {
-            softmax49(logits);
-            applyKernel(img, px, py, logits, rgb);
-        }
-    };
+    if (avx512) {
+        planar1.reset(*in.color1Half);
+        planarTa.reset(*in.colorTa);
+    }
+    constexpr int r = kKernelSize / 2;
     for (int yh = y0; yh < y1; ++yh) {
         in.head1->runRows(
             nullptr, d1, yh, yh + 1, rows1.data(), static_cast<long>(wh) * s1, s1, false);
         in.headTa->runRows(
             &d1, x, 2 * yh, 2 * yh + 2, rowsTa.data(), static_cast<long>(w) * sTa, sTa, false);
+        if (avx512) {
+            for (int yy = yh - r; yy <= yh + r; ++yy)
+                planar1.ensure(yy);
+            for (int yy = 2 * yh - r; yy <= 2 * yh + 1 + r; ++yy)
+                planarTa.ensure(yy);
+            for (int x0 = 0; x0 < wh; x0 += 16)
+                cpu::softmaxApplyRowAvx512(rows1.data() + static_cast<std::size_t>(x0) * s1, s1,
+                    std::min(16, wh - x0), planar1, x0, yh, d1Row.data() + 3 * x0);
+            for (int q = 0; q < 2; ++q)
+                for (int x0 = 0; x0 < w; x0 += 16)
+                    cpu::softmaxApplyRowAvx512(
+                        rowsTa.data() + (static_cast<std::size_t>(q) * w + x0) * sTa, sTa,
+                        std::min(16, w - x0), planarTa, x0, 2 * yh + q,
+                        dTaRows.data() + (static_cast<std::size_t>(q) * w + x0) * 3);
+        } else {
+            for (int xh = 0; xh < wh; ++xh) {
+                float* logits = rows1.data() + static_cast<std::size_t>(xh) * s1;
+                softmax49(logits);
+                applyKernel(*in.color1Half, xh, yh, logits, d1Row.data() + 3 * xh);
+            }
+            for (int q = 0; q < 2; ++q)
+                for (int px = 0; px < w; ++px) {
+                    float* logits = rowsTa.data() + (static_cast<std::size_t>(q) * w + px) * sTa;
+                    softmax49(logits);
+                    applyKernel(*in.colorTa, px, 2 * yh + q, logits,
+                        dTaRows.data() + (static_cast<std::size_t>(q) * w + px) * 3);
+                }
+        }
         for (int xh = 0; xh < wh; ++xh) {
             // 1-spp branch at half resolution.
-            float* logits = rows1.data() + static_cast<std::size_t>(xh) * s1;
-            float d1s[3];
-            filter(logits, *in.color1Half, xh, yh, d1s);
+            const float* d1s = d1Row.data() + 3 * xh;
             if (out.filtered1Half)
                 std::copy(d1s, d1s + 3, out.filtered1Half->at(xh, yh));
             // TA branch on the four full-resolution pixels of this block.
-            float dta[4][3], alpha[4];
+            const float* dta[4];
+            float alpha[4];
             for (int q = 0; q < 4; ++q) {
-                const int px = 2 * xh + (q & 1), py = 2 * yh + (q >> 1);
-                logits = rowsTa.data() + (static_cast<std::size_t>(q >> 1) * w + px) * sTa;
-                alpha[q] = 1.0f / (1.0f + std::exp(-finiteLogit(logits[kKernelTaps])));
-                filter(logits, *in.colorTa, px, py, dta[q]);
+                const int px = 2 * xh + (q & 1);
+                const std::size_t i = static_cast<std::size_t>(q >> 1) * w + px;
+                alpha[q] = 1.0f / (1.0f + std::exp(-finiteLogit(rowsTa[i * sTa + kKernelTaps])));
+                dta[q] = dTaRows.data() + i * 3;
             }
             // Eq. 3 on the block; D sums in row order then divides by 4 (as avg_pool2d).
             for (int c = 0; c < 3; ++c) {

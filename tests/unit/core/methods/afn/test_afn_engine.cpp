@@ -1,16 +1,23 @@
 // SPDX-License-Identifier: Apache-2.0
 // The AFN engine's implementation choices: the strip refinement equals a whole-frame pass over
 // several strips, the AVX-512 and portable kernels agree (where the CPU has AVX-512), and the
-// stage FLOP counts that the benchmarks divide by match a count by hand.
+// stage FLOP counts that the benchmarks divide by match a count by hand; the AVX-512 row filter
+// equals the per-pixel softmax + 7x7 kernel at the borders and with non-finite logits.
 #include "afn_random_inputs.h"
+#include "cpu/afn_filter_avx512.h"
 #include "cpu/isa.h"
+#include "methods/afn/fusion.h"
 #include "methods/afn/network.h"
 #include "methods/afn/random_weights.h"
 
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cfloat>
 #include <cmath>
+#include <cstdint>
+#include <limits>
+#include <vector>
 
 using afn::Image;
 using afn::afnet::Network;
@@ -105,4 +112,72 @@ TEST(AfnEngine, StageFlopMatchesHandCount)
     EXPECT_DOUBLE_EQ(net.stageFlop(Network::Stage::Refinement), refinement);
     // About 24 kFLOP per pixel in all (training/README.md: the network's cost).
     EXPECT_NEAR((prediction + filtering + refinement) / full, 24000.0, 500.0);
+}
+
+TEST(AfnEngine, RowFilterMatchesThePerPixelKernelAtBordersTailsAndExtremeLogits)
+{
+    // cpu::softmaxApplyRowAvx512 (16 pixels per call, planar rows with a zero pad) against the
+    // portable softmax + applyKernel on every pixel of a 37 x 9 image: the left, right, top and
+    // bottom borders, a 5-pixel tail, and logits that are NaN, +-Inf, +-FLT_MAX, huge and equal.
+    IsaGuard guard;
+    afn::cpu::forceIsa(afn::cpu::Isa::Avx512);
+    if (afn::cpu::activeIsa() != afn::cpu::Isa::Avx512)
+        GTEST_SKIP() << "this CPU has no AVX-512F: only the portable kernels run here";
+    const int w = 37, h = 9, stride = 64;
+    Image img(w, h, 3);
+    std::uint32_t s = 12345u;
+    auto next = [&s] {
+        s = s * 1664525u + 1013904223u;
+        return static_cast<float>(s >> 8) / 16777216.0f;
+    };
+    for (std::size_t k = 0; k < img.size(); ++k)
+        img.data()[k] = 10.0f * next();
+    std::vector<float> logits(static_cast<std::size_t>(w) * stride);
+    for (int x = 0; x < w; ++x)
+        for (int j = 0; j < 49; ++j)
+            logits[x * stride + j] = 8.0f * next() - 4.0f;
+    const float inf = std::numeric_limits<float>::infinity();
+    logits[1 * stride + 3] = std::nanf("");
+    logits[2 * stride + 10] = inf;
+    logits[3 * stride + 0] = -inf;
+    logits[4 * stride + 48] = FLT_MAX;
+    logits[5 * stride + 20] = -FLT_MAX;
+    logits[6 * stride + 7] = 1e30f;
+    for (int j = 0; j < 49; ++j)
+        logits[7 * stride + j] = 2.5f; // a box filter
+    for (int j = 0; j < 49; ++j)
+        logits[33 * stride + j] = std::nanf(""); // every logit NaN: still a distribution
+    afn::cpu::PlanarRows rows;
+    rows.reset(img);
+    double maxAbs = 0.0;
+    for (int y = 0; y < h; ++y) {
+        for (int yy = y - 3; yy <= y + 3; ++yy)
+            rows.ensure(yy);
+        std::vector<float> fast(3 * w);
+        for (int x0 = 0; x0 < w; x0 += 16)
+            afn::cpu::softmaxApplyRowAvx512(logits.data() + x0 * stride, stride,
+                std::min(16, w - x0), rows, x0, y, fast.data() + 3 * x0);
+        for (int x = 0; x < w; ++x) {
+            float k[49], rgb[3];
+            std::copy(logits.begin() + x * stride, logits.begin() + x * stride + 49, k);
+            afn::afnet::softmax(k, 49);
+            afn::afnet::applyKernel(img, x, y, k, rgb);
+            for (int c = 0; c < 3; ++c) {
+                ASSERT_TRUE(std::isfinite(fast[3 * x + c])) << x << "," << y;
+                maxAbs = std::max(maxAbs, double(std::fabs(fast[3 * x + c] - rgb[c])));
+            }
+        }
+    }
+    EXPECT_LT(maxAbs, 1e-5 * 10.0);
+    // The box filter at an inner pixel is the mean of its 49 neighbours.
+    rows.reset(img);
+    for (int yy = 1; yy <= 7; ++yy)
+        rows.ensure(yy);
+    std::vector<float> out(3 * 16);
+    afn::cpu::softmaxApplyRowAvx512(logits.data(), stride, 16, rows, 0, 4, out.data());
+    double mean = 0.0;
+    for (int dy = -3; dy <= 3; ++dy)
+        for (int dx = -3; dx <= 3; ++dx)
+            mean += img(7 + dx, 4 + dy, 1);
+    EXPECT_NEAR(out[3 * 7 + 1], mean / 49.0, 1e-5);
 }
