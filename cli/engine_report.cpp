@@ -13,6 +13,33 @@
 
 namespace afntool {
 
+namespace {
+
+// Why a stage stays below the GEMM rate (the report's last column; measured in
+// docs/performance.md, twelfth session).
+constexpr const char* kFilteringWhy
+    = "about a third of its time is the softmax's 49 exponentials per pixel, which are not "
+      "counted as FLOP; the 7x7 x 3-channel filters have weights that differ per pixel (2 FLOP "
+      "per value loaded; no reuse); its two 1x1 heads compute 64 output channels in 16-wide "
+      "vectors for the 49 and 50 needed";
+constexpr const char* kPredictionWhy
+    = "includes its input preparation (tone map; 13-channel input over the stripe windows; "
+      "pooling) which does no FLOP: see pred-convs";
+
+/// The note of engine.csv for a stage (empty where the stage needs none).
+const char* stageNote(const std::string& stage)
+{
+    if (stage == "filtering")
+        return kFilteringWhy;
+    if (stage == "prediction")
+        return kPredictionWhy;
+    if (stage == "network")
+        return "prediction + filtering + refinement";
+    return "";
+}
+
+} // namespace
+
 EnginePoint EngineCollector::finish(int width, int height) const
 {
     EnginePoint p;
@@ -86,10 +113,7 @@ void printEngineReport(const EngineYardstick& y, const std::vector<EnginePoint>&
     std::printf("(pred-convs: the prediction stage less its input preparation, which does no FLOP: "
                 "the tone map and the 13-channel input over each stripe's window with its halos, "
                 "and the 1-spp colour's pooling; network = prediction + filtering + refinement)\n");
-    std::printf("(filtering cannot reach the GEMM rate: besides its two 1x1 heads it is a softmax "
-                "over 49 taps per pixel (49 exponentials, not counted as FLOP) and two 7x7 x "
-                "3-channel filters whose weights differ per pixel, 2 FLOP per value loaded and no "
-                "reuse: memory-bound)\n");
+    std::printf("(filtering cannot reach the GEMM rate: %s)\n", kFilteringWhy);
 }
 
 void writeEngineJson(
@@ -107,7 +131,8 @@ void writeEngineJson(
         for (const EngineStage& s : p.stages) {
             j.beginObject().field("stage", s.name).field("gflopPerFrame", s.gflop);
             j.field("msPerFrame", s.ms).field("gflops", s.gflops());
-            j.field("fractionOfSgemmPeak", y.peakN > 0.0 ? s.gflops() / y.peakN : 0.0).endObject();
+            j.field("fractionOfSgemmPeak", y.peakN > 0.0 ? s.gflops() / y.peakN : 0.0);
+            j.field("note", stageNote(s.name)).endObject();
         }
         j.endArray().endObject();
     }
@@ -117,14 +142,14 @@ void writeEngineJson(
 std::string engineCsv(const EngineYardstick& y, const std::vector<EnginePoint>& points)
 {
     std::string csv = "stage,width,height,kernels,gflopPerFrame,msPerFrame,gflops,"
-                      "sgemmThreads,sgemmPeakGflops,sgemmPeak1Gflops,fractionOfSgemmPeak\n";
+                      "sgemmThreads,sgemmPeakGflops,sgemmPeak1Gflops,fractionOfSgemmPeak,note\n";
     for (const EnginePoint& p : points)
         for (const EngineStage& s : p.stages) {
-            char line[256];
-            std::snprintf(line, sizeof line, "%s,%d,%d,%s,%.4f,%.3f,%.2f,%d,%.2f,%.2f,%.4f\n",
-                s.name.c_str(), p.width, p.height, p.avx512 ? "avx512" : "portable", s.gflop, s.ms,
-                s.gflops(), y.threads, y.peakN, y.peak1,
-                y.peakN > 0.0 ? s.gflops() / y.peakN : 0.0);
+            char line[768];
+            std::snprintf(line, sizeof line,
+                "%s,%d,%d,%s,%.4f,%.3f,%.2f,%d,%.2f,%.2f,%.4f,\"%s\"\n", s.name.c_str(), p.width,
+                p.height, p.avx512 ? "avx512" : "portable", s.gflop, s.ms, s.gflops(), y.threads,
+                y.peakN, y.peak1, y.peakN > 0.0 ? s.gflops() / y.peakN : 0.0, stageNote(s.name));
             csv += line;
         }
     return csv;

@@ -185,6 +185,9 @@ TEST(AfntoolCompare, SizeBenchmarkReportsEngineAndHeap)
     EXPECT_NEAR(ms[4], ms[0] + ms[2] + ms[3], 1e-6); // as written in the JSON
     for (double v : jsonNumbers(r.out, "gflops"))
         EXPECT_GT(v, 0.0);
+    // The stages below the GEMM rate say why (the prediction: its input preparation).
+    EXPECT_NE(r.out.find("\"note\": \"includes its input preparation"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("exponentials per pixel"), std::string::npos) << r.out;
 #ifdef AFN_HAS_DNNL
     for (double v : jsonNumbers(r.out, "peakGflops"))
         EXPECT_GT(v, 0.0);
