@@ -19,6 +19,7 @@
 #include "cpu/conv_kernel.h"
 
 #include "cpu/avx512.h"
+#include "cpu/isa.h"
 
 #include <algorithm>
 #include <cstring>
@@ -29,6 +30,50 @@ namespace afn::cpu {
 namespace {
 
 constexpr int kMaxPixels = 16; // largest P below: the band's zeroed slack after its last row
+
+#ifdef AFN_CPU_HAVE_AVX512
+
+/// Mask of the first n (0..16) lanes.
+AFN_CPU_AVX512_INLINE __mmask16 firstLanes(int n)
+{
+    return n >= 16 ? __mmask16(0xFFFF) : static_cast<__mmask16>((1u << n) - 1u);
+}
+
+/// `n` floats from s to d (masked 16-float loads and stores).
+AFN_CPU_AVX512_INLINE void copyFloats(float* d, const float* s, int n)
+{
+    for (int k = 0; k < n; k += 16) {
+        const __mmask16 m = firstLanes(n - k);
+        _mm512_mask_storeu_ps(d + k, m, _mm512_maskz_loadu_ps(m, s + k));
+    }
+}
+
+/// The w band pixels of one row from pixel 0 (c floats each: U(up) pixel x/2, same pixel x,
+/// zeros), with vector stores instead of three library calls per pixel; the same values.
+AFN_CPU_AVX512 bool fillPixelsAvx512(
+    float* d, int c, const float* up, int nu, const float* same, int ns, int w)
+{
+    if (cpu::activeIsa() != Isa::Avx512)
+        return false;
+    const __m512 zero = _mm512_set1_ps(0.0f);
+    for (int x = 0; x < w; ++x, d += c) {
+        for (int k = 0; k < c; k += 16)
+            _mm512_storeu_ps(d + k, zero);
+        if (nu)
+            copyFloats(d, up + static_cast<std::size_t>(x >> 1) * nu, nu);
+        copyFloats(d + nu, same + static_cast<std::size_t>(x) * ns, ns);
+    }
+    return true;
+}
+
+#else
+
+bool fillPixelsAvx512(float*, int, const float*, int, const float*, int, int)
+{
+    return false;
+}
+
+#endif
 
 /// Band rows [y0 - r, y1 + r) of concat(U(up), same), (width + 2r) pixels of `c` floats each.
 void fillBand(const ConvArgs& a, int y0, int y1, int c, std::vector<float>& band)
@@ -57,16 +102,17 @@ void fillBand(const ConvArgs& a, int y0, int y1, int c, std::vector<float>& band
             std::memset(row + static_cast<std::size_t>(r + w) * c, 0, sizeof(float) * r * c);
             continue;
         }
-        for (int bx = 0; bx < bw; ++bx) {
-            const int x = bx - r;
-            float* d = row + static_cast<std::size_t>(bx) * c;
-            if (x < 0 || x >= w) {
-                std::memset(d, 0, sizeof(float) * c);
-                continue;
-            }
+        std::memset(row, 0, sizeof(float) * r * c);
+        std::memset(row + static_cast<std::size_t>(r + w) * c, 0, sizeof(float) * r * c);
+        float* d = row + static_cast<std::size_t>(r) * c;
+        const float* up = a.nu ? a.up->at(0, yy >> 1) : nullptr;
+        const float* same = a.same->at(0, yy);
+        if (fillPixelsAvx512(d, c, up, a.nu, same, a.ns, w))
+            continue;
+        for (int x = 0; x < w; ++x, d += c) {
             if (a.nu)
-                std::memcpy(d, a.up->at(x >> 1, yy >> 1), nuBytes);
-            std::memcpy(d + a.nu, a.same->at(x, yy), nsBytes);
+                std::memcpy(d, up + static_cast<std::size_t>(x >> 1) * a.nu, nuBytes);
+            std::memcpy(d + a.nu, same + static_cast<std::size_t>(x) * a.ns, nsBytes);
             std::memset(d + a.nu + a.ns, 0, padBytes);
         }
     }
