@@ -112,25 +112,29 @@ inline __attribute__((always_inline)) void softmax49(float* l)
 
 } // namespace
 
-// Rows [y0, y1) of half-resolution blocks. The heads run per row through nn::Conv::runRows (the
-// engine's conv kernels) into thread-local row buffers: one half-res row of head1 logits and the
-// two full-res rows of headTA logits. Softmax and filtering then fill a half-res row of d_1spp and
-// two full-res rows of d_TA (AVX-512: 16 pixels per call, cpu/afn_filter_avx512.h; otherwise per
-// pixel), and the fusion runs per 2x2 block.
+// Rows [y0, y1) of half-resolution blocks, in column chunks of kChunk blocks. Per chunk the heads
+// run through nn::Conv::runRows (the engine's conv kernels, that chunk's columns only) into
+// thread-local buffers: a half-res row of head1 logits and two full-res rows of headTA logits,
+// about 100 KB, which the softmax then reads while they are in the core's cache (whole rows of
+// logits are 2 MB at 4K, 4 MB at 8K: the filtering's time per pixel grew 1.2x from 720p to 4K).
+// Softmax and filtering fill the chunk's d_1spp and d_TA (AVX-512: 16 pixels per call,
+// cpu/afn_filter_avx512.h; otherwise per pixel), and the fusion runs per 2x2 block. Every value is
+// the same whatever the chunk width.
 AFN_CPU_CLONES void filterAndFuseRows(
     const FusionInputs& in, const FusionOutputs& out, int y0, int y1)
 {
+    constexpr int kChunk = 128; // half-res columns per chunk
     const Image& d1 = *in.d1;
     const Image& x = *in.x;
-    const int wh = d1.width(), w = x.width();
+    const int wh = d1.width();
     const int s1 = (in.head1->outChannels() + 15) / 16 * 16; // floats per pixel of the buffers
     const int sTa = (in.headTa->outChannels() + 15) / 16 * 16;
     thread_local std::vector<float> rows1, rowsTa, d1Row, dTaRows;
     thread_local cpu::PlanarRows planar1, planarTa;
-    rows1.resize(static_cast<std::size_t>(wh) * s1);
-    rowsTa.resize(static_cast<std::size_t>(2 * w) * sTa);
-    d1Row.resize(static_cast<std::size_t>(wh) * 3);
-    dTaRows.resize(static_cast<std::size_t>(2 * w) * 3);
+    rows1.resize(static_cast<std::size_t>(kChunk) * s1);
+    rowsTa.resize(static_cast<std::size_t>(4 * kChunk) * sTa);
+    d1Row.resize(static_cast<std::size_t>(kChunk) * 3);
+    dTaRows.resize(static_cast<std::size_t>(4 * kChunk) * 3);
     const bool avx512 = cpu::activeIsa() == cpu::Isa::Avx512;
     if (avx512) {
         planar1.reset(*in.color1Half);
@@ -138,65 +142,73 @@ AFN_CPU_CLONES void filterAndFuseRows(
     }
     constexpr int r = kKernelSize / 2;
     for (int yh = y0; yh < y1; ++yh) {
-        in.head1->runRows(
-            nullptr, d1, yh, yh + 1, rows1.data(), static_cast<long>(wh) * s1, s1, false);
-        in.headTa->runRows(
-            &d1, x, 2 * yh, 2 * yh + 2, rowsTa.data(), static_cast<long>(w) * sTa, sTa, false);
         if (avx512) {
             for (int yy = yh - r; yy <= yh + r; ++yy)
                 planar1.ensure(yy);
             for (int yy = 2 * yh - r; yy <= 2 * yh + 1 + r; ++yy)
                 planarTa.ensure(yy);
-            for (int x0 = 0; x0 < wh; x0 += 16)
-                cpu::softmaxApplyRowAvx512(rows1.data() + static_cast<std::size_t>(x0) * s1, s1,
-                    std::min(16, wh - x0), planar1, x0, yh, d1Row.data() + 3 * x0);
-            for (int q = 0; q < 2; ++q)
-                for (int x0 = 0; x0 < w; x0 += 16)
-                    cpu::softmaxApplyRowAvx512(
-                        rowsTa.data() + (static_cast<std::size_t>(q) * w + x0) * sTa, sTa,
-                        std::min(16, w - x0), planarTa, x0, 2 * yh + q,
-                        dTaRows.data() + (static_cast<std::size_t>(q) * w + x0) * 3);
-        } else {
-            for (int xh = 0; xh < wh; ++xh) {
-                float* logits = rows1.data() + static_cast<std::size_t>(xh) * s1;
-                softmax49(logits);
-                applyKernel(*in.color1Half, xh, yh, logits, d1Row.data() + 3 * xh);
-            }
-            for (int q = 0; q < 2; ++q)
-                for (int px = 0; px < w; ++px) {
-                    float* logits = rowsTa.data() + (static_cast<std::size_t>(q) * w + px) * sTa;
-                    softmax49(logits);
-                    applyKernel(*in.colorTa, px, 2 * yh + q, logits,
-                        dTaRows.data() + (static_cast<std::size_t>(q) * w + px) * 3);
-                }
         }
-        for (int xh = 0; xh < wh; ++xh) {
-            // 1-spp branch at half resolution.
-            const float* d1s = d1Row.data() + 3 * xh;
-            if (out.filtered1Half)
-                std::copy(d1s, d1s + 3, out.filtered1Half->at(xh, yh));
-            // TA branch on the four full-resolution pixels of this block.
-            const float* dta[4];
-            float alpha[4];
-            for (int q = 0; q < 4; ++q) {
-                const int px = 2 * xh + (q & 1);
-                const std::size_t i = static_cast<std::size_t>(q >> 1) * w + px;
-                alpha[q] = 1.0f / (1.0f + std::exp(-finiteLogit(rowsTa[i * sTa + kKernelTaps])));
-                dta[q] = dTaRows.data() + i * 3;
-            }
-            // Eq. 3 on the block; D sums in row order then divides by 4 (as avg_pool2d).
-            for (int c = 0; c < 3; ++c) {
-                const float mean = (dta[0][c] + dta[1][c] + dta[2][c] + dta[3][c]) / 4.0f;
-                for (int q = 0; q < 4; ++q) {
-                    const int px = 2 * xh + (q & 1), py = 2 * yh + (q >> 1);
-                    (*out.fused)(px, py, c) = dta[q][c] - alpha[q] * mean + alpha[q] * d1s[c];
-                    if (out.filteredTa)
-                        (*out.filteredTa)(px, py, c) = dta[q][c];
+        for (int h0 = 0; h0 < wh; h0 += kChunk) {
+            const int nh = std::min(kChunk, wh - h0), f0 = 2 * h0, nf = 2 * nh;
+            in.head1->runRows(nullptr, d1, yh, yh + 1, rows1.data(), static_cast<long>(nh) * s1, s1,
+                false, h0, h0 + nh);
+            in.headTa->runRows(&d1, x, 2 * yh, 2 * yh + 2, rowsTa.data(),
+                static_cast<long>(nf) * sTa, sTa, false, f0, f0 + nf);
+            // Pixel i of full-res row q of the chunk: logits at (q * nf + i) * sTa.
+            if (avx512) {
+                for (int i = 0; i < nh; i += 16)
+                    cpu::softmaxApplyRowAvx512(rows1.data() + static_cast<std::size_t>(i) * s1, s1,
+                        std::min(16, nh - i), planar1, h0 + i, yh, d1Row.data() + 3 * i);
+                for (int q = 0; q < 2; ++q)
+                    for (int i = 0; i < nf; i += 16)
+                        cpu::softmaxApplyRowAvx512(
+                            rowsTa.data() + (static_cast<std::size_t>(q) * nf + i) * sTa, sTa,
+                            std::min(16, nf - i), planarTa, f0 + i, 2 * yh + q,
+                            dTaRows.data() + (static_cast<std::size_t>(q) * nf + i) * 3);
+            } else {
+                for (int i = 0; i < nh; ++i) {
+                    float* logits = rows1.data() + static_cast<std::size_t>(i) * s1;
+                    softmax49(logits);
+                    applyKernel(*in.color1Half, h0 + i, yh, logits, d1Row.data() + 3 * i);
                 }
+                for (int q = 0; q < 2; ++q)
+                    for (int i = 0; i < nf; ++i) {
+                        const std::size_t k = static_cast<std::size_t>(q) * nf + i;
+                        float* logits = rowsTa.data() + k * sTa;
+                        softmax49(logits);
+                        applyKernel(
+                            *in.colorTa, f0 + i, 2 * yh + q, logits, dTaRows.data() + k * 3);
+                    }
             }
-            if (out.alpha)
-                for (int q = 0; q < 4; ++q)
-                    (*out.alpha)(2 * xh + (q & 1), 2 * yh + (q >> 1), 0) = alpha[q];
+            for (int i = 0; i < nh; ++i) {
+                const int xh = h0 + i;
+                // 1-spp branch at half resolution.
+                const float* d1s = d1Row.data() + 3 * i;
+                if (out.filtered1Half)
+                    std::copy(d1s, d1s + 3, out.filtered1Half->at(xh, yh));
+                // TA branch on the four full-resolution pixels of this block.
+                const float* dta[4];
+                float alpha[4];
+                for (int q = 0; q < 4; ++q) {
+                    const std::size_t k = static_cast<std::size_t>(q >> 1) * nf + 2 * i + (q & 1);
+                    alpha[q]
+                        = 1.0f / (1.0f + std::exp(-finiteLogit(rowsTa[k * sTa + kKernelTaps])));
+                    dta[q] = dTaRows.data() + k * 3;
+                }
+                // Eq. 3 on the block; D sums in row order then divides by 4 (as avg_pool2d).
+                for (int c = 0; c < 3; ++c) {
+                    const float mean = (dta[0][c] + dta[1][c] + dta[2][c] + dta[3][c]) / 4.0f;
+                    for (int q = 0; q < 4; ++q) {
+                        const int px = 2 * xh + (q & 1), py = 2 * yh + (q >> 1);
+                        (*out.fused)(px, py, c) = dta[q][c] - alpha[q] * mean + alpha[q] * d1s[c];
+                        if (out.filteredTa)
+                            (*out.filteredTa)(px, py, c) = dta[q][c];
+                    }
+                }
+                if (out.alpha)
+                    for (int q = 0; q < 4; ++q)
+                        (*out.alpha)(2 * xh + (q & 1), 2 * yh + (q >> 1), 0) = alpha[q];
+            }
         }
     }
 }

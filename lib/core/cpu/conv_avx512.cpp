@@ -48,15 +48,15 @@ AFN_CPU_AVX512_INLINE void copyFloats(float* d, const float* s, int n)
     }
 }
 
-/// The w band pixels of one row from pixel 0 (c floats each: U(up) pixel x/2, same pixel x,
-/// zeros), with vector stores instead of three library calls per pixel; the same values.
+/// The band pixels of input columns [xa, xb) of one row (c floats each: U(up) pixel x/2, same
+/// pixel x, zeros), with vector stores instead of three library calls per pixel; the same values.
 AFN_CPU_AVX512 bool fillPixelsAvx512(
-    float* d, int c, const float* up, int nu, const float* same, int ns, int w)
+    float* d, int c, const float* up, int nu, const float* same, int ns, int xa, int xb)
 {
     if (cpu::activeIsa() != Isa::Avx512)
         return false;
     const __m512 zero = _mm512_set1_ps(0.0f);
-    for (int x = 0; x < w; ++x, d += c) {
+    for (int x = xa; x < xb; ++x, d += c) {
         for (int k = 0; k < c; k += 16)
             _mm512_storeu_ps(d + k, zero);
         if (nu)
@@ -78,7 +78,11 @@ bool fillPixelsAvx512(float*, int, const float*, int, const float*, int, int)
 /// Band rows [y0 - r, y1 + r) of concat(U(up), same), (width + 2r) pixels of `c` floats each.
 void fillBand(const ConvArgs& a, int y0, int y1, int c, std::vector<float>& band)
 {
-    const int w = a.same->width(), h = a.same->height(), r = a.k / 2, bw = w + 2 * r;
+    const int w = a.same->width(), h = a.same->height(), r = a.k / 2;
+    const int x0 = a.x0, x1 = a.x1 < 0 ? w : a.x1, bw = x1 - x0 + 2 * r;
+    // Input columns present in the band, and the zero pixels before and after them.
+    const int xa = std::max(0, x0 - r), xb = std::min(w, x1 + r);
+    const int lead = xa - (x0 - r), trail = x1 + r - xb;
     const int rows = y1 - y0 + 2 * r;
     const std::size_t rowFloats = static_cast<std::size_t>(bw) * c;
     const std::size_t slack = static_cast<std::size_t>(kMaxPixels + 2) * c;
@@ -93,23 +97,21 @@ void fillBand(const ConvArgs& a, int y0, int y1, int c, std::vector<float>& band
             std::memset(row, 0, sizeof(float) * rowFloats);
             continue;
         }
+        std::memset(row, 0, sizeof(float) * lead * c);
+        std::memset(row + static_cast<std::size_t>(bw - trail) * c, 0, sizeof(float) * trail * c);
+        float* d = row + static_cast<std::size_t>(lead) * c;
         if (a.nu == 0 && a.ns == c) {
-            // The band pixel is the input pixel (no upsampled part, no channel padding): the row
-            // in one copy, the r zero pixels on each side apart.
-            std::memset(row, 0, sizeof(float) * r * c);
-            std::memcpy(row + static_cast<std::size_t>(r) * c, a.same->at(0, yy),
-                sizeof(float) * static_cast<std::size_t>(w) * c);
-            std::memset(row + static_cast<std::size_t>(r + w) * c, 0, sizeof(float) * r * c);
+            // The band pixel is the input pixel (no upsampled part, no channel padding): the
+            // columns in one copy.
+            std::memcpy(
+                d, a.same->at(xa, yy), sizeof(float) * static_cast<std::size_t>(xb - xa) * c);
             continue;
         }
-        std::memset(row, 0, sizeof(float) * r * c);
-        std::memset(row + static_cast<std::size_t>(r + w) * c, 0, sizeof(float) * r * c);
-        float* d = row + static_cast<std::size_t>(r) * c;
         const float* up = a.nu ? a.up->at(0, yy >> 1) : nullptr;
         const float* same = a.same->at(0, yy);
-        if (fillPixelsAvx512(d, c, up, a.nu, same, a.ns, w))
+        if (fillPixelsAvx512(d, c, up, a.nu, same, a.ns, xa, xb))
             continue;
-        for (int x = 0; x < w; ++x, d += c) {
+        for (int x = xa; x < xb; ++x, d += c) {
             if (a.nu)
                 std::memcpy(d, up + static_cast<std::size_t>(x >> 1) * a.nu, nuBytes);
             std::memcpy(d + a.nu, same + static_cast<std::size_t>(x) * a.ns, nsBytes);
@@ -271,7 +273,7 @@ AFN_CPU_AVX512 void rowsFewOutputs(
 {
     constexpr int P = 24 / NO > 8 ? 8 : 24 / NO;
     static_assert(P <= kMaxPixels);
-    const int w = a.same->width();
+    const int w = (a.x1 < 0 ? a.same->width() : a.x1) - a.x0;
     for (int i = 0; i < nRows; ++i) {
         const float* src = band + i * bandRow;
         float* d = dst + i * a.dstRow;
@@ -290,7 +292,7 @@ void convRowsAvx512(const ConvArgs& a, int y0, int y1)
     const int c = (a.in + 15) / 16 * 16;
     thread_local std::vector<float> band;
     fillBand(a, y0, y1, c, band);
-    const int w = a.same->width();
+    const int w = (a.x1 < 0 ? a.same->width() : a.x1) - a.x0; // output columns
     if (a.wt16 && a.outC <= kFewOutputs) {
         const long bandRow = static_cast<long>(w + 2 * (a.k / 2)) * c;
         float* dst = a.dst + (y0 - a.dstY0) * a.dstRow;

@@ -29,9 +29,10 @@ const float* zeros()
 AFN_CPU_CLONES void convRows(const ConvArgs& a, int y0, int y1)
 {
     const int w = a.same->width(), h = a.same->height(), r = a.k / 2, cp = a.cp;
+    const int xEnd = a.x1 < 0 ? w : a.x1;
     for (int y = y0; y < y1; ++y)
-        for (int x = 0; x < w; x += kPixels) {
-            const int np = std::min(kPixels, w - x);
+        for (int x = a.x0; x < xEnd; x += kPixels) {
+            const int np = std::min(kPixels, xEnd - x);
             for (int cb = 0; cb < cp; cb += kLanes) {
                 V8 acc[kPixels];
                 const V8 bias = *reinterpret_cast<const V8u*>(a.bp + cb);
@@ -67,7 +68,7 @@ AFN_CPU_CLONES void convRows(const ConvArgs& a, int y0, int y1)
                 const int nc = std::min(kLanes, a.outC - cb);
                 for (int p = 0; p < np; ++p) {
                     float* dst = a.dst + (y - a.dstY0) * a.dstRow
-                        + static_cast<long>(x + p) * a.dstPix + cb;
+                        + static_cast<long>(x - a.x0 + p) * a.dstPix + cb;
                     for (int o = 0; o < nc; ++o)
                         dst[o] = a.relu ? std::max(acc[p][o], 0.0f) : acc[p][o];
                 }

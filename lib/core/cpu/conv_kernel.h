@@ -28,6 +28,8 @@ struct ConvArgs {
     long dstRow = 0; ///< floats from one output row to the next
     int dstPix = 0; ///< floats from one output pixel to the next (>= outC)
     int dstY0 = 0; ///< the row that dst points to
+    /// Output columns [x0, x1) (x1 < 0: to the width); dst points to column x0 of row dstY0.
+    int x0 = 0, x1 = -1;
 };
 
 /// Output rows [y0, y1) with the portable kernel.

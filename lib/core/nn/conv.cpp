@@ -105,9 +105,11 @@ void Conv::run(const Image* up, const Image& same, Image& out, bool relu) const
 }
 
 void Conv::runRows(const Image* up, const Image& same, int y0, int y1, float* dst, long rowStride,
-    int pixelStride, bool relu) const
+    int pixelStride, bool relu, int x0, int x1) const
 {
     cpu::ConvArgs a = args(up, same, relu);
+    a.x0 = x0;
+    a.x1 = x1;
     a.dst = dst;
     a.dstRow = rowStride;
     a.dstPix = pixelStride;

@@ -42,9 +42,11 @@ public:
 
     /// Rows [y0, y1) of the same convolution on the calling thread, for callers that keep only a
     /// few rows (the fused AFN heads, the refinement strips): row y at dst + (y - y0) * rowStride,
-    /// pixels pixelStride (>= outChannels()) floats apart.
+    /// pixels pixelStride (>= outChannels()) floats apart. Only output columns [x0, x1) when
+    /// given (x1 < 0: to the width), column x0 at dst: the AFN heads run in column chunks whose
+    /// logits stay in cache; every output is the same with or without chunks.
     void runRows(const Image* up, const Image& same, int y0, int y1, float* dst, long rowStride,
-        int pixelStride, bool relu) const;
+        int pixelStride, bool relu, int x0 = 0, int x1 = -1) const;
 
     /// Multiply-adds x 2 per output pixel (the layer's FLOP per pixel, without padding).
     double flopPerPixel() const { return 2.0 * m_k * m_k * m_in * m_out; }

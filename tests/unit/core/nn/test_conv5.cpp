@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: Apache-2.0
 // nn::Conv with 5x5 kernels (WSKPN, NBGD) against a scalar reference, on both kernel families
 // (portable and, where the CPU has it, AVX-512), with widths that are not multiples of the lanes,
-// an odd frame (borders on every side) and the implicit-upsampling input.
+// an odd frame (borders on every side) and the implicit-upsampling input; runRows over whole rows
+// and over column chunks gives the same bits.
 #include "afn_test_util.h"
 #include "cpu/isa.h"
 #include "isa_scope.h"
@@ -77,6 +78,23 @@ void checkConv5(afn::cpu::Isa isa, int cu, int cs, int co, int w, int h, bool re
         for (int x = 0; x < w; ++x)
             for (int o = 0; o < co; ++o)
                 ASSERT_EQ(rows[(static_cast<std::size_t>(y) * w + x) * (co + 3) + o], out(x, y, o));
+    // Column ranges (the AFN heads' chunks): chunks of 1, 4 and 7 columns, each written from
+    // dst = its first column, give every value of the whole rows, bit for bit: the halo columns
+    // are read from the input, the zero padding only at the frame's border.
+    for (int chunk : { 1, 4, 7 }) {
+        std::vector<float> part(static_cast<std::size_t>(h) * chunk * co, -7.0f);
+        for (int x0 = 0; x0 < w; x0 += chunk) {
+            const int x1 = std::min(w, x0 + chunk);
+            conv.runRows(cu ? &up : nullptr, same, 0, h, part.data(), static_cast<long>(chunk) * co,
+                co, relu, x0, x1);
+            for (int y = 0; y < h; ++y)
+                for (int x = x0; x < x1; ++x)
+                    for (int o = 0; o < co; ++o)
+                        ASSERT_EQ(part[(static_cast<std::size_t>(y) * chunk + x - x0) * co + o],
+                            out(x, y, o))
+                            << "chunk " << chunk << " at " << x << "," << y;
+        }
+    }
 }
 
 } // namespace
