@@ -226,12 +226,28 @@ void Filter::runStages()
         m_aux.prepare(m_frame); // may rewrite the normal and depth (noisy mode)
     if (reproject)
         m_reprojector.compute(m_frame);
-    if (m_stages.demodulate) {
+    if (m_stages.demodulate)
         m_aux.finish(m_frame, reproject ? &m_reprojector : nullptr); // may rewrite the albedo
-        demodulate(m_frame, m_frame.color); // in place: the radiance is not read again
-    }
-    if (m_stages.accumulate)
+    m_outputWritten = false;
+    if (m_stages.demodulate && m_stages.accumulate) {
+        // Demodulation (in place: the radiance is not read again), accumulation and, for ta, the
+        // remodulated output run per band of rows in one pass: a band's rows are still in cache
+        // for the next step (the values are those of three separate passes).
+        const bool writeOutput = outputIsAccumulation() && outputBound();
+        m_accumulator.begin(m_reprojector, m_frame.width, m_frame.height);
+        parallelRows(m_frame.height, [&](int y0, int y1) {
+            demodulateRows(m_frame, m_frame.color, y0, y1);
+            m_accumulator.accumulateRows(m_reprojector, m_frame.color, y0, y1);
+            if (writeOutput)
+                writeRemodulatedRows(m_accumulator.color(), y0, y1);
+        });
+        m_accumulator.end();
+        m_outputWritten = writeOutput;
+    } else if (m_stages.demodulate) {
+        demodulate(m_frame, m_frame.color);
+    } else if (m_stages.accumulate) {
         m_accumulator.accumulate(m_reprojector, m_frame.color);
+    }
 }
 
 void Filter::reportProgress(double fraction) const
@@ -279,13 +295,14 @@ void Filter::execute()
                     self.m_reprojector.takeGeometry(self.m_frame);
             }
         } keep { *this };
-        const Image* irr = outputBound() ? denoiseDemodulated(m_frame) : nullptr;
-        const Image* rad = outputBound() && !irr ? denoiseRadiance(m_frame) : nullptr;
+        const bool pending = outputBound() && !m_outputWritten;
+        const Image* irr = pending ? denoiseDemodulated(m_frame) : nullptr;
+        const Image* rad = pending && !irr ? denoiseRadiance(m_frame) : nullptr;
         if (irr) {
             writeRemodulated(*irr);
         } else if (rad) {
             writeOutput(*rad);
-        } else {
+        } else if (!m_outputWritten) {
             m_output.resize(m_frame.width, m_frame.height, 3);
             denoise(m_frame, m_output);
             if (outputBound())
@@ -321,18 +338,21 @@ void Filter::writeOutput(const Image& radiance) const
 
 void Filter::writeRemodulated(const Image& irradiance) const
 {
+    parallelRows(m_frame.height, [&](int y0, int y1) { writeRemodulatedRows(irradiance, y0, y1); });
+}
+
+void Filter::writeRemodulatedRows(const Image& irradiance, int y0, int y1) const
+{
     const ImageBinding& out = m_images.at(AFN_IMAGE_OUTPUT);
     const ImageView dst = out.view();
     const bool hasAlpha = !m_frame.alpha.empty();
-    parallelRows(dst.height, [&](int y0, int y1) {
-        for (int y = y0; y < y1; ++y) {
-            remodulateRow(m_frame, irradiance, y, reinterpret_cast<std::byte*>(dst.atMutable(0, y)),
-                dst.pixelStride);
-            if (dst.channels == 4)
-                for (int x = 0; x < dst.width; ++x)
-                    dst.atMutable(x, y)[3] = hasAlpha ? m_frame.alpha(x, y, 0) : 1.0f;
-        }
-    });
+    for (int y = y0; y < y1; ++y) {
+        remodulateRow(m_frame, irradiance, y, reinterpret_cast<std::byte*>(dst.atMutable(0, y)),
+            dst.pixelStride);
+        if (dst.channels == 4)
+            for (int x = 0; x < dst.width; ++x)
+                dst.atMutable(x, y)[3] = hasAlpha ? m_frame.alpha(x, y, 0) : 1.0f;
+    }
 }
 
 } // namespace afn

@@ -135,6 +135,11 @@ protected:
     /// default): the base calls denoise(). Called only when "output" is bound and
     /// denoiseDemodulated() returned nullptr.
     virtual const Image* denoiseRadiance(const Frame& in) { return nullptr; }
+    /// True for a method whose output is the remodulated accumulation itself (ta): the base then
+    /// writes the output in the accumulation's pass, row band by row band (the same values as
+    /// denoiseDemodulated() returning accumulator().color(); the row data is still in cache),
+    /// and calls neither denoiseDemodulated() nor denoise(). Only with StageNeeds::accumulate.
+    virtual bool outputIsAccumulation() const { return false; }
     /// Drop the method's own temporal history (the stages' is dropped by the base).
     virtual void resetHistory() { }
     /// Report progress in [0, 1]; throws Cancelled when the callback asks to stop.
@@ -172,6 +177,7 @@ private:
     void writeOutput(const Image& radiance) const;
     /// writeOutput(remodulate(irradiance)) in one pass (denoiseDemodulated()).
     void writeRemodulated(const Image& irradiance) const;
+    void writeRemodulatedRows(const Image& irradiance, int y0, int y1) const;
 
     const FilterType& m_type;
     ParamSet m_params;
@@ -189,6 +195,7 @@ private:
     std::string m_prevInputs; ///< which inputs the previous frame had (history consistency)
     Frame m_frame; ///< reused across frames: allocated once per resolution
     Image m_output;
+    bool m_outputWritten = false; ///< runStages() wrote the output (outputIsAccumulation())
     InputStats m_stats;
     std::string m_missingInputs;
     AuxPrefilter m_aux;

@@ -26,28 +26,31 @@ inline float clampIrradiance(float v)
 
 } // namespace
 
-void demodulate(const Frame& frame, Image& irradiance)
+void demodulateRows(const Frame& frame, Image& irradiance, int y0, int y1)
 {
-    irradiance.resize(frame.width, frame.height, 3);
     const bool divide = frame.hasAlbedo() && !frame.colorDemodulated;
     const int n = 3 * frame.width; // rows are packed: one run of floats per row (vectorised)
     const bool avx512 = cpu::activeIsa() == cpu::Isa::Avx512;
-    parallelRows(frame.height, [&](int y0, int y1) {
-        for (int y = y0; y < y1; ++y) {
-            const float* c = frame.color.at(0, y);
-            float* o = irradiance.at(0, y);
-            if (avx512) { // 16 values at a time, the same operations (demodulate_avx512.cpp)
-                demodulateRunAvx512(c, divide ? frame.albedo.at(0, y) : nullptr, o, n);
-            } else if (divide) {
-                const float* a = frame.albedo.at(0, y);
-                for (int i = 0; i < n; ++i)
-                    o[i] = clampIrradiance(c[i] / albedoFactor(a[i], false));
-            } else {
-                for (int i = 0; i < n; ++i)
-                    o[i] = clampIrradiance(c[i]);
-            }
+    for (int y = y0; y < y1; ++y) {
+        const float* c = frame.color.at(0, y);
+        float* o = irradiance.at(0, y);
+        if (avx512) { // 16 values at a time, the same operations (demodulate_avx512.cpp)
+            demodulateRunAvx512(c, divide ? frame.albedo.at(0, y) : nullptr, o, n);
+        } else if (divide) {
+            const float* a = frame.albedo.at(0, y);
+            for (int i = 0; i < n; ++i)
+                o[i] = clampIrradiance(c[i] / albedoFactor(a[i], false));
+        } else {
+            for (int i = 0; i < n; ++i)
+                o[i] = clampIrradiance(c[i]);
         }
-    });
+    }
+}
+
+void demodulate(const Frame& frame, Image& irradiance)
+{
+    irradiance.resize(frame.width, frame.height, 3);
+    parallelRows(frame.height, [&](int y0, int y1) { demodulateRows(frame, irradiance, y0, y1); });
 }
 
 void remodulateRow(

@@ -28,6 +28,10 @@ constexpr float kMaxIrradiance = 1e15f;
 /// this, so that a frame holds one colour image).
 void demodulate(const Frame& frame, Image& irradiance);
 
+/// Rows [y0, y1) of demodulate(), `irradiance` already of the frame's size (the Filter base runs
+/// them row band by row band with the accumulation: the same values, one pass less).
+void demodulateRows(const Frame& frame, Image& irradiance, int y0, int y1);
+
 /// Write `irradiance` (3 channels) times the frame's albedo factor into `radiance` (3 channels).
 /// `radiance` may be the same image as `irradiance`.
 void remodulate(const Frame& frame, const Image& irradiance, Image& radiance);

@@ -26,66 +26,75 @@ void TemporalAccumulator::reset()
     m_hasHistory = false;
 }
 
-void TemporalAccumulator::accumulate(const Reprojector& taps, const Image& irr)
+void TemporalAccumulator::begin(const Reprojector& taps, int w, int h)
 {
-    const int w = irr.width(), h = irr.height();
     std::swap(m_color, m_prevColor);
     std::swap(m_spp, m_prevSpp);
     m_color.resize(w, h, 3);
     m_spp.resize(w, h, 1);
-    const bool history = m_hasHistory && taps.hasHistory() && m_prevColor.width() == w
+    m_history = m_hasHistory && taps.hasHistory() && m_prevColor.width() == w
         && m_prevColor.height() == h;
+}
+
+void TemporalAccumulator::accumulate(const Reprojector& taps, const Image& irr)
+{
+    begin(taps, irr.width(), irr.height());
+    parallelRows(irr.height(), [&](int y0, int y1) { accumulateRows(taps, irr, y0, y1); });
+    end();
+}
+
+void TemporalAccumulator::accumulateRows(const Reprojector& taps, const Image& irr, int y0, int y1)
+{
+    const int w = irr.width();
+    const bool history = m_history;
     const bool avx512 = cpu::activeIsa() == cpu::Isa::Avx512;
-    parallelRows(h, [&](int y0, int y1) {
-        for (int y = y0; y < y1; ++y) {
-            const bool identity = history && taps.identityRow(y);
-            const float* c = irr.at(0, y);
-            float* acc = m_color.at(0, y);
-            float* spp = m_spp.at(0, y);
-            auto pixel = [&](int x) {
-                float prev[3], sppS = 0.0f, ws = 0.0f;
-                if (identity && taps.ownPixelAccepted(x, y)) {
-                    // A static camera's row, own pixel accepted: its previous value, no decoding.
-                    const float* p = m_prevColor.at(x, y);
-                    for (int k = 0; k < 3; ++k)
-                        prev[k] = p[k];
-                    sppS = m_prevSpp(x, y, 0);
-                    ws = 1.0f;
-                } else if (history) {
-                    const PixelTaps& t = taps.taps(x, y);
-                    ws = gatherHistory<3>(t, m_prevColor, prev);
-                    gatherHistory<1>(t, m_prevSpp, &sppS);
-                }
-                float* a = acc + 3 * x;
-                const float* cx = c + 3 * x;
-                if (ws > 0.0f) {
-                    const float alpha = std::max(1.0f / (sppS + 1.0f), m_alphaMin);
-                    for (int k = 0; k < 3; ++k)
-                        a[k] = blendHistory(prev[k], cx[k], alpha);
-                    spp[x] = alpha < 1.0f ? std::min(sppS + 1.0f, kMaxHistoryLength) : 1.0f;
-                } else {
-                    for (int k = 0; k < 3; ++k)
-                        a[k] = cx[k];
-                    spp[x] = 1.0f;
-                }
-            };
-            int x = 0;
-            if (identity && avx512)
-                // 16 pixels at a time where all 16 took their own previous pixel (the same
-                // operations, stages/temporal_accumulation_avx512.h); any other block per pixel.
-                for (; x + 16 <= w; x += 16) {
-                    if (taps.ownPixelsAccepted16(x, y) == 0xFFFFu)
-                        blendOwnHistory16(c + 3 * x, m_prevColor.at(x, y), &m_prevSpp(x, y, 0),
-                            m_alphaMin, acc + 3 * x, spp + x);
-                    else
-                        for (int i = x; i < x + 16; ++i)
-                            pixel(i);
-                }
-            for (; x < w; ++x)
-                pixel(x);
-        }
-    });
-    m_hasHistory = true;
+    for (int y = y0; y < y1; ++y) {
+        const bool identity = history && taps.identityRow(y);
+        const float* c = irr.at(0, y);
+        float* acc = m_color.at(0, y);
+        float* spp = m_spp.at(0, y);
+        auto pixel = [&](int x) {
+            float prev[3], sppS = 0.0f, ws = 0.0f;
+            if (identity && taps.ownPixelAccepted(x, y)) {
+                // A static camera's row, own pixel accepted: its previous value, no decoding.
+                const float* p = m_prevColor.at(x, y);
+                for (int k = 0; k < 3; ++k)
+                    prev[k] = p[k];
+                sppS = m_prevSpp(x, y, 0);
+                ws = 1.0f;
+            } else if (history) {
+                const PixelTaps& t = taps.taps(x, y);
+                ws = gatherHistory<3>(t, m_prevColor, prev);
+                gatherHistory<1>(t, m_prevSpp, &sppS);
+            }
+            float* a = acc + 3 * x;
+            const float* cx = c + 3 * x;
+            if (ws > 0.0f) {
+                const float alpha = std::max(1.0f / (sppS + 1.0f), m_alphaMin);
+                for (int k = 0; k < 3; ++k)
+                    a[k] = blendHistory(prev[k], cx[k], alpha);
+                spp[x] = alpha < 1.0f ? std::min(sppS + 1.0f, kMaxHistoryLength) : 1.0f;
+            } else {
+                for (int k = 0; k < 3; ++k)
+                    a[k] = cx[k];
+                spp[x] = 1.0f;
+            }
+        };
+        int x = 0;
+        if (identity && avx512)
+            // 16 pixels at a time where all 16 took their own previous pixel (the same
+            // operations, stages/temporal_accumulation_avx512.h); any other block per pixel.
+            for (; x + 16 <= w; x += 16) {
+                if (taps.ownPixelsAccepted16(x, y) == 0xFFFFu)
+                    blendOwnHistory16(c + 3 * x, m_prevColor.at(x, y), &m_prevSpp(x, y, 0),
+                        m_alphaMin, acc + 3 * x, spp + x);
+                else
+                    for (int i = x; i < x + 16; ++i)
+                        pixel(i);
+            }
+        for (; x < w; ++x)
+            pixel(x);
+    }
 }
 
 } // namespace afn

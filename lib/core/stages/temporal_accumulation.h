@@ -29,6 +29,12 @@ public:
 
     /// Blend `irradiance` (3 ch) into the history reprojected by `taps`.
     void accumulate(const Reprojector& taps, const Image& irradiance);
+    /// accumulate() in steps, for callers that run it row band by row band with other per-row
+    /// work (the Filter base: demodulation, remodulation): begin() once, then accumulateRows() over
+    /// every row exactly once (any order, any threads), then end(). The same values.
+    void begin(const Reprojector& taps, int width, int height);
+    void accumulateRows(const Reprojector& taps, const Image& irradiance, int y0, int y1);
+    void end() { m_hasHistory = true; }
     void reset();
 
     /// Accumulated colour of the last frame (3 ch).
@@ -44,6 +50,7 @@ public:
 private:
     float m_alphaMin = 0.2f;
     bool m_hasHistory = false;
+    bool m_history = false; ///< this frame blends with a history (set by begin())
     Image m_color, m_spp, m_prevColor, m_prevSpp;
 };
 

@@ -21,8 +21,10 @@ private:
     {
         remodulate(in, accumulator().color(), out);
     }
-    // The base remodulates straight into the bound output.
+    // The base remodulates straight into the bound output (in the accumulation's pass:
+    // outputIsAccumulation).
     const Image* denoiseDemodulated(const Frame&) override { return &accumulator().color(); }
+    bool outputIsAccumulation() const override { return true; }
 };
 
 } // namespace
