@@ -348,7 +348,7 @@ void Filter::writeRemodulatedRows(const Image& irradiance, int y0, int y1) const
     const bool hasAlpha = !m_frame.alpha.empty();
     for (int y = y0; y < y1; ++y) {
         remodulateRow(m_frame, irradiance, y, reinterpret_cast<std::byte*>(dst.atMutable(0, y)),
-            dst.pixelStride);
+            dst.pixelStride, true);
         if (dst.channels == 4)
             for (int x = 0; x < dst.width; ++x)
                 dst.atMutable(x, y)[3] = hasAlpha ? m_frame.alpha(x, y, 0) : 1.0f;

@@ -53,8 +53,8 @@ void demodulate(const Frame& frame, Image& irradiance)
     parallelRows(frame.height, [&](int y0, int y1) { demodulateRows(frame, irradiance, y0, y1); });
 }
 
-void remodulateRow(
-    const Frame& frame, const Image& irradiance, int y, std::byte* out, std::ptrdiff_t pixelStride)
+void remodulateRow(const Frame& frame, const Image& irradiance, int y, std::byte* out,
+    std::ptrdiff_t pixelStride, bool toCaller)
 {
     const float* i = irradiance.at(0, y);
     const int w = frame.width;
@@ -72,7 +72,7 @@ void remodulateRow(
         // Packed output: one run of floats (vectorised), the same operations.
         float* o = reinterpret_cast<float*>(out);
         if (cpu::activeIsa() == cpu::Isa::Avx512) {
-            remodulateRunAvx512(i, a, o, 3 * w, plain);
+            remodulateRunAvx512(i, a, o, 3 * w, plain, toCaller);
             return;
         }
         for (int k = 0; k < 3 * w; ++k)

@@ -38,7 +38,9 @@ void remodulate(const Frame& frame, const Image& irradiance, Image& radiance);
 
 /// Row y of remodulate() written to 3 floats per pixel at `out + x * pixelStride` (bytes), e.g.
 /// straight into a caller's buffer (Filter::denoiseDemodulated); the same values as remodulate().
-void remodulateRow(
-    const Frame& frame, const Image& irradiance, int y, std::byte* out, std::ptrdiff_t pixelStride);
+/// `toCaller`: `out` is the caller's output, which nothing in the frame reads again (packed rows
+/// are then written with streaming stores on AVX-512).
+void remodulateRow(const Frame& frame, const Image& irradiance, int y, std::byte* out,
+    std::ptrdiff_t pixelStride, bool toCaller = false);
 
 } // namespace afn

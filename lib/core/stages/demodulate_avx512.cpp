@@ -8,6 +8,9 @@
 #include "cpu/avx512.h"
 #include "stages/demodulate.h"
 
+#include <algorithm>
+#include <cstdint>
+
 namespace afn {
 
 #ifdef AFN_CPU_HAVE_AVX512
@@ -35,6 +38,16 @@ AFN_CPU_AVX512_INLINE __m512 clampIrradiance(__m512 v)
     return _mm512_maskz_mov_ps(_mm512_cmp_ps_mask(v, _mm512_setzero_ps(), _CMP_GT_OQ), capped);
 }
 
+/// Values i.. of the remodulated run (m: the lanes in the run).
+AFN_CPU_AVX512_INLINE __m512 remodulated(
+    const float* v, const float* a, int i, __mmask16 m, bool plain)
+{
+    __m512 f = _mm512_maskz_loadu_ps(m, a + i);
+    if (!plain)
+        f = albedoFloor(f);
+    return _mm512_mul_ps(clampIrradiance(_mm512_maskz_loadu_ps(m, v + i)), f);
+}
+
 } // namespace
 
 AFN_CPU_AVX512 void demodulateRunAvx512(const float* c, const float* a, float* o, int n)
@@ -48,22 +61,31 @@ AFN_CPU_AVX512 void demodulateRunAvx512(const float* c, const float* a, float* o
     }
 }
 
-AFN_CPU_AVX512 void remodulateRunAvx512(const float* v, const float* a, float* o, int n, bool plain)
+AFN_CPU_AVX512 void remodulateRunAvx512(
+    const float* v, const float* a, float* o, int n, bool plain, bool stream)
 {
-    for (int i = 0; i < n; i += 16) {
+    int i = 0;
+    const auto addr = reinterpret_cast<std::uintptr_t>(o);
+    if (stream && addr % sizeof(float) == 0) {
+        // Up to the first 64-byte boundary with ordinary stores, then whole aligned vectors
+        // streamed past the caches, the tail again with ordinary (masked) stores.
+        const int head = std::min(n, static_cast<int>((64 - addr % 64) % 64 / sizeof(float)));
+        if (head > 0)
+            _mm512_mask_storeu_ps(o, lanes(head), remodulated(v, a, 0, lanes(head), plain));
+        for (i = head; i + 16 <= n; i += 16)
+            _mm512_stream_ps(o + i, remodulated(v, a, i, lanes(16), plain));
+        _mm_sfence(); // the streamed stores are visible before the caller reads the buffer
+    }
+    for (; i < n; i += 16) {
         const __mmask16 m = lanes(n - i);
-        __m512 f = _mm512_maskz_loadu_ps(m, a + i);
-        if (!plain)
-            f = albedoFloor(f);
-        _mm512_mask_storeu_ps(
-            o + i, m, _mm512_mul_ps(clampIrradiance(_mm512_maskz_loadu_ps(m, v + i)), f));
+        _mm512_mask_storeu_ps(o + i, m, remodulated(v, a, i, m, plain));
     }
 }
 
 #else
 
 void demodulateRunAvx512(const float*, const float*, float*, int) { }
-void remodulateRunAvx512(const float*, const float*, float*, int, bool) { }
+void remodulateRunAvx512(const float*, const float*, float*, int, bool, bool) { }
 
 #endif
 

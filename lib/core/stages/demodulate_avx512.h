@@ -10,6 +10,9 @@ namespace afn {
 void demodulateRunAvx512(const float* c, const float* a, float* o, int n);
 
 /// o[i] = clampIrradiance(v[i]) * (plain ? a[i] : max(a[i], kAlbedoEpsilon)). AVX-512F only.
-void remodulateRunAvx512(const float* v, const float* a, float* o, int n, bool plain);
+/// `stream`: the run goes to a buffer nothing reads soon (the caller's output): its aligned whole
+/// vectors are written with streaming stores (the same values).
+void remodulateRunAvx512(
+    const float* v, const float* a, float* o, int n, bool plain, bool stream = false);
 
 } // namespace afn

@@ -16,9 +16,12 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstddef>
+#include <cstdint>
 #include <cstring>
 #include <iostream>
 #include <limits>
+#include <vector>
 
 namespace {
 
@@ -167,7 +170,8 @@ TEST(StageKernelsIsa, DemodulationAndRemodulationMatchThePortablePath)
 {
     // stages/demodulate_avx512.cpp against the scalar loops: colour and albedo with NaN, +-inf,
     // -0, negative, tiny (below the 2^-10 floor) and huge values (above kMaxIrradiance after the
-    // division), with and without an albedo, for colour given as radiance and as irradiance.
+    // division), with and without an albedo, for colour given as radiance and as irradiance; and
+    // rows remodulated into a caller's buffer (streaming stores) at every alignment.
     auto awkward = [](std::uint32_t seed) {
         Lcg rng { seed };
         Image img(W, H, 3);
@@ -224,6 +228,25 @@ TEST(StageKernelsIsa, DemodulationAndRemodulationMatchThePortablePath)
                             << withAlbedo << " irradiance input " << demodulatedInput;
                         ++compared;
                     }
+            // Rows written to a caller's buffer (streaming stores past the first 64-byte
+            // boundary), at every float offset within a cache line: the same bits, and nothing
+            // written before or after the row.
+            for (int offset = 0; offset < 16; ++offset) {
+                std::vector<float> buf(3 * W + 48, -3.0f);
+                float* out = buf.data() + offset;
+                const IsaScope s(Isa::Avx512);
+                for (int y = 0; y < H; ++y) {
+                    afn::remodulateRow(
+                        f, filtered, y, reinterpret_cast<std::byte*>(out), 3 * sizeof(float), true);
+                    for (int k = 0; k < 3 * W; ++k)
+                        ASSERT_EQ(bitsOf(out[k]), bitsOf(radP.at(0, y)[k]))
+                            << "caller row " << y << " value " << k << " offset " << offset;
+                    for (int k = 0; k < offset; ++k)
+                        ASSERT_EQ(buf[k], -3.0f);
+                    for (std::size_t k = offset + 3 * W; k < buf.size(); ++k)
+                        ASSERT_EQ(buf[k], -3.0f);
+                }
+            }
         }
     EXPECT_EQ(compared, 4 * W * H * 3);
 }
