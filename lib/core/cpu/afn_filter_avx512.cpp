@@ -98,7 +98,7 @@ AFN_CPU_AVX512_INLINE __m512 finite16(__m512 v)
 AFN_CPU_AVX512 void softmaxApplyRowAvx512(
     const float* logits, int stride, int n, const PlanarRows& rows, int x0, int y, float* rgb)
 {
-    const __mmask16 valid = n >= 16 ? __mmask16(0xFFFF) : static_cast<__mmask16>((1u << n) - 1u);
+    const __mmask16 valid = firstLanes(n);
     const __m512i idx = _mm512_mullo_epi32(
         _mm512_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15),
         _mm512_set1_epi32(stride));

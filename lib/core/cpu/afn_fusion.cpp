@@ -110,6 +110,25 @@ inline __attribute__((always_inline)) void softmax49(float* l)
         l[j] *= inv;
 }
 
+/// Softmax and 7x7 filter of pixels x0 .. x0 + n - 1 of row y of `img`, pixel i's logits at
+/// logits + i * stride (overwritten by the portable path), its colour to rgb + 3 i: 16 pixels per
+/// call on AVX-512 (rows y - 3 .. y + 3 resident in `planar`), otherwise pixel by pixel.
+inline __attribute__((always_inline)) void filterRun(float* logits, int stride, int n,
+    const Image& img, const cpu::PlanarRows& planar, int x0, int y, float* rgb, bool avx512)
+{
+    if (avx512) {
+        for (int i = 0; i < n; i += 16)
+            cpu::softmaxApplyRowAvx512(logits + static_cast<std::size_t>(i) * stride, stride,
+                std::min(16, n - i), planar, x0 + i, y, rgb + 3 * i);
+        return;
+    }
+    for (int i = 0; i < n; ++i) {
+        float* l = logits + static_cast<std::size_t>(i) * stride;
+        softmax49(l);
+        applyKernel(img, x0 + i, y, l, rgb + 3 * i);
+    }
+}
+
 } // namespace
 
 // Rows [y0, y1) of half-resolution blocks, in column chunks of kChunk blocks. Per chunk the heads
@@ -155,31 +174,11 @@ AFN_CPU_CLONES void filterAndFuseRows(
             in.headTa->runRows(&d1, x, 2 * yh, 2 * yh + 2, rowsTa.data(),
                 static_cast<long>(nf) * sTa, sTa, false, f0, f0 + nf);
             // Pixel i of full-res row q of the chunk: logits at (q * nf + i) * sTa.
-            if (avx512) {
-                for (int i = 0; i < nh; i += 16)
-                    cpu::softmaxApplyRowAvx512(rows1.data() + static_cast<std::size_t>(i) * s1, s1,
-                        std::min(16, nh - i), planar1, h0 + i, yh, d1Row.data() + 3 * i);
-                for (int q = 0; q < 2; ++q)
-                    for (int i = 0; i < nf; i += 16)
-                        cpu::softmaxApplyRowAvx512(
-                            rowsTa.data() + (static_cast<std::size_t>(q) * nf + i) * sTa, sTa,
-                            std::min(16, nf - i), planarTa, f0 + i, 2 * yh + q,
-                            dTaRows.data() + (static_cast<std::size_t>(q) * nf + i) * 3);
-            } else {
-                for (int i = 0; i < nh; ++i) {
-                    float* logits = rows1.data() + static_cast<std::size_t>(i) * s1;
-                    softmax49(logits);
-                    applyKernel(*in.color1Half, h0 + i, yh, logits, d1Row.data() + 3 * i);
-                }
-                for (int q = 0; q < 2; ++q)
-                    for (int i = 0; i < nf; ++i) {
-                        const std::size_t k = static_cast<std::size_t>(q) * nf + i;
-                        float* logits = rowsTa.data() + k * sTa;
-                        softmax49(logits);
-                        applyKernel(
-                            *in.colorTa, f0 + i, 2 * yh + q, logits, dTaRows.data() + k * 3);
-                    }
-            }
+            filterRun(rows1.data(), s1, nh, *in.color1Half, planar1, h0, yh, d1Row.data(), avx512);
+            for (int q = 0; q < 2; ++q)
+                filterRun(rowsTa.data() + static_cast<std::size_t>(q) * nf * sTa, sTa, nf,
+                    *in.colorTa, planarTa, f0, 2 * yh + q,
+                    dTaRows.data() + static_cast<std::size_t>(q) * nf * 3, avx512);
             for (int i = 0; i < nh; ++i) {
                 const int xh = h0 + i;
                 // 1-spp branch at half resolution.

@@ -20,4 +20,15 @@
 #pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
 #pragma GCC diagnostic ignored "-Wuninitialized"
 #endif
+
+namespace afn::cpu {
+
+/// Mask of the first `count` of 16 lanes (all of them from 16 on): the tail of a run of floats.
+inline __mmask16 firstLanes(int count)
+{
+    return count >= 16 ? static_cast<__mmask16>(0xFFFF)
+                       : static_cast<__mmask16>((1u << count) - 1u);
+}
+
+} // namespace afn::cpu
 #endif

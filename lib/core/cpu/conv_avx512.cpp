@@ -19,7 +19,6 @@
 #include "cpu/conv_kernel.h"
 
 #include "cpu/avx512.h"
-#include "cpu/isa.h"
 
 #include <algorithm>
 #include <cstring>
@@ -33,12 +32,6 @@ constexpr int kMaxPixels = 16; // largest P below: the band's zeroed slack after
 
 #ifdef AFN_CPU_HAVE_AVX512
 
-/// Mask of the first n (0..16) lanes.
-AFN_CPU_AVX512_INLINE __mmask16 firstLanes(int n)
-{
-    return n >= 16 ? __mmask16(0xFFFF) : static_cast<__mmask16>((1u << n) - 1u);
-}
-
 /// `n` floats from s to d (masked 16-float loads and stores).
 AFN_CPU_AVX512_INLINE void copyFloats(float* d, const float* s, int n)
 {
@@ -49,12 +42,10 @@ AFN_CPU_AVX512_INLINE void copyFloats(float* d, const float* s, int n)
 }
 
 /// The band pixels of input columns [xa, xb) of one row (c floats each: U(up) pixel x/2, same
-/// pixel x, zeros), with vector stores instead of three library calls per pixel; the same values.
-AFN_CPU_AVX512 bool fillPixelsAvx512(
+/// pixel x, zeros), with vector stores instead of three library calls per pixel.
+AFN_CPU_AVX512 void fillPixels(
     float* d, int c, const float* up, int nu, const float* same, int ns, int xa, int xb)
 {
-    if (cpu::activeIsa() != Isa::Avx512)
-        return false;
     const __m512 zero = _mm512_set1_ps(0.0f);
     for (int x = xa; x < xb; ++x, d += c) {
         for (int k = 0; k < c; k += 16)
@@ -63,23 +54,13 @@ AFN_CPU_AVX512 bool fillPixelsAvx512(
             copyFloats(d, up + static_cast<std::size_t>(x >> 1) * nu, nu);
         copyFloats(d + nu, same + static_cast<std::size_t>(x) * ns, ns);
     }
-    return true;
 }
-
-#else
-
-bool fillPixelsAvx512(float*, int, const float*, int, const float*, int, int)
-{
-    return false;
-}
-
-#endif
 
 /// Band rows [y0 - r, y1 + r) of concat(U(up), same), (width + 2r) pixels of `c` floats each.
 void fillBand(const ConvArgs& a, int y0, int y1, int c, std::vector<float>& band)
 {
     const int w = a.same->width(), h = a.same->height(), r = a.k / 2;
-    const int x0 = a.x0, x1 = a.x1 < 0 ? w : a.x1, bw = x1 - x0 + 2 * r;
+    const int x0 = a.x0, x1 = columnEnd(a), bw = x1 - x0 + 2 * r;
     // Input columns present in the band, and the zero pixels before and after them.
     const int xa = std::max(0, x0 - r), xb = std::min(w, x1 + r);
     const int lead = xa - (x0 - r), trail = x1 + r - xb;
@@ -88,8 +69,6 @@ void fillBand(const ConvArgs& a, int y0, int y1, int c, std::vector<float>& band
     const std::size_t slack = static_cast<std::size_t>(kMaxPixels + 2) * c;
     if (band.size() < rows * rowFloats + slack)
         band.resize(rows * rowFloats + slack);
-    const std::size_t nuBytes = sizeof(float) * a.nu, nsBytes = sizeof(float) * a.ns;
-    const std::size_t padBytes = sizeof(float) * (c - a.nu - a.ns);
     for (int i = 0; i < rows; ++i) {
         const int yy = y0 - r + i;
         float* row = band.data() + i * rowFloats;
@@ -107,21 +86,11 @@ void fillBand(const ConvArgs& a, int y0, int y1, int c, std::vector<float>& band
                 d, a.same->at(xa, yy), sizeof(float) * static_cast<std::size_t>(xb - xa) * c);
             continue;
         }
-        const float* up = a.nu ? a.up->at(0, yy >> 1) : nullptr;
-        const float* same = a.same->at(0, yy);
-        if (fillPixelsAvx512(d, c, up, a.nu, same, a.ns, xa, xb))
-            continue;
-        for (int x = xa; x < xb; ++x, d += c) {
-            if (a.nu)
-                std::memcpy(d, up + static_cast<std::size_t>(x >> 1) * a.nu, nuBytes);
-            std::memcpy(d + a.nu, same + static_cast<std::size_t>(x) * a.ns, nsBytes);
-            std::memset(d + a.nu + a.ns, 0, padBytes);
-        }
+        fillPixels(
+            d, c, a.nu ? a.up->at(0, yy >> 1) : nullptr, a.nu, a.same->at(0, yy), a.ns, xa, xb);
     }
     std::memset(band.data() + rows * rowFloats, 0, sizeof(float) * slack);
 }
-
-#ifdef AFN_CPU_HAVE_AVX512
 
 /// Operands of one row pass over one group of NV output vectors.
 struct RowPass {
@@ -273,7 +242,7 @@ AFN_CPU_AVX512 void rowsFewOutputs(
 {
     constexpr int P = 24 / NO > 8 ? 8 : 24 / NO;
     static_assert(P <= kMaxPixels);
-    const int w = (a.x1 < 0 ? a.same->width() : a.x1) - a.x0;
+    const int w = columnEnd(a) - a.x0;
     for (int i = 0; i < nRows; ++i) {
         const float* src = band + i * bandRow;
         float* d = dst + i * a.dstRow;
@@ -292,7 +261,7 @@ void convRowsAvx512(const ConvArgs& a, int y0, int y1)
     const int c = (a.in + 15) / 16 * 16;
     thread_local std::vector<float> band;
     fillBand(a, y0, y1, c, band);
-    const int w = (a.x1 < 0 ? a.same->width() : a.x1) - a.x0; // output columns
+    const int w = columnEnd(a) - a.x0; // output columns
     if (a.wt16 && a.outC <= kFewOutputs) {
         const long bandRow = static_cast<long>(w + 2 * (a.k / 2)) * c;
         float* dst = a.dst + (y0 - a.dstY0) * a.dstRow;

@@ -29,7 +29,7 @@ const float* zeros()
 AFN_CPU_CLONES void convRows(const ConvArgs& a, int y0, int y1)
 {
     const int w = a.same->width(), h = a.same->height(), r = a.k / 2, cp = a.cp;
-    const int xEnd = a.x1 < 0 ? w : a.x1;
+    const int xEnd = columnEnd(a);
     for (int y = y0; y < y1; ++y)
         for (int x = a.x0; x < xEnd; x += kPixels) {
             const int np = std::min(kPixels, xEnd - x);

@@ -32,6 +32,12 @@ struct ConvArgs {
     int x0 = 0, x1 = -1;
 };
 
+/// The end of ConvArgs' output columns (x1, or the input's width where x1 < 0).
+inline int columnEnd(const ConvArgs& a)
+{
+    return a.x1 < 0 ? a.same->width() : a.x1;
+}
+
 /// Output rows [y0, y1) with the portable kernel.
 void convRows(const ConvArgs& a, int y0, int y1);
 

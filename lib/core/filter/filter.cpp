@@ -228,12 +228,11 @@ void Filter::runStages()
         m_reprojector.compute(m_frame);
     if (m_stages.demodulate)
         m_aux.finish(m_frame, reproject ? &m_reprojector : nullptr); // may rewrite the albedo
-    m_outputWritten = false;
     if (m_stages.demodulate && m_stages.accumulate) {
         // Demodulation (in place: the radiance is not read again), accumulation and, for ta, the
         // remodulated output run per band of rows in one pass: a band's rows are still in cache
         // for the next step (the values are those of three separate passes).
-        const bool writeOutput = outputIsAccumulation() && outputBound();
+        const bool writeOutput = outputWrittenByStages();
         m_accumulator.begin(m_reprojector, m_frame.width, m_frame.height);
         parallelRows(m_frame.height, [&](int y0, int y1) {
             demodulateRows(m_frame, m_frame.color, y0, y1);
@@ -242,7 +241,6 @@ void Filter::runStages()
                 writeRemodulatedRows(m_accumulator.color(), y0, y1);
         });
         m_accumulator.end();
-        m_outputWritten = writeOutput;
     } else if (m_stages.demodulate) {
         demodulate(m_frame, m_frame.color);
     } else if (m_stages.accumulate) {
@@ -295,14 +293,15 @@ void Filter::execute()
                     self.m_reprojector.takeGeometry(self.m_frame);
             }
         } keep { *this };
-        const bool pending = outputBound() && !m_outputWritten;
+        const bool written = outputWrittenByStages();
+        const bool pending = outputBound() && !written;
         const Image* irr = pending ? denoiseDemodulated(m_frame) : nullptr;
         const Image* rad = pending && !irr ? denoiseRadiance(m_frame) : nullptr;
         if (irr) {
             writeRemodulated(*irr);
         } else if (rad) {
             writeOutput(*rad);
-        } else if (!m_outputWritten) {
+        } else if (!written) {
             m_output.resize(m_frame.width, m_frame.height, 3);
             denoise(m_frame, m_output);
             if (outputBound())
@@ -334,6 +333,11 @@ void Filter::writeOutput(const Image& radiance) const
                     o[3] = hasAlpha ? m_frame.alpha(x, y, 0) : 1.0f;
             }
     });
+}
+
+bool Filter::outputWrittenByStages() const
+{
+    return m_stages.demodulate && m_stages.accumulate && outputIsAccumulation() && outputBound();
 }
 
 void Filter::writeRemodulated(const Image& irradiance) const

@@ -178,6 +178,8 @@ private:
     /// writeOutput(remodulate(irradiance)) in one pass (denoiseDemodulated()).
     void writeRemodulated(const Image& irradiance) const;
     void writeRemodulatedRows(const Image& irradiance, int y0, int y1) const;
+    /// runStages() writes the output in the accumulation's pass (outputIsAccumulation()).
+    bool outputWrittenByStages() const;
 
     const FilterType& m_type;
     ParamSet m_params;
@@ -195,7 +197,6 @@ private:
     std::string m_prevInputs; ///< which inputs the previous frame had (history consistency)
     Frame m_frame; ///< reused across frames: allocated once per resolution
     Image m_output;
-    bool m_outputWritten = false; ///< runStages() wrote the output (outputIsAccumulation())
     InputStats m_stats;
     std::string m_missingInputs;
     AuxPrefilter m_aux;

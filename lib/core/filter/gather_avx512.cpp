@@ -58,11 +58,7 @@ AFN_CPU_AVX512_INLINE void step(
         _mm512_mask_storeu_ps(d + i, m, v);
 }
 
-inline __mmask16 lanes(int count)
-{
-    return count >= 16 ? static_cast<__mmask16>(0xFFFF)
-                       : static_cast<__mmask16>((1u << count) - 1u);
-}
+using cpu::firstLanes;
 
 template <GatherOp::Kind K>
 AFN_CPU_AVX512 void gatherRun(
@@ -81,17 +77,17 @@ AFN_CPU_AVX512 void gatherRun(
         static_cast<int>(((64 - (reinterpret_cast<std::uintptr_t>(d) & 63)) & 63) / sizeof(float)));
     int i = 0;
     if (peel > 0) {
-        step<K>(r, s, d, 0, lanes(peel), false);
+        step<K>(r, s, d, 0, firstLanes(peel), false);
         i = peel;
     }
     if (stream)
         for (; i + 16 <= n; i += 16)
-            step<K>(r, s, d, i, lanes(16), true);
+            step<K>(r, s, d, i, firstLanes(16), true);
     else
         for (; i + 16 <= n; i += 16)
-            step<K>(r, s, d, i, lanes(16), false);
+            step<K>(r, s, d, i, firstLanes(16), false);
     if (i < n)
-        step<K>(r, s, d, i, lanes(n - i), false);
+        step<K>(r, s, d, i, firstLanes(n - i), false);
     if (stream)
         _mm_sfence();
     counts.nonFinite += _mm512_reduce_add_epi32(r.bad);

@@ -17,11 +17,7 @@ namespace afn {
 
 namespace {
 
-inline __mmask16 lanes(int count)
-{
-    return count >= 16 ? static_cast<__mmask16>(0xFFFF)
-                       : static_cast<__mmask16>((1u << count) - 1u);
-}
+using cpu::firstLanes;
 
 /// std::max(a, kAlbedoEpsilon): the second operand where a < eps, else a.
 AFN_CPU_AVX512_INLINE __m512 albedoFloor(__m512 a)
@@ -53,7 +49,7 @@ AFN_CPU_AVX512_INLINE __m512 remodulated(
 AFN_CPU_AVX512 void demodulateRunAvx512(const float* c, const float* a, float* o, int n)
 {
     for (int i = 0; i < n; i += 16) {
-        const __mmask16 m = lanes(n - i);
+        const __mmask16 m = firstLanes(n - i);
         __m512 v = _mm512_maskz_loadu_ps(m, c + i);
         if (a) // masked-off lanes divide 0 by the floor: no exception is raised or stored
             v = _mm512_div_ps(v, albedoFloor(_mm512_maskz_loadu_ps(m, a + i)));
@@ -71,13 +67,14 @@ AFN_CPU_AVX512 void remodulateRunAvx512(
         // streamed past the caches, the tail again with ordinary (masked) stores.
         const int head = std::min(n, static_cast<int>((64 - addr % 64) % 64 / sizeof(float)));
         if (head > 0)
-            _mm512_mask_storeu_ps(o, lanes(head), remodulated(v, a, 0, lanes(head), plain));
+            _mm512_mask_storeu_ps(
+                o, firstLanes(head), remodulated(v, a, 0, firstLanes(head), plain));
         for (i = head; i + 16 <= n; i += 16)
-            _mm512_stream_ps(o + i, remodulated(v, a, i, lanes(16), plain));
+            _mm512_stream_ps(o + i, remodulated(v, a, i, firstLanes(16), plain));
         _mm_sfence(); // the streamed stores are visible before the caller reads the buffer
     }
     for (; i < n; i += 16) {
-        const __mmask16 m = lanes(n - i);
+        const __mmask16 m = firstLanes(n - i);
         _mm512_mask_storeu_ps(o + i, m, remodulated(v, a, i, m, plain));
     }
 }
