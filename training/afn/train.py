@@ -15,6 +15,7 @@ the same code runs on a CPU here and on a GPU with a newer PyTorch.
 import argparse
 import hashlib
 import json
+import math
 import os
 import subprocess
 import time
@@ -51,6 +52,9 @@ def parse_args(argv=None):
                     "128x128 area of every training frame / batch size)")
     ap.add_argument("-b", "--batch", type=int, default=16, help="batch size (paper: 16)")
     ap.add_argument("--lr", type=float, default=1e-3, help="Adam learning rate (paper: 1e-3)")
+    ap.add_argument("--lr-end", type=float, default=-1.0, help="anneal the learning rate along "
+                    "a cosine from --lr at epoch 1 to this value after --epochs (per epoch, so a "
+                    "resumed run continues the same schedule); < 0: constant --lr (the paper)")
     ap.add_argument("--crop", type=int, default=128, help="crop size (paper: 128)")
     ap.add_argument("--temporal-weight", type=float, default=0.0, help="weight of a temporal "
                     "term added to SMAPE (loss.temporal_gradient; 0: the paper's loss): each batch "
@@ -247,6 +251,16 @@ class RunFolder:
         model.to(device)
 
 
+def epoch_lr(args, epoch):
+    """Learning rate of (0-based) epoch: --lr, or the cosine from --lr to --lr-end over --epochs.
+    A fine-tune of a few thousand steps ends nearer a minimum when the rate falls at its end
+    (SGDR, Loshchilov & Hutter 2017); the paper trains at a constant 1e-3."""
+    if args.lr_end < 0 or args.epochs <= 1:
+        return args.lr
+    t = min(max(epoch / (args.epochs - 1), 0.0), 1.0)
+    return args.lr_end + 0.5 * (args.lr - args.lr_end) * (1.0 + math.cos(math.pi * t))
+
+
 def train_epoch(model, opt, sampler, steps, batch, device, temporal_weight=0.0):
     """One epoch of SMAPE steps (+ temporal_weight x the temporal term on batch/2 frame pairs);
     returns (mean SMAPE, batches skipped as non-finite)."""
@@ -308,12 +322,15 @@ def main(argv=None):
     run_start = time.time()
     for epoch in range(start, args.epochs):
         t0 = time.time()
+        lr = epoch_lr(args, epoch)
+        for group in opt.param_groups:
+            group["lr"] = lr
         loss, skipped = train_epoch(model, opt, sampler, steps, args.batch, device,
                                     args.temporal_weight)
         vp, vs = validate(model, val, device, args.val_frames)
         dt = time.time() - t0
         run.append_log(epoch + 1, loss, vp, vs, dt)
-        print(f"epoch {epoch + 1}/{args.epochs}: train SMAPE {loss:.5f}, "
+        print(f"epoch {epoch + 1}/{args.epochs}: lr {lr:.2e}, train SMAPE {loss:.5f}, "
               f"val PSNR {vp:.3f} dB, val SMAPE {vs:.5f} ({dt:.1f} s)"
               + (f", {skipped} non-finite batches skipped" if skipped else ""), flush=True)
         run.checkpoint(model, opt, sampler, epoch + 1, cfg, device)

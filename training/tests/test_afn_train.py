@@ -150,3 +150,27 @@ def _save(model, path):
     from afn.weights import save_model
     save_model(str(path), model)
     return str(path)
+
+
+def test_cosine_learning_rate_schedule(tmp_path):
+    args = train.parse_args(["--data", "x", "--out", "y", "--epochs", "5", "--lr", "4e-4",
+                             "--lr-end", "1e-5"])
+    rates = [train.epoch_lr(args, e) for e in range(5)]
+    assert rates[0] == pytest.approx(4e-4) and rates[-1] == pytest.approx(1e-5)
+    assert rates[2] == pytest.approx(0.5 * (4e-4 + 1e-5))           # the cosine's midpoint
+    assert all(a > b for a, b in zip(rates, rates[1:]))               # falls every epoch
+    constant = train.parse_args(["--data", "x", "--out", "y", "--epochs", "5", "--lr", "4e-4"])
+    assert [train.epoch_lr(constant, e) for e in range(5)] == [4e-4] * 5
+    if not os.path.exists(os.path.join(SEQUENCE, "frame.0000.exr")):
+        return
+    # A resumed run continues the schedule: the optimizer runs at the rate of its epoch.
+    out = str(tmp_path / "run")
+    common = ["--data", SEQUENCE, "--out", out, "--steps", "1", "--batch", "2", "--crop", "32",
+              "--max-frames", "2", "--enc", "4,4,4", "--dec", "4,4", "--refine", "4",
+              "--device", "cpu", "--epochs", "3", "--lr", "1e-3", "--lr-end", "1e-4"]
+    train.main(common + ["--minutes", "1e-9"])                       # epoch 1 only
+    train.main(common)                                               # resumes: epochs 2, 3
+    import torch
+    ck = torch.load(os.path.join(out, "checkpoints", "latest.pt"))
+    assert ck["epoch"] == 3
+    assert ck["optimizer"]["param_groups"][0]["lr"] == pytest.approx(1e-4)
