@@ -46,6 +46,7 @@ import torch.nn.functional as F
 from torch import nn
 
 from .color import tonemap
+from .shifted_filter import shifted_filter
 
 KERNEL_SIZE = 7
 KERNEL_TAPS = KERNEL_SIZE * KERNEL_SIZE
@@ -99,13 +100,7 @@ def apply_kernels(img: torch.Tensor, kernels: torch.Tensor) -> torch.Tensor:
         (B, C, H, W): ``sum_j K_j * img(p + offset_j)``, zero outside the image.
     """
     r = KERNEL_SIZE // 2
-    h, w = img.shape[-2:]
-    padded = F.pad(img, (r, r, r, r))
-    out = torch.zeros_like(img)
-    for j in range(KERNEL_TAPS):
-        dy, dx = j // KERNEL_SIZE, j % KERNEL_SIZE
-        out = out + kernels[:, j:j + 1] * padded[:, :, dy:dy + h, dx:dx + w]
-    return out
+    return shifted_filter(F.pad(img, (r, r, r, r)), kernels, KERNEL_SIZE)
 
 
 def fuse(d_ta: torch.Tensor, d_1spp_half: torch.Tensor, alpha: torch.Tensor) -> torch.Tensor:

@@ -48,6 +48,7 @@ import torch.nn.functional as F
 from torch import nn
 
 from .color import tonemap
+from .shifted_filter import shifted_filter
 
 LARGE_KERNEL_SIZE = 5
 LARGE_TAPS = LARGE_KERNEL_SIZE * LARGE_KERNEL_SIZE
@@ -86,13 +87,7 @@ def apply_kernels5(img, kernels):
         (B, C, H, W).
     """
     r = LARGE_KERNEL_SIZE // 2
-    h, w = img.shape[-2:]
-    padded = F.pad(img, (r, r, r, r), mode="replicate")
-    out = torch.zeros_like(img)
-    for j in range(LARGE_TAPS):
-        dy, dx = j // LARGE_KERNEL_SIZE, j % LARGE_KERNEL_SIZE
-        out = out + kernels[:, j:j + 1] * padded[:, :, dy:dy + h, dx:dx + w]
-    return out
+    return shifted_filter(F.pad(img, (r, r, r, r), mode="replicate"), kernels, LARGE_KERNEL_SIZE)
 
 
 def fuse_scale(fine, coarse, alpha):
