@@ -23,6 +23,11 @@ import sys
 
 CANDIDATES = ("/usr/lib/x86_64-linux-gnu/libjemalloc.so.2", "/usr/lib/aarch64-linux-gnu/libjemalloc.so.2",
               "/usr/lib/libjemalloc.so.2")
+# The price of never returning memory: a long run's resident size grows at each epoch's validation
+# and checkpoint (80-220 MB per epoch on 2026-12-03; 14 GB after 49 epochs, when the kernel killed
+# one of two runs sharing 24 GB). A 30 s decay kept it at 1.2 GB but made epochs 2x slower (page
+# faults: system time above user time), so long runs are split instead: `--minutes M` and a rerun
+# resume exactly (training/README.md), and each new process starts small.
 CONF = "dirty_decay_ms:-1,muzzy_decay_ms:-1"
 
 
