@@ -27,7 +27,9 @@ CANDIDATES = ("/usr/lib/x86_64-linux-gnu/libjemalloc.so.2", "/usr/lib/aarch64-li
 # and checkpoint (80-220 MB per epoch on 2026-12-03; 14 GB after 49 epochs, when the kernel killed
 # one of two runs sharing 24 GB). A 30 s decay kept it at 1.2 GB but made epochs 2x slower (page
 # faults: system time above user time), so long runs are split instead: `--minutes M` and a rerun
-# resume exactly (training/README.md), and each new process starts small.
+# resume exactly (training/README.md), and each new process starts small. `narenas:1` does not
+# change the growth (two 16-spp runs side by side, 7 epochs: the same 150 MB per epoch, all of it
+# right after an epoch's last step, i.e. in validation and checkpointing); the cause is not found.
 CONF = "dirty_decay_ms:-1,muzzy_decay_ms:-1"
 
 
