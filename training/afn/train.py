@@ -8,7 +8,8 @@ flips, brightness jitter [0.8, 1.2], Adam lr 1e-3, batch 16.
 Re-running the same command resumes from OUT/checkpoints/latest.pt. OUT/config.json holds the
 resolved configuration (with the git revision), OUT/log.csv one line per epoch (train SMAPE,
 validation PSNR/SMAPE on the held-out scenes, seconds), OUT/model.afnw the latest weights in the
-archive format the C++ core reads. The device comes from --device (auto: CUDA when available), so
+archive format the C++ core reads (and, with --keep-epochs N, OUT/epochs/E<epoch>.afnw those of
+the last N epochs, for afn.average). The device comes from --device (auto: CUDA when available), so
 the same code runs on a CPU here and on a GPU with a newer PyTorch.
 """
 
@@ -17,6 +18,8 @@ import hashlib
 import json
 import math
 import os
+import re
+import shutil
 import subprocess
 import time
 
@@ -56,6 +59,8 @@ def parse_args(argv=None):
                     "a cosine from --lr at epoch 1 to this value after --epochs (per epoch, so a "
                     "resumed run continues the same schedule); < 0: constant --lr (the paper)")
     ap.add_argument("--crop", type=int, default=128, help="crop size (paper: 128)")
+    ap.add_argument("--keep-epochs", type=int, default=0, help="also keep the weights of the "
+                    "last N epochs as OUT/epochs/E<epoch>.afnw (for afn.average; 0: none)")
     ap.add_argument("--temporal-weight", type=float, default=0.0, help="weight of a temporal "
                     "term added to SMAPE (loss.temporal_gradient; 0: the paper's loss): each batch "
                     "is then batch/2 pairs of consecutive frames, the same crops in both")
@@ -215,6 +220,7 @@ class RunFolder:
         self.latest = os.path.join(path, "checkpoints", "latest.pt")
         self.log = os.path.join(path, "log.csv")
         self.weights = os.path.join(path, "model.afnw")
+        self.epochs = os.path.join(path, "epochs")
         os.makedirs(os.path.dirname(self.latest), exist_ok=True)
 
     def save_config(self, config):
@@ -249,6 +255,18 @@ class RunFolder:
         os.replace(tmp, self.latest)
         save_model(self.weights, model.cpu())
         model.to(device)
+
+    def keep_epoch(self, epoch, keep):
+        """Copy model.afnw to epochs/E<epoch>.afnw and delete all but the last `keep` of them,
+        so that averaging the last N epochs (afn.average OUT/epochs/*.afnw) is one command."""
+        os.makedirs(self.epochs, exist_ok=True)
+        tmp = os.path.join(self.epochs, f".E{epoch:04d}.afnw.tmp")
+        shutil.copyfile(self.weights, tmp)
+        os.replace(tmp, os.path.join(self.epochs, f"E{epoch:04d}.afnw"))
+        kept = sorted((f for f in os.listdir(self.epochs) if re.fullmatch(r"E\d{4,}\.afnw", f)),
+                      key=lambda f: int(f[1:-5]))
+        for old in kept[:-keep]:
+            os.remove(os.path.join(self.epochs, old))
 
 
 def epoch_lr(args, epoch):
@@ -334,6 +352,8 @@ def main(argv=None):
               f"val PSNR {vp:.3f} dB, val SMAPE {vs:.5f} ({dt:.1f} s)"
               + (f", {skipped} non-finite batches skipped" if skipped else ""), flush=True)
         run.checkpoint(model, opt, sampler, epoch + 1, cfg, device)
+        if args.keep_epochs > 0:
+            run.keep_epoch(epoch + 1, args.keep_epochs)
         if args.minutes and time.time() - run_start > args.minutes * 60.0:
             print(f"time limit of {args.minutes} minutes reached after epoch {epoch + 1}", flush=True)
             break

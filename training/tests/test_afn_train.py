@@ -174,3 +174,29 @@ def test_cosine_learning_rate_schedule(tmp_path):
     ck = torch.load(os.path.join(out, "checkpoints", "latest.pt"))
     assert ck["epoch"] == 3
     assert ck["optimizer"]["param_groups"][0]["lr"] == pytest.approx(1e-4)
+
+
+def test_keep_epochs_keeps_the_last_n_and_they_average(tmp_path):
+    if not os.path.exists(os.path.join(SEQUENCE, "frame.0000.exr")):
+        pytest.skip("examples/sequence not present")
+    import torch
+    from afn import average
+    out = str(tmp_path / "run")
+    common = ["--data", SEQUENCE, "--out", out, "--steps", "1", "--batch", "2", "--crop", "32",
+              "--max-frames", "2", "--enc", "4,4,4", "--dec", "4,4", "--refine", "4",
+              "--device", "cpu", "--keep-epochs", "2", "--epochs"]
+    train.main(common + ["2"])
+    train.main(common + ["3"])                                       # resumed: epoch 3
+    epochs = os.path.join(out, "epochs")
+    assert sorted(os.listdir(epochs)) == ["E0002.afnw", "E0003.afnw"]
+    last = load_model(os.path.join(epochs, "E0003.afnw")).state_dict()
+    assert all(torch.equal(v, load_model(os.path.join(out, "model.afnw")).state_dict()[k])
+               for k, v in last.items())
+    prev = load_model(os.path.join(epochs, "E0002.afnw")).state_dict()
+    assert any(not torch.equal(prev[k], last[k]) for k in last)      # two different epochs kept
+    average.main([os.path.join(epochs, "E0002.afnw"), os.path.join(epochs, "E0003.afnw"),
+                  "-o", str(tmp_path / "avg.afnw")])
+    avg = load_model(str(tmp_path / "avg.afnw")).state_dict()
+    for k in last:
+        if last[k].is_floating_point():
+            assert torch.allclose(avg[k], 0.5 * (prev[k] + last[k]), atol=1e-6), k
