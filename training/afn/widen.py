@@ -1,0 +1,105 @@
+# SPDX-License-Identifier: Apache-2.0
+"""Widen a trained AFN model without changing what it computes, so that training can go on with
+more channels instead of starting from scratch.
+
+    cd training && /usr/bin/python3 -m afn.widen ../weights/afn.afnw --enc 24,48,96 --dec 48,36 \\
+        -o results/wide/init.afnw
+    /usr/bin/python3 -m afn.train ... --enc 24,48,96 --dec 48,36 --init results/wide/init.afnw
+
+Every convolution of the wider model keeps the old weights in the block of old input and output
+channels. The added output channels (new units) get PyTorch's default initialisation for their
+weights from the old inputs and their bias, and every weight *from* an added channel is zero: the
+new units compute something, but nothing reads it yet, so the wider model's output equals the old
+one's (up to float rounding). Training then moves the zero weights first (their gradient is the
+new units' activation times the output's gradient) and the new units start to matter. This is the
+zero-initialised variant of function-preserving growth (Net2Net, Chen, Goodfellow & Shlens 2016,
+splits duplicated units instead; duplicates need noise to break their symmetry).
+
+Only the ``full``/``fusion``/``1spp``/``ta`` variants (model.py) widen; the network's input and
+output channels (13 inputs, 49 kernel taps, the fusion weight, RGB) never change.
+"""
+
+import argparse
+
+import torch
+
+from .model import INPUT_CHANNELS, KERNEL_TAPS, REFINE_INPUT_CHANNELS, AFN, AFNConfig
+from .weights import load_model, save_model
+
+
+def _segments(cfg):
+    """Per convolution: (input segments, output width) of cfg; a concatenated input is a list of
+    segment widths in the order model.py concatenates them."""
+    c1, c2, c3 = cfg.enc
+    d2, d1 = cfg.dec
+    r = cfg.refine
+    return {"enc1": ([INPUT_CHANNELS], c1), "enc2": ([c1], c2), "enc3": ([c2], c3),
+            "dec2": ([c3, c2], d2), "dec1": ([d2, c1], d1), "head1": ([d1], KERNEL_TAPS),
+            "headTA": ([d1, INPUT_CHANNELS], KERNEL_TAPS + 1),
+            "ref1": ([REFINE_INPUT_CHANNELS], r), "ref2": ([r], r), "ref3": ([r], 3)}
+
+
+def widen(model, enc=None, dec=None, refine=None, seed=0):
+    """A wider copy of `model` (model.AFN) with the same output; widths not given stay.
+
+    Raises:
+        ValueError: a width smaller than the model's (only growth preserves the function).
+    """
+    old = model.cfg
+    cfg = AFNConfig(variant=old.variant, enc=tuple(enc or old.enc), dec=tuple(dec or old.dec),
+                    refine=int(refine or old.refine), inputs=old.inputs, spp=old.spp)
+    for name, a, b in (("enc", old.enc, cfg.enc), ("dec", old.dec, cfg.dec),
+                       ("refine", (old.refine,), (cfg.refine,))):
+        if len(a) != len(b) or any(y < x for x, y in zip(a, b)):
+            raise ValueError(f"--{name} {','.join(map(str, b))} is narrower than the model's "
+                             f"{','.join(map(str, a))}: only widening keeps what it computes")
+    torch.manual_seed(seed)
+    wide = AFN(cfg)
+    old_state, new_state = model.state_dict(), wide.state_dict()
+    old_seg, new_seg = _segments(old), _segments(cfg)
+    with torch.no_grad():
+        for conv, (new_in, new_out) in new_seg.items():
+            if conv + ".weight" not in new_state:
+                continue                        # a variant without refinement
+            old_in, old_out = old_seg[conv]
+            w, b = new_state[conv + ".weight"], new_state[conv + ".bias"]
+            ow = old_state[conv + ".weight"]
+            start_new = start_old = 0
+            for seg_old, seg_new in zip(old_in, new_in):
+                w[:, start_new + seg_old:start_new + seg_new] = 0.0     # weights from added inputs
+                w[:old_out, start_new:start_new + seg_old] = ow[:, start_old:start_old + seg_old]
+                start_new += seg_new
+                start_old += seg_old
+            b[:old_out] = old_state[conv + ".bias"]
+    wide.load_state_dict(new_state)
+    return wide
+
+
+def _widths(text):
+    return tuple(int(v) for v in text.split(",")) if text else None
+
+
+def main(argv=None):
+    ap = argparse.ArgumentParser(prog="python3 -m afn.widen", description=__doc__.split("\n\n")[0])
+    ap.add_argument("weights", help="a trained AFN model (.afnw)")
+    ap.add_argument("-o", "--out", required=True, help="the widened model (.afnw)")
+    ap.add_argument("--enc", default="", help="new encoder widths e1,e2,e3 (default: unchanged)")
+    ap.add_argument("--dec", default="", help="new decoder widths d2,d1 (default: unchanged)")
+    ap.add_argument("--refine", type=int, default=0, help="new refinement width (default: unchanged)")
+    ap.add_argument("--seed", type=int, default=0, help="seed of the added units' initialisation")
+    args = ap.parse_args(argv)
+    model = load_model(args.weights)
+    if not isinstance(model, AFN):
+        raise SystemExit(f"afn.widen: {args.weights} is not an AFN model (AFN large does not widen)")
+    try:
+        wide = widen(model, _widths(args.enc), _widths(args.dec), args.refine or None, args.seed)
+    except ValueError as e:
+        raise SystemExit(f"afn.widen: {e}")
+    save_model(args.out, wide)
+    n_old = sum(p.numel() for p in model.parameters())
+    n_new = sum(p.numel() for p in wide.parameters())
+    print(f"{args.weights}: {n_old} parameters -> {args.out}: {n_new} parameters")
+
+
+if __name__ == "__main__":
+    main()
