@@ -84,13 +84,18 @@ def test_crop_sampler(scene):
     assert big["c1"].shape == (256, 256, 3)
 
 
+def _tiny_run(out):
+    """afn.train arguments of a tiny smoke run on two frames of the example sequence into out."""
+    return ["--data", SEQUENCE, "--out", out, "--steps", "1", "--batch", "2", "--crop", "32",
+              "--max-frames", "2", "--enc", "4,4,4", "--dec", "4,4", "--refine", "4",
+              "--device", "cpu"]
+
+
 def test_train_resume_and_export(tmp_path):
     if not os.path.exists(os.path.join(SEQUENCE, "frame.0000.exr")):
         pytest.skip("examples/sequence not present")
     out = str(tmp_path / "run")
-    common = ["--data", SEQUENCE, "--out", out, "--steps", "1", "--batch", "2", "--crop", "32",
-              "--max-frames", "2", "--enc", "4,4,4", "--dec", "4,4", "--refine", "4",
-              "--device", "cpu"]
+    common = _tiny_run(out)
     train.main(common + ["--epochs", "1"])
     train.main(common + ["--epochs", "2"])                  # resumes at epoch 1
     lines = open(os.path.join(out, "log.csv")).read().splitlines()
@@ -165,9 +170,7 @@ def test_cosine_learning_rate_schedule(tmp_path):
         return
     # A resumed run continues the schedule: the optimizer runs at the rate of its epoch.
     out = str(tmp_path / "run")
-    common = ["--data", SEQUENCE, "--out", out, "--steps", "1", "--batch", "2", "--crop", "32",
-              "--max-frames", "2", "--enc", "4,4,4", "--dec", "4,4", "--refine", "4",
-              "--device", "cpu", "--epochs", "3", "--lr", "1e-3", "--lr-end", "1e-4"]
+    common = _tiny_run(out) + ["--epochs", "3", "--lr", "1e-3", "--lr-end", "1e-4"]
     train.main(common + ["--minutes", "1e-9"])                       # epoch 1 only
     train.main(common)                                               # resumes: epochs 2, 3
     import torch
@@ -182,9 +185,7 @@ def test_keep_epochs_keeps_the_last_n_and_they_average(tmp_path):
     import torch
     from afn import average
     out = str(tmp_path / "run")
-    common = ["--data", SEQUENCE, "--out", out, "--steps", "1", "--batch", "2", "--crop", "32",
-              "--max-frames", "2", "--enc", "4,4,4", "--dec", "4,4", "--refine", "4",
-              "--device", "cpu", "--keep-epochs", "2", "--epochs"]
+    common = _tiny_run(out) + ["--keep-epochs", "2", "--epochs"]
     train.main(common + ["2"])
     train.main(common + ["3"])                                       # resumed: epoch 3
     epochs = os.path.join(out, "epochs")
