@@ -87,8 +87,8 @@ def test_crop_sampler(scene):
 def _tiny_run(out):
     """afn.train arguments of a tiny smoke run on two frames of the example sequence into out."""
     return ["--data", SEQUENCE, "--out", out, "--steps", "1", "--batch", "2", "--crop", "32",
-              "--max-frames", "2", "--enc", "4,4,4", "--dec", "4,4", "--refine", "4",
-              "--device", "cpu"]
+            "--max-frames", "2", "--enc", "4,4,4", "--dec", "4,4", "--refine", "4",
+            "--device", "cpu"]
 
 
 def test_train_resume_and_export(tmp_path):
