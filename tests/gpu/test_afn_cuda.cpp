@@ -32,6 +32,8 @@ extern "C" const unsigned char afnTestWeightsFull[];
 extern "C" const unsigned long long afnTestWeightsFull_size;
 extern "C" const unsigned char afnTestWeightsFusion[];
 extern "C" const unsigned long long afnTestWeightsFusion_size;
+extern "C" const unsigned char afnTestWeightsQuarter[];
+extern "C" const unsigned long long afnTestWeightsQuarter_size;
 
 namespace {
 
@@ -102,6 +104,7 @@ void runParityCase(const ParityCase& c)
     const std::vector<char> weights = weightsBytes(c.weights);
     auto cpu = afn::createFilter("afn");
     cpu->params().setString(AFN_PARAM_AUX, "clean"); // the GPU has no aux prefilter yet
+    cpu->params().setString("taa", "off"); // nor the output TAA (taa=auto runs as off there)
     auto gpu = afn::createFilter("afn", *g_cuda);
     afn::cuda::AfnCudaFilter& cuda = cudaFilter(*gpu);
     cuda.setPoison(true);
@@ -192,6 +195,25 @@ TEST_F(CudaAfn, OtherMethodsAreUnsupportedOnTheCudaDevice)
     }
 }
 
+TEST_F(CudaAfn, TaaOnAndTheQuarterScaleRunOnTheCpuOnly)
+{
+    auto expectRefused = [](afn::Filter& f, const std::string& what) {
+        try {
+            f.commit();
+            ADD_FAILURE() << "committed with " << what;
+        } catch (const afn::Exception& e) {
+            EXPECT_EQ(e.code(), AFN_ERROR_UNSUPPORTED) << e.what();
+            EXPECT_NE(std::string(e.what()).find(what), std::string::npos) << e.what();
+        }
+    };
+    auto f = afn::createFilter("afn", *g_cuda);
+    f->params().setString("taa", "on");
+    expectRefused(*f, "taa=on");
+    f->params().setString("taa", "auto"); // runs as off on the GPU
+    f->setData(AFN_DATA_WEIGHTS, afnTestWeightsQuarter, afnTestWeightsQuarter_size);
+    expectRefused(*f, "quarter");
+}
+
 TEST_F(CudaAfn, ThroughTheCApi)
 {
     AFNDevice cuda = afnNewDevice(AFN_DEVICE_TYPE_CUDA);
@@ -212,6 +234,7 @@ TEST_F(CudaAfn, ThroughTheCApi)
     for (AFNFilter f : filters)
         afnSetFilterData(f, AFN_DATA_WEIGHTS, weights.data(), weights.size());
     afnSetFilterString(filters[0], AFN_PARAM_AUX, "clean"); // the GPU has no aux prefilter yet
+    afnSetFilterString(filters[0], "taa", "off"); // nor the output TAA (auto runs as off there)
     for (int k = 0; k < 3; ++k) {
         afntest::SequenceFrame in = seq.frame(k, SequenceInputs {});
         for (int i = 0; i < 2; ++i) {
@@ -261,6 +284,7 @@ TEST_F(CudaAfn, ResetAndNewWeightsMidSequence)
 {
     auto cpu = afn::createFilter("afn");
     cpu->params().setString(AFN_PARAM_AUX, "clean"); // the GPU has no aux prefilter yet
+    cpu->params().setString("taa", "off"); // nor the output TAA (taa=auto runs as off there)
     auto gpu = afn::createFilter("afn", *g_cuda);
     cudaFilter(*gpu).setPoison(true);
     const std::vector<char> full = weightsBytes("full"), fusion = weightsBytes("fusion");

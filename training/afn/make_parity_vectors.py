@@ -9,6 +9,9 @@ Files (all in the weights-archive format of weights.py, so the C++ reader is exe
   case_<variant>.afnw      inputs c1, cta, albedo, normal01, depth01 and the PyTorch outputs
                            o (cropped), i, d_ta, d_1spp, alpha (padded size); images are stored
                            (H, W, C) interleaved, float32.
+  weights_quarter.afnw, case_quarter.afnw   variant full with the quarter-resolution scale
+                           (model.py ``quarter``): head4 scaled like the heads and its beta
+                           bias set to 0, so the scale contributes half its delta.
   weights_large.afnw, case_large.afnw   the same for AFN large (model_large.py): outputs o, i,
                            f1, alpha1 (full res), o2 (1/2), f3 (1/4), padded size.
 (tests/data/afn_parity/ta_case.afnw, a golden case of the core's temporal accumulation, was made
@@ -52,13 +55,19 @@ DEFAULT_OUTPUTS = ("o", "i", "d_ta", "d_1spp", "alpha")
 
 
 def make_model(variant: str, seed: int = 0):
-    """Random-initialised model; heads scaled x4 so the kernels are far from uniform."""
+    """Random-initialised model; heads scaled x4 so the kernels are far from uniform.
+    ``quarter`` is variant full with the quarter scale."""
     torch.manual_seed(seed)
-    model = build_model(AFNConfig(variant=variant, **PARITY_CONFIG)).eval()
+    quarter = variant == "quarter"
+    cfg = AFNConfig(variant="full" if quarter else variant, quarter=quarter, **PARITY_CONFIG)
+    model = build_model(cfg).eval()
     heads = ("head1", "head2", "head3") if variant == "large" else ("head1", "headTA")
     with torch.no_grad():
         for name in heads:
             getattr(model, name).weight.mul_(4.0)
+        if quarter:
+            model.head4.weight.normal_(0.0, 0.5)
+            model.head4.bias.zero_()
     return model
 
 
@@ -81,7 +90,7 @@ def main(argv=None):
     args = ap.parse_args(argv)
     os.makedirs(args.out, exist_ok=True)
     inputs = make_inputs()
-    for variant in ("full", "fusion", "large"):
+    for variant in ("full", "fusion", "large", "quarter"):
         model = make_model(variant)
         save_model(os.path.join(args.out, f"weights_{variant}.afnw"), model)
         outputs = run(model, inputs)

@@ -31,6 +31,14 @@ Chosen here (the paper leaves it open; see training/README.md and shared/referen
 * Ablation variants (Table 11 of the paper): ``full`` (fusion + refinement), ``fusion`` (no
   refinement), ``1spp`` (the TA input is replaced by the 1-spp frame everywhere, no refinement),
   ``ta`` (the 1-spp input is replaced by the TA frame everywhere, no refinement).
+* ``quarter`` (optional, off in the paper's graph; issue 13): a third, quarter-resolution scale
+  that widens the filter's footprint from 14 to 28 full-resolution pixels, fused like Eq. 3 but on
+  the fused image: ``[K_q logits, beta logit] = head4(d2)`` 32->50 at 1/4;
+  ``l = D(D(i))``; ``i <- i + U4(beta * (K_q * l - l))`` with U4 bilinear 4x upsampling
+  (align_corners=False, edges clamped) so the swapped low band has no 4x4 blocks. It attacks
+  the low-frequency blotches a 7x7 footprint on a few accumulated samples leaves (training/README,
+  fourteenth session). ``head4`` starts with beta ~ sigmoid(-4) = 0.018 (zero weights into the
+  beta channel), so a model grown from a trained one (``--init``) starts almost where it was.
 * ``large``: AFN large, the paper's high-spp architecture (three scales of 5x5 kernels, no TA
   input), a different graph in model_large.py; :func:`make_model` builds either.
 
@@ -66,17 +74,19 @@ class AFNConfig:
     refine: int = 16                                    # refinement hidden width
     inputs: str = "albedo,normal,depth,temporal"        # input set trained for (input_sets.py)
     spp: int = 1        # samples per pixel of the training inputs: the C++ core picks by it
+    quarter: bool = False   # the quarter-resolution scale (module docstring)
 
     def to_dict(self):
         return {"variant": self.variant, "enc": list(self.enc), "dec": list(self.dec),
-                "refine": self.refine, "inputs": self.inputs, "spp": self.spp}
+                "refine": self.refine, "inputs": self.inputs, "spp": self.spp,
+                "quarter": self.quarter}
 
     @staticmethod
     def from_dict(d):
         return AFNConfig(variant=d.get("variant", "full"), enc=tuple(d.get("enc", (16, 32, 64))),
                          dec=tuple(d.get("dec", (32, 24))), refine=int(d.get("refine", 16)),
                          inputs=d.get("inputs", "albedo,normal,depth,temporal"),
-                         spp=int(d.get("spp", 1)))
+                         spp=int(d.get("spp", 1)), quarter=bool(d.get("quarter", False)))
 
 
 def down2(x: torch.Tensor) -> torch.Tensor:
@@ -101,6 +111,22 @@ def apply_kernels(img: torch.Tensor, kernels: torch.Tensor) -> torch.Tensor:
     """
     r = KERNEL_SIZE // 2
     return shifted_filter(F.pad(img, (r, r, r, r)), kernels, KERNEL_SIZE)
+
+
+def up4_bilinear(x: torch.Tensor) -> torch.Tensor:
+    """U4: bilinear 4x upsampling, align_corners=False (sample (x + 0.5) / 4 - 0.5, clamped)."""
+    return F.interpolate(x, scale_factor=4, mode="bilinear", align_corners=False)
+
+
+def fuse_quarter(i: torch.Tensor, k_q: torch.Tensor, beta: torch.Tensor) -> torch.Tensor:
+    """The quarter-resolution scale: ``i + U4(beta * (K_q * l - l))`` with ``l = D(D(i))``.
+
+    Args:
+        i: (B, 3, H, W) fused image, H and W multiples of 4.
+        k_q: (B, 49, H/4, W/4) normalised kernels; beta: (B, 1, H/4, W/4) in [0, 1].
+    """
+    low = down2(down2(i))
+    return i + up4_bilinear(beta * (apply_kernels(low, k_q) - low))
 
 
 def fuse(d_ta: torch.Tensor, d_1spp_half: torch.Tensor, alpha: torch.Tensor) -> torch.Tensor:
@@ -152,6 +178,14 @@ class AFN(nn.Module):
         self.dec1 = _conv3(d2 + c1, d1)
         self.head1 = nn.Conv2d(d1, KERNEL_TAPS, 1)
         self.headTA = nn.Conv2d(d1 + INPUT_CHANNELS, KERNEL_TAPS + 1, 1)
+        if cfg.quarter and cfg.variant not in ("full", "fusion"):
+            raise ValueError(f"the quarter-resolution scale needs variant full or fusion, not "
+                             f"'{cfg.variant}'")
+        if cfg.quarter:
+            self.head4 = nn.Conv2d(d2, KERNEL_TAPS + 1, 1)
+            with torch.no_grad():               # beta = sigmoid(-4) everywhere at the start
+                self.head4.weight[KERNEL_TAPS:] = 0.0
+                self.head4.bias[KERNEL_TAPS:] = -4.0
         self.use_refine = cfg.variant == "full"
         if self.use_refine:
             self.ref1 = _conv3(REFINE_INPUT_CHANNELS, cfg.refine)
@@ -193,6 +227,12 @@ class AFN(nn.Module):
         d_ta = apply_kernels(cta, k_ta)
         d_1spp = apply_kernels(down2(c1), k_1spp)
         i = fuse(d_ta, d_1spp, alpha)
+        extra = {}
+        if self.cfg.quarter:
+            q = self.head4(d2)                                        # (B, 50, H/4, W/4)
+            extra = {"k_q": torch.softmax(q[:, :KERNEL_TAPS], 1),
+                     "beta": torch.sigmoid(q[:, KERNEL_TAPS:])}
+            i = fuse_quarter(i, extra["k_q"], extra["beta"])
         o = i
         if self.use_refine:
             r = torch.cat([tonemap(i), feats], 1)
@@ -200,7 +240,7 @@ class AFN(nn.Module):
             r = F.relu(self.ref2(r))
             o = i + self.ref3(r)
         return {"o": o[..., :h, :w], "i": i, "d_ta": d_ta, "d_1spp": d_1spp, "alpha": alpha,
-                "k_ta": k_ta, "k_1spp": k_1spp}
+                "k_ta": k_ta, "k_1spp": k_1spp, **extra}
 
 
 def make_model(cfg: AFNConfig = None) -> nn.Module:
@@ -231,6 +271,9 @@ def cost_per_pixel(cfg: AFNConfig = None) -> dict:
           + conv(c3 + c2, d2, 3, 16) + conv(d2 + c1, d1, 3, 4) + conv(d1, KERNEL_TAPS, 1, 4)
           + conv(d1 + INPUT_CHANNELS, KERNEL_TAPS + 1, 1, 1))
     filt = (KERNEL_TAPS * (2 * 3 + 3)) * (1 + 0.25) + 12
+    if cfg.quarter:     # head4 and one 7x7 filter at 1/4, pooling and the bilinear upsampling
+        kp += conv(d2, KERNEL_TAPS + 1, 1, 16)
+        filt += KERNEL_TAPS * (2 * 3 + 3) / 16 + 3 * 8
     ref = 0.0
     if cfg.variant == "full":
         ref = (conv(REFINE_INPUT_CHANNELS, cfg.refine, 3, 1) + conv(cfg.refine, cfg.refine, 3, 1)

@@ -50,6 +50,9 @@ def parse_args(argv=None):
     ap.add_argument("--enc", default="16,32,64", help="encoder widths e1,e2,e3")
     ap.add_argument("--dec", default="32,24", help="decoder widths d2,d1")
     ap.add_argument("--refine", type=int, default=16, help="refinement width")
+    ap.add_argument("--quarter", action="store_true", help="add the quarter-resolution scale "
+                    "(model.py; full and fusion only); with --init from a model without it, the "
+                    "new head starts almost neutral")
     ap.add_argument("-e", "--epochs", type=int, default=300, help="epochs (paper: 300)")
     ap.add_argument("--steps", type=int, default=0, help="batches per epoch (0: one crop per "
                     "128x128 area of every training frame / batch size)")
@@ -208,7 +211,7 @@ def model_config(args):
     spp = min(int(v) for v in args.spp.split(",") if v.strip()) if args.spp.strip() else 1
     return AFNConfig(variant=args.variant, enc=tuple(int(v) for v in args.enc.split(",")),
                      dec=tuple(int(v) for v in args.dec.split(",")), refine=args.refine,
-                     inputs=args.inputs, spp=spp)
+                     inputs=args.inputs, spp=spp, quarter=args.quarter)
 
 
 class RunFolder:

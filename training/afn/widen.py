@@ -36,7 +36,8 @@ def _segments(cfg):
     return {"enc1": ([INPUT_CHANNELS], c1), "enc2": ([c1], c2), "enc3": ([c2], c3),
             "dec2": ([c3, c2], d2), "dec1": ([d2, c1], d1), "head1": ([d1], KERNEL_TAPS),
             "headTA": ([d1, INPUT_CHANNELS], KERNEL_TAPS + 1),
-            "ref1": ([REFINE_INPUT_CHANNELS], r), "ref2": ([r], r), "ref3": ([r], 3)}
+            "ref1": ([REFINE_INPUT_CHANNELS], r), "ref2": ([r], r), "ref3": ([r], 3),
+            "head4": ([d2], KERNEL_TAPS + 1)}
 
 
 def widen(model, enc=None, dec=None, refine=None, seed=0):
@@ -47,7 +48,8 @@ def widen(model, enc=None, dec=None, refine=None, seed=0):
     """
     old = model.cfg
     cfg = AFNConfig(variant=old.variant, enc=tuple(enc or old.enc), dec=tuple(dec or old.dec),
-                    refine=int(refine or old.refine), inputs=old.inputs, spp=old.spp)
+                    refine=int(refine or old.refine), inputs=old.inputs, spp=old.spp,
+                    quarter=old.quarter)
     for name, a, b in (("enc", old.enc, cfg.enc), ("dec", old.dec, cfg.dec),
                        ("refine", (old.refine,), (cfg.refine,))):
         if len(a) != len(b) or any(y < x for x, y in zip(a, b)):

@@ -4,6 +4,7 @@
 #include "base/exception.h"
 #include "cuda/frame_constants.h"
 #include "filter/quality.h"
+#include "methods/afn/settings.h"
 #include "methods/afn/weights_source.h"
 #include "stages/aux_prefilter.h"
 
@@ -38,6 +39,10 @@ void AfnCudaFilter::configure()
         throw Exception(AFN_ERROR_UNSUPPORTED,
             "afn on a CUDA device has no AFN large graph yet: weights with variant=large run on "
             "the CPU device (afntool: --device cpu)");
+    if (m_net.hasQuarterScale()) // no GPU graph for it yet
+        throw Exception(AFN_ERROR_UNSUPPORTED,
+            "afn on a CUDA device has no quarter-resolution scale yet: weights with quarter=1 "
+            "run on the CPU device (afntool: --device cpu)");
     // No aux prefilter on the GPU yet (stages/aux_prefilter.h): aux=auto runs as clean here.
     if (auxBinding().read(params()).aux == AuxSettings::Mode::Noisy)
         throw Exception(AFN_ERROR_UNSUPPORTED,
@@ -48,6 +53,12 @@ void AfnCudaFilter::configure()
         throw Exception(AFN_ERROR_UNSUPPORTED,
             "afn on a CUDA device runs quality=balanced only: quality=fast and high run on the "
             "CPU device (afntool: --device cpu)");
+    // The output TAA (methods/afn/settings.h) runs on the CPU device only for now.
+    // auto runs as off here, as aux=auto runs as clean.
+    if (afnet::settingsBinding().read(params()).taa == afnet::Settings::Taa::On)
+        throw Exception(AFN_ERROR_UNSUPPORTED,
+            "afn on a CUDA device has no output TAA yet: taa=on runs on the CPU device only "
+            "(afntool: --device cpu)");
     // The same parameters as the CPU filter's stages (filter/filter.cpp commit()).
     m_reproject = reprojectBinding().read(params());
     m_accumulation = accumulationBinding().read(params());

@@ -40,6 +40,7 @@ public:
     /// Metadata value or `fallback`.
     std::string meta(const std::string& key, const std::string& fallback = "") const;
     const std::map<std::string, WeightTensor>& tensors() const { return m_tensors; }
+    const std::map<std::string, std::string>& metadata() const { return m_meta; }
     const std::string& source() const { return m_source; }
 
 private:

@@ -18,6 +18,14 @@
 // Quality tiers (quality=fast|balanced|high): methods/afn/quality_tiers.h (fast: no refinement;
 // balanced: the network as trained; high: a four-flip self-ensemble of the network).
 //
+// taa=auto|off|on (settings.h; auto: on for the models trained below 16 spp) anti-aliases the
+// remodulated output over time (stages/taa.h, shared with svgf and bmfr); every pixel is then
+// denoised. Its history is reset whenever a frame runs without it. With work skipping and TAA the
+// network computes the rows of the work mask grown by kTaaWorkMargin (as bmfr does,
+// bmfr/denoiser.h) and TAA runs on every pixel (skipped ones hold the accumulated colour), so a
+// needed pixel is bit-identical to skip=off while it moves less than a pixel per frame relative to
+// the mask.
+//
 // On a CUDA device (builds with AFN_HAS_CUDA) the whole filter, shared stages included, runs on
 // the GPU instead (cuda/afn_cuda_filter.h). It has no aux prefilter yet: it refuses aux=noisy and
 // runs aux=auto as clean (docs/gpu.md).
@@ -28,19 +36,44 @@
 #include "methods/afn/network.h"
 #include "methods/afn/network_inputs.h"
 #include "methods/afn/quality_tiers.h"
+#include "methods/afn/settings.h"
 #include "methods/afn/weights_source.h"
 #include "stages/aux_prefilter.h"
 #include "stages/demodulate.h"
+#include "stages/taa.h"
 
 #ifdef AFN_HAS_CUDA
 #include "cuda/afn_cuda_filter.h"
 #endif
 
 #include <algorithm>
+#include <vector>
 
 namespace afn::afnet {
 
 namespace {
+
+/// `dst` (1 ch, `work`'s size) = 1 on every row within `margin` rows of a row of `work` that holds
+/// a pixel > 0, 0 elsewhere (the network computes whole rows, so only rows matter). An empty
+/// `work` (no skipping) gives an empty `dst`.
+void growRows(const Image& work, int margin, Image& dst)
+{
+    if (work.empty()) {
+        dst = Image {};
+        return;
+    }
+    const int w = work.width(), h = work.height();
+    std::vector<char> any(static_cast<std::size_t>(h), 0);
+    for (int y = 0; y < h; ++y)
+        any[y] = std::any_of(work.at(0, y), work.at(0, y) + w, [](float v) { return v > 0.0f; });
+    dst.resize(w, h, 1);
+    for (int y = 0; y < h; ++y) {
+        bool near = false;
+        for (int k = std::max(0, y - margin); k <= std::min(h - 1, y + margin) && !near; ++k)
+            near = any[k] != 0;
+        std::fill(dst.at(0, y), dst.at(0, y) + w, near ? 1.0f : 0.0f);
+    }
+}
 
 class AfnFilter final : public Filter {
 public:
@@ -101,6 +134,7 @@ private:
     {
         m_spp = auxBinding().read(params()).spp; // the shared "spp" parameter
         m_quality = qualityBinding().read(params()).quality;
+        m_settings = settingsBinding().read(params());
         if (!outputBound())
             return;
         if (m_models.empty())
@@ -118,20 +152,27 @@ private:
             m_models.throwNoModelFor(bound);
         m_path = describeChoice(bound, *m_model);
     }
+    void resetHistory() override { m_taa.reset(); }
     void denoise(const Frame& in, Image& out) override
     {
         Image& result = accumulatorScratch();
-        if (run(in, result))
-            m_inputs.radiance(in, result, out);
+        if (!run(in, result))
+            return;
+        m_inputs.radiance(in, result, out);
+        if (m_taaOn)
+            out = m_taa.apply(reprojector(), out, m_settings.taaAlpha, m_taaSpare);
     }
     // The network writes into the accumulation stage's scratch image, its result becomes the
     // radiance in place and the base writes it into the bound output (issue 16: no frame-size
-    // result or radiance image of afn's or the base's own).
+    // result or radiance image of afn's or the base's own). With taa=1 the TAA's output (its
+    // next history) is the result.
     const Image* denoiseRadiance(const Frame& in) override
     {
         Image& result = accumulatorScratch();
         run(in, result);
         m_inputs.radiance(in, result, result);
+        if (m_taaOn)
+            return &m_taa.apply(reprojector(), result, m_settings.taaAlpha, m_taaSpare);
         return &result;
     }
     /// Prepare the inputs (and write the feature outputs) and, when "output" is bound, run the
@@ -160,13 +201,28 @@ private:
             return false; // only the network's inputs were asked for
         // Every model runs through the same quality tier (quality_tiers.h) and work skipping
         // (network.h: skipped stripes take inputs().colorTa, the model's own TA input).
-        m_tiers.run(m_quality, m_model->net, m_inputs.inputs(), result, &in.work);
+        // With TAA the rows around the needed ones too (its neighbourhood and next history).
+        m_taaOn = m_settings.taa == Settings::Taa::On
+            || (m_settings.taa == Settings::Taa::Auto && m_model->spp < kTaaAutoMaxSppExclusive);
+        const Image* work = &in.work;
+        if (m_taaOn) {
+            growRows(in.work, kTaaWorkMargin, m_workGrown);
+            work = &m_workGrown;
+        } else {
+            m_taa.reset(); // a later frame with TAA starts without a stale history
+        }
+        m_tiers.run(m_quality, m_model->net, m_inputs.inputs(), result, work);
         reportProgress(0.95);
         return true;
     }
 
     int m_spp = 0; ///< samples per pixel of the input, 0 = unknown
     QualitySettings::Tier m_quality = QualitySettings::Tier::Balanced;
+    Settings m_settings;
+    bool m_taaOn = false; ///< this frame's output is anti-aliased (Settings::taa)
+    TemporalAntialiasing m_taa;
+    Image m_taaSpare; ///< the TAA's output buffer (stages/taa.h TemporalAntialiasing::apply)
+    Image m_workGrown; ///< the work mask's rows grown by kTaaWorkMargin (with TAA)
     TierRunner m_tiers;
     ModelSet m_models;
     Model* m_model = nullptr; ///< the last frame's (in m_models)
@@ -199,6 +255,7 @@ FilterType filterType()
     t.ready = false;
 #endif
     t.stages = { true, StageNeeds::Reproject::Bilinear, true };
+    t.params = settingsBinding().descriptors();
     t.qualityHelp = "fast: no refinement network (the fused output; about 0.85x balanced's "
                     "time at 1080p, 0.5 dB less PSNR on the held-out scenes); balanced: the "
                     "network as trained; high: the network on the frame and its three flips, "
@@ -221,9 +278,10 @@ FilterType filterType()
     t.devices = { AFN_DEVICE_TYPE_CPU, AFN_DEVICE_TYPE_CUDA };
 #endif
     t.create = create;
-    t.skipHelp = "the network (CPU) skips the rows without a needed pixel, in 8-row steps; those "
-                 "pixels take the temporally accumulated colour; needed pixels bit-identical to "
-                 "skip=off; not on a CUDA device";
+    t.skipHelp = "the network (CPU) skips the rows without a needed pixel (with TAA: within 3 "
+                 "rows of one), in 8-row steps; those pixels take the temporally accumulated "
+                 "colour (and TAA); needed pixels bit-identical to skip=off (with TAA while they "
+                 "move less than a pixel per frame relative to the mask); not on a CUDA device";
     return t;
 }
 

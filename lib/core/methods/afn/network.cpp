@@ -22,6 +22,8 @@ constexpr int kRefineChannels = 10; // T(i) 3, albedo 3, normal01 3, depth01 1
 void Network::load(const nn::WeightsArchive& a)
 {
     m_loaded = false;
+    m_quarter = false;
+    m_head4 = nn::Conv {};
     const std::string v = a.meta("variant", "full");
     if (v == "full")
         m_variant = Variant::Full;
@@ -56,6 +58,20 @@ void Network::load(const nn::WeightsArchive& a)
     if (m_head1.kernelSize() != 1 || m_headTa.kernelSize() != 1)
         throwInvalidArgument(
             "invalid or corrupted weights (" + a.source() + "): heads must be 1x1");
+    const std::string quarter = a.meta("quarter", "0");
+    if (quarter != "0" && quarter != "1")
+        throwInvalidArgument("invalid or corrupted weights (" + a.source() + "): quarter='"
+            + quarter + "' (0 or 1)");
+    m_quarter = quarter == "1";
+    if (m_quarter) {
+        if (m_variant != Variant::Full && m_variant != Variant::Fusion)
+            throwInvalidArgument("invalid or corrupted weights (" + a.source()
+                + "): the quarter scale needs variant full or fusion");
+        m_head4.load(a, "head4", m_dec2.outChannels(), kKernelTaps + 1);
+        if (m_head4.kernelSize() != 1)
+            throwInvalidArgument(
+                "invalid or corrupted weights (" + a.source() + "): heads must be 1x1");
+    }
     if (m_variant == Variant::Full) {
         m_ref1.load(a, "ref1", kRefineChannels);
         m_ref2.load(a, "ref2", m_ref1.outChannels());
@@ -187,6 +203,8 @@ void Network::filterAndFuse()
     out.alpha = &m_alpha;
     out.filtered1Half = &m_d1Half;
     afnet::filterAndFuse(in, out);
+    if (m_quarter)
+        applyQuarterScale(m_head4, m_d2, m_fused, m_quarterBuf);
 }
 
 void Network::crop(Image& out) const
@@ -216,7 +234,8 @@ double Network::stageFlop(Stage s) const
             + m_dec1.flopPerPixel() * half;
     case Stage::Filtering: // heads + two 7x7 x 3-channel filters (half and full resolution)
         return m_head1.flopPerPixel() * half + m_headTa.flopPerPixel() * full
-            + 2.0 * kKernelTaps * 3 * (full + half);
+            + 2.0 * kKernelTaps * 3 * (full + half)
+            + (m_quarter ? (m_head4.flopPerPixel() + 2.0 * kKernelTaps * 3) * quarter : 0.0);
     case Stage::Refinement:
         break;
     }

@@ -16,12 +16,16 @@
 // - runWholeFrame() = prepare, predict, filterAndFuse, refine, crop: every layer at frame size,
 //   kept for the tests (the intermediates below) and the per-stage Google benchmark.
 // The refinement runs in row strips with thread-local buffers in both (network_refine.cpp).
+// Weights with quarter=1 (full and fusion only) add the quarter-resolution scale to filtering and
+// fusion (quarter_scale.h): run() then computes them through runWholeFrame (no stripes, no work
+// skipping, every row computed).
 // Weights with variant=large hold AFN large, another graph (network_large.h): run() and
 // runWholeFrame() then run it whole-frame, and the stage calls below are refused.
 #pragma once
 
 #include "base/image.h"
 #include "methods/afn/network_large.h"
+#include "methods/afn/quarter_scale.h"
 #include "methods/afn/tone_map.h"
 #include "nn/conv.h"
 #include "nn/weights.h"
@@ -56,6 +60,8 @@ public:
     void load(const nn::WeightsArchive& weights);
     bool loaded() const { return m_loaded; }
     Variant variant() const { return m_variant; }
+    /// Whether the weights add the quarter-resolution scale (quarter_scale.h).
+    bool hasQuarterScale() const { return m_quarter; }
 
     /// Whole forward pass in stripes: `out` = o (3 ch, demodulated, W x H, not clamped).
     /// `work` (W x H, 1 ch, or null/empty = everywhere): only the 8-row blocks that hold a
@@ -78,7 +84,7 @@ public:
     // Not for AFN large (prepare() throws InvalidOperation).
     void prepare(const Inputs& in); ///< pad, tone map, build x and D(r_1spp)
     void predict(); ///< encoder-decoder up to d1
-    void filterAndFuse(); ///< heads, softmax, filtering, fusion
+    void filterAndFuse(); ///< heads, softmax, filtering, fusion (and the quarter scale)
     void refine(); ///< refinement (copy of i when the variant has none)
     void crop(Image& out) const; ///< o cropped to the input size
 
@@ -109,6 +115,8 @@ public:
     const Image& filteredTa() const { return m_dTa; }
     const Image& alpha() const { return m_alpha; }
     const Image& filtered1Half() const { return m_d1Half; }
+    /// The quarter scale's intermediates (hasQuarterScale() only).
+    const QuarterBuffers& quarter() const { return m_quarterBuf; }
     /// AFN large's graph and its intermediates (variant Large only).
     const LargeNetwork& large() const { return m_large; }
 
@@ -132,9 +140,12 @@ private:
     Inputs checkInputs(const Inputs& in);
 
     bool m_loaded = false;
+    bool m_quarter = false; ///< hasQuarterScale()
     int m_skippedRows = 0, m_stripes = 0, m_inputRowsReused = 0;
     Variant m_variant = Variant::Full;
     nn::Conv m_enc1, m_enc2, m_enc3, m_dec2, m_dec1, m_head1, m_headTa, m_ref1, m_ref2, m_ref3;
+    nn::Conv m_head4; ///< the quarter scale's head (hasQuarterScale() only)
+    QuarterBuffers m_quarterBuf;
     int m_width = 0, m_height = 0;
     double m_stageMs[kStages] = {};
     double m_inputMs = 0.0; ///< predictionInputMs()

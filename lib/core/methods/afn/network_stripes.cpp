@@ -236,6 +236,12 @@ void Network::run(const Inputs& given, Image& out, const Image* work)
         m_stripes = 1;
         return;
     }
+    if (m_quarter) { // whole frame, every row (quarter_scale.h)
+        runWholeFrame(given, out);
+        m_skippedRows = 0;
+        m_stripes = 1;
+        return;
+    }
     const int w = m_width, h = m_height, hp = paddedSize(h);
     const bool masked = work && !work->empty();
     if (masked && (work->width() != w || work->height() != h || work->channels() != 1))

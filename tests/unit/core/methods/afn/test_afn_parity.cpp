@@ -19,6 +19,15 @@ struct Err {
     double maxAbs = 0, maxRel = 0;
 };
 
+/// `a` with metadata `key` set to `value`.
+afn::nn::WeightsArchive withMeta(
+    const afn::nn::WeightsArchive& a, const std::string& key, const std::string& value)
+{
+    auto meta = a.metadata();
+    meta[key] = value;
+    return afn::nn::WeightsArchive::fromTensors(a.tensors(), meta, a.source());
+}
+
 Err compare(const afn::Image& got, const afn::nn::WeightTensor& want, const char* what)
 {
     Err e;
@@ -79,6 +88,60 @@ TEST(AfnParity, FullModelMatchesPyTorch)
 TEST(AfnParity, FusionModelMatchesPyTorch)
 {
     checkVariant("fusion", afn::afnet::Variant::Fusion);
+}
+
+TEST(AfnParity, QuarterScaleModelMatchesPyTorch)
+{
+    // variant full with the quarter-resolution scale (quarter_scale.h), beta ~ 0.5: run() takes
+    // the whole-frame path, so the stripe comparison in checkVariant holds by construction and
+    // the PyTorch comparison is what tests the scale.
+    checkVariant("quarter", afn::afnet::Variant::Full);
+}
+
+TEST(AfnParity, QuarterScaleChangesTheResult)
+{
+    // The same weights without head4 (quarter=0) give another fused image: the scale is applied.
+    const std::string dir = std::string(AFN_TEST_DATA) + "/afn_parity/";
+    const auto c = afntest::loadFile(dir + "case_quarter.afnw");
+    const afn::Image c1 = afntest::toImage(c.tensor("c1")), cta = afntest::toImage(c.tensor("cta"));
+    const afn::Image alb = afntest::toImage(c.tensor("albedo"));
+    const afn::Image nrm = afntest::toImage(c.tensor("normal01"));
+    const afn::Image dep = afntest::toImage(c.tensor("depth01"));
+    const afn::afnet::Inputs in { &c1, &cta, &alb, &nrm, &dep };
+    afn::afnet::Network with, without;
+    const auto weights = afntest::loadFile(dir + "weights_quarter.afnw");
+    with.load(weights);
+    EXPECT_TRUE(with.hasQuarterScale());
+    without.load(withMeta(weights, "quarter", "0"));
+    EXPECT_FALSE(without.hasQuarterScale());
+    afn::Image a, b;
+    with.run(in, a);
+    without.run(in, b);
+    double maxDiff = 0.0;
+    for (std::size_t k = 0; k < a.size(); ++k)
+        maxDiff = std::max(maxDiff, static_cast<double>(std::fabs(a.data()[k] - b.data()[k])));
+    EXPECT_GT(maxDiff, 1e-2);
+}
+
+TEST(AfnParity, RejectsAQuarterScaleItCannotRun)
+{
+    const std::string dir = std::string(AFN_TEST_DATA) + "/afn_parity/";
+    auto expectError = [](const afn::nn::WeightsArchive& a, const std::string& what) {
+        afn::afnet::Network net;
+        try {
+            net.load(a);
+            FAIL() << "expected an exception for " << what;
+        } catch (const afn::Exception& e) {
+            EXPECT_NE(std::string(e.what()).find(what), std::string::npos) << e.what();
+        }
+        EXPECT_FALSE(net.loaded());
+    };
+    const auto fusion = afntest::loadFile(dir + "weights_fusion.afnw"); // no head4 tensor
+    expectError(withMeta(fusion, "quarter", "1"), "missing tensor 'head4.weight'");
+    const auto quarter = afntest::loadFile(dir + "weights_quarter.afnw");
+    expectError(withMeta(quarter, "quarter", "yes"), "quarter='yes' (0 or 1)");
+    expectError(
+        withMeta(quarter, "variant", "ta"), "the quarter scale needs variant full or fusion");
 }
 
 TEST(AfnParity, RejectsWeightsOfAnotherShape)

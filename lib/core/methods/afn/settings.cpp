@@ -1,0 +1,23 @@
+// SPDX-License-Identifier: Apache-2.0
+#include "methods/afn/settings.h"
+
+namespace afn::afnet {
+
+const ParamBinding<Settings>& settingsBinding()
+{
+    using S = Settings;
+    using T = Settings::Taa;
+    static const ParamBinding<S> binding
+        = ParamBinding<S>()
+              .add(&S::taa, "taa", { { "auto", T::Auto }, { "off", T::Off }, { "on", T::On } },
+                  "TAA",
+                  "temporal anti-aliasing of the output (as svgf's taa: history clamped to the "
+                  "current frame's 3x3 neighbourhood in YCoCg, then blended); auto: on for the "
+                  "models trained below 16 spp, off for the 16- and 64-spp ones; with it no pixel "
+                  "is skipped; CPU device only (on CUDA auto runs as off)")
+              .add(&S::taaAlpha, "taaAlpha", 0.0, 1.0, "TAA blend factor",
+                  "weight of the current frame in the TAA blend (0.5; svgf and BMFR use 0.2)");
+    return binding;
+}
+
+} // namespace afn::afnet
