@@ -75,6 +75,9 @@ def parse_args(argv=None):
     ap.add_argument("--seed", type=int, default=0)
     ap.add_argument("--minutes", type=float, default=0.0, help="stop after the epoch that passes "
                     "this many minutes of this run (0: no limit; a rerun resumes and continues)")
+    ap.add_argument("--train-only", default="", help="comma list of parameter-name prefixes "
+                    "(e.g. head4): only those are trained, the rest stays as --init gave it "
+                    "(growing a trained model by a new part; default: train everything)")
     ap.add_argument("--init", default="", help="start a new run from these weights (.afnw or a "
                     "checkpoint .pt; same architecture), e.g. to fine-tune the shipped model from an "
                     "evaluation model")
@@ -134,6 +137,22 @@ def validate(model, scenes, device, frames):
             smapes.append(smape(out, t["target"]).item())
     model.train()
     return (float(np.mean(psnrs)), float(np.mean(smapes))) if psnrs else (float("nan"),) * 2
+
+
+def trainable_parameters(model, only):
+    """The parameters to train: all, or (``only``, a comma list of name prefixes) just those whose
+    name starts with one of them; the others get requires_grad=False and never change."""
+    prefixes = tuple(p.strip() for p in only.split(",") if p.strip())
+    if not prefixes:
+        return list(model.parameters())
+    chosen = []
+    for name, p in model.named_parameters():
+        p.requires_grad_(name.startswith(prefixes))
+        if p.requires_grad:
+            chosen.append(p)
+    if not chosen:
+        raise SystemExit(f"afn.train: --train-only {only}: no parameter of the model has that name")
+    return chosen
 
 
 def init_weights(model, path, device):
@@ -334,7 +353,7 @@ def main(argv=None):
     steps = args.steps or max(1, area // (args.crop * args.crop) // args.batch)
 
     model = make_model(cfg).to(device)
-    opt = torch.optim.Adam(model.parameters(), lr=args.lr)
+    opt = torch.optim.Adam(trainable_parameters(model, args.train_only), lr=args.lr)
     start = run.resume(model, opt, sampler, device)
     if start == 0 and args.init:
         init_weights(model, args.init, device)

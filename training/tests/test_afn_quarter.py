@@ -96,3 +96,22 @@ def test_round_trip_and_widening_keep_it(tmp_path):
     plain = AFNConfig(enc=(4, 6, 8), dec=(6, 4), refine=4)
     assert (cost_per_pixel(net.cfg)["parameters"] - cost_per_pixel(plain)["parameters"]
             == 6 * (KERNEL_TAPS + 1) + KERNEL_TAPS + 1)
+
+
+def test_train_only_freezes_everything_else():
+    from afn.train import trainable_parameters
+    torch.manual_seed(2)
+    net = AFN(AFNConfig(enc=(4, 6, 8), dec=(6, 4), refine=4, quarter=True))
+    before = {k: v.clone() for k, v in net.state_dict().items()}
+    params = trainable_parameters(net, "head4")
+    assert [id(p) for p in params] == [id(net.head4.weight), id(net.head4.bias)]
+    opt = torch.optim.Adam(params, lr=1e-2)
+    out = net(*_inputs())["o"]
+    out.mean().backward()
+    opt.step()
+    after = net.state_dict()
+    changed = sorted(k for k in after if not torch.equal(after[k], before[k]))
+    assert changed == ["head4.bias", "head4.weight"]
+    assert len(trainable_parameters(AFN(AFNConfig()), "")) == len(list(AFN(AFNConfig()).parameters()))
+    with pytest.raises(SystemExit, match="no parameter"):
+        trainable_parameters(AFN(AFNConfig()), "head9")
