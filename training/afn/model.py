@@ -37,8 +37,12 @@ Chosen here (the paper leaves it open; see training/README.md and shared/referen
   ``l = D(D(i))``; ``i <- i + U4(beta * (K_q * l - l))`` with U4 bilinear 4x upsampling
   (align_corners=False, edges clamped) so the swapped low band has no 4x4 blocks. It attacks
   the low-frequency blotches a 7x7 footprint on a few accumulated samples leaves (training/README,
-  fourteenth session). ``head4`` starts with beta ~ sigmoid(-4) = 0.018 (zero weights into the
-  beta channel), so a model grown from a trained one (``--init``) starts almost where it was.
+  fourteenth session). ``head4`` starts near the identity: zero weights, the centre tap's logit
+  bias QUARTER_CENTRE_LOGIT (its weight 0.89, the other 48 share 0.11) and beta 0.5, so a model
+  grown from a trained one (``--init``) starts close to where it was (the low band blurred by
+  about 5 %) while the kernels and beta both get useful gradients. (A first try started the
+  kernels uniform and beta at sigmoid(-4): beta only fell, the blur it would bring being harmful
+  before the kernels learn edges; training/README, seventeenth session.)
 * ``large``: AFN large, the paper's high-spp architecture (three scales of 5x5 kernels, no TA
   input), a different graph in model_large.py; :func:`make_model` builds either.
 
@@ -61,6 +65,7 @@ KERNEL_TAPS = KERNEL_SIZE * KERNEL_SIZE
 INPUT_CHANNELS = 13            # T(1spp) 3, T(TA) 3, albedo 3, normal01 3, depth01 1
 REFINE_INPUT_CHANNELS = 10     # T(i) 3, albedo 3, normal01 3, depth01 1
 PAD_MULTIPLE = 8               # three 2x pooling levels
+QUARTER_CENTRE_LOGIT = 6.0     # the quarter scale's initial centre-tap logit (docstring)
 VARIANTS = ("full", "fusion", "1spp", "ta", "large")
 
 
@@ -183,9 +188,10 @@ class AFN(nn.Module):
                              f"'{cfg.variant}'")
         if cfg.quarter:
             self.head4 = nn.Conv2d(d2, KERNEL_TAPS + 1, 1)
-            with torch.no_grad():               # beta = sigmoid(-4) everywhere at the start
-                self.head4.weight[KERNEL_TAPS:] = 0.0
-                self.head4.bias[KERNEL_TAPS:] = -4.0
+            with torch.no_grad():               # near-identity kernels, beta 0.5 (docstring)
+                self.head4.weight.zero_()
+                self.head4.bias.zero_()
+                self.head4.bias[KERNEL_TAPS // 2] = QUARTER_CENTRE_LOGIT
         self.use_refine = cfg.variant == "full"
         if self.use_refine:
             self.ref1 = _conv3(REFINE_INPUT_CHANNELS, cfg.refine)
