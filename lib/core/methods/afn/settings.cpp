@@ -16,7 +16,8 @@ const ParamBinding<Settings>& settingsBinding()
                   "models trained below 16 spp, off for the 16- and 64-spp ones; with it no pixel "
                   "is skipped; CPU device only (on CUDA auto runs as off)")
               .add(&S::taaAlpha, "taaAlpha", 0.0, 1.0, "TAA blend factor",
-                  "weight of the current frame in the TAA blend (0.5; svgf and BMFR use 0.2)");
+                  "weight of the current frame in the TAA blend (0.7, chosen on training "
+                  "sequences; svgf and BMFR use 0.2)");
     return binding;
 }
 

@@ -7,13 +7,14 @@
 //   auto (default)  on when the model that runs the frame was trained below 16 spp (the 1-spp
 //                   models), off for the 16- and 64-spp models
 //   off, on         as named
-// Why auto: on the held-out set (docs/afn-evaluation.md, seventeenth session) TAA with a blend
-// factor of 0.5 raised afn's 1-spp mean PSNR by 0.16 dB and SSIM by 0.014 and cut the temporal
-// error by 8 %, but lost PSNR at 16 spp on 4 of 5 sequences (up to 1.3 dB): a sharp 16-spp
-// result has little flicker left to remove and the clamp box blurs it. The factor 0.5 was chosen
-// there between 0.2 (BMFR's, -0.8 dB on examples/sequence) and 0.5.
-// With TAA on, every pixel is denoised (no work skipping: the TAA reads its neighbourhood and the
-// next frame reads its history).
+// Why auto: on the held-out set (docs/afn-evaluation.md, seventeenth session) the TAA raised
+// afn's 1-spp mean PSNR (+0.20 dB with the blend factor 0.7) and SSIM and cut the temporal error,
+// but at 16 spp it lost PSNR on 4 of 6 sequences (0.32 dB on average, up to 1.3): a sharp 16-spp
+// result has little flicker left to remove and the clamp box blurs it.
+// The blend factor 0.7 is the best mean PSNR of 0.35 / 0.5 / 0.7 / 0.85 on the rendered
+// training sequences (1 spp, their leave-one-out references), not on the held-out set.
+// Under work skipping the network computes the rows within kTaaWorkMargin of the needed ones
+// (afn_method.cpp), as bmfr does.
 #pragma once
 
 #include "base/params.h"
@@ -23,7 +24,7 @@ namespace afn::afnet {
 struct Settings {
     enum class Taa { Auto, Off, On };
     Taa taa = Taa::Auto; ///< temporal anti-aliasing of the output (stages/taa.h)
-    float taaAlpha = 0.5f; ///< TAA weight of the current frame
+    float taaAlpha = 0.7f; ///< TAA weight of the current frame
 };
 
 /// Models trained at this many samples per pixel or more run without TAA under taa=auto.
