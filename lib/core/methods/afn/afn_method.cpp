@@ -256,10 +256,11 @@ FilterType filterType()
 #endif
     t.stages = { true, StageNeeds::Reproject::Bilinear, true };
     t.params = settingsBinding().descriptors();
-    t.qualityHelp = "fast: no refinement network (the fused output; about 0.85x balanced's "
-                    "time at 1080p, 0.5 dB less PSNR on the held-out scenes); balanced: the "
-                    "network as trained; high: the network on the frame and its three flips, "
-                    "flipped back and averaged (about 3x balanced's time, 0.1-0.3 dB more)";
+    t.qualityHelp = "fast: no refinement network (the fused output; about 0.65x balanced's "
+                    "time at 1080p, 0.2 dB less PSNR on the held-out scenes at 1 spp); "
+                    "balanced: the network as trained; high: the network on the frame and its "
+                    "three flips, flipped back and averaged (about 4x balanced's time, 0.05-0.1 "
+                    "dB more)";
     t.inputs = { { { AFN_IMAGE_NORMAL }, "network features" },
         { { AFN_IMAGE_DEPTH }, "network features" } };
     t.features = {

@@ -13,8 +13,9 @@ const ParamBinding<Settings>& settingsBinding()
                   "TAA",
                   "temporal anti-aliasing of the output (as svgf's taa: history clamped to the "
                   "current frame's 3x3 neighbourhood in YCoCg, then blended); auto: on for the "
-                  "models trained below 16 spp, off for the 16- and 64-spp ones; with it no pixel "
-                  "is skipped; CPU device only (on CUDA auto runs as off)")
+                  "models trained below 16 spp, off for the 16- and 64-spp ones; under work "
+                  "skipping the network then also computes 3 rows around the needed ones; CPU "
+                  "device only (on CUDA auto runs as off)")
               .add(&S::taaAlpha, "taaAlpha", 0.0, 1.0, "TAA blend factor",
                   "weight of the current frame in the TAA blend (0.7, chosen on training "
                   "sequences; svgf and BMFR use 0.2)");
