@@ -2,6 +2,7 @@
 """AFN's quarter-resolution scale (model.py ``quarter``): hand cases of its fusion, the near-neutral
 start that lets a trained model grow it, the archive round trip and widening."""
 
+import math
 import os
 import sys
 
@@ -9,8 +10,8 @@ import pytest
 import torch
 
 sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
-from afn.model import (AFN, AFNConfig, KERNEL_TAPS, cost_per_pixel,  # noqa: E402
-                       fuse_quarter, up4_bilinear)
+from afn.model import (AFN, AFNConfig, KERNEL_TAPS, QUARTER_CENTRE_LOGIT,  # noqa: E402
+                       cost_per_pixel, fuse_quarter, up4_bilinear)
 from afn.weights import load_model, save_model  # noqa: E402
 from afn.widen import widen  # noqa: E402
 
@@ -69,7 +70,8 @@ def test_grown_model_starts_almost_where_the_trained_one_was():
         a, b = base(*_inputs())["o"], grown(*_inputs())
     assert torch.equal(b["beta"], torch.full_like(b["beta"], 0.5))
     centre = b["k_q"][:, KERNEL_TAPS // 2]
-    assert torch.allclose(centre, torch.full_like(centre, 0.8937), atol=1e-4)
+    e = math.exp(QUARTER_CENTRE_LOGIT)      # softmax of one logit c among 48 zeros
+    assert torch.allclose(centre, torch.full_like(centre, e / (e + KERNEL_TAPS - 1)), atol=1e-6)
     rel = ((a - b["o"]).abs().mean() / a.abs().mean()).item()
     assert 0 < rel < 0.02, rel
 
