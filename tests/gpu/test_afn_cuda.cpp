@@ -105,6 +105,7 @@ void runParityCase(const ParityCase& c)
     auto cpu = afn::createFilter("afn");
     cpu->params().setString(AFN_PARAM_AUX, "clean"); // the GPU has no aux prefilter yet
     cpu->params().setString("taa", "off"); // nor the output TAA (taa=auto runs as off there)
+    cpu->params().setString("postFilter", "off"); // nor the post-filter (likewise)
     auto gpu = afn::createFilter("afn", *g_cuda);
     afn::cuda::AfnCudaFilter& cuda = cudaFilter(*gpu);
     cuda.setPoison(true);
@@ -195,7 +196,7 @@ TEST_F(CudaAfn, OtherMethodsAreUnsupportedOnTheCudaDevice)
     }
 }
 
-TEST_F(CudaAfn, TaaOnAndTheQuarterScaleRunOnTheCpuOnly)
+TEST_F(CudaAfn, TaaOnPostFilterOnAndTheQuarterScaleRunOnTheCpuOnly)
 {
     auto expectRefused = [](afn::Filter& f, const std::string& what) {
         try {
@@ -210,6 +211,9 @@ TEST_F(CudaAfn, TaaOnAndTheQuarterScaleRunOnTheCpuOnly)
     f->params().setString("taa", "on");
     expectRefused(*f, "taa=on");
     f->params().setString("taa", "auto"); // runs as off on the GPU
+    f->params().setString("postFilter", "on");
+    expectRefused(*f, "postFilter=on");
+    f->params().setString("postFilter", "auto"); // runs as off on the GPU
     f->setData(AFN_DATA_WEIGHTS, afnTestWeightsQuarter, afnTestWeightsQuarter_size);
     expectRefused(*f, "quarter");
 }
@@ -235,6 +239,7 @@ TEST_F(CudaAfn, ThroughTheCApi)
         afnSetFilterData(f, AFN_DATA_WEIGHTS, weights.data(), weights.size());
     afnSetFilterString(filters[0], AFN_PARAM_AUX, "clean"); // the GPU has no aux prefilter yet
     afnSetFilterString(filters[0], "taa", "off"); // nor the output TAA (auto runs as off there)
+    afnSetFilterString(filters[0], "postFilter", "off"); // nor the post-filter
     for (int k = 0; k < 3; ++k) {
         afntest::SequenceFrame in = seq.frame(k, SequenceInputs {});
         for (int i = 0; i < 2; ++i) {
@@ -285,6 +290,7 @@ TEST_F(CudaAfn, ResetAndNewWeightsMidSequence)
     auto cpu = afn::createFilter("afn");
     cpu->params().setString(AFN_PARAM_AUX, "clean"); // the GPU has no aux prefilter yet
     cpu->params().setString("taa", "off"); // nor the output TAA (taa=auto runs as off there)
+    cpu->params().setString("postFilter", "off"); // nor the post-filter (likewise)
     auto gpu = afn::createFilter("afn", *g_cuda);
     cudaFilter(*gpu).setPoison(true);
     const std::vector<char> full = weightsBytes("full"), fusion = weightsBytes("fusion");

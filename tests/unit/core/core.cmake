@@ -35,6 +35,7 @@ afn_add_gtest(test_afn
     unit/core/methods/afn/test_afn_large.cpp
     unit/core/methods/afn/test_afn_filter.cpp
     unit/core/methods/afn/test_afn_taa.cpp
+    unit/core/methods/afn/test_afn_post_filter.cpp
     unit/core/methods/afn/test_afn_input_set.cpp
     unit/core/methods/afn/test_afn_engine.cpp
     unit/core/methods/afn/test_afn_stripes.cpp

@@ -26,6 +26,11 @@
 // needed pixel is bit-identical to skip=off while it moves less than a pixel per frame relative to
 // the mask.
 //
+// postFilter=auto|off|on (settings.h; auto: on for the models trained below 16 spp) smooths the
+// final output (after the TAA, whose history stays the unfiltered output) with an edge-aware
+// a-trous filter guided by the frame's albedo, normal and depth (post_filter.h). With work
+// skipping the network's rows are grown by kPostFilterRadius more.
+//
 // On a CUDA device (builds with AFN_HAS_CUDA) the whole filter, shared stages included, runs on
 // the GPU instead (cuda/afn_cuda_filter.h). It has no aux prefilter yet: it refuses aux=noisy and
 // runs aux=auto as clean (docs/gpu.md).
@@ -35,6 +40,7 @@
 #include "methods/afn/model_set.h"
 #include "methods/afn/network.h"
 #include "methods/afn/network_inputs.h"
+#include "methods/afn/post_filter.h"
 #include "methods/afn/quality_tiers.h"
 #include "methods/afn/settings.h"
 #include "methods/afn/weights_source.h"
@@ -47,6 +53,7 @@
 #endif
 
 #include <algorithm>
+#include <utility>
 #include <vector>
 
 namespace afn::afnet {
@@ -161,6 +168,10 @@ private:
         m_inputs.radiance(in, result, out);
         if (m_taaOn)
             out = m_taa.apply(reprojector(), out, m_settings.taaAlpha, m_taaSpare);
+        if (m_postOn) {
+            edgeAwarePostFilter(out, guidesOf(in), m_postScratch, result);
+            out = result;
+        }
     }
     // The network writes into the accumulation stage's scratch image, its result becomes the
     // radiance in place and the base writes it into the bound output (issue 16: no frame-size
@@ -171,9 +182,29 @@ private:
         Image& result = accumulatorScratch();
         run(in, result);
         m_inputs.radiance(in, result, result);
-        if (m_taaOn)
-            return &m_taa.apply(reprojector(), result, m_settings.taaAlpha, m_taaSpare);
+        if (!m_postOn) {
+            if (m_taaOn)
+                return &m_taa.apply(reprojector(), result, m_settings.taaAlpha, m_taaSpare);
+            return &result;
+        }
+        // The post-filter reads the TAA's output (its next history, kept as it is) and writes
+        // the result; with TAA the spare the TAA handed back is free until the next frame.
+        if (m_taaOn) {
+            const Image& aa = m_taa.apply(reprojector(), result, m_settings.taaAlpha, m_taaSpare);
+            edgeAwarePostFilter(aa, guidesOf(in), m_taaSpare, result);
+        } else {
+            edgeAwarePostFilter(result, guidesOf(in), m_postScratch, m_taaSpare);
+            std::swap(result, m_taaSpare);
+        }
         return &result;
+    }
+    static PostFilterGuides guidesOf(const Frame& in)
+    {
+        PostFilterGuides g;
+        g.albedo = &in.albedo;
+        g.normal = &in.normal;
+        g.depth = &in.depth;
+        return g;
     }
     /// Prepare the inputs (and write the feature outputs) and, when "output" is bound, run the
     /// network into `result`; false when only features were asked for.
@@ -204,11 +235,16 @@ private:
         // With TAA the rows around the needed ones too (its neighbourhood and next history).
         m_taaOn = m_settings.taa == Settings::Taa::On
             || (m_settings.taa == Settings::Taa::Auto && m_model->spp < kTaaAutoMaxSppExclusive);
+        m_postOn = m_settings.postFilter == Settings::PostFilter::On
+            || (m_settings.postFilter == Settings::PostFilter::Auto
+                && m_model->spp < kPostFilterAutoMaxSppExclusive);
         const Image* work = &in.work;
-        if (m_taaOn) {
-            growRows(in.work, kTaaWorkMargin, m_workGrown);
+        const int margin = (m_taaOn ? kTaaWorkMargin : 0) + (m_postOn ? kPostFilterRadius : 0);
+        if (margin > 0) {
+            growRows(in.work, margin, m_workGrown);
             work = &m_workGrown;
-        } else {
+        }
+        if (!m_taaOn) {
             m_taa.reset(); // a later frame with TAA starts without a stale history
         }
         m_tiers.run(m_quality, m_model->net, m_inputs.inputs(), result, work);
@@ -222,7 +258,9 @@ private:
     bool m_taaOn = false; ///< this frame's output is anti-aliased (Settings::taa)
     TemporalAntialiasing m_taa;
     Image m_taaSpare; ///< the TAA's output buffer (stages/taa.h TemporalAntialiasing::apply)
-    Image m_workGrown; ///< the work mask's rows grown by kTaaWorkMargin (with TAA)
+    bool m_postOn = false; ///< this frame's output is post-filtered (Settings::postFilter)
+    Image m_postScratch; ///< the post-filter's pass buffer
+    Image m_workGrown; ///< the work mask's rows grown by the TAA's and post-filter's margins
     TierRunner m_tiers;
     ModelSet m_models;
     Model* m_model = nullptr; ///< the last frame's (in m_models)
@@ -280,9 +318,10 @@ FilterType filterType()
 #endif
     t.create = create;
     t.skipHelp = "the network (CPU) skips the rows without a needed pixel (with TAA: within 3 "
-                 "rows of one), in 8-row steps; those pixels take the temporally accumulated "
-                 "colour (and TAA); needed pixels bit-identical to skip=off (with TAA while they "
-                 "move less than a pixel per frame relative to the mask); not on a CUDA device";
+                 "rows of one; with the post-filter: 14 more), in 8-row steps; those pixels take "
+                 "the temporally accumulated colour (and TAA, post-filter); needed pixels "
+                 "bit-identical to skip=off (with TAA while they move less than a pixel per frame "
+                 "relative to the mask); not on a CUDA device";
     return t;
 }
 

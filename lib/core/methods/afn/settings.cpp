@@ -7,6 +7,7 @@ const ParamBinding<Settings>& settingsBinding()
 {
     using S = Settings;
     using T = Settings::Taa;
+    using P = Settings::PostFilter;
     static const ParamBinding<S> binding
         = ParamBinding<S>()
               .add(&S::taa, "taa", { { "auto", T::Auto }, { "off", T::Off }, { "on", T::On } },
@@ -18,7 +19,14 @@ const ParamBinding<Settings>& settingsBinding()
                   "device only (on CUDA auto runs as off)")
               .add(&S::taaAlpha, "taaAlpha", 0.0, 1.0, "TAA blend factor",
                   "weight of the current frame in the TAA blend (0.7, chosen on training "
-                  "sequences; svgf and BMFR use 0.2)");
+                  "sequences; svgf and BMFR use 0.2)")
+              .add(&S::postFilter, "postFilter",
+                  { { "auto", P::Auto }, { "off", P::Off }, { "on", P::On } }, "post-filter",
+                  "edge-aware smoothing of the output (3 a-trous passes, 29x29 pixels, stopped by "
+                  "albedo, normal, depth and luminance differences) against low-frequency "
+                  "blotches; auto: on for the models trained below 16 spp, off for the 16- and "
+                  "64-spp ones; under work skipping the network then also computes 14 rows "
+                  "around the needed ones; CPU device only (on CUDA auto runs as off)");
     return binding;
 }
 

@@ -15,6 +15,16 @@
 // training sequences (1 spp, their leave-one-out references), not on the held-out set.
 // Under work skipping the network computes the rows within kTaaWorkMargin of the needed ones
 // (afn_method.cpp), as bmfr does.
+//
+// postFilter: the edge-aware a-trous smoothing of the final output (post_filter.h; not in the AFN
+// paper), guided by albedo, normal and depth, against the low-frequency blotches.
+//   auto (default)  on for the models trained below 16 spp, off for the 16- and 64-spp ones
+//   off, on         as named
+// Why auto: on the rendered training sequences it raised the mean PSNR at 1 spp (+0.3 dB) and
+// lowered it slightly at 16 and 64 spp (docs/afn-evaluation.md, eighteenth session, with the
+// held-out results).
+// Under work skipping the network then computes kPostFilterRadius more rows around the needed
+// ones.
 #pragma once
 
 #include "base/params.h"
@@ -25,7 +35,14 @@ struct Settings {
     enum class Taa { Auto, Off, On };
     Taa taa = Taa::Auto; ///< temporal anti-aliasing of the output (stages/taa.h)
     float taaAlpha = 0.7f; ///< TAA weight of the current frame
+    enum class PostFilter { Auto, Off, On };
+    PostFilter postFilter
+        = PostFilter::Auto; ///< edge-aware smoothing of the output (post_filter.h)
 };
+
+/// Models trained at this many samples per pixel or more run without the post-filter under
+/// postFilter=auto.
+constexpr int kPostFilterAutoMaxSppExclusive = 16;
 
 /// Models trained at this many samples per pixel or more run without TAA under taa=auto.
 constexpr int kTaaAutoMaxSppExclusive = 16;

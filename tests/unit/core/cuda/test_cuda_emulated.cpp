@@ -127,6 +127,7 @@ void expectFilterParity(const std::vector<char>& weights, int width, int height,
     auto cpu = afn::createFilter("afn");
     cpu->params().setString(AFN_PARAM_AUX, "clean"); // the GPU has no aux prefilter yet
     cpu->params().setString("taa", "off"); // nor the output TAA (taa=auto runs as off there)
+    cpu->params().setString("postFilter", "off"); // nor the post-filter (likewise)
     cpu->setData(AFN_DATA_WEIGHTS, weights.data(), weights.size());
     afntest::EmulatedAfnPipeline emulated(
         afn::afnet::networkFromData(weights.data(), weights.size()));

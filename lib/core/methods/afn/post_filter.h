@@ -1,0 +1,49 @@
+// SPDX-License-Identifier: Apache-2.0
+// afn's edge-aware post-filter (postFilter=auto|off|on, settings.h): an a-trous smoothing of the
+// final radiance (after the remodulation and the TAA), guided by the frame's albedo, normal and
+// depth, to take out the low-frequency blotches the network leaves on flat surfaces. Not in the
+// AFN paper; the weights are SVGF's kind (Schied et al. 2017, Sec. 4.3), chosen for afn's output:
+//
+//   kPostFilterIterations passes of the 5x5 B3-spline a-trous kernel (h = 1/16, 1/4, 3/8, 1/4,
+//   1/16) at steps 1, 2, 4 (footprint 29 x 29 pixels), each tap q of pixel p weighted by
+//     h_i h_j * wn * exp(-(dz + dl + da)) with
+//     wn = max(0, n_p . n_q / (|n_p| |n_q|))^64           (1 where either normal is ~0 or absent)
+//     dz = |z_p - z_q| / (0.02 max(z_p, 1e-3) step max(|i|, |j|, 1) + 1e-6)  (relative depth)
+//     dl = |l_p - l_q| / (kPostFilterSigmaLuminance (l_p + l_q) / 2 + 1e-3)   (relative luminance
+//          of the pass's input, Rec. 709 weights)
+//     da = (|dA_r| + |dA_g| + |dA_b|) / 0.1                (albedo: keeps texture edges)
+//   taps outside the image clamped to the border. The centre tap's weight is about h_2^2 > 0, so
+//   the normalisation never divides by zero.
+// Radiance, not irradiance, is filtered: dividing by a 1-spp albedo (noisy on glass, in depth of
+// field) and multiplying back adds that albedo's noise; the albedo term keeps textures instead.
+//
+// The parameters (3 passes, sigma_l 0.25, the depth, normal and albedo scales) were chosen on the
+// rendered training sequences only; the held-out set was then run once (docs/afn-evaluation.md,
+// eighteenth session). The guides are the frame's as the shared stages leave them (the aux
+// prefilter's). exp is a polynomial approximation (relative error < 2e-5) so the rows vectorise.
+#pragma once
+
+#include "base/image.h"
+
+namespace afn::afnet {
+
+constexpr int kPostFilterIterations = 3;
+/// Pixels a filtered pixel reads around it: 2 * (1 + 2 + 4).
+constexpr int kPostFilterRadius = 28 / 2;
+constexpr float kPostFilterSigmaLuminance = 0.25f;
+
+/// The guides of one frame; albedo and normal 3 ch, depth 1 ch, of the radiance's size. A null or
+/// empty guide, or one of another size or channel count, is left out (its term is 0).
+struct PostFilterGuides {
+    const Image* albedo = nullptr;
+    const Image* normal = nullptr;
+    const Image* depth = nullptr;
+};
+
+/// The edge-aware post-filter of `radiance` (3 ch) into `out` (resized), with `scratch` (resized)
+/// for the passes between. `out` and `scratch` may not alias `radiance` or each other.
+/// Non-finite guide values count as absent (normal), far (depth) or 0 (albedo).
+void edgeAwarePostFilter(
+    const Image& radiance, const PostFilterGuides& guides, Image& scratch, Image& out);
+
+} // namespace afn::afnet

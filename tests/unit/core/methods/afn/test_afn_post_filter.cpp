@@ -1,0 +1,203 @@
+// SPDX-License-Identifier: Apache-2.0
+// afn's edge-aware post-filter (methods/afn/post_filter.h): exact small cases (a constant image
+// stays constant; albedo and depth edges are kept; noise on a flat surface is smoothed;
+// non-finite guides do not spread; absent guides leave their terms out) and, in the afn filter,
+// postFilter=auto following the sample count of the model that runs.
+#include "afn_synthetic_sequence.h"
+#include "afn_test_util.h"
+#include "filter/registry.h"
+#include "methods/afn/post_filter.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+#include <random>
+#include <string>
+
+namespace {
+
+using afn::Image;
+using afn::afnet::edgeAwarePostFilter;
+using afn::afnet::PostFilterGuides;
+
+constexpr int kW = 40, kH = 24;
+
+Image filled(int channels, float v)
+{
+    return Image(kW, kH, channels, v);
+}
+
+/// Flat guides: one albedo, one normal facing the camera, one depth.
+struct FlatGuides {
+    Image albedo = filled(3, 0.5f);
+    Image normal = filled(3, 0.0f);
+    Image depth = filled(1, 2.0f);
+    FlatGuides()
+    {
+        for (int y = 0; y < kH; ++y)
+            for (int x = 0; x < kW; ++x)
+                normal.at(x, y)[2] = 1.0f;
+    }
+    PostFilterGuides guides() const { return { &albedo, &normal, &depth }; }
+};
+
+Image filter(const Image& radiance, const PostFilterGuides& g)
+{
+    Image scratch, out;
+    edgeAwarePostFilter(radiance, g, scratch, out);
+    return out;
+}
+
+double stddev(const Image& im, int c)
+{
+    double s = 0.0, s2 = 0.0;
+    const int n = im.width() * im.height();
+    for (int y = 0; y < im.height(); ++y)
+        for (int x = 0; x < im.width(); ++x) {
+            const double v = im.at(x, y)[c];
+            s += v;
+            s2 += v * v;
+        }
+    return std::sqrt(std::max(0.0, s2 / n - (s / n) * (s / n)));
+}
+
+} // namespace
+
+TEST(AfnPostFilter, ConstantImageStaysConstant)
+{
+    FlatGuides g;
+    std::mt19937 rng(3); // guides with edges everywhere must not move a constant
+    std::uniform_real_distribution<float> u(0.0f, 1.0f);
+    for (std::size_t i = 0; i < g.albedo.size(); ++i)
+        g.albedo.data()[i] = u(rng);
+    for (std::size_t i = 0; i < g.depth.size(); ++i)
+        g.depth.data()[i] = 1.0f + 10.0f * u(rng);
+    const Image out = filter(filled(3, 0.37f), g.guides());
+    ASSERT_EQ(out.width(), kW);
+    ASSERT_EQ(out.height(), kH);
+    ASSERT_EQ(out.channels(), 3);
+    for (std::size_t i = 0; i < out.size(); ++i)
+        ASSERT_NEAR(out.data()[i], 0.37f, 1e-6f) << i;
+}
+
+TEST(AfnPostFilter, AlbedoEdgeIsKept)
+{
+    FlatGuides g;
+    Image radiance = filled(3, 0.1f);
+    for (int y = 0; y < kH; ++y)
+        for (int x = kW / 2; x < kW; ++x)
+            for (int c = 0; c < 3; ++c) {
+                g.albedo.at(x, y)[c] = 0.9f;
+                radiance.at(x, y)[c] = 0.9f;
+            }
+    const Image out = filter(radiance, g.guides());
+    for (int y = 0; y < kH; ++y) {
+        EXPECT_NEAR(out.at(kW / 2 - 1, y)[0], 0.1f, 1e-3f) << y;
+        EXPECT_NEAR(out.at(kW / 2, y)[0], 0.9f, 1e-3f) << y;
+    }
+}
+
+TEST(AfnPostFilter, DepthEdgeIsKeptWhereAlbedoAndNormalAgree)
+{
+    FlatGuides g;
+    Image radiance = filled(3, 0.2f);
+    for (int y = kH / 2; y < kH; ++y)
+        for (int x = 0; x < kW; ++x) {
+            g.depth.at(x, y)[0] = 6.0f; // a surface three times as far, same albedo and normal
+            for (int c = 0; c < 3; ++c)
+                radiance.at(x, y)[c] = 0.3f; // a small step: luminance alone would blur it
+        }
+    const Image out = filter(radiance, g.guides());
+    for (int x = 0; x < kW; ++x) {
+        EXPECT_NEAR(out.at(x, kH / 2 - 1)[1], 0.2f, 1e-3f) << x;
+        EXPECT_NEAR(out.at(x, kH / 2)[1], 0.3f, 1e-3f) << x;
+    }
+}
+
+TEST(AfnPostFilter, SmoothsNoiseOnAFlatSurface)
+{
+    FlatGuides g;
+    Image radiance = filled(3, 0.5f);
+    std::mt19937 rng(7);
+    std::uniform_real_distribution<float> u(-0.05f, 0.05f);
+    for (std::size_t i = 0; i < radiance.size(); ++i)
+        radiance.data()[i] += u(rng);
+    const Image out = filter(radiance, g.guides());
+    for (int c = 0; c < 3; ++c)
+        EXPECT_LT(stddev(out, c), 0.3 * stddev(radiance, c)) << c;
+}
+
+TEST(AfnPostFilter, NonFiniteGuidesDoNotSpread)
+{
+    FlatGuides g;
+    const float nan = std::numeric_limits<float>::quiet_NaN();
+    const float inf = std::numeric_limits<float>::infinity();
+    g.albedo.at(5, 5)[1] = nan;
+    g.normal.at(9, 9)[0] = inf;
+    g.normal.at(10, 9)[2] = nan;
+    g.depth.at(20, 12)[0] = inf; // a background pixel
+    g.depth.at(21, 12)[0] = nan;
+    Image radiance = filled(3, 0.25f);
+    radiance.at(30, 20)[0] = 1.0f;
+    const Image out = filter(radiance, g.guides());
+    for (std::size_t i = 0; i < out.size(); ++i)
+        ASSERT_TRUE(std::isfinite(out.data()[i])) << i;
+    EXPECT_NEAR(out.at(5, 5)[0], 0.25f, 1e-6f);
+}
+
+TEST(AfnPostFilter, AbsentOrMismatchedGuidesAreLeftOut)
+{
+    FlatGuides g;
+    Image radiance = filled(3, 0.5f);
+    std::mt19937 rng(11);
+    std::uniform_real_distribution<float> u(-0.05f, 0.05f);
+    for (std::size_t i = 0; i < radiance.size(); ++i)
+        radiance.data()[i] += u(rng);
+    const Image small(kW / 2, kH, 3, 0.5f), none;
+    // With flat guides their terms are all 0: the same as no guides, and as wrongly sized ones.
+    const Image withFlat = filter(radiance, g.guides());
+    const Image without = filter(radiance, PostFilterGuides {});
+    const Image mismatched = filter(radiance, PostFilterGuides { &small, &none, &small });
+    for (std::size_t i = 0; i < radiance.size(); ++i) {
+        ASSERT_NEAR(withFlat.data()[i], without.data()[i], 1e-5f) << i;
+        ASSERT_EQ(without.data()[i], mismatched.data()[i]) << i;
+    }
+}
+
+TEST(AfnPostFilter, EmptyImage)
+{
+    Image scratch, out(3, 3, 3);
+    edgeAwarePostFilter(Image(0, 0, 3), PostFilterGuides {}, scratch, out);
+    EXPECT_EQ(out.size(), 0u);
+}
+
+TEST(AfnPostFilter, AutoFollowsTheSampleCountOfTheModel)
+{
+#ifndef AFN_HAS_EMBEDDED_WEIGHTS
+    GTEST_SKIP() << "built without the shipped weights";
+#else
+    for (const int spp : { 1, 16 }) {
+        std::unique_ptr<afn::Filter> f[3];
+        const char* modes[3] = { "auto", "on", "off" };
+        Image out[3];
+        for (int m = 0; m < 3; ++m) {
+            f[m] = afn::createFilter("afn");
+            f[m]->params().setString("postFilter", modes[m]);
+            f[m]->params().setNumber("spp", spp, AFN_PARAM_INT);
+            out[m] = Image(kW, kH, 3);
+        }
+        const afntest::SyntheticSequence seq(kW, kH, 7);
+        for (int k = 0; k < 3; ++k)
+            for (int m = 0; m < 3; ++m) {
+                afntest::SequenceFrame fr = seq.frame(k, {});
+                afntest::runFrame(*f[m], fr, out[m]);
+            }
+        const Image& expected = spp == 1 ? out[1] : out[2];
+        EXPECT_TRUE(std::equal(out[0].data(), out[0].data() + out[0].size(), expected.data()))
+            << spp << " spp";
+        EXPECT_FALSE(std::equal(out[1].data(), out[1].data() + out[1].size(), out[2].data()))
+            << spp << " spp";
+    }
+#endif
+}
