@@ -294,11 +294,12 @@ FilterType filterType()
 #endif
     t.stages = { true, StageNeeds::Reproject::Bilinear, true };
     t.params = settingsBinding().descriptors();
-    t.qualityHelp = "fast: no refinement network (the fused output; about 0.65x balanced's "
-                    "time at 1080p, 0.2 dB less PSNR on the held-out scenes at 1 spp); "
-                    "balanced: the network as trained; high: the network on the frame and its "
-                    "three flips, flipped back and averaged (about 4x balanced's time, 0.05-0.1 "
-                    "dB more)";
+    t.qualityHelp = "fast: no refinement network (the fused output; at 1 spp, with the "
+                    "post-filter, about 0.8x balanced's time at 1080p and 0.1 dB less PSNR on "
+                    "the held-out scenes; 0.65x without it); balanced: the network as trained; "
+                    "high: the network on the frame and its three flips, flipped back and "
+                    "averaged (at 1 spp about 2.3x balanced's time and 0.03 dB more; 4x without "
+                    "the post-filter)";
     t.inputs = { { { AFN_IMAGE_NORMAL }, "network features" },
         { { AFN_IMAGE_DEPTH }, "network features" } };
     t.features = {
