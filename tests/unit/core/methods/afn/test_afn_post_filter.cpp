@@ -49,6 +49,17 @@ Image filter(const Image& radiance, const PostFilterGuides& g)
     return out;
 }
 
+/// 0.5 plus uniform noise in [-0.05, 0.05) per value, from `seed`.
+Image noisyFlat(unsigned seed)
+{
+    Image radiance = filled(3, 0.5f);
+    std::mt19937 rng(seed);
+    std::uniform_real_distribution<float> u(-0.05f, 0.05f);
+    for (std::size_t i = 0; i < radiance.size(); ++i)
+        radiance.data()[i] += u(rng);
+    return radiance;
+}
+
 double stddev(const Image& im, int c)
 {
     double s = 0.0, s2 = 0.0;
@@ -118,11 +129,7 @@ TEST(AfnPostFilter, DepthEdgeIsKeptWhereAlbedoAndNormalAgree)
 TEST(AfnPostFilter, SmoothsNoiseOnAFlatSurface)
 {
     FlatGuides g;
-    Image radiance = filled(3, 0.5f);
-    std::mt19937 rng(7);
-    std::uniform_real_distribution<float> u(-0.05f, 0.05f);
-    for (std::size_t i = 0; i < radiance.size(); ++i)
-        radiance.data()[i] += u(rng);
+    const Image radiance = noisyFlat(7);
     const Image out = filter(radiance, g.guides());
     for (int c = 0; c < 3; ++c)
         EXPECT_LT(stddev(out, c), 0.3 * stddev(radiance, c)) << c;
@@ -149,11 +156,7 @@ TEST(AfnPostFilter, NonFiniteGuidesDoNotSpread)
 TEST(AfnPostFilter, AbsentOrMismatchedGuidesAreLeftOut)
 {
     FlatGuides g;
-    Image radiance = filled(3, 0.5f);
-    std::mt19937 rng(11);
-    std::uniform_real_distribution<float> u(-0.05f, 0.05f);
-    for (std::size_t i = 0; i < radiance.size(); ++i)
-        radiance.data()[i] += u(rng);
+    const Image radiance = noisyFlat(11);
     const Image small(kW / 2, kH, 3, 0.5f), none;
     // With flat guides their terms are all 0: the same as no guides, and as wrongly sized ones.
     const Image withFlat = filter(radiance, g.guides());
