@@ -169,7 +169,7 @@ private:
         if (m_taaOn)
             out = m_taa.apply(reprojector(), out, m_settings.taaAlpha, m_taaSpare);
         if (m_postOn) {
-            edgeAwarePostFilter(out, guidesOf(in), m_postScratch, result);
+            edgeAwarePostFilter(out, guidesOf(in), m_postWorkspace, m_postScratch, result);
             out = result;
         }
     }
@@ -191,9 +191,9 @@ private:
         // the result; with TAA the spare the TAA handed back is free until the next frame.
         if (m_taaOn) {
             const Image& aa = m_taa.apply(reprojector(), result, m_settings.taaAlpha, m_taaSpare);
-            edgeAwarePostFilter(aa, guidesOf(in), m_taaSpare, result);
+            edgeAwarePostFilter(aa, guidesOf(in), m_postWorkspace, m_taaSpare, result);
         } else {
-            edgeAwarePostFilter(result, guidesOf(in), m_postScratch, m_taaSpare);
+            edgeAwarePostFilter(result, guidesOf(in), m_postWorkspace, m_postScratch, m_taaSpare);
             std::swap(result, m_taaSpare);
         }
         return &result;
@@ -260,6 +260,7 @@ private:
     Image m_taaSpare; ///< the TAA's output buffer (stages/taa.h TemporalAntialiasing::apply)
     bool m_postOn = false; ///< this frame's output is post-filtered (Settings::postFilter)
     Image m_postScratch; ///< the post-filter's pass buffer
+    PostFilterWorkspace m_postWorkspace; ///< the post-filter's planes, kept from frame to frame
     Image m_workGrown; ///< the work mask's rows grown by the TAA's and post-filter's margins
     TierRunner m_tiers;
     ModelSet m_models;

@@ -9,8 +9,8 @@
 //     h_i h_j * wn * exp(-(dz + dl + da)) with
 //     wn = max(0, n_p . n_q / (|n_p| |n_q|))^64           (1 where either normal is ~0 or absent)
 //     dz = |z_p - z_q| / (0.02 max(z_p, 1e-3) step max(|i|, |j|, 1) + 1e-6)  (relative depth)
-//     dl = |l_p - l_q| / (kPostFilterSigmaLuminance (l_p + l_q) / 2 + 1e-3)   (relative luminance
-//          of the pass's input, Rec. 709 weights)
+//     dl = |l_p - l_q| / (kPostFilterSigmaLuminance max(l_p + l_q, 0) / 2 + 1e-3)  (relative
+//          luminance of the pass's input, Rec. 709 weights)
 //     da = (|dA_r| + |dA_g| + |dA_b|) / 0.1                (albedo: keeps texture edges)
 //   taps outside the image clamped to the border. The centre tap's weight is about h_2^2 > 0, so
 //   the normalisation never divides by zero.
@@ -24,6 +24,8 @@
 #pragma once
 
 #include "base/image.h"
+
+#include <vector>
 
 namespace afn::afnet {
 
@@ -40,9 +42,23 @@ struct PostFilterGuides {
     const Image* depth = nullptr;
 };
 
+/// The planes the filter works on (44 bytes a pixel), kept by the caller from frame to frame so
+/// that a sequence allocates them once: the guides, sanitised (albedo, unit normal and its
+/// validity, depth), and one pass's input colour. Its contents between calls mean nothing.
+struct PostFilterWorkspace {
+    std::vector<float> a0, a1, a2, n0, n1, n2, nv, z;
+    std::vector<float> r, g, b;
+};
+
 /// The edge-aware post-filter of `radiance` (3 ch) into `out` (resized), with `scratch` (resized)
-/// for the passes between. `out` and `scratch` may not alias `radiance` or each other.
-/// Non-finite guide values count as absent (normal), far (depth) or 0 (albedo).
+/// for the passes between and `workspace`'s planes. `out` and `scratch` may not alias `radiance`
+/// or each other. Non-finite guide values count as absent (normal), far (depth) or 0 (albedo). The
+/// radiance is taken as finite (afn's inputs are sanitised before the network, gather.cpp);
+/// negative radiance counts as luminance 0 in dl.
+void edgeAwarePostFilter(const Image& radiance, const PostFilterGuides& guides,
+    PostFilterWorkspace& workspace, Image& scratch, Image& out);
+
+/// The same with a workspace of its own (allocated for this call).
 void edgeAwarePostFilter(
     const Image& radiance, const PostFilterGuides& guides, Image& scratch, Image& out);
 

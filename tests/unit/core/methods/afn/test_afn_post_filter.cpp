@@ -1,8 +1,10 @@
 // SPDX-License-Identifier: Apache-2.0
 // afn's edge-aware post-filter (methods/afn/post_filter.h): exact small cases (a constant image
 // stays constant; albedo and depth edges are kept; noise on a flat surface is smoothed;
-// non-finite guides do not spread; absent guides leave their terms out) and, in the afn filter,
-// postFilter=auto following the sample count of the model that runs.
+// non-finite guides do not spread; absent guides leave their terms out; each result is a convex
+// combination of the input, negative radiance included; a workspace reused across frames and
+// sizes gives what a fresh one gives) and, in the afn filter, postFilter=auto following the
+// sample count of the model that runs.
 #include "afn_synthetic_sequence.h"
 #include "afn_test_util.h"
 #include "filter/registry.h"
@@ -20,6 +22,7 @@ namespace {
 using afn::Image;
 using afn::afnet::edgeAwarePostFilter;
 using afn::afnet::PostFilterGuides;
+using afn::afnet::PostFilterWorkspace;
 
 constexpr int kW = 40, kH = 24;
 
@@ -173,6 +176,51 @@ TEST(AfnPostFilter, EmptyImage)
     Image scratch, out(3, 3, 3);
     edgeAwarePostFilter(Image(0, 0, 3), PostFilterGuides {}, scratch, out);
     EXPECT_EQ(out.size(), 0u);
+}
+
+TEST(AfnPostFilter, EachResultIsAConvexCombinationOfTheInputNegativeRadianceIncluded)
+{
+    // Radiance in [-50, 50): the weights stay non-negative and normalised where the luminance sum
+    // of a pixel and its tap is negative (dl then takes it as 0).
+    FlatGuides g;
+    Image radiance = filled(3, 0.0f);
+    std::mt19937 rng(7);
+    std::uniform_real_distribution<float> u(-50.0f, 50.0f);
+    for (std::size_t i = 0; i < radiance.size(); ++i)
+        radiance.data()[i] = u(rng);
+    float lo[3] = { 1e30f, 1e30f, 1e30f }, hi[3] = { -1e30f, -1e30f, -1e30f };
+    for (std::size_t i = 0; i < radiance.size(); ++i) {
+        lo[i % 3] = std::min(lo[i % 3], radiance.data()[i]);
+        hi[i % 3] = std::max(hi[i % 3], radiance.data()[i]);
+    }
+    const Image out = filter(radiance, g.guides());
+    ASSERT_EQ(out.size(), radiance.size());
+    for (std::size_t i = 0; i < out.size(); ++i) {
+        ASSERT_TRUE(std::isfinite(out.data()[i])) << i;
+        ASSERT_GE(out.data()[i], lo[i % 3] - 1e-3f) << i;
+        ASSERT_LE(out.data()[i], hi[i % 3] + 1e-3f) << i;
+    }
+}
+
+TEST(AfnPostFilter, AReusedWorkspaceGivesWhatAFreshOneGives)
+{
+    // Frames of two sizes through one workspace (as afn keeps it): each result is bit for bit
+    // the one-call result, so nothing of an earlier frame's planes leaks into a later one.
+    FlatGuides g;
+    g.depth.at(5, 5)[0] = std::numeric_limits<float>::infinity();
+    const Image a = noisyFlat(1), b = noisyFlat(2);
+    const Image small(kW / 2, kH / 2, 3, 0.25f);
+    PostFilterWorkspace ws;
+    Image scratch, out;
+    for (const Image* radiance : { &a, &small, &b }) {
+        const bool full = radiance->width() == kW;
+        const PostFilterGuides guides = full ? g.guides() : PostFilterGuides {};
+        edgeAwarePostFilter(*radiance, guides, ws, scratch, out);
+        const Image fresh = filter(*radiance, guides);
+        ASSERT_EQ(out.size(), fresh.size());
+        for (std::size_t i = 0; i < out.size(); ++i)
+            ASSERT_EQ(out.data()[i], fresh.data()[i]) << i;
+    }
 }
 
 TEST(AfnPostFilter, AutoFollowsTheSampleCountOfTheModel)
