@@ -22,13 +22,12 @@ constexpr float kSpline[5] = { 1.0f / 16.0f, 1.0f / 4.0f, 3.0f / 8.0f, 1.0f / 4.
 constexpr float kAlbedoScale = 1.0f / 0.1f; ///< da = sum |dA| / 0.1
 constexpr float kDepthRelative = 0.02f; ///< dz's scale: 2 % of the depth per step
 
-/// e^x for x <= 0 (x < -87 and NaN are taken as -87, x > 0 as 0): 2^(x log2 e) split into an
-/// integer power, built in the exponent bits, and a degree-6 Taylor polynomial of 2^f, f in [0, 1)
-/// (relative error < 2e-5). Plain float code, so the loops that call it vectorise.
+/// e^x for x <= 0 (x < -87 and NaN are taken as -87): 2^(x log2 e) split into an integer power,
+/// built in the exponent bits, and a degree-6 Taylor polynomial of 2^f, f in [0, 1) (relative
+/// error < 2e-5). Plain float code, so the loops that call it vectorise.
 inline float expNonPositive(float x)
 {
     x = x > -87.0f ? x : -87.0f; // also NaN (std::max would keep it)
-    x = x < 0.0f ? x : 0.0f;
     const float t = x * 1.44269504f;
     // floor(t) for t <= 0 (std::floor does not vectorise here): towards 0, minus 1 below 0 (an
     // integer t then gives f = 1, where the polynomial is 2 within its error).
@@ -107,10 +106,8 @@ AFN_CPU_KERNEL_CLONES void addTapInterior(
         addTap(t, x, x + dx, acc);
 }
 
-/// The guides as planes, sanitised once per frame: albedo (non-finite -> 0; absent: 0), unit
-/// normals and their validity (1 where the normal is finite and |n|^2 > 0.5; absent: 0), depth
-/// (non-finite -> 1e30, a far background; absent: 1). Absent guides so give their terms 0.
-void buildGuidePlanes(const PostFilterGuides& g, int w, int h, PostFilterWorkspace& p)
+/// The guides as planes (PostFilterGuidePlanes, post_filter.h).
+void buildGuidePlanes(const PostFilterGuides& g, int w, int h, PostFilterGuidePlanes& p)
 {
     const std::size_t n = static_cast<std::size_t>(w) * h;
     auto usable = [&](const Image* im, int channels) {
@@ -149,23 +146,21 @@ void buildGuidePlanes(const PostFilterGuides& g, int w, int h, PostFilterWorkspa
     });
 }
 
-/// One a-trous pass with `step` from `src` into `dst` (3 ch); the workspace's guide planes are
-/// read, its colour planes take `src`.
-void filterPass(const Image& src, PostFilterWorkspace& ws, int step, Image& dst)
+/// One a-trous pass with `step` from `src` into `dst` (3 ch); `planes` take `src`.
+void filterPass(const Image& src, const PostFilterGuidePlanes& g, int step,
+    PostFilterColourPlanes& planes, Image& dst)
 {
     const int w = src.width(), h = src.height();
     const std::size_t n = static_cast<std::size_t>(w) * h;
-    const PostFilterWorkspace& g = ws;
-    std::vector<float>&r = ws.r, &gr = ws.g, &b = ws.b;
-    r.resize(n);
-    gr.resize(n);
-    b.resize(n);
+    planes.r.resize(n);
+    planes.g.resize(n);
+    planes.b.resize(n);
     parallelRows(h, [&](int y0, int y1) {
         for (std::size_t i = static_cast<std::size_t>(y0) * w; i < static_cast<std::size_t>(y1) * w;
              ++i) {
-            r[i] = src.data()[3 * i];
-            gr[i] = src.data()[3 * i + 1];
-            b[i] = src.data()[3 * i + 2];
+            planes.r[i] = src.data()[3 * i];
+            planes.g[i] = src.data()[3 * i + 1];
+            planes.b[i] = src.data()[3 * i + 2];
         }
     });
     dst.resize(w, h, 3);
@@ -184,8 +179,8 @@ void filterPass(const Image& src, PostFilterWorkspace& ws, int step, Image& dst)
                 for (int i = -2; i <= 2; ++i) {
                     const int qy = std::clamp(y + i * step, 0, h - 1);
                     TapRows t {};
-                    t.rP = row(r, y), t.gP = row(gr, y), t.bP = row(b, y);
-                    t.rQ = row(r, qy), t.gQ = row(gr, qy), t.bQ = row(b, qy);
+                    t.rP = row(planes.r, y), t.gP = row(planes.g, y), t.bP = row(planes.b, y);
+                    t.rQ = row(planes.r, qy), t.gQ = row(planes.g, qy), t.bQ = row(planes.b, qy);
                     t.a0P = row(g.a0, y), t.a1P = row(g.a1, y), t.a2P = row(g.a2, y);
                     t.a0Q = row(g.a0, qy), t.a1Q = row(g.a1, qy), t.a2Q = row(g.a2, qy);
                     t.n0P = row(g.n0, y), t.n1P = row(g.n1, y), t.n2P = row(g.n2, y);
@@ -225,20 +220,13 @@ void edgeAwarePostFilter(const Image& radiance, const PostFilterGuides& guides,
 {
     // Passes alternate between out and scratch so that the last one lands in out:
     // 3 passes: radiance -> out -> scratch -> out.
-    buildGuidePlanes(guides, radiance.width(), radiance.height(), workspace);
+    buildGuidePlanes(guides, radiance.width(), radiance.height(), workspace.guides);
     const Image* src = &radiance;
     for (int k = 0; k < kPostFilterIterations; ++k) {
         Image& dst = (kPostFilterIterations - 1 - k) % 2 == 0 ? out : scratch;
-        filterPass(*src, workspace, 1 << k, dst);
+        filterPass(*src, workspace.guides, 1 << k, workspace.colour, dst);
         src = &dst;
     }
-}
-
-void edgeAwarePostFilter(
-    const Image& radiance, const PostFilterGuides& guides, Image& scratch, Image& out)
-{
-    PostFilterWorkspace workspace;
-    edgeAwarePostFilter(radiance, guides, workspace, scratch, out);
 }
 
 } // namespace afn::afnet

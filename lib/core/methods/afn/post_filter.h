@@ -42,12 +42,23 @@ struct PostFilterGuides {
     const Image* depth = nullptr;
 };
 
-/// The planes the filter works on (44 bytes a pixel), kept by the caller from frame to frame so
-/// that a sequence allocates them once: the guides, sanitised (albedo, unit normal and its
-/// validity, depth), and one pass's input colour. Its contents between calls mean nothing.
-struct PostFilterWorkspace {
+/// The guides as planes, sanitised once per frame: albedo (non-finite -> 0; absent: 0), unit
+/// normals and their validity (1 where the normal is finite and |n|^2 > 0.5; absent: 0), depth
+/// (non-finite -> 1e30, a far background; absent: 1). Absent guides so give their terms 0.
+struct PostFilterGuidePlanes {
     std::vector<float> a0, a1, a2, n0, n1, n2, nv, z;
+};
+
+/// Radiance planes of a pass's input.
+struct PostFilterColourPlanes {
     std::vector<float> r, g, b;
+};
+
+/// The planes the filter works on (44 bytes a pixel), kept by the caller from frame to frame so
+/// that a sequence allocates them once. Their contents between calls mean nothing.
+struct PostFilterWorkspace {
+    PostFilterGuidePlanes guides;
+    PostFilterColourPlanes colour;
 };
 
 /// The edge-aware post-filter of `radiance` (3 ch) into `out` (resized), with `scratch` (resized)
@@ -57,9 +68,5 @@ struct PostFilterWorkspace {
 /// negative radiance counts as luminance 0 in dl.
 void edgeAwarePostFilter(const Image& radiance, const PostFilterGuides& guides,
     PostFilterWorkspace& workspace, Image& scratch, Image& out);
-
-/// The same with a workspace of its own (allocated for this call).
-void edgeAwarePostFilter(
-    const Image& radiance, const PostFilterGuides& guides, Image& scratch, Image& out);
 
 } // namespace afn::afnet

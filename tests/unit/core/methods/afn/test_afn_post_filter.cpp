@@ -45,10 +45,12 @@ struct FlatGuides {
     PostFilterGuides guides() const { return { &albedo, &normal, &depth }; }
 };
 
+/// The post-filter with a fresh workspace of its own.
 Image filter(const Image& radiance, const PostFilterGuides& g)
 {
+    PostFilterWorkspace workspace;
     Image scratch, out;
-    edgeAwarePostFilter(radiance, g, scratch, out);
+    edgeAwarePostFilter(radiance, g, workspace, scratch, out);
     return out;
 }
 
@@ -173,8 +175,9 @@ TEST(AfnPostFilter, AbsentOrMismatchedGuidesAreLeftOut)
 
 TEST(AfnPostFilter, EmptyImage)
 {
+    PostFilterWorkspace workspace;
     Image scratch, out(3, 3, 3);
-    edgeAwarePostFilter(Image(0, 0, 3), PostFilterGuides {}, scratch, out);
+    edgeAwarePostFilter(Image(0, 0, 3), PostFilterGuides {}, workspace, scratch, out);
     EXPECT_EQ(out.size(), 0u);
 }
 
