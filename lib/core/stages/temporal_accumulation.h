@@ -14,6 +14,9 @@
 
 namespace afn {
 
+/// Largest history length kept (BMFR's uchar).
+constexpr float kMaxHistoryLength = 255.0f;
+
 /// Settings of the accumulation.
 struct AccumulationSettings {
     float alphaMin = 0.2f; ///< minimum blend factor (BMFR BLEND_ALPHA)
@@ -41,6 +44,13 @@ public:
     const Image& color() const { return m_color; }
     /// History length of the last frame (1 ch; 1 = reset this frame).
     const Image& historyLength() const { return m_spp; }
+    /// Samples whose plain mean has the variance a long history converges to: (2 - a) / a for the
+    /// exponential average with blend a = alphaMin (9 at 0.2; infinite at 0, where the history
+    /// is a plain mean for up to kMaxHistoryLength frames).
+    float effectiveSamplesLimit() const
+    {
+        return m_alphaMin > 0.0f ? (2.0f - m_alphaMin) / m_alphaMin : kMaxHistoryLength;
+    }
     /// The previous frame's colour buffer, which nothing reads until the next accumulate()
     /// overwrites it: scratch a method may use within the current frame (any shape; contents
     /// unspecified, not kept across frames). Lending it saves the method a frame-size image
@@ -53,8 +63,5 @@ private:
     bool m_history = false; ///< this frame blends with a history (set by begin())
     Image m_color, m_spp, m_prevColor, m_prevSpp;
 };
-
-/// Largest history length kept (BMFR's uchar).
-constexpr float kMaxHistoryLength = 255.0f;
 
 } // namespace afn

@@ -27,8 +27,8 @@ constexpr double kPlaneRow = (32.0 + kWidth + 32.0) / kWidth;
 /// the caller's output: frame 60, reprojection history and taps 32, accumulation 32 (ta, bmfr,
 /// afn); svgf's guide 6 planes, integration 2 x 7 planes, colour/variance 5 planes; bmfr's
 /// three images of its own; afn's normal01 and depth01, its TAA's history and spare, and its
-/// post-filter's 8 guide and 3 colour planes (the 1-spp model runs with taa=auto and
-/// postFilter=auto = on, methods/afn/settings.h, post_filter.h).
+/// post-filter's 9 guide planes (8 + its luminance scale) and 3 colour planes (the 1-spp model
+/// runs with taa=auto and postFilter=auto = on, methods/afn/settings.h, post_filter.h).
 double accountedBytesPerPixel(const std::string& method)
 {
     const double shared = 60 + 32;
@@ -38,7 +38,7 @@ double accountedBytesPerPixel(const std::string& method)
         return shared + (6 + 2 * 7 + 5) * 4 * kPlaneRow;
     if (method == "bmfr")
         return shared + 32 + 3 * 12;
-    return shared + 32 + 16 + 2 * 12 + 11 * 4; // afn
+    return shared + 32 + 16 + 2 * 12 + 12 * 4; // afn
 }
 
 /// Peak live heap bytes while a new `method` filter runs three frames of kWidth x height.

@@ -36,6 +36,7 @@ afn_add_gtest(test_afn
     unit/core/methods/afn/test_afn_filter.cpp
     unit/core/methods/afn/test_afn_taa.cpp
     unit/core/methods/afn/test_afn_post_filter.cpp
+    unit/core/methods/afn/test_afn_post_filter_noise.cpp
     unit/core/methods/afn/test_afn_input_set.cpp
     unit/core/methods/afn/test_afn_engine.cpp
     unit/core/methods/afn/test_afn_stripes.cpp

@@ -28,8 +28,10 @@
 //
 // postFilter=auto|off|on (settings.h; auto: on for the models trained below 16 spp) smooths the
 // final output (after the TAA, whose history stays the unfiltered output) with an edge-aware
-// a-trous filter guided by the frame's albedo, normal and depth (post_filter.h). With work
-// skipping the network's rows are grown by kPostFilterRadius more.
+// a-trous filter guided by the frame's albedo, normal and depth (post_filter.h), as strong at each
+// pixel as the noise left there (the 1-spp irradiance's local variance over the accumulation's
+// history length, post_filter_noise.h). With work skipping the network's rows are grown by
+// kPostFilterRadius more.
 //
 // On a CUDA device (builds with AFN_HAS_CUDA) the whole filter, shared stages included, runs on
 // the GPU instead (cuda/afn_cuda_filter.h). It has no aux prefilter yet: it refuses aux=noisy and
@@ -198,9 +200,14 @@ private:
         }
         return &result;
     }
-    static PostFilterGuides guidesOf(const Frame& in)
+    PostFilterGuides guidesOf(const Frame& in) const
     {
         PostFilterGuides g;
+        // The noise scale reads the 1-spp irradiance the network reads (the base demodulated
+        // the colour in place) and the accumulation's history length.
+        g.noise.irradiance = &in.color;
+        g.noise.historyLength = &accumulator().historyLength();
+        g.noise.maxSamples = accumulator().effectiveSamplesLimit();
         g.albedo = &in.albedo;
         g.normal = &in.normal;
         g.depth = &in.depth;

@@ -55,6 +55,7 @@ struct TapRows {
     const float *a0P, *a1P, *a2P, *a0Q, *a1Q, *a2Q;
     const float *n0P, *n1P, *n2P, *nvP, *n0Q, *n1Q, *n2Q, *nvQ;
     const float *zP, *zQ;
+    const float* lsP; ///< the luminance term's scale s_p
     float splineWeight; ///< h_i h_j
     float depthScale; ///< 0.02 * step * max(|i|, |j|, 1)
 };
@@ -72,8 +73,7 @@ inline void addTap(const TapRows& t, int x, int qx, const RowAccumulators& acc)
     const float q0 = t.rQ[qx], q1 = t.gQ[qx], q2 = t.bQ[qx];
     const float lp = 0.2126f * t.rP[x] + 0.7152f * t.gP[x] + 0.0722f * t.bP[x];
     const float lq = 0.2126f * q0 + 0.7152f * q1 + 0.0722f * q2;
-    float e
-        = std::fabs(lp - lq) / (kPostFilterSigmaLuminance * 0.5f * std::max(lp + lq, 0.0f) + 1e-3f);
+    float e = std::fabs(lp - lq) / (t.lsP[x] * std::max(lp + lq, 0.0f) + 1e-3f);
     e += (std::fabs(t.a0P[x] - t.a0Q[qx]) + std::fabs(t.a1P[x] - t.a1Q[qx])
              + std::fabs(t.a2P[x] - t.a2Q[qx]))
         * kAlbedoScale;
@@ -188,6 +188,7 @@ void filterPass(const Image& src, const PostFilterGuidePlanes& g, int step,
                     t.n0Q = row(g.n0, qy), t.n1Q = row(g.n1, qy), t.n2Q = row(g.n2, qy);
                     t.nvQ = row(g.nv, qy);
                     t.zP = row(g.z, y), t.zQ = row(g.z, qy);
+                    t.lsP = row(g.ls, y);
                     for (int j = -2; j <= 2; ++j) {
                         t.splineWeight = kSpline[i + 2] * kSpline[j + 2];
                         t.depthScale = kDepthRelative * static_cast<float>(step)
@@ -221,6 +222,9 @@ void edgeAwarePostFilter(const Image& radiance, const PostFilterGuides& guides,
     // Passes alternate between out and scratch so that the last one lands in out:
     // 3 passes: radiance -> out -> scratch -> out.
     buildGuidePlanes(guides, radiance.width(), radiance.height(), workspace.guides);
+    // The colour planes are free until the first pass fills them: the noise scale's scratch.
+    postFilterLuminanceScale(guides.noise, radiance.width(), radiance.height(),
+        kPostFilterSigmaLuminance, workspace.colour.r, workspace.colour.g, workspace.guides.ls);
     const Image* src = &radiance;
     for (int k = 0; k < kPostFilterIterations; ++k) {
         Image& dst = (kPostFilterIterations - 1 - k) % 2 == 0 ? out : scratch;

@@ -9,21 +9,24 @@
 //     h_i h_j * wn * exp(-(dz + dl + da)) with
 //     wn = max(0, n_p . n_q / (|n_p| |n_q|))^64           (1 where either normal is ~0 or absent)
 //     dz = |z_p - z_q| / (0.02 max(z_p, 1e-3) step max(|i|, |j|, 1) + 1e-6)  (relative depth)
-//     dl = |l_p - l_q| / (kPostFilterSigmaLuminance max(l_p + l_q, 0) / 2 + 1e-3)  (relative
-//          luminance of the pass's input, Rec. 709 weights)
+//     dl = |l_p - l_q| / (s_p max(l_p + l_q, 0) + 1e-3)  (relative luminance of the pass's
+//          input, Rec. 709 weights; s_p the pixel's scale from the noise left in afn's estimate
+//          there, post_filter_noise.h: kPostFilterSigmaLuminance / 2 where that noise is typical)
 //     da = (|dA_r| + |dA_g| + |dA_b|) / 0.1                (albedo: keeps texture edges)
 //   taps outside the image clamped to the border. The centre tap's weight is about h_2^2 > 0, so
 //   the normalisation never divides by zero.
 // Radiance, not irradiance, is filtered: dividing by a 1-spp albedo (noisy on glass, in depth of
 // field) and multiplying back adds that albedo's noise; the albedo term keeps textures instead.
 //
-// The parameters (3 passes, sigma_l 0.25, the depth, normal and albedo scales) were chosen on the
-// rendered training sequences only; the held-out set was then run once (docs/afn-evaluation.md,
-// eighteenth session). The guides are the frame's as the shared stages leave them (the aux
-// prefilter's). exp is a polynomial approximation (relative error < 2e-5) so the rows vectorise.
+// The parameters (3 passes, sigma_l 0.25, the depth, normal and albedo scales; the noise scale's
+// constants) were chosen on the rendered training sequences only; the held-out set was then run
+// once (docs/afn-evaluation.md, eighteenth and twentieth sessions). The guides are the frame's as
+// the shared stages leave them (the aux prefilter's). exp is a polynomial approximation (relative
+// error < 2e-5) so the rows vectorise.
 #pragma once
 
 #include "base/image.h"
+#include "methods/afn/post_filter_noise.h"
 
 #include <vector>
 
@@ -35,18 +38,22 @@ constexpr int kPostFilterRadius = 28 / 2;
 constexpr float kPostFilterSigmaLuminance = 0.25f;
 
 /// The guides of one frame; albedo and normal 3 ch, depth 1 ch, of the radiance's size. A null or
-/// empty guide, or one of another size or channel count, is left out (its term is 0).
+/// empty guide, or one of another size or channel count, is left out (its term is 0). `noise`
+/// sets the luminance term's per-pixel scale (post_filter_noise.h); without its irradiance every
+/// pixel gets kPostFilterSigmaLuminance.
 struct PostFilterGuides {
     const Image* albedo = nullptr;
     const Image* normal = nullptr;
     const Image* depth = nullptr;
+    PostFilterNoiseInputs noise;
 };
 
 /// The guides as planes, sanitised once per frame: albedo (non-finite -> 0; absent: 0), unit
 /// normals and their validity (1 where the normal is finite and |n|^2 > 0.5; absent: 0), depth
-/// (non-finite -> 1e30, a far background; absent: 1). Absent guides so give their terms 0.
+/// (non-finite -> 1e30, a far background; absent: 1). Absent guides so give their terms 0. `ls`
+/// is the luminance term's scale per pixel (post_filter_noise.h).
 struct PostFilterGuidePlanes {
-    std::vector<float> a0, a1, a2, n0, n1, n2, nv, z;
+    std::vector<float> a0, a1, a2, n0, n1, n2, nv, z, ls;
 };
 
 /// Radiance planes of a pass's input.
@@ -54,7 +61,7 @@ struct PostFilterColourPlanes {
     std::vector<float> r, g, b;
 };
 
-/// The planes the filter works on (44 bytes a pixel), kept by the caller from frame to frame so
+/// The planes the filter works on (48 bytes a pixel), kept by the caller from frame to frame so
 /// that a sequence allocates them once. Their contents between calls mean nothing.
 struct PostFilterWorkspace {
     PostFilterGuidePlanes guides;

@@ -1,0 +1,96 @@
+// SPDX-License-Identifier: Apache-2.0
+// The post-filter's per-pixel luminance scale (post_filter_noise.h): a separable 5x5 box over the
+// luminance and its square, rows first (into the two scratch planes), then columns.
+#include "methods/afn/post_filter_noise.h"
+
+#include "base/parallel.h"
+
+#include <algorithm>
+#include <cfloat>
+#include <cmath>
+
+namespace afn::afnet {
+
+namespace {
+
+bool usable(const Image* im, int w, int h, int channels)
+{
+    return im && im->width() == w && im->height() == h && im->channels() == channels;
+}
+
+/// Rec. 709 luminance of a pixel; non-finite channels count as 0.
+float luminance(const float* c)
+{
+    auto finite = [](float v) { return std::fabs(v) <= FLT_MAX ? v : 0.0f; };
+    return 0.2126f * finite(c[0]) + 0.7152f * finite(c[1]) + 0.0722f * finite(c[2]);
+}
+
+} // namespace
+
+void postFilterLuminanceScale(const PostFilterNoiseInputs& in, int w, int h, float sigmaLuminance,
+    std::vector<float>& meanPlane, std::vector<float>& squarePlane, std::vector<float>& scale)
+{
+    const std::size_t n = static_cast<std::size_t>(w) * h;
+    const float base = 0.5f * sigmaLuminance;
+    scale.assign(n, base);
+    if (n == 0 || !usable(in.irradiance, w, h, 3))
+        return;
+    const bool history = usable(in.historyLength, w, h, 1);
+    const float maxSamples = std::max(in.maxSamples, 1.0f);
+    constexpr int r = kPostFilterNoiseRadius;
+    constexpr float inverseTaps = 1.0f / static_cast<float>(2 * r + 1);
+    meanPlane.resize(n);
+    squarePlane.resize(n);
+    // Rows: the box means of l and l^2 along x.
+    parallelRows(h, [&](int y0, int y1) {
+        std::vector<float> l(static_cast<std::size_t>(w));
+        for (int y = y0; y < y1; ++y) {
+            const float* row = in.irradiance->at(0, y);
+            for (int x = 0; x < w; ++x)
+                l[x] = luminance(row + 3 * x);
+            float* mean = meanPlane.data() + static_cast<std::size_t>(y) * w;
+            float* square = squarePlane.data() + static_cast<std::size_t>(y) * w;
+            for (int x = 0; x < w; ++x) {
+                float s1 = 0.0f, s2 = 0.0f;
+                for (int dx = -r; dx <= r; ++dx) {
+                    const float v = l[std::clamp(x + dx, 0, w - 1)];
+                    s1 += v;
+                    s2 += v * v;
+                }
+                mean[x] = s1 * inverseTaps;
+                square[x] = s2 * inverseTaps;
+            }
+        }
+    });
+    // Columns: the 5x5 means, the relative noise of the accumulated estimate and the scale.
+    const float lo = base / kPostFilterNoiseClamp, hi = base * kPostFilterNoiseClamp;
+    const float perReference = base / kPostFilterNoiseReference;
+    parallelRows(h, [&](int y0, int y1) {
+        for (int y = y0; y < y1; ++y) {
+            const float* rows[2 * r + 1][2];
+            for (int dy = -r; dy <= r; ++dy) {
+                const std::size_t o = static_cast<std::size_t>(std::clamp(y + dy, 0, h - 1)) * w;
+                rows[dy + r][0] = meanPlane.data() + o;
+                rows[dy + r][1] = squarePlane.data() + o;
+            }
+            const std::size_t o = static_cast<std::size_t>(y) * w;
+            for (int x = 0; x < w; ++x) {
+                float s1 = 0.0f, s2 = 0.0f;
+                for (int k = 0; k < 2 * r + 1; ++k) {
+                    s1 += rows[k][0][x];
+                    s2 += rows[k][1][x];
+                }
+                const float mean = s1 * inverseTaps, variance = s2 * inverseTaps - mean * mean;
+                float samples = history ? in.historyLength->data()[o + x] : 1.0f;
+                samples = samples >= 1.0f ? std::min(samples, maxSamples) : 1.0f; // NaN too
+                const float noise = std::sqrt(std::max(variance, 0.0f) / samples)
+                    / (std::max(mean, 0.0f) + 1e-3f);
+                const float s = noise * perReference;
+                // NaN (inf - inf in the variance of overflowing luminance) takes the low end.
+                scale[o + x] = s >= lo ? (s <= hi ? s : hi) : lo;
+            }
+        }
+    });
+}
+
+} // namespace afn::afnet
