@@ -266,7 +266,9 @@ void AuxPrefilter::finish(Frame& f, const Reprojector* taps)
                     = { m_mean(x, y, 0), m_mean(x, y, 1), m_mean(x, y, 2), m_share(x, y, 0) };
                 float* o = m_hist.at(x, y);
                 accumulateStep<4>(history ? taps : nullptr, x, y, m_prevHist, cur, o);
-                const float r = reliability(o[3]);
+                // A speckle pixel itself (it differs from all 8 neighbours) takes the smooth
+                // estimate whatever its window's share (aux_prefilter.h, step 4).
+                const float r = m_albedoFlags(x, y, 0) > 0.0f ? 0.0f : reliability(o[3]);
                 if (r >= 1.0f)
                     continue; // reliable: the albedo stays exactly as given
                 float* a = f.albedo.at(x, y);

@@ -28,6 +28,11 @@
 //               demodulation (a smooth gain commutes with the filter up to its own variation);
 //               where the unreliable factor is also near zero, d >= (1 - r) / 32, which bounds
 //               the gain at 32x instead of 1024x (stages/demodulate.h's 2^-10 floor).
+//               A pixel flagged itself takes r = 0 whatever its window's share (since the
+//               twentieth session): an isolated outlier in an otherwise clean window (a black
+//               albedo sample on a coated surface, 1-3 of 25 pixels) kept its value before and
+//               came back from every method as a dark or bright dot (docs/afn-evaluation.md,
+//               twentieth session).
 //   5. normal   n' = normalize(r n + (1 - r) mean5x5(n)),
 //      depth    z' = r z + (1 - r) mean5x5(z) over pixels with a surface,
 //               before reprojection, so history acceptance, SVGF's edge-stopping, BMFR's features
