@@ -237,7 +237,8 @@ TEST(AuxPrefilter, AnIsolatedSpeckleInACleanWindowLeavesNoDot)
         Image out, without;
         bool noisy = false;
         runSequence(m, "noisy", s, speckled, &out, &noisy);
-        runSequence(m, "noisy", s, [&](int) { return clean; }, &without);
+        runSequence(
+            m, "noisy", s, [&](int) { return clean; }, &without);
         ASSERT_TRUE(noisy) << m;
         double worst = 1.0;
         int dots = 0;
