@@ -93,8 +93,8 @@ TEST(AfnPostFilterNoise, ACheckerboardGivesTheFormulaAndHistoryDividesTheVarianc
         history.data()[i] = 0.0f;
     EXPECT_NEAR(scaleOf({ &irradiance, nullptr, 9.0f })[p], expectedScale(0.6, 0.2, 13, 12, 1.0),
         1e-5 * kBase);
-    EXPECT_NEAR(scaleOf({ &irradiance, &history, 9.0f })[p],
-        expectedScale(0.6, 0.2, 13, 12, 1.0), 1e-5 * kBase);
+    EXPECT_NEAR(scaleOf({ &irradiance, &history, 9.0f })[p], expectedScale(0.6, 0.2, 13, 12, 1.0),
+        1e-5 * kBase);
 }
 
 TEST(AfnPostFilterNoise, ANoisyDarkRegionGetsTheHighEnd)
