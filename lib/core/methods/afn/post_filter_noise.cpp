@@ -43,7 +43,9 @@ void postFilterLuminanceScale(const PostFilterNoiseInputs& in, int w, int h, flo
     squarePlane.resize(n);
     // Rows: the box means of l and l^2 along x.
     parallelRows(h, [&](int y0, int y1) {
-        std::vector<float> l(static_cast<std::size_t>(w));
+        // One row's luminance, kept by each worker from frame to frame (as filterPass's rows).
+        thread_local std::vector<float> l;
+        l.resize(static_cast<std::size_t>(w));
         for (int y = y0; y < y1; ++y) {
             const float* row = in.irradiance->at(0, y);
             for (int x = 0; x < w; ++x)
