@@ -94,7 +94,7 @@ std::string helpText()
        << "  --device cpu|cuda|auto  where --denoise runs (default cpu; only afn runs there)\n"
        << "  --weights FILE          network weights (.afnw) instead of the built-in ones\n"
        << "  --threads N             worker threads (0 = all cores)\n"
-       << "  -q, --quiet             no progress, warnings or summary\n"
+       << "  -q, --quiet | -v        no progress, warnings or summary | every frame's detail\n"
        << "Methods (--help METHOD lists its parameters; --methods: which can run):\n";
     for (const std::string& type : afn::filterTypes()) {
         std::string desc = afnGetFilterTypeDescription(type.c_str());

@@ -54,9 +54,10 @@ public:
 
 private:
     void run(LoadedFrame& frame, Progress* progress);
-    /// The per-frame log line of the aux decision and speckle shares (methods that demodulate),
-    /// and the inputs the method uses that the frame lacks (a warning when that changes).
-    void logAux(const LoadedFrame& frame, Progress* progress);
+    /// The frame's log: warnings when the inputs or afn's model fall short (once per change); the
+    /// model, aux decision, speckle and skipped shares on the first frame and, with -v, on every
+    /// frame; otherwise a line only when the model, aux decision or missing inputs change.
+    void logFrame(const LoadedFrame& frame, Progress* progress);
     void check(const std::string& what, const std::string& file);
     /// Bind the :mask= channel of the frame (or unbind the mask); CliError when the file lacks it.
     void bindMask(const LoadedFrame& frame);
@@ -78,6 +79,8 @@ private:
     std::string m_maskChannel; ///< :mask=CHANNEL, the work mask's channel ("" = none)
     std::vector<float> m_mask; ///< that channel of the current frame
     std::string m_modelWarned; ///< afn: the model path last seen (a fallback is warned once)
+    bool m_logged = false; ///< the first frame's facts line was written
+    std::string m_factsLogged; ///< model, aux decision and missing inputs last logged
 };
 
 /// --compare REF: per-frame and mean metrics of the current beauty against the reference frames

@@ -211,13 +211,7 @@ void SequenceDenoiser::run(LoadedFrame& frame, Progress* progress)
     m_filter.execute();
     check(m_flag, frame.ref.path);
 
-    logAux(frame, progress);
-    const float skipped = m_filter.get<float>(AFN_STAT_SKIPPED);
-    if (skipped > 0.0f)
-        note(m_flag + ": " + m_method + " skipped " + shareText(skipped)
-                + " of the pixels (background, alpha 0" + (m_maskChannel.empty() ? "" : ", mask")
-                + "; skip=off filters them) " + frame.ref.path,
-            m_opts.quiet, progress);
+    logFrame(frame, progress);
     const int nonFinite = m_filter.get<int>(AFN_STAT_NON_FINITE);
     const int negative = m_filter.get<int>(AFN_STAT_NEGATIVE);
     if (nonFinite > 0)
@@ -255,57 +249,100 @@ void SequenceDenoiser::bindMask(const LoadedFrame& frame)
     m_filter.setImage(AFN_IMAGE_MASK, m_mask.data(), afn::Format::Float, all->width, all->height);
 }
 
-void SequenceDenoiser::logAux(const LoadedFrame& frame, Progress* progress)
+namespace {
+
+/// "a; b; c" of the non-empty items.
+std::string joinFacts(const std::vector<std::string>& items)
 {
+    std::string text;
+    for (const std::string& item : items)
+        if (!item.empty())
+            text += (text.empty() ? "" : "; ") + item;
+    return text;
+}
+
+} // namespace
+
+void SequenceDenoiser::logFrame(const LoadedFrame& frame, Progress* progress)
+{
+    const bool quiet = m_opts.quiet;
     // Inputs the method reads but the file does not have: warned about clearly (once, and again
-    // when it changes), and named in every frame's log line.
+    // when it changes).
     const std::string missing = m_filter.get<std::string>(AFN_STAT_MISSING_INPUTS);
     if (!missing.empty() && missing != m_missingWarned)
         warn(m_flag + ": " + m_method + " runs without " + missing
                 + ". Map the AOVs with --aov ROLE=CHANNELS (see afntool --info " + frame.ref.path
                 + ")",
-            m_opts.quiet, progress);
+            quiet, progress);
     m_missingWarned = missing;
     std::string missingShort;
     for (const std::string& item : splitList(missing, ';')) {
         const std::string name = item.substr(item.find_first_not_of(' '));
         missingShort += (missingShort.empty() ? "" : ", ") + name.substr(0, name.find(" ("));
     }
-    if (!missingShort.empty())
-        note(m_flag + ": " + m_method + " without " + missingShort + " " + frame.ref.path,
-            m_opts.quiet, progress);
 
+    // What the run is doing (said on the first frame and again when it changes) and the figures
+    // that vary from frame to frame (the first frame's, and every frame's with -v).
+    std::string model, aux, speckle, skippedText;
     if (m_method == "afn") {
-        // The trained model chosen for the file's inputs (issue 19): said once, and per frame.
-        // A model for fewer inputs than the file has is warned about (once per change).
-        const std::string model = m_filter.get<std::string>(AFN_STAT_AFN_MODEL);
+        // The trained model chosen for the file's inputs; one for fewer inputs than the file has
+        // is warned about (once per change).
+        model = m_filter.get<std::string>(AFN_STAT_AFN_MODEL);
         if (model.find("not used:") != std::string::npos && model != m_modelWarned)
             warn(m_flag + ": afn has no model for all of the file's inputs and runs " + model,
-                m_opts.quiet, progress);
+                quiet, progress);
         m_modelWarned = model;
-        note(m_flag + ": afn " + model + " " + frame.ref.path, m_opts.quiet, progress);
     }
-
     bool hasAux = false;
     for (const AFNParamInfo& p : afn::filterTypeParams(m_method.c_str()))
         hasAux = hasAux || std::string(p.name) == AFN_PARAM_AUX;
-    if (!hasAux)
-        return; // the method does not demodulate
-    const std::string mode = m_filter.get<std::string>(AFN_PARAM_AUX);
-    const bool noisy = m_filter.get<bool>(AFN_STAT_AUX_NOISY);
-    // The sample count takes part in aux=auto's decision (stages/aux_prefilter.h): say it.
-    const int spp = m_hasSpp ? m_filter.get<int>(AFN_PARAM_SPP) : 0;
-    const std::string sppText = spp > 0 ? ", " + std::to_string(spp) + " spp" : "";
-    const bool grain = m_filter.get<bool>(AFN_STAT_AUX_GRAIN_LIMITED);
-    note(m_flag + ": aux "
+    if (hasAux) { // the method demodulates
+        const std::string mode = m_filter.get<std::string>(AFN_PARAM_AUX);
+        const bool noisy = m_filter.get<bool>(AFN_STAT_AUX_NOISY);
+        // The sample count takes part in aux=auto's decision (stages/aux_prefilter.h): say it.
+        const int spp = m_hasSpp ? m_filter.get<int>(AFN_PARAM_SPP) : 0;
+        const std::string sppText = spp > 0 ? ", " + std::to_string(spp) + " spp" : "";
+        const bool grain = m_filter.get<bool>(AFN_STAT_AUX_GRAIN_LIMITED);
+        aux = std::string("aux ")
             + (noisy        ? "noisy"
                     : grain ? "clean, albedo grain limited"
                             : "clean")
-            + " (aux=" + mode + sppText + "; speckle: albedo "
-            + shareText(m_filter.get<float>(AFN_STAT_ALBEDO_SPECKLE)) + ", normal "
-            + shareText(m_filter.get<float>(AFN_STAT_NORMAL_SPECKLE)) + ", depth "
-            + shareText(m_filter.get<float>(AFN_STAT_DEPTH_SPECKLE)) + ") " + frame.ref.path,
-        m_opts.quiet, progress);
+            + " (aux=" + mode + sppText;
+        speckle = "speckle: albedo " + shareText(m_filter.get<float>(AFN_STAT_ALBEDO_SPECKLE))
+            + ", normal " + shareText(m_filter.get<float>(AFN_STAT_NORMAL_SPECKLE)) + ", depth "
+            + shareText(m_filter.get<float>(AFN_STAT_DEPTH_SPECKLE));
+    }
+    const float skipped = m_filter.get<float>(AFN_STAT_SKIPPED);
+    if (skipped > 0.0f)
+        skippedText = "skipped " + shareText(skipped) + " of the pixels (background, alpha 0"
+            + (m_maskChannel.empty() ? "" : ", mask") + "; skip=off filters them)";
+
+    if (m_opts.verbose) { // every frame, every figure
+        if (!missingShort.empty())
+            note(m_flag + ": " + m_method + " without " + missingShort + " " + frame.ref.path,
+                quiet, progress);
+        if (!model.empty())
+            note(m_flag + ": afn " + model + " " + frame.ref.path, quiet, progress);
+        if (!aux.empty())
+            note(m_flag + ": " + aux + "; " + speckle + ") " + frame.ref.path, quiet, progress);
+        if (!skippedText.empty())
+            note(m_flag + ": " + m_method + " " + skippedText + " " + frame.ref.path, quiet,
+                progress);
+        return;
+    }
+    const std::string facts = joinFacts({ missingShort.empty() ? "" : "without " + missingShort,
+        model, aux.empty() ? "" : aux + ")" });
+    if (!m_logged) {
+        // The missing inputs are in the warning above: not repeated here.
+        const std::string first
+            = joinFacts({ model, aux.empty() ? "" : aux + "; " + speckle + ")", skippedText });
+        if (!first.empty())
+            note(m_flag + ": " + m_method + " " + first, quiet, progress);
+    } else if (facts != m_factsLogged) {
+        note(m_flag + ": " + m_method + " now " + facts + " " + frame.ref.path, quiet, progress);
+    }
+    m_logged = true;
+    m_factsLogged = facts;
 }
 
 std::string SequenceDenoiser::describe() const

@@ -54,8 +54,8 @@ std::vector<std::string> knownFlags()
 {
     return { "--help", "--methods", "--version", "--frames", "--preroll", "--colorconfig",
         "--incolorspace", "--outcolorspace", "--aov", "--threads", "--device", "--weights", "-d",
-        "--compression", "--keep-aovs", "--json", "--quiet", "--info", "--denoise", "--features",
-        "--preview", "--contact-sheet", "--compare", "--benchmark", "--report" };
+        "--compression", "--keep-aovs", "--json", "--quiet", "--verbose", "--info", "--denoise",
+        "--features", "--preview", "--contact-sheet", "--compare", "--benchmark", "--report" };
 }
 
 } // namespace
@@ -118,6 +118,8 @@ Options parseCommandLine(int argc, const char* const* argv)
             o.json = true;
         } else if (flag == "-q" || flag == "--quiet") {
             o.quiet = true;
+        } else if (flag == "-v" || flag == "--verbose") {
+            o.verbose = true;
         } else if (flag == "--info") {
             o.actions.push_back({ "info", "", mods });
         } else if (flag == "--denoise") {

@@ -36,6 +36,7 @@ struct Options {
     bool json = false; ///< --json (with --info)
     std::string report; ///< --report DIR (with --benchmark): report folder
     bool quiet = false; ///< --quiet: no progress, no warnings
+    bool verbose = false; ///< -v: every frame's --denoise detail (default: facts once, changes)
     bool help = false;
     std::string helpTopic; ///< --help METHOD
     bool usage = false; ///< no arguments: print the usage lines

@@ -11,6 +11,7 @@ Progress::Progress(int total, bool quiet)
     , m_quiet(quiet)
     , m_bar(!quiet && isatty(2))
     , m_start(std::chrono::steady_clock::now())
+    , m_itemStart(m_start)
 {
 }
 
@@ -25,11 +26,15 @@ void Progress::update(int done, const std::string& label)
     if (m_quiet)
         return;
     if (!m_bar) {
-        // One line per finished item, so that a log that is not a terminal still shows where a
-        // run is (an error in the first item comes first); a single item only gets the summary.
+        // One line per finished item with its time, so that a log that is not a terminal still
+        // shows where a run is (an error in the first item comes first); a single item only gets
+        // the summary.
+        const auto now = std::chrono::steady_clock::now();
         if (done > 0 && m_total > 1)
-            std::fprintf(stderr, "afntool: [%d/%d] %s\n", done, m_total, m_label.c_str());
+            std::fprintf(stderr, "afntool: [%d/%d] %s %.2f s\n", done, m_total, m_label.c_str(),
+                std::chrono::duration<double>(now - m_itemStart).count());
         m_label = label;
+        m_itemStart = now;
         return;
     }
     const int width = 30;

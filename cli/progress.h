@@ -16,7 +16,8 @@ public:
     ~Progress();
     /// Item `done` (0-based) of total is starting, with a label (e.g. the file being read), so
     /// items before it are finished; done == total: all are. Without a terminal, one line per
-    /// finished item ("afntool: [3/60] shot.0002.exr"; none for a single item).
+    /// finished item with its wall time ("afntool: [3/60] shot.0002.exr 0.41 s"; none for a
+    /// single item).
     void update(int done, const std::string& label);
     /// Clear the bar before printing a message, so lines do not interleave.
     void clear();
@@ -31,6 +32,7 @@ private:
     bool m_drawn = false;
     std::string m_label; ///< label of the item in progress (plain lines)
     std::chrono::steady_clock::time_point m_start;
+    std::chrono::steady_clock::time_point m_itemStart; ///< when the item in progress started
 };
 
 /// "8 frames in 3.21 s (2.49 fps)"; the rate is omitted when no time was measured.
@@ -38,7 +40,7 @@ std::string summaryText(int frames, double seconds);
 
 /// Print "afntool WARNING: ..." on stderr unless quiet.
 void warn(const std::string& message, bool quiet, Progress* progress = nullptr);
-/// Print "afntool: <message>" on stderr (a per-frame log line), unless quiet.
+/// Print "afntool: <message>" on stderr (a log line), unless quiet.
 void note(const std::string& message, bool quiet, Progress* progress = nullptr);
 
 } // namespace afntool

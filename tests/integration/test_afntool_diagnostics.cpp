@@ -110,7 +110,7 @@ TEST(AfntoolDiagnostics, MethodsWithoutTheirAovsWarn)
         writeExr(dir.file(f), { "R", "G", "B" });
     const std::string in = dir.file("plain.####.exr");
     for (const char* method : { "svgf", "bmfr" }) {
-        const CliResult r = runAfntool({ "--frames", "0-1", in,
+        const CliResult r = runAfntool({ "-v", "--frames", "0-1", in,
             std::string("--denoise:method=") + method, "-o", dir.file("out.####.exr") });
         ASSERT_EQ(r.exitCode, 0) << r.err;
         EXPECT_EQ(countOf(r.err,
@@ -121,7 +121,7 @@ TEST(AfntoolDiagnostics, MethodsWithoutTheirAovsWarn)
         EXPECT_NE(r.err.find("normal ("), std::string::npos) << r.err;
         EXPECT_NE(r.err.find("motion or position with a camera (reprojection"), std::string::npos)
             << r.err;
-        // The per-frame log names them for every frame.
+        // With -v the log names them for every frame.
         EXPECT_NE(r.err.find(std::string(method) + " without albedo, normal, "), std::string::npos)
             << r.err;
         EXPECT_EQ(countOf(r.err, std::string(method) + " without albedo"), 2) << r.err;
@@ -265,4 +265,57 @@ TEST(AfntoolDiagnostics, ProgressLinesAndSummaryWhenNotATerminal)
         "--denoise:method=identity", "-o", dir.file("q.####.exr") });
     ASSERT_EQ(q.exitCode, 0) << q.err;
     EXPECT_TRUE(q.err.empty()) << q.err;
+}
+
+TEST(AfntoolDiagnostics, DenoiseLogIsOneLinePerFrameAndVerboseGivesTheDetail)
+{
+    // A farm log: the run's facts (model, aux decision, speckle shares) once, then one line per
+    // frame with its time, then the summary: at most 5 lines for 3 frames without warnings.
+    TempDir dir;
+    const CliResult r = runAfntool(
+        { "--frames", "0-2", kSequence, "--denoise:method=afn", "-o", dir.file("out.####.exr") });
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_LE(countOf(r.err, "\n"), 5) << r.err;
+    EXPECT_EQ(countOf(r.err, "WARNING"), 0) << r.err;
+    EXPECT_EQ(countOf(r.err, "afntool: --denoise: afn model "), 1) << r.err;
+    EXPECT_EQ(countOf(r.err, "; aux "), 1) << r.err;
+    for (const char* line : { "afntool: [1/3] ", "afntool: [2/3] ", "afntool: [3/3] " }) {
+        const size_t at = r.err.find(line);
+        ASSERT_NE(at, std::string::npos) << line << "\n" << r.err;
+        const std::string text = r.err.substr(at, r.err.find('\n', at) - at);
+        EXPECT_EQ(text.substr(text.size() - 2), " s") << "the frame's time: " << text;
+    }
+    EXPECT_LT(r.err.find("afntool: --denoise: afn model "), r.err.find("afntool: [1/3] "));
+
+    // -v: every frame's model and aux lines, as before the summary.
+    const CliResult v = runAfntool({ "-v", "--frames", "0-2", kSequence, "--denoise:method=afn",
+        "-o", dir.file("v.####.exr") });
+    ASSERT_EQ(v.exitCode, 0) << v.err;
+    EXPECT_EQ(countOf(v.err, "afntool: --denoise: afn model "), 3) << v.err;
+    EXPECT_EQ(countOf(v.err, "afntool: --denoise: aux "), 3) << v.err;
+    for (const char* frame : { "frame.0000.exr\n", "frame.0001.exr\n", "frame.0002.exr\n" })
+        EXPECT_GE(countOf(v.err, frame), 2) << frame << "\n" << v.err;
+}
+
+TEST(AfntoolDiagnostics, DenoiseLogSaysWhatChangesMidRun)
+{
+    // The file's sample count goes from 1 to 16 spp at the second frame, and aux=auto's decision
+    // with it: one line says what the run now does, when it happens, and only then.
+    TempDir dir;
+    const std::vector<std::string> channels = { "R", "G", "B", "albedo.R", "albedo.G", "albedo.B" };
+    const std::string spp = "cycles.ViewLayer.samples";
+    writeExr(dir.file("in.0000.exr"), channels, { { spp, "1" } });
+    writeExr(dir.file("in.0001.exr"), channels, { { spp, "16" } });
+    writeExr(dir.file("in.0002.exr"), channels, { { spp, "16" } });
+    const CliResult r = runAfntool({ "--frames", "0-2", dir.file("in.####.exr"),
+        "--denoise:method=ta", "-o", dir.file("out.####.exr") });
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_EQ(countOf(r.err, "(aux=auto, 1 spp; speckle: albedo "), 1) << r.err;
+    const size_t now = r.err.find("afntool: --denoise: ta now ");
+    ASSERT_NE(now, std::string::npos) << r.err;
+    EXPECT_NE(
+        r.err.find("(aux=auto, 16 spp) " + dir.file("in.0001.exr") + "\n", now), std::string::npos)
+        << r.err;
+    EXPECT_GT(now, r.err.find("afntool: [1/3] ")) << "said when frame 1 is denoised";
+    EXPECT_EQ(countOf(r.err, " now "), 1) << "frame 2 changes nothing:\n" << r.err;
 }

@@ -64,9 +64,7 @@ TEST(AfntoolSkip, NeededPixelsBitIdenticalToSkipOffForEveryMethod)
             = runAfntool({ "--frames", "0-3", in, m, "-o", dir.file("on.####.exr") });
         ASSERT_EQ(on.exitCode, 0) << on.err;
         // 24 sky rows + the right 64 columns of the other 40: (24 * 96 + 40 * 64) / (96 * 64).
-        EXPECT_NE(
-            on.err.find(std::string(method) + " skipped 79.17 % of the pixels"), std::string::npos)
-            << on.err;
+        EXPECT_NE(on.err.find("skipped 79.17 % of the pixels"), std::string::npos) << on.err;
         const CliResult off = runAfntool(
             { "--frames", "0-3", in, m + ":skip=off", "-o", dir.file("off.####.exr") });
         ASSERT_EQ(off.exitCode, 0) << off.err;
