@@ -134,7 +134,7 @@ void BM_AfnWhole(benchmark::State& state)
 }
 BENCHMARK(BM_AfnWhole)->Name("afn.whole.1280x720")->Apply(configure);
 
-// Work skipping (issue 19): the same pass with the top 60 % of the rows masked out (work = 0), so
+// Work skipping: the same pass with the top 60 % of the rows masked out (work = 0), so
 // the rows there take the cheap path. Compare with afn.whole.1280x720 in the same run; the
 // counter is the full frame's GFLOP over the time, an "effective" rate.
 void BM_AfnWholeWork40(benchmark::State& state)

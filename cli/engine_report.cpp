@@ -16,7 +16,7 @@ namespace afntool {
 namespace {
 
 // Why a stage stays below the GEMM rate (the report's last column; measured in
-// docs/performance.md, twelfth session).
+// docs/performance.md).
 constexpr const char* kFilteringWhy
     = "about a third of its time is the softmax's 49 exponentials per pixel, which are not "
       "counted as FLOP; the 7x7 x 3-channel filters have weights that differ per pixel (2 FLOP "

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-// --info's "afn:" line: the trained model the afn method chooses for a file's inputs (issue 19).
+// --info's "afn:" line: the trained model the afn method chooses for a file's inputs.
 #pragma once
 
 #include "options.h"

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-// --benchmark:size=WxH:sky=S: what work skipping buys (issue 19). Per method, on generated frames
+// --benchmark:size=WxH:sky=S: what work skipping buys. Per method, on generated frames
 // (benchmark_frame.h) of one size, three runs of warmup + frames each: "full" (every pixel
 // covered by geometry), "sky" (the top S of the rows sky, depth 1e10, skip on: the default) and
 // "sky skip=off" (the same frames, every pixel denoised). Reported: median wall and process-CPU ms

@@ -246,7 +246,7 @@ void SequenceRunner::runFrame(
     afnUnsetFilterImage(f, AFN_IMAGE_OUTPUT);
     checkError("afn execute");
     if (settings.method == "afn") {
-        // The trained model afn chose for the connected clips (issue 19), logged when it changes.
+        // The trained model afn chose for the connected clips' inputs, logged when it changes.
         const char* model = afnGetFilterString(f, AFN_STAT_AFN_MODEL);
         if (model && m_afnModel != model) {
             m_afnModel = model;

@@ -1,7 +1,7 @@
 #!/bin/bash
 # SPDX-License-Identifier: Apache-2.0
-# afn per input combination on the held-out sequences of a generated dataset (issue 19,
-# docs/afn-evaluation.md): each combination is made from the full files by unbinding the other
+# afn per input combination on the held-out sequences of a generated dataset
+# (docs/afn-evaluation.md): each combination is made from the full files by unbinding the other
 # passes (afntool --aov ROLE=none), denoised by the model afn chooses for it, and compared with
 # the sequence's clean reference (afntool --compare; PSNR/SSIM on T(x), docs/metrics.md).
 #   bash eval-input-sets.sh DATA AFNTOOL [SPP] [--weights-color F] [--weights-albedo-normal F]

@@ -194,7 +194,8 @@ def record(split_name, desc, state, settings, seq_dir, out):
 
 def parse_args(argv):
     ap = argparse.ArgumentParser(prog="generate-dataset", description=__doc__.split("\n")[0])
-    ap.add_argument("--out", required=True, help="output directory (outside any repository)")
+    ap.add_argument("--out", required=True,
+                    help="output directory, e.g. $AFN_DATA/afn-v2 (docs/dataset.md)")
     d = DEFAULTS
     ap.add_argument("--frames", type=int, default=d["frames"], help="frames per training sequence")
     ap.add_argument("--eval-frames", type=int, default=d["eval_frames"])

@@ -2,7 +2,8 @@
 # The default AFN training protocol on a dataset made by training/render-dataset (docs/dataset.md),
 # sized for a 2-core CPU (a few hours in all); the same commands run on a GPU with --device cuda.
 #
-#   cd training && bash train-default.sh [DATA] [RESULTS]      (defaults ../data/afn-default, results)
+#   cd training && bash train-default.sh [DATA] [RESULTS]
+#       (defaults $AFN_DATA/afn-default, or ../data/afn-default without AFN_DATA; results)
 #
 # 1. eval-full:  the evaluation model (variant "full"); never sees the held-out scenes
 #                (AFN_HOLDOUT, default moving_light,glass); AFN_EVAL_MINUTES of training.
@@ -21,7 +22,7 @@
 # checkpoint. Logs: RESULTS/NAME.log (and RESULTS/NAME/log.csv per epoch).
 set -euo pipefail
 cd "$(dirname "$0")"
-DATA=${1:-../data/afn-default}
+DATA=${1:-${AFN_DATA:-../data}/afn-default}
 OUT=${2:-results}
 HOLDOUT=${AFN_HOLDOUT:-moving_light,glass}
 PY=/usr/bin/python3

@@ -128,8 +128,8 @@ typedef enum AFNDeviceType {
 #define AFN_PARAM_SKIP "skip"
 #define AFN_PARAM_DENOISING_RANGE "denoisingRange"
 /// Cost/accuracy tier: "fast", "balanced" (default: the method as without the parameter), "high"
-/// (a parameter of every denoising method; what each tier does is in its help text and README.md,
-/// lib/core/filter/quality.h).
+/// (a parameter of every denoising method; what each tier does is in its help text and
+/// docs/quality.md, lib/core/filter/quality.h).
 #define AFN_PARAM_QUALITY "quality"
 /// Array parameters (afnSetFilterFloats).
 #define AFN_ARRAY_VIEW_PROJECTION "viewProjection"
@@ -159,7 +159,7 @@ typedef enum AFNDeviceType {
 /// "normal (edge-stopping); motion or position with a camera (reprojection: ...)"; "" when none
 /// (afnGetFilterString). The method still runs, with less to go on.
 #define AFN_STAT_MISSING_INPUTS "stats.missingInputs"
-/// The "afn" method's path for the last frame (afnGetFilterString; issue 19): the input set of the
+/// The "afn" method's path for the last frame (afnGetFilterString): the input set of the
 /// trained model chosen for the frame's inputs, temporal or single-frame, and the frame inputs it
 /// does not use, e.g. "model color+albedo+normal, single-frame (no temporal branch: no motion or
 /// position); not used: depth"; "" before the first frame.

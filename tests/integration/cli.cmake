@@ -58,7 +58,7 @@ add_test(NAME slurm_farm_job_array
 set_tests_properties(slurm_farm_job_array PROPERTIES SKIP_RETURN_CODE 77 TIMEOUT 240
   LABELS farm ENVIRONMENT "OCIO=")
 
-# Input-aware afn (issue 19): one EXR sequence per input combination, the model chosen and
+# Input-aware afn: one EXR sequence per input combination, the model chosen and
 # reported (--info, per-frame log), and the missing-weights error.
 afn_add_gtest(test_afntool_input_sets SOURCES integration/test_afntool_input_sets.cpp
   integration/cli_runner.cpp LIBS PkgConfig::OIIO)

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-// afntool's outputs are faithful to their input (issue 18): data and display windows, header
+// afntool's outputs are faithful to their input: data and display windows, header
 // metadata, integer bit depths, colour encodings by output type, and a record of what made them
 // (Software, Exif:ImageHistory with the method and every parameter, the colour space).
 #include "cli_runner.h"

@@ -2,7 +2,7 @@
 // afntool never writes over a file it reads (inputs, --compare references, weights; by inode and
 // canonical path, through symlinks and frame patterns), checks --compression against the output
 // format, and handles frame ranges as oiiotool does (negative frames) or refuses them with a
-// reason (descending frames for temporal methods, --frames on a single file). Issue 18.
+// reason (descending frames for temporal methods, --frames on a single file).
 #include "cli_runner.h"
 
 #include "afn/io.hpp"

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-// Input-aware afn (issue 19) through the plugin: with only some auxiliary clips connected, the
+// Input-aware afn through the plugin: with only some auxiliary clips connected, the
 // plugin runs the model afn chooses for them (the same pixels as the C API with those inputs),
 // says which in the host's log, and weights without a model for the connected clips fail the
 // render with the library's message.

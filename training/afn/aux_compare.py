@@ -1,9 +1,9 @@
 # SPDX-License-Identifier: Apache-2.0
-"""Before/after table of the noisy-AOV handling (issue 12): two afntool builds, every method.
+"""Before/after table of the noisy-AOV handling: two afntool builds, every method.
 
     cd training && /usr/bin/python3 -m afn.aux_compare \\
-        --before /work/baseline/build/cli/afntool --after ../build/cli/afntool \\
-        --seq example=../examples/sequence:0-7 --seq glass=/work/data/afn-aux/glass:0-9 \\
+        --before $BASELINE_AFNTOOL --after ../build/cli/afntool \\
+        --seq example=../examples/sequence:0-7 --seq glass=$AFN_DATA/afn-aux/glass:0-9 \\
         [--weights-after FILE] [--crops NAME=X,Y,W,H --crop-dir DIR] [--only before|after] \\
         --out table.md --json table.json
 

@@ -1,5 +1,5 @@
 # SPDX-License-Identifier: Apache-2.0
-"""Input sets of the AFN models (issue 19; lib/core/methods/afn/input_set.h is the C++ side).
+"""Input sets of the AFN models (lib/core/methods/afn/input_set.h is the C++ side).
 
 A model is trained for one input set: the colour plus a subset of albedo, normal, depth and a
 temporal history (motion vectors, or world positions with a camera). Its weights archive names

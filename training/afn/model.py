@@ -31,18 +31,18 @@ Chosen here (the paper leaves it open; see training/README.md and shared/referen
 * Ablation variants (Table 11 of the paper): ``full`` (fusion + refinement), ``fusion`` (no
   refinement), ``1spp`` (the TA input is replaced by the 1-spp frame everywhere, no refinement),
   ``ta`` (the 1-spp input is replaced by the TA frame everywhere, no refinement).
-* ``quarter`` (optional, off in the paper's graph; issue 13): a third, quarter-resolution scale
+* ``quarter`` (optional, not in the paper's graph): a third, quarter-resolution scale
   that widens the filter's footprint from 14 to 28 full-resolution pixels, fused like Eq. 3 but on
   the fused image: ``[K_q logits, beta logit] = head4(d2)`` 32->50 at 1/4;
   ``l = D(D(i))``; ``i <- i + U4(beta * (K_q * l - l))`` with U4 bilinear 4x upsampling
   (align_corners=False, edges clamped) so the swapped low band has no 4x4 blocks. It attacks
   the low-frequency blotches a 7x7 footprint on a few accumulated samples leaves (training/README,
-  fourteenth session). ``head4`` starts near the identity: zero weights, the centre tap's logit
+  *The network*). ``head4`` starts near the identity: zero weights, the centre tap's logit
   bias QUARTER_CENTRE_LOGIT (its weight 0.89, the other 48 share 0.11) and beta 0.5, so a model
   grown from a trained one (``--init``) starts close to where it was (the low band blurred by
-  about 5 %) while the kernels and beta both get useful gradients. (A first try started the
-  kernels uniform and beta at sigmoid(-4): beta only fell, the blur it would bring being harmful
-  before the kernels learn edges; training/README, seventeenth session.)
+  about 5 %) while the kernels and beta both get useful gradients. (Uniform kernels with beta at
+  sigmoid(-4) do not train: beta only falls, the blur it would bring being harmful before the
+  kernels learn edges.)
 * ``large``: AFN large, the paper's high-spp architecture (three scales of 5x5 kernels, no TA
   input), a different graph in model_large.py; :func:`make_model` builds either.
 

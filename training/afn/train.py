@@ -86,8 +86,8 @@ def parse_args(argv=None):
                     "--aov (e.g. albedo=diffuse.R,diffuse.G,diffuse.B); repeatable")
     ap.add_argument("--cache", default="", help="keep the prepared scenes in this folder and "
                     "reuse them (runs for several --inputs share the afntool preparation)")
-    ap.add_argument("--inputs", default=input_sets.FULL, help="input set the model is for "
-                    "(issue 19): color, or a list of albedo, normal, depth, temporal (default: "
+    ap.add_argument("--inputs", default=input_sets.FULL, help="input set the model is for: "
+                    "color, or a list of albedo, normal, depth, temporal (default: "
                     "all); the other inputs are held at their neutral values in the training data "
                     "(input_sets.mask, as the C++ filter does) and the set is stored in the weights")
     args = ap.parse_args(argv)

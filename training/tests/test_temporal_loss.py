@@ -1,5 +1,5 @@
 # SPDX-License-Identifier: Apache-2.0
-"""The temporal term of the training loss (issue 13): frame pairs share their crop and
+"""The temporal term of the training loss: frame pairs share their crop and
 augmentation, and the term measures flicker, not the image error."""
 
 import os

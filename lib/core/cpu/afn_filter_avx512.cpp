@@ -7,8 +7,9 @@
 // methods/afn/fusion.h with no border test. Per pixel the operations are those of the portable
 // kernel (normalised weights e_j / sum, taps summed in order j = 0..48) except the exponential's
 // polynomial and the order of the sum of the exponentials: within the parity tolerance
-// (AfnEngine.PortableAndAvx512KernelsAgree, AfnParity.*). The earlier kernel (one pixel per call,
-// horizontal reductions, tenth session) took about 4x the time (docs/performance.md).
+// (AfnEngine.PortableAndAvx512KernelsAgree, AfnParity.*). One pixel per call needs horizontal
+// reductions for the maximum and the sums, which makes it several times slower
+// (docs/performance.md).
 #include "cpu/afn_filter_avx512.h"
 
 #include "cpu/avx512.h"

@@ -3,7 +3,7 @@
 // (cpu/isa.h: chosen at run time; the functions carry their own target attribute, the build has
 // no -march).
 //
-// Design (measured on a 2-core AMD EPYC with AVX-512, docs in README "Results"):
+// Design (measured on a 2-core AMD EPYC with AVX-512, docs/performance.md):
 // - Implicit GEMM without im2col: M = output pixels of a row, N = output channels, K = taps x
 //   input channels. A task of rows first copies its input rows (plus the k/2-row halo) into a
 //   zero-padded band: concat(U(up), same) per pixel, channels padded to a multiple of 16, one

@@ -159,7 +159,7 @@ protected:
 
     /// Results of the shared stages for the current frame. The demodulation runs in place:
     /// irradiance() is the frame's colour buffer (Frame::color holds the irradiance once the
-    /// stage has run, issue 16: no second frame-size colour image).
+    /// stage has run: no second frame-size colour image).
     const Image& irradiance() const { return m_frame.color; }
     /// irradiance() itself, writable: a method that has read the irradiance may write its own
     /// demodulated result (3 channels, frame size) in its place, e.g. as denoiseDemodulated()'s

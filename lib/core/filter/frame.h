@@ -49,7 +49,7 @@ struct Frame {
     Image motion;
     Image alpha;
     Image work; ///< 1 ch: 1 where the pixel needs denoising, 0 where it may take the cheap path
-                ///< (work skipping, issue 19); empty = every pixel needs it
+                ///< (work skipping); empty = every pixel needs it
     NormalSpace normalSpace = NormalSpace::World;
     DepthKind depthKind = DepthKind::Planar;
     bool colorDemodulated = false; ///< colour is already divided by albedo (BMFR dataset)

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: Apache-2.0
 // Conversion of caller buffers into the canonical Frame (conventions in filter/frame.h).
 //
-// Sanitising rule (documented in the README, counted in InputStats):
+// Sanitising rule (documented in docs/afntool.md, counted in InputStats):
 //   - NaN or +-Inf in any input is replaced by 0 (in the albedo by 1: unknown, no demodulation).
 //   - Negative colour is clamped to 0 (radiance cannot be negative; renderers' negative lobes and
 //     filter ringing would otherwise feed the history).

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-// Work skipping (issue 19): which pixels of a frame need denoising. The Filter base fills
+// Work skipping: which pixels of a frame need denoising. The Filter base fills
 // Frame::work once per frame from the caller's bindings, before the stages run:
 //   - background / sky: the depth input is non-finite or >= denoisingRange (NRD's
 //     denoisingRange); without depth, a position input with a non-finite component or a length

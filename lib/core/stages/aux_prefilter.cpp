@@ -183,8 +183,8 @@ void AuxPrefilter::prepare(Frame& f)
         m_decided = true;
     }
     if (!m_report.noisy) {
-        // A clean history never reads flags or prefilter buffers again: free them (issue 16:
-        // frame-size buffers kept only while in use), so they do not add to every later frame.
+        // A clean history never reads flags or prefilter buffers again: free them (frame-size
+        // buffers are kept only while in use), so they do not add to every later frame.
         for (Image* img : { &m_albedoFlags, &m_normalFlags, &m_depthFlags, &m_share, &m_mean,
                  &m_tmp, &m_depthValid, &m_edges, &m_dense })
             *img = Image();

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: Apache-2.0
 // Possibly-noisy auxiliary buffers: the shared stage that makes demodulation, edge-stopping and
-// network features safe when albedo, normals or depth are noisy (issue 12).
+// network features safe when albedo, normals or depth are noisy.
 //
 // The problem. Methods divide the colour by the albedo, filter, and multiply by the albedo again
 // (stages/demodulate.h). When the albedo is itself 1-spp noise (Blender's Denoising Albedo on
@@ -28,11 +28,10 @@
 //               demodulation (a smooth gain commutes with the filter up to its own variation);
 //               where the unreliable factor is also near zero, d >= (1 - r) / 32, which bounds
 //               the gain at 32x instead of 1024x (stages/demodulate.h's 2^-10 floor).
-//               A pixel flagged itself takes r = 0 whatever its window's share (since the
-//               twentieth session): an isolated outlier in an otherwise clean window (a black
-//               albedo sample on a coated surface, 1-3 of 25 pixels) kept its value before and
-//               came back from every method as a dark or bright dot (docs/afn-evaluation.md,
-//               twentieth session).
+//               A pixel flagged itself takes r = 0 whatever its window's share: otherwise an
+//               isolated outlier in an otherwise clean window (a black albedo sample on a
+//               coated surface, 1-3 of 25 pixels) keeps its value and comes back from every
+//               method as a dark or bright dot (docs/afn-evaluation.md).
 //   5. normal   n' = normalize(r n + (1 - r) mean5x5(n)),
 //      depth    z' = r z + (1 - r) mean5x5(z) over pixels with a surface,
 //               before reprojection, so history acceptance, SVGF's edge-stopping, BMFR's features
@@ -41,7 +40,7 @@
 // remodulation and the AFN features (hence training, through afntool --features) see the same
 // values. Flags and r are per buffer; a clean buffer in a noisy frame is left as it is (r = 1).
 //
-// "clean" leaves every buffer untouched (bit-identical to the behaviour before this stage);
+// "clean" leaves every buffer untouched (bit-identical to not running this stage);
 // "auto" (default) decides on the first frame of each history: noisy when the albedo's or the
 // normal's speckle share exceeds kAuxNoisyShare (0.5 %) and the colour's sample count ("spp",
 // 0 = unknown) is below kAuxTrustedSpp, clean otherwise. The speckle test cannot tell noise from
@@ -49,7 +48,7 @@
 // neighbours too), and the auxiliary buffers' own sampling noise falls with the sample count: on
 // the afn-v2 renders the 16-spp albedo flags as much "speckle" as the 1-spp one (2-9 % on the
 // atrium scenes), and there prefiltering it cost svgf, bmfr and afn 0.6-1.7 dB on average
-// (docs/afn-evaluation.md, tenth session). There, where speckle is found, the albedo keeps its
+// (docs/afn-evaluation.md). There, where speckle is found, the albedo keeps its
 // given values except for its grain: the sub-pixel texture sampling noise a 16-spp albedo still
 // has, which remodulation would put back as a faint grain, is averaged over time within
 // kAuxGrainLimit of each given value (limitGrain; stats.auxGrainLimited). The decision holds

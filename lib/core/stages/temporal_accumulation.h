@@ -53,8 +53,7 @@ public:
     }
     /// The previous frame's colour buffer, which nothing reads until the next accumulate()
     /// overwrites it: scratch a method may use within the current frame (any shape; contents
-    /// unspecified, not kept across frames). Lending it saves the method a frame-size image
-    /// (issue 16).
+    /// unspecified, not kept across frames). Lending it saves the method a frame-size image.
     Image& scratch() { return m_prevColor; }
 
 private:

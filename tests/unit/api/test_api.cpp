@@ -405,7 +405,7 @@ TEST_F(ApiTest, FeatureOutputsAreTheNetworkInputs)
         ASSERT_EQ(irr[i], color[i] / std::max(factor[i], 1.0f / 1024.0f)) << i;
 
     // Binding features does not change the output. Every input: a build may embed only the
-    // model for all of them (issue 19).
+    // model for all of them.
     std::vector<float> normal(w * h * 3, 0.5f), motion(w * h * 2, 0.0f);
     afn::FilterRef a = device.newFilter("afn"), b = device.newFilter("afn");
     for (afn::FilterRef* g : { &a, &b }) {

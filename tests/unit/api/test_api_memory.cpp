@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: Apache-2.0
 // The library's frame-size buffers per pixel stay within docs/performance.md's accounting
-// ("Memory at 8K", issue 16). This program links afntool's heap counter (cli/heap_counter.cpp, the
+// ("Memory at 8K"). This program links afntool's heap counter (cli/heap_counter.cpp, the
 // replaced global operator new/delete) to count the peak live heap bytes while a filter runs three
 // frames. The peak is measured at two frame heights of the same width: the difference per added
 // pixel leaves out everything that does not grow with the height (thread pool, weights, afn's

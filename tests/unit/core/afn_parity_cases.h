@@ -41,7 +41,7 @@ inline std::vector<SequenceInputs> parityInputSets()
     return { all, camera, depthOnly, colorOnly, noAlbedo };
 }
 
-/// Whether the CPU filter runs the full-input model on `in` (issue 19): albedo, normal, depth and a
+/// Whether the CPU filter runs the full-input model on `in`: albedo, normal, depth and a
 /// temporal history (motion, or positions with a camera). For fewer inputs it runs the model for
 /// that input set (methods/afn/model_set.h), or refuses when only the full one is loaded; the CUDA
 /// filter has only the full model so far (docs/gpu.md), so CPU-filter parity skips those sets.

@@ -1,5 +1,5 @@
 # SPDX-License-Identifier: Apache-2.0
-"""The paper's learned baselines, trained with the AFN toolkit's data and protocol (issue 15):
+"""The paper's learned baselines, trained with the AFN toolkit's data and protocol:
 ``wskpn`` (Fan et al. 2021), ``nbgd`` (Meng et al. 2020), :mod:`.onnd` (Chaitanya et al. 2017)
 and :mod:`.mrkp` (multi-resolution kernel prediction, NBGD supplement). Each model reads the same
 features as afn (``afntool --features``, :mod:`afn.dataset`): the TA-1spp demodulated colour,

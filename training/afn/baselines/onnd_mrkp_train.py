@@ -4,7 +4,7 @@ a generated dataset's training sequences at the given sample count (its eval spl
 atrium, never trained on), inputs prepared by the C++ core through ``afntool --features``.
 
     cd training && /usr/bin/python3 -m afn.baselines.onnd_mrkp_train --model mrkp \\
-        --data /work/data/afn-v2 --spp 1 --out results/mrkp [--crop 64] [--minutes 35] [--threads 1]
+        --data $AFN_DATA/afn-v2 --spp 1 --out results/mrkp [--crop 64] [--minutes 35] [--threads 1]
 
 Budget choices (CPU training; the papers trained for days on GPUs): crops of 64x64 (the papers:
 128x128), a wall-clock limit instead of epochs, Adam lr 1e-3 (ONND's; beta2 0.99 for ONND as its

@@ -5,7 +5,7 @@
 // depth (stages/feature_scaling.h), run the network (network.h) and remodulate. The network output
 // is clamped to >= 0 by the remodulation (stages/demodulate.h). Weights: weights_source.h.
 //
-// Input-aware (issue 19): the library holds one trained model per input set (model_set.h,
+// Input-aware: the library holds one trained model per input set (model_set.h,
 // input_set.h); each frame runs the model for its inputs, whose absent roles are held neutral and
 // which without a temporal history runs single-frame (network_inputs.h). The choice is
 // reported as AFN_STAT_AFN_MODEL; no fitting model is an error at commit and at execute.
@@ -176,9 +176,9 @@ private:
         }
     }
     // The network writes into the accumulation stage's scratch image, its result becomes the
-    // radiance in place and the base writes it into the bound output (issue 16: no frame-size
-    // result or radiance image of afn's or the base's own). With taa=1 the TAA's output (its
-    // next history) is the result.
+    // radiance in place and the base writes it into the bound output (to save memory: no
+    // frame-size result or radiance image of afn's or the base's own). With taa=1 the TAA's output
+    // (its next history) is the result.
     const Image* denoiseRadiance(const Frame& in) override
     {
         Image& result = accumulatorScratch();

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-// Input sets of the afn method (issue 19): which auxiliary inputs a frame brings, and which a
+// Input sets of the afn method: which auxiliary inputs a frame brings, and which a
 // trained model was trained for. The colour is always there; the optional parts are albedo,
 // normal, depth and a temporal history. A frame has a history when it has motion vectors, or world
 // positions with a camera (stages/reproject.cpp); without either it runs in single-frame mode.
@@ -7,8 +7,8 @@
 // Choices (written down here, see also docs/afn-evaluation.md):
 // - An .afnw archive names its input set in the metadata key `inputs` (training/afn/weights.py):
 //   "color" or a comma list of albedo, normal, depth, temporal, e.g. "albedo,normal". An archive
-//   without the key is the full set "albedo,normal,depth,temporal" (every archive before issue 19,
-//   the shipped weights/afn.afnw included).
+//   without the key is the full set "albedo,normal,depth,temporal" (every archive written before
+//   input sets existed, and the shipped weights/afn.afnw).
 // - The network keeps its 13 inputs for every set: a role the model was not trained for is held
 //   at its neutral constant (albedo 1 = no demodulation, normal01 0.5, depth01 0), exactly as in
 //   its training data (afntool --aov ROLE=none). Nothing is estimated from the colour.

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: Apache-2.0
 // The trained AFN models a filter can choose from, one per input set (methods/afn/input_set.h),
-// and the choice for a frame's inputs (issue 19).
+// and the choice for a frame's inputs.
 //
 // Where they come from: the archives embedded at build time (lib/core/methods/afn/CMakeLists.txt:
 // AFN_WEIGHTS_FILE, the full-input model, and AFN_INPUT_SET_WEIGHTS, one archive per further
@@ -11,7 +11,7 @@
 // the most inputs; on a tie the one with the temporal branch, then the one listed first. Among
 // the models for that same input set, the one trained at the sample count nearest the frame's
 // (archive metadata `spp`, absent = 1; nearest in log2, a tie goes to the lower count; a frame
-// of unknown count, spp 0, counts as 1 spp: issue 13). The frame
+// of unknown count, spp 0, counts as 1 spp). The frame
 // inputs the chosen model was not trained for are not used (network_inputs.h: held at their neutral
 // values) and the report says so. No covered model: an error naming the frame's inputs and the
 // available sets, never a model run on inputs it was not trained for.

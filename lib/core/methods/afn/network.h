@@ -12,7 +12,7 @@
 // - run(): the production path, in horizontal stripes (network_stripes.cpp): each stripe of output
 //   rows computes every layer over just the rows its receptive field needs, in a reusable stripe
 //   workspace, so memory is O(stripe width x height), not O(frame), and no layer is stored at
-//   frame size. It can skip stripes that a work mask does not ask for (work skipping, issue 19).
+//   frame size. It can skip stripes that a work mask does not ask for (work skipping).
 // - runWholeFrame() = prepare, predict, filterAndFuse, refine, crop: every layer at frame size,
 //   kept for the tests (the intermediates below) and the per-stage Google benchmark.
 // The refinement runs in row strips with thread-local buffers in both (network_refine.cpp).

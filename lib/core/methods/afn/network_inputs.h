@@ -40,7 +40,8 @@ private:
     InputSet m_use;
     const Image* m_color1 = nullptr;
     const Image* m_colorTa = nullptr;
-    /// The frame's albedo itself when the model uses it (no copy, issue 16), else m_ones.
+    /// The frame's albedo itself when the model uses it (no copy: saves a frame-size image), else
+    /// m_ones.
     const Image* m_albedo = nullptr;
     Image m_colour, m_colourTa, m_ones, m_normal01, m_depth01;
 };

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: Apache-2.0
 // The AFN forward pass in horizontal stripes (Network::run, see methods/afn/network.h).
 //
-// Memory (issue 16): the whole-frame path stores ~50 floats per padded pixel (x 13, d1 6 at half
+// Memory: the whole-frame path stores ~50 floats per padded pixel (x 13, d1 6 at half
 // res, e1 4, fused/d_TA/out 3 each, ...): 190 MiB per megapixel, 6 GiB at 8K. Here the padded
 // frame is cut into stripes of kStripeRows output rows (a multiple of 8, so that every level of
 // the U-Net has whole rows). A stripe [Y0, Y1) works in a window of padded rows
@@ -40,7 +40,7 @@
 // window of the same run, and runStripe moves the shared rows up (the same values; at 720p the
 // input preparation fell from about 23.5 to 18.5 ms of wall time per frame, 2 threads).
 //
-// Work skipping (issue 19): with a work mask, only the 8-row blocks (the 1/8 grid a stripe must
+// Work skipping: with a work mask, only the 8-row blocks (the 1/8 grid a stripe must
 // start on) that hold a non-zero pixel of it are computed: each run of such blocks is cut into
 // stripes of at most kStripeRows from its first row. The other rows are the temporal accumulation
 // in.colorTa (the cheap path; afn_method.cpp remodulates it as the network output). The argument

@@ -20,7 +20,7 @@
 //
 // The parameters (3 passes, sigma_l 0.25, the depth, normal and albedo scales; the noise scale's
 // constants) were chosen on the rendered training sequences only; the held-out set was then run
-// once (docs/afn-evaluation.md, eighteenth and twentieth sessions). The guides are the frame's as
+// once (docs/afn-evaluation.md, post-filter). The guides are the frame's as
 // the shared stages leave them (the aux prefilter's). exp is a polynomial approximation (relative
 // error < 2e-5) so the rows vectorise.
 #pragma once

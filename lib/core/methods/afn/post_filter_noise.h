@@ -19,9 +19,9 @@
 // So a dark, noisy corner or a pixel just disoccluded is smoothed more, a clean bright surface or
 // one with a long history less (with a constant sigma_l the filter over-smoothed the one and left
 // blotches in the other). The constants were chosen on rendered training sequences only (14 of
-// them; docs/afn-evaluation.md, twentieth session), the held-out set run once afterwards.
-// Without an irradiance guide (or one of another size) every pixel gets sigma_l / 2, the constant
-// of the filter before; without a history length n_p = 1 (a single frame).
+// them; docs/afn-evaluation.md), the held-out set run once afterwards.
+// Without an irradiance guide (or one of another size) every pixel gets sigma_l / 2, one
+// constant scale; without a history length n_p = 1 (a single frame).
 #pragma once
 
 #include "base/image.h"

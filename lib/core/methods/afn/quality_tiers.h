@@ -14,7 +14,7 @@
 //             prefilter), built once per frame from the unflipped frame; the network itself keeps
 //             no state, so every pass sees the same frame and history, only mirrored. Four
 //             network passes: about 4x the network's time, the stages' time once.
-// Measured cost and error of each tier: README.md (Quality tiers).
+// Measured cost and error of each tier: docs/quality.md.
 #pragma once
 
 #include "filter/quality.h"

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-// AFN's optional quarter-resolution scale (training/afn/model.py, `quarter`; issue 13), run after
+// AFN's optional quarter-resolution scale (training/afn/model.py, `quarter`), run after
 // filtering and fusion on the fused image i:
 //   [K_q logits, beta logit] = head4(d2)            1x1, d2 -> 50, at 1/4 of the padded size
 //   l = D(D(i)),  i <- i + U4(sigmoid(beta) * (K_q * l - l))

@@ -7,7 +7,7 @@
 //   auto (default)  on when the model that runs the frame was trained below 16 spp (the 1-spp
 //                   models), off for the 16- and 64-spp models
 //   off, on         as named
-// Why auto: on the held-out set (docs/afn-evaluation.md, seventeenth session) the TAA raised
+// Why auto: on the held-out set (docs/afn-evaluation.md, output TAA) the TAA raised
 // afn's 1-spp mean PSNR (+0.20 dB with the blend factor 0.7) and SSIM and cut the temporal error,
 // but at 16 spp it lost PSNR on 4 of 6 sequences (0.32 dB on average, up to 1.3): a sharp 16-spp
 // result has little flicker left to remove and the clamp box blurs it.
@@ -21,7 +21,7 @@
 //   auto (default)  on for the models trained below 16 spp, off for the 16- and 64-spp ones
 //   off, on         as named
 // Why auto: on the rendered training sequences it raised the mean PSNR at 1 spp (+0.3 dB) and
-// lowered it slightly at 16 and 64 spp (docs/afn-evaluation.md, eighteenth session, with the
+// lowered it slightly at 16 and 64 spp (docs/afn-evaluation.md, post-filter, with the
 // held-out results).
 // Under work skipping the network then computes kPostFilterRadius more rows around the needed
 // ones.

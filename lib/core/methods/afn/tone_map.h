@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: Apache-2.0
 // The AFN network's input tone map, clip(max(x, 0)^(1/2.2), 0, 1) (training/afn/color.py
 // tonemap), without libm's powf: it took 12 % of afn's CPU time at 720p (9 calls per pixel:
-// both colours of the prediction input and the refinement input; issue 16).
+// both colours of the prediction input and the refinement input).
 //
 // Method (the same operations in the scalar and the AVX-512 code, so both give the same bits; the
 // files are compiled without FMA contraction, see CMakeLists.txt):

@@ -20,11 +20,11 @@ void Denoiser::reset()
 const Image& Denoiser::process(
     const Frame& f, const Reprojector& taps, const TemporalAccumulator& ta, Image& scratch)
 {
-    // Frame-size buffers (issue 16): m_filtered and the TAA's output hold the histories between
-    // frames, m_spare and the caller's `scratch` are free. Each frame: regression -> `scratch`;
-    // second accumulation -> m_spare (the old m_filtered becomes the spare it reads); remodulated
-    // radiance -> `scratch` (the regression is dead by then); TAA -> m_spare, which becomes its
-    // history (stages/taa.h), m_spare getting the old history's buffer.
+    // Frame-size buffers (as few as possible): m_filtered and the TAA's output hold the histories
+    // between frames, m_spare and the caller's `scratch` are free. Each frame: regression ->
+    // `scratch`; second accumulation -> m_spare (the old m_filtered becomes the spare it reads);
+    // remodulated radiance -> `scratch` (the regression is dead by then); TAA -> m_spare, which
+    // becomes its history (stages/taa.h), m_spare getting the old history's buffer.
     Image& regressed = scratch;
     if (f.hasWorkMask()) {
         const WorkRegion region = WorkRegion::fromMask(f.work).dilated(kWorkMargin);

@@ -11,7 +11,7 @@
 //   - masked loads (lanes outside the image read 0 without touching memory and get weight 0), so
 //     any step is direct, and no tap needs a per-lane path; a block whose 24 taps all lie inside
 //     the image (most blocks: cols all ones) loads them without masks, the same values and bits,
-//     5 % faster on the AMD EPYC this was measured on (docs/performance.md, seventh session).
+//     about 5 % faster on an AMD EPYC (docs/performance.md).
 // Taps with exp(-e) below exp(-40) add exactly 0, as in the portable kernel. The sums run over the
 // tap pairs in a fixed order per pixel: results do not depend on the thread count, and differ from
 // the portable kernel's in the last bits only (tests/unit/core/methods/svgf/test_svgf_kernels.cpp

@@ -4,7 +4,7 @@
 // multiple of kRowAlign, so 8 lanes starting anywhere in [x - kPlanePad, x + kPlanePad] for an x of
 // the image load without a bounds check. Pixel 0 of every row starts a 64-byte cache line, so the
 // AVX-512 kernels' 16-pixel vectors at x = 0, 16, 32, ... (and their taps at multiples of 16
-// pixels) load one line, not two (docs/performance.md, eighth session). The kernels write only
+// pixels) load one line, not two (docs/performance.md). The kernels write only
 // in-image pixels: padding stays 0 (finite), so a masked-out lane times a zero weight stays 0.
 #pragma once
 

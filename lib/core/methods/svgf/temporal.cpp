@@ -137,7 +137,7 @@ void Denoiser::process(const Frame& f, const Image& irr, const Reprojector& taps
     if (skip) // the cheap path: the temporally integrated colour (before the feedback below)
         copyColor(m_integrated, kIntRed, nullptr, filtered);
     // The à-trous ping-pong: m_cv and the previous frame's integration, which nothing reads once
-    // this frame's is made (issue 16: no frame-size buffer of its own); its pads are zero as
+    // this frame's is made (to save memory: no frame-size buffer of its own); its pads are zero as
     // every kernel writes in-image pixels only. m_integrated's colour planes are the feedback
     // slot (the history of the next integrate()): they keep the unfiltered integrated colour
     // unless iteration feedbackTap overwrites them (with skipping: over the pixels that

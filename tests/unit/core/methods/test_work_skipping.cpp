@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-// Work skipping (issue 19, filter/work_mask.h): for every method (one test per method and case),
+// Work skipping (filter/work_mask.h): for every method (one test per method and case),
 // the pixels that need denoising come out bit-identical to skip=off on every frame of a sequence
 // (static camera, and a camera moving by a sub-pixel step), whatever marks the others (sky depth,
 // alpha 0, a user mask); the skipped pixels really take the cheap path where the method has one

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-// Input-aware afn (issue 19): input-set spelling, the model choice and its fallback order, the
+// Input-aware afn: input-set spelling, the model choice and its fallback order, the
 // missing-model error, the reported path, and the network inputs of a model that uses fewer
 // inputs than the frame has.
 #include "base/exception.h"

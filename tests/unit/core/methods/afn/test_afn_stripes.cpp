@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: Apache-2.0
 // The AFN stripe path (methods/afn/network_stripes.cpp): bit-identical to the whole-frame stages
 // for frames of one and of many stripes (odd sizes, both variants, 1 thread and all), also where a
-// stripe takes input rows over from the previous one, and its work mask (issue 19): stripes
+// stripe takes input rows over from the previous one, and its work mask: stripes
 // without work take the cheap path, the others are unchanged.
 #include "afn_random_inputs.h"
 #include "methods/afn/network.h"
