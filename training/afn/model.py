@@ -154,8 +154,33 @@ def pad_to_multiple(x: torch.Tensor, m: int = PAD_MULTIPLE) -> torch.Tensor:
     return F.pad(x, (0, pw, 0, ph), mode="replicate")
 
 
-def _conv3(cin, cout):
+def conv3(cin, cout):
+    """A 3x3 convolution keeping the size (zero padding 1)."""
     return nn.Conv2d(cin, cout, 3, padding=1)
+
+
+def add_unet(net: nn.Module, in_channels: int, cfg: AFNConfig) -> None:
+    """Give ``net`` the half-res-start U-Net M of AFN and AFN large: ``enc1``..``enc3``, ``dec2``,
+    ``dec1`` (3x3 convs, widths ``cfg.enc`` and ``cfg.dec``), registered in that order (which
+    fixes the parameters' initialisation and the archive's tensor order)."""
+    c1, c2, c3 = cfg.enc
+    d2, d1 = cfg.dec
+    net.enc1 = conv3(in_channels, c1)
+    net.enc2 = conv3(c1, c2)
+    net.enc3 = conv3(c2, c3)
+    net.dec2 = conv3(c3 + c2, d2)
+    net.dec1 = conv3(d2 + c1, d1)
+
+
+def run_unet(net: nn.Module, x: torch.Tensor):
+    """M of :func:`add_unet` on x (B, C, H, W), H and W multiples of 8: the decoder features
+    ``d2`` (1/4 res) and ``d1`` (1/2 res), ReLU applied."""
+    e1 = F.relu(net.enc1(down2(x)))                               # 1/2
+    e2 = F.relu(net.enc2(down2(e1)))                              # 1/4
+    e3 = F.relu(net.enc3(down2(e2)))                              # 1/8
+    d2 = F.relu(net.dec2(torch.cat([up2(e3), e2], 1)))            # 1/4
+    d1 = F.relu(net.dec1(torch.cat([up2(d2), e1], 1)))            # 1/2
+    return d2, d1
 
 
 class AFN(nn.Module):
@@ -174,13 +199,8 @@ class AFN(nn.Module):
             raise ValueError(f"unknown AFN variant '{cfg.variant}' (known: "
                              f"{', '.join(VARIANTS[:-1])}; 'large' is built by make_model)")
         self.cfg = cfg
-        c1, c2, c3 = cfg.enc
         d2, d1 = cfg.dec
-        self.enc1 = _conv3(INPUT_CHANNELS, c1)
-        self.enc2 = _conv3(c1, c2)
-        self.enc3 = _conv3(c2, c3)
-        self.dec2 = _conv3(c3 + c2, d2)
-        self.dec1 = _conv3(d2 + c1, d1)
+        add_unet(self, INPUT_CHANNELS, cfg)
         self.head1 = nn.Conv2d(d1, KERNEL_TAPS, 1)
         self.headTA = nn.Conv2d(d1 + INPUT_CHANNELS, KERNEL_TAPS + 1, 1)
         if cfg.quarter and cfg.variant not in ("full", "fusion"):
@@ -194,9 +214,9 @@ class AFN(nn.Module):
                 self.head4.bias[KERNEL_TAPS // 2] = QUARTER_CENTRE_LOGIT
         self.use_refine = cfg.variant == "full"
         if self.use_refine:
-            self.ref1 = _conv3(REFINE_INPUT_CHANNELS, cfg.refine)
-            self.ref2 = _conv3(cfg.refine, cfg.refine)
-            self.ref3 = _conv3(cfg.refine, 3)
+            self.ref1 = conv3(REFINE_INPUT_CHANNELS, cfg.refine)
+            self.ref2 = conv3(cfg.refine, cfg.refine)
+            self.ref3 = conv3(cfg.refine, 3)
 
     def forward(self, c1, cta, albedo, normal01, depth01):
         """Denoise one batch.
@@ -221,11 +241,7 @@ class AFN(nn.Module):
             pad_to_multiple(t) for t in (c1, cta, albedo, normal01, depth01))
         feats = torch.cat([albedo, normal01, depth01], 1)
         x = torch.cat([tonemap(c1), tonemap(cta), feats], 1)          # (B, 13, H, W)
-        e1 = F.relu(self.enc1(down2(x)))                              # 1/2
-        e2 = F.relu(self.enc2(down2(e1)))                             # 1/4
-        e3 = F.relu(self.enc3(down2(e2)))                             # 1/8
-        d2 = F.relu(self.dec2(torch.cat([up2(e3), e2], 1)))           # 1/4
-        d1 = F.relu(self.dec1(torch.cat([up2(d2), e1], 1)))           # 1/2
+        d2, d1 = run_unet(self, x)                                    # 1/4, 1/2
         k_1spp = torch.softmax(self.head1(d1), 1)                     # (B, 49, H/2, W/2)
         full = self.headTA(torch.cat([up2(d1), x], 1))                # (B, 50, H, W)
         k_ta = torch.softmax(full[:, :KERNEL_TAPS], 1)                # (B, 49, H, W)

@@ -48,6 +48,7 @@ import torch.nn.functional as F
 from torch import nn
 
 from .color import tonemap
+from .model import add_unet, conv3, down2, pad_to_multiple, run_unet, up2
 from .shifted_filter import shifted_filter
 
 LARGE_KERNEL_SIZE = 5
@@ -55,24 +56,6 @@ LARGE_TAPS = LARGE_KERNEL_SIZE * LARGE_KERNEL_SIZE
 LARGE_INPUT_CHANNELS = 10       # T(c) 3, albedo 3, normal01 3, depth01 1
 REFINE_INPUT_CHANNELS = 10      # T(o) 3, albedo 3, normal01 3, depth01 1
 REFINE_MODULES = ("refA", "refB")
-PAD_MULTIPLE = 8
-
-
-def down2(x):
-    """D: 2x2 average pooling."""
-    return F.avg_pool2d(x, 2)
-
-
-def up2(x):
-    """U: nearest-neighbour 2x upsampling."""
-    return F.interpolate(x, scale_factor=2, mode="nearest")
-
-
-def pad_to_multiple(x, m=PAD_MULTIPLE):
-    """Replicate-pad (B, C, H, W) at the right and bottom to multiples of m."""
-    h, w = x.shape[-2:]
-    ph, pw = (-h) % m, (-w) % m
-    return x if ph == 0 and pw == 0 else F.pad(x, (0, pw, 0, ph), mode="replicate")
 
 
 def apply_kernels5(img, kernels):
@@ -95,10 +78,6 @@ def fuse_scale(fine, coarse, alpha):
     return fine - alpha * up2(down2(fine)) + alpha * up2(coarse)
 
 
-def _conv3(cin, cout):
-    return nn.Conv2d(cin, cout, 3, padding=1)
-
-
 class AFNLarge(nn.Module):
     """AFN large (module docstring); built by :func:`afn.model.make_model` for variant "large"."""
 
@@ -107,20 +86,15 @@ class AFNLarge(nn.Module):
         if cfg.variant != "large":
             raise ValueError(f"AFNLarge needs variant 'large', not '{cfg.variant}'")
         self.cfg = cfg
-        c1, c2, c3 = cfg.enc
         d2, d1 = cfg.dec
-        self.enc1 = _conv3(LARGE_INPUT_CHANNELS, c1)
-        self.enc2 = _conv3(c1, c2)
-        self.enc3 = _conv3(c2, c3)
-        self.dec2 = _conv3(c3 + c2, d2)
-        self.dec1 = _conv3(d2 + c1, d1)
+        add_unet(self, LARGE_INPUT_CHANNELS, cfg)
         self.head3 = nn.Conv2d(d2, LARGE_TAPS, 1)
         self.head2 = nn.Conv2d(d1, LARGE_TAPS + 1, 1)
         self.head1 = nn.Conv2d(d1 + LARGE_INPUT_CHANNELS, LARGE_TAPS + 1, 1)
         for m in REFINE_MODULES:
-            setattr(self, f"{m}1", _conv3(REFINE_INPUT_CHANNELS, cfg.refine))
-            setattr(self, f"{m}2", _conv3(cfg.refine, cfg.refine))
-            setattr(self, f"{m}3", _conv3(cfg.refine, 3))
+            setattr(self, f"{m}1", conv3(REFINE_INPUT_CHANNELS, cfg.refine))
+            setattr(self, f"{m}2", conv3(cfg.refine, cfg.refine))
+            setattr(self, f"{m}3", conv3(cfg.refine, 3))
 
     def forward(self, c1, cta, albedo, normal01, depth01):
         """Denoise one batch (arguments as :meth:`afn.model.AFN.forward`; ``cta`` is unused).
@@ -135,11 +109,7 @@ class AFNLarge(nn.Module):
         c, albedo, normal01, depth01 = (pad_to_multiple(t) for t in (c1, albedo, normal01, depth01))
         feats = torch.cat([albedo, normal01, depth01], 1)
         x = torch.cat([tonemap(c), feats], 1)                        # (B, 10, H, W)
-        e1 = F.relu(self.enc1(down2(x)))
-        e2 = F.relu(self.enc2(down2(e1)))
-        e3 = F.relu(self.enc3(down2(e2)))
-        d2 = F.relu(self.dec2(torch.cat([up2(e3), e2], 1)))           # 1/4
-        d1 = F.relu(self.dec1(torch.cat([up2(d2), e1], 1)))           # 1/2
+        d2, d1 = run_unet(self, x)                                    # 1/4, 1/2
         k3 = torch.softmax(self.head3(d2), 1)
         h2 = self.head2(d1)
         k2, alpha2 = torch.softmax(h2[:, :LARGE_TAPS], 1), torch.sigmoid(h2[:, LARGE_TAPS:])
