@@ -13,18 +13,9 @@ sys.path.insert(0, TRAINING)
 from afn import export, model_large  # noqa: E402
 from afn.model import AFN, AFNConfig, cost_per_pixel, make_model  # noqa: E402
 from afn.weights import load_model, loads, save_model  # noqa: E402
+from afn_inputs import random_inputs  # noqa: E402
 
 SMALL = dict(variant="large", enc=(4, 6, 8), dec=(6, 5), refine=4)
-
-
-def _inputs(h=21, w=37, b=2, seed=0):
-    g = torch.Generator().manual_seed(seed)
-    c = torch.rand(b, 3, h, w, generator=g) * 4
-    cta = torch.rand(b, 3, h, w, generator=g)
-    alb = torch.rand(b, 3, h, w, generator=g)
-    nrm = torch.rand(b, 3, h, w, generator=g)
-    dep = torch.rand(b, 1, h, w, generator=g)
-    return c, cta, alb, nrm, dep
 
 
 def _model(seed=0, **kw):
@@ -35,7 +26,7 @@ def _model(seed=0, **kw):
 @pytest.mark.parametrize("h,w", [(16, 16), (21, 37), (1, 1), (9, 8)])
 def test_shapes_and_normalisation(h, w):
     with torch.no_grad():
-        out = _model()(*_inputs(h, w))
+        out = _model()(*random_inputs(h, w))
     hp, wp = -(-h // 8) * 8, -(-w // 8) * 8
     assert out["o"].shape == (2, 3, h, w)
     assert out["k1"].shape == (2, 25, hp, wp)
@@ -61,14 +52,14 @@ def test_constant_image_stays_constant_through_filtering_and_fusion():
         for name in ("head1", "head2", "head3"):
             getattr(net, name).weight.mul_(5.0)
         c = torch.full((1, 3, 21, 37), 2.5)
-        out = net(c, c, *_inputs(21, 37, 1)[2:])
+        out = net(c, c, *random_inputs(21, 37, 1)[2:])
     for k in ("f1", "f2", "f3", "o2", "i"):
         assert torch.allclose(out[k], torch.full_like(out[k], 2.5), rtol=1e-5), k
 
 
 def test_ta_input_is_not_used():
     net = _model()
-    c, cta, alb, nrm, dep = _inputs()
+    c, cta, alb, nrm, dep = random_inputs()
     with torch.no_grad():
         a = net(c, cta, alb, nrm, dep)["o"]
         b = net(c, torch.zeros_like(cta), alb, nrm, dep)["o"]
@@ -114,7 +105,7 @@ def test_export_round_trip(tmp_path):
     assert meta["variant"] == "large" and meta["spp"] == "64"
     back = load_model(path)
     assert isinstance(back, model_large.AFNLarge) and back.cfg.spp == 64
-    x = _inputs(13, 19, 1)
+    x = random_inputs(13, 19, 1)
     with torch.no_grad():
         assert torch.equal(net(*x)["o"], back(*x)["o"])
 

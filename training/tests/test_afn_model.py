@@ -12,22 +12,13 @@ from afn.color import tonemap  # noqa: E402
 from afn.loss import smape  # noqa: E402
 from afn.model import (AFN, AFNConfig, apply_kernels, cost_per_pixel, fuse,  # noqa: E402
                        pad_to_multiple)
-
-
-def _inputs(h=21, w=37, b=2, seed=0):
-    g = torch.Generator().manual_seed(seed)
-    c1 = torch.rand(b, 3, h, w, generator=g) * 4
-    cta = torch.rand(b, 3, h, w, generator=g)
-    alb = torch.rand(b, 3, h, w, generator=g)
-    nrm = torch.rand(b, 3, h, w, generator=g)
-    dep = torch.rand(b, 1, h, w, generator=g)
-    return c1, cta, alb, nrm, dep
+from afn_inputs import random_inputs  # noqa: E402
 
 
 @pytest.mark.parametrize("h,w", [(16, 16), (21, 37), (1, 1), (9, 8)])
 def test_shapes_and_normalisation(h, w):
     net = AFN(AFNConfig(enc=(4, 4, 4), dec=(4, 4), refine=4))
-    out = net(*_inputs(h, w))
+    out = net(*random_inputs(h, w))
     assert out["o"].shape == (2, 3, h, w)
     hp, wp = -(-h // 8) * 8, -(-w // 8) * 8
     assert out["k_ta"].shape == (2, 49, hp, wp)
@@ -42,7 +33,7 @@ def test_softmax_is_safe_for_huge_logits():
     with torch.no_grad():
         net.headTA.bias.fill_(1e4)
         net.head1.bias[0] = 1e4
-    out = net(*_inputs(8, 8, 1))
+    out = net(*random_inputs(8, 8, 1))
     assert torch.isfinite(out["o"]).all()
 
 
@@ -80,7 +71,7 @@ def test_fusion_eq3_hand_case():
 
 
 def test_ablation_switches():
-    c1, cta, alb, nrm, dep = _inputs(16, 16, 1)
+    c1, cta, alb, nrm, dep = random_inputs(16, 16, 1)
     small = dict(enc=(4, 4, 4), dec=(4, 4), refine=4)
     nets = {}
     for v in ("full", "fusion", "1spp", "ta"):
@@ -123,7 +114,7 @@ def test_cost_matches_docstring():
 
 def test_gradients_flow():
     net = AFN(AFNConfig(enc=(4, 4, 4), dec=(4, 4), refine=4))
-    c1, cta, alb, nrm, dep = _inputs(8, 8, 1)
+    c1, cta, alb, nrm, dep = random_inputs(8, 8, 1)
     smape(net(c1, cta, alb, nrm, dep)["o"] * alb, cta * alb).backward()
     assert all(p.grad is not None and torch.isfinite(p.grad).all() for p in net.parameters())
 

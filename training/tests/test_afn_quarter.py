@@ -14,13 +14,7 @@ from afn.model import (AFN, AFNConfig, KERNEL_TAPS, QUARTER_CENTRE_LOGIT,  # noq
                        cost_per_pixel, fuse_quarter, up4_bilinear)
 from afn.weights import load_model, save_model  # noqa: E402
 from afn.widen import widen  # noqa: E402
-
-
-def _inputs(h=24, w=40, b=1, seed=0):
-    g = torch.Generator().manual_seed(seed)
-    return (torch.rand(b, 3, h, w, generator=g) * 4, torch.rand(b, 3, h, w, generator=g),
-            torch.rand(b, 3, h, w, generator=g), torch.rand(b, 3, h, w, generator=g),
-            torch.rand(b, 1, h, w, generator=g))
+from afn_inputs import random_inputs  # noqa: E402
 
 
 def _identity_kernels(b, h, w):
@@ -67,7 +61,7 @@ def test_grown_model_starts_almost_where_the_trained_one_was():
     missing = grown.load_state_dict(base.state_dict(), strict=False).missing_keys
     assert sorted(missing) == ["head4.bias", "head4.weight"]
     with torch.no_grad():
-        a, b = base(*_inputs())["o"], grown(*_inputs())
+        a, b = base(*random_inputs(24, 40, b=1))["o"], grown(*random_inputs(24, 40, b=1))
     assert torch.equal(b["beta"], torch.full_like(b["beta"], 0.5))
     centre = b["k_q"][:, KERNEL_TAPS // 2]
     e = math.exp(QUARTER_CENTRE_LOGIT)      # softmax of one logit c among 48 zeros
@@ -94,7 +88,7 @@ def test_round_trip_and_widening_keep_it(tmp_path):
     wide = widen(back, enc=(8, 8, 8), dec=(8, 8)).eval()
     assert wide.cfg.quarter
     with torch.no_grad():
-        a, b, c = net(*_inputs())["o"], back(*_inputs())["o"], wide(*_inputs())["o"]
+        a, b, c = net(*random_inputs(24, 40, b=1))["o"], back(*random_inputs(24, 40, b=1))["o"], wide(*random_inputs(24, 40, b=1))["o"]
     assert torch.equal(a, b)
     assert torch.allclose(a, c, atol=1e-5)
     plain = AFNConfig(enc=(4, 6, 8), dec=(6, 4), refine=4)
@@ -110,7 +104,7 @@ def test_train_only_freezes_everything_else():
     params = trainable_parameters(net, "head4")
     assert [id(p) for p in params] == [id(net.head4.weight), id(net.head4.bias)]
     opt = torch.optim.Adam(params, lr=1e-2)
-    out = net(*_inputs())["o"]
+    out = net(*random_inputs(24, 40, b=1))["o"]
     out.mean().backward()
     opt.step()
     after = net.state_dict()

@@ -11,14 +11,7 @@ sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 from afn import widen  # noqa: E402
 from afn.model import AFN, AFNConfig  # noqa: E402
 from afn.weights import load_model, save_model  # noqa: E402
-
-
-def _inputs(seed=1, h=24, w=40):
-    g = torch.Generator().manual_seed(seed)
-    c1 = torch.rand(2, 3, h, w, generator=g) * 4
-    cta = torch.rand(2, 3, h, w, generator=g)
-    return (c1, cta, torch.rand(2, 3, h, w, generator=g), torch.rand(2, 3, h, w, generator=g),
-            torch.rand(2, 1, h, w, generator=g))
+from afn_inputs import random_inputs  # noqa: E402
 
 
 @pytest.mark.parametrize("variant", ["full", "fusion"])
@@ -30,7 +23,7 @@ def test_widened_model_computes_the_same(variant):
     wide = widen.widen(narrow, enc=(7, 9, 12), dec=(8, 6), refine=6)
     assert wide.cfg.enc == (7, 9, 12) and wide.cfg.dec == (8, 6) and wide.cfg.refine == 6
     assert wide.cfg.spp == 16 and wide.cfg.variant == variant
-    x = _inputs()
+    x = random_inputs(24, 40, seed=1)
     with torch.no_grad():
         a, b = narrow(*x), wide(*x)
     for k in ("o", "alpha", "k_ta", "k_1spp"):
@@ -55,7 +48,7 @@ def test_narrowing_is_refused_and_cli_round_trip(tmp_path):
     widen.main([src, "--enc", "8,8,8", "-o", dst])
     wide = load_model(dst)
     assert wide.cfg.enc == (8, 8, 8) and wide.cfg.dec == (6, 5)
-    x = _inputs(h=16, w=16)
+    x = random_inputs(16, 16, seed=1)
     with torch.no_grad():
         assert torch.allclose(narrow(*x)["o"], wide(*x)["o"], atol=1e-5)
     with pytest.raises(SystemExit, match="narrower"):
