@@ -204,6 +204,17 @@ def resolve_scenes(args):
     return all_scenes, train_names, holdout
 
 
+def start_run(args):
+    """The start every training run shares: the device (resolve_device), torch's thread count
+    and seed from the arguments, then the scenes (resolve_scenes).
+    Returns (device, all scenes by name, training names, held-out names)."""
+    device = resolve_device(args.device)
+    if args.threads:
+        torch.set_num_threads(args.threads)
+    torch.manual_seed(args.seed)
+    return (device, *resolve_scenes(args))
+
+
 def cached_scene(args, path, name, max_frames):
     """load_scene, through ``--cache DIR`` when given: the prepared full-set features of a scene
     are kept as DIR/<name>.npz (keyed by the --aov list and frame count) and reused by later runs,
@@ -328,11 +339,7 @@ def train_epoch(model, opt, sampler, steps, batch, device, temporal_weight=0.0):
 
 def main(argv=None):
     args = parse_args(argv)
-    device = resolve_device(args.device)
-    if args.threads:
-        torch.set_num_threads(args.threads)
-    torch.manual_seed(args.seed)
-    all_scenes, train_names, holdout = resolve_scenes(args)
+    device, all_scenes, train_names, holdout = start_run(args)
     cfg = model_config(args)
     run = RunFolder(args.out)
     run.save_config({**vars(args), "device": str(device), "model": cfg.to_dict(),

@@ -21,7 +21,7 @@ import torch
 
 from .. import color, fast_alloc
 from ..dataset import KEYS, CropSampler, load_scene, to_tensors
-from ..train import RunFolder, git_revision, resolve_device, resolve_scenes
+from ..train import RunFolder, git_revision, start_run
 from . import archive, nbgd, wskpn
 
 LOSSES = {"wskpn": wskpn.loss, "nbgd": nbgd.loss}
@@ -86,11 +86,7 @@ def forward(model, b):
 
 def main(argv=None):
     args = parse_args(argv)
-    device = resolve_device(args.device)
-    if args.threads:
-        torch.set_num_threads(args.threads)
-    torch.manual_seed(args.seed)
-    all_scenes, train_names, holdout = resolve_scenes(args)
+    device, all_scenes, train_names, holdout = start_run(args)
     run = BaselineRun(args.out, args.method)
     lr = args.lr or LEARNING_RATES[args.method]
     run.save_config({**vars(args), "lr": lr, "device": str(device), "train_scenes": train_names,
