@@ -9,7 +9,7 @@
 #include "methods/nbgd/network.h"
 #include "nn/baseline_filter.h"
 
-#ifdef AFN_HAS_EMBEDDED_NBGD_WEIGHTS
+#ifdef AFN_HAS_NBGD_WEIGHTS
 extern "C" const unsigned char nbgdEmbeddedWeights[];
 extern "C" const unsigned long long nbgdEmbeddedWeights_size;
 #endif
@@ -20,7 +20,7 @@ namespace {
 
 nn::EmbeddedWeights embeddedWeights()
 {
-#ifdef AFN_HAS_EMBEDDED_NBGD_WEIGHTS
+#ifdef AFN_HAS_NBGD_WEIGHTS
     return { nbgdEmbeddedWeights, static_cast<std::size_t>(nbgdEmbeddedWeights_size) };
 #else
     return {};

@@ -9,7 +9,7 @@
 #include "methods/wskpn/network.h"
 #include "nn/baseline_filter.h"
 
-#ifdef AFN_HAS_EMBEDDED_WSKPN_WEIGHTS
+#ifdef AFN_HAS_WSKPN_WEIGHTS
 extern "C" const unsigned char wskpnEmbeddedWeights[];
 extern "C" const unsigned long long wskpnEmbeddedWeights_size;
 #endif
@@ -20,7 +20,7 @@ namespace {
 
 nn::EmbeddedWeights embeddedWeights()
 {
-#ifdef AFN_HAS_EMBEDDED_WSKPN_WEIGHTS
+#ifdef AFN_HAS_WSKPN_WEIGHTS
     return { wskpnEmbeddedWeights, static_cast<std::size_t>(wskpnEmbeddedWeights_size) };
 #else
     return {};
