@@ -1,53 +1,44 @@
 # SPDX-License-Identifier: Apache-2.0
 # End-to-end tests of afntool: run the real binary, check exit codes, messages and written files.
-afn_add_gtest(test_afntool SOURCES integration/test_afntool.cpp integration/cli_runner.cpp LIBS afn afn_io)
-target_compile_definitions(test_afntool PRIVATE AFNTOOL_PATH="$<TARGET_FILE:afntool>")
-add_dependencies(test_afntool afntool)
+
+# afn_add_afntool_test(NAME SOURCES... [LIBS...]): a test program that runs the built afntool
+# (AFNTOOL_PATH, built first) through integration/cli_runner.cpp.
+function(afn_add_afntool_test name)
+  cmake_parse_arguments(ARG "" "" "SOURCES;LIBS" ${ARGN})
+  afn_add_gtest(${name} SOURCES ${ARG_SOURCES} integration/cli_runner.cpp LIBS ${ARG_LIBS})
+  target_compile_definitions(${name} PRIVATE AFNTOOL_PATH="$<TARGET_FILE:afntool>")
+  add_dependencies(${name} afntool)
+endfunction()
+
+afn_add_afntool_test(test_afntool SOURCES integration/test_afntool.cpp LIBS afn afn_io)
 
 # afntool --compare / --benchmark end to end.
-afn_add_gtest(test_afntool_compare SOURCES integration/test_afntool_compare.cpp
-  integration/cli_runner.cpp LIBS afn)
-target_compile_definitions(test_afntool_compare PRIVATE AFNTOOL_PATH="$<TARGET_FILE:afntool>")
-add_dependencies(test_afntool_compare afntool)
+afn_add_afntool_test(test_afntool_compare SOURCES integration/test_afntool_compare.cpp LIBS afn)
 
 # afntool --contact-sheet end to end, measured on the written pixels.
-afn_add_gtest(test_afntool_sheet SOURCES integration/test_afntool_sheet.cpp
-  integration/cli_runner.cpp LIBS afn_io afn_color)
-target_compile_definitions(test_afntool_sheet PRIVATE AFNTOOL_PATH="$<TARGET_FILE:afntool>")
-add_dependencies(test_afntool_sheet afntool)
+afn_add_afntool_test(test_afntool_sheet SOURCES integration/test_afntool_sheet.cpp
+  LIBS afn_io afn_color)
 
 # The --benchmark report's plot and page end to end.
-afn_add_gtest(test_afntool_report SOURCES integration/test_afntool_report.cpp
-  integration/cli_runner.cpp)
-target_compile_definitions(test_afntool_report PRIVATE AFNTOOL_PATH="$<TARGET_FILE:afntool>")
-add_dependencies(test_afntool_report afntool)
+afn_add_afntool_test(test_afntool_report SOURCES integration/test_afntool_report.cpp)
 
 # afntool's diagnostics: role fallback, missing-AOV warnings, strict checks, help, progress.
-afn_add_gtest(test_afntool_diagnostics SOURCES integration/test_afntool_diagnostics.cpp
-  integration/cli_runner.cpp LIBS afn_io PkgConfig::OIIO)
-target_compile_definitions(test_afntool_diagnostics PRIVATE AFNTOOL_PATH="$<TARGET_FILE:afntool>")
-add_dependencies(test_afntool_diagnostics afntool)
+afn_add_afntool_test(test_afntool_diagnostics SOURCES integration/test_afntool_diagnostics.cpp
+  LIBS afn_io PkgConfig::OIIO)
 
 # Faithful outputs (windows, metadata, bit depths, colour encodings) and safe files / frame
 # ranges, end to end; test images are made and read with OpenImageIO directly.
-afn_add_gtest(test_afntool_outputs SOURCES integration/test_afntool_outputs.cpp
-  integration/cli_runner.cpp LIBS PkgConfig::OIIO)
-target_compile_definitions(test_afntool_outputs PRIVATE AFNTOOL_PATH="$<TARGET_FILE:afntool>")
-add_dependencies(test_afntool_outputs afntool)
-afn_add_gtest(test_afntool_safety SOURCES integration/test_afntool_safety.cpp
-  integration/cli_runner.cpp LIBS afn_io)
-target_compile_definitions(test_afntool_safety PRIVATE AFNTOOL_PATH="$<TARGET_FILE:afntool>")
-add_dependencies(test_afntool_safety afntool)
+afn_add_afntool_test(test_afntool_outputs SOURCES integration/test_afntool_outputs.cpp
+  LIBS PkgConfig::OIIO)
+afn_add_afntool_test(test_afntool_safety SOURCES integration/test_afntool_safety.cpp LIBS afn_io)
 
 if(AFN_HAS_DNNL) # the engine report then includes the dnnl_sgemm yardstick
   target_compile_definitions(test_afntool_compare PRIVATE AFN_HAS_DNNL)
 endif()
 
 # afntool --preroll: farm chunks match a sequential run (docs/farm.md).
-afn_add_gtest(test_afntool_preroll SOURCES integration/test_afntool_preroll.cpp
-  integration/cli_runner.cpp LIBS afn afn_io)
-target_compile_definitions(test_afntool_preroll PRIVATE AFNTOOL_PATH="$<TARGET_FILE:afntool>")
-add_dependencies(test_afntool_preroll afntool)
+afn_add_afntool_test(test_afntool_preroll SOURCES integration/test_afntool_preroll.cpp
+  LIBS afn afn_io)
 
 # The Slurm job template against a real single-node Slurm the test starts itself (docs/farm.md);
 # skipped (exit 77, reason printed) where Slurm is not installed or cannot start. The script
@@ -60,18 +51,12 @@ set_tests_properties(slurm_farm_job_array PROPERTIES SKIP_RETURN_CODE 77 TIMEOUT
 
 # Input-aware afn: one EXR sequence per input combination, the model chosen and
 # reported (--info, per-frame log), and the missing-weights error.
-afn_add_gtest(test_afntool_input_sets SOURCES integration/test_afntool_input_sets.cpp
-  integration/cli_runner.cpp LIBS PkgConfig::OIIO)
-target_compile_definitions(test_afntool_input_sets PRIVATE AFNTOOL_PATH="$<TARGET_FILE:afntool>")
-add_dependencies(test_afntool_input_sets afntool)
+afn_add_afntool_test(test_afntool_input_sets SOURCES integration/test_afntool_input_sets.cpp
+  LIBS PkgConfig::OIIO)
 
 # --denoise:quality=fast|balanced|high end to end (the tiers' pixels, errors, help).
-afn_add_gtest(test_afntool_quality SOURCES integration/test_afntool_quality.cpp
-  integration/cli_runner.cpp LIBS PkgConfig::OIIO)
-target_compile_definitions(test_afntool_quality PRIVATE AFNTOOL_PATH="$<TARGET_FILE:afntool>")
-add_dependencies(test_afntool_quality afntool)
+afn_add_afntool_test(test_afntool_quality SOURCES integration/test_afntool_quality.cpp
+  LIBS PkgConfig::OIIO)
 # Work skipping end to end: :mask=, sky depth, skip=off comparison, the sky benchmark.
-afn_add_gtest(test_afntool_skip SOURCES integration/test_afntool_skip.cpp
-  integration/cli_runner.cpp LIBS PkgConfig::OIIO)
-target_compile_definitions(test_afntool_skip PRIVATE AFNTOOL_PATH="$<TARGET_FILE:afntool>")
-add_dependencies(test_afntool_skip afntool)
+afn_add_afntool_test(test_afntool_skip SOURCES integration/test_afntool_skip.cpp
+  LIBS PkgConfig::OIIO)
