@@ -36,6 +36,16 @@ Part partWithFrame()
     return p;
 }
 
+/// The "Frame" attribute's name and type as the header stores them; its 4-byte size follows.
+const std::string kFrameKey = std::string("Frame") + '\0' + "string" + '\0';
+
+/// Writes a one-part file with the "Frame" attribute (partWithFrame) to `path`; its bytes.
+std::string writeFrameExr(const std::string& path)
+{
+    afn_test::writeExr(path, { partWithFrame() });
+    return readBytes(path);
+}
+
 /// The message of the IoError that inspect() throws, or "(no IoError)".
 std::string inspectError(const std::string& path)
 {
@@ -65,12 +75,10 @@ TEST(IoExrHeader, AttributeLargerThanTheFileIsRejectedAtOnce)
 {
     ScratchDir dir;
     const std::string path = dir.file("frame.exr");
-    afn_test::writeExr(path, { partWithFrame() });
-    std::string bytes = readBytes(path);
-    const std::string key = std::string("Frame") + '\0' + "string" + '\0';
-    const std::size_t at = bytes.find(key);
+    std::string bytes = writeFrameExr(path);
+    const std::size_t at = bytes.find(kFrameKey);
     ASSERT_NE(at, std::string::npos);
-    bytes.replace(at + key.size(), 4, std::string("\x13\x00\x00\x6d", 4)); // 1.8 GB
+    bytes.replace(at + kFrameKey.size(), 4, std::string("\x13\x00\x00\x6d", 4)); // 1.8 GB
     writeBytes(path, bytes);
     // The message is the header check's own: the file was rejected before OpenEXR allocated the
     // declared 1.8 GB (no wall-clock bound here: speed is for benchmarks, not tests).
@@ -84,14 +92,12 @@ TEST(IoExrHeader, NegativeSizeAndTruncatedHeaderAreRejected)
 {
     ScratchDir dir;
     const std::string path = dir.file("frame.exr");
-    afn_test::writeExr(path, { partWithFrame() });
-    const std::string good = readBytes(path);
-    const std::string key = std::string("Frame") + '\0' + "string" + '\0';
+    const std::string good = writeFrameExr(path);
     std::string bytes = good;
-    bytes.replace(bytes.find(key) + key.size(), 4, std::string("\xff\xff\xff\xff", 4));
+    bytes.replace(bytes.find(kFrameKey) + kFrameKey.size(), 4, std::string("\xff\xff\xff\xff", 4));
     writeBytes(path, bytes);
     EXPECT_NE(inspectError(path).find("declares -1 bytes"), std::string::npos);
-    writeBytes(path, good.substr(0, good.find(key) + 3));
+    writeBytes(path, good.substr(0, good.find(kFrameKey) + 3));
     EXPECT_NE(inspectError(path).find("the file ends inside the header"), std::string::npos);
 }
 
@@ -101,8 +107,7 @@ TEST(IoExrHeader, UnknownPixelTypeIsRejectedWithTheChannelsName)
 {
     ScratchDir dir;
     const std::string path = dir.file("frame.exr");
-    afn_test::writeExr(path, { partWithFrame() });
-    const std::string good = readBytes(path);
+    const std::string good = writeFrameExr(path);
     for (const std::string& type : { std::string("\x03\x00\x00\x00", 4), std::string(4, '\xff') }) {
         std::string bytes = good;
         const std::string key = std::string("G") + '\0';
@@ -127,14 +132,12 @@ TEST(IoExrHeader, NonPrintableNamesAreEscapedInTheMessage)
 {
     ScratchDir dir;
     const std::string path = dir.file("frame.exr");
-    afn_test::writeExr(path, { partWithFrame() });
-    std::string bytes = readBytes(path);
-    const std::string key = std::string("Frame") + '\0' + "string" + '\0';
-    const std::size_t at = bytes.find(key);
+    std::string bytes = writeFrameExr(path);
+    const std::size_t at = bytes.find(kFrameKey);
     ASSERT_NE(at, std::string::npos);
     bytes[at] = '\xa8';
     bytes[at + 1] = '\n';
-    bytes.replace(at + key.size(), 4, std::string("\x13\x00\x00\x6d", 4));
+    bytes.replace(at + kFrameKey.size(), 4, std::string("\x13\x00\x00\x6d", 4));
     writeBytes(path, bytes);
     const std::string msg = inspectError(path);
     EXPECT_NE(msg.find("corrupt EXR header: attribute '\\xa8\\x0aame' (string) declares"),

@@ -55,6 +55,17 @@ Case loadCase(const std::string& method)
     return c;
 }
 
+/// Runs `net` with the case's weights on its input and returns the output; prints the heading of
+/// the error lines that follow.
+template <class Network> afn::Image runCase(Network& net, const Case& c, const char* method)
+{
+    net.load(c.weights);
+    afn::Image o;
+    net.run(c.input, c.cta, o);
+    std::printf("%s parity (%s):\n", method, afn::cpu::isaName(afn::cpu::activeIsa()));
+    return o;
+}
+
 class BaselinesParity : public ::testing::TestWithParam<afn::cpu::Isa> {
 protected:
     void SetUp() override
@@ -75,12 +86,9 @@ constexpr double kTol = 2e-5;
 
 TEST_P(BaselinesParity, WskpnMatchesPyTorch)
 {
-    Case c = loadCase("wskpn");
+    const Case c = loadCase("wskpn");
     afn::wskpn::Network net;
-    net.load(c.weights);
-    afn::Image o;
-    net.run(c.input, c.cta, o);
-    std::printf("wskpn parity (%s):\n", afn::cpu::isaName(afn::cpu::activeIsa()));
+    const afn::Image o = runCase(net, c, "wskpn");
     EXPECT_LT(maxError(net.head(), c.data.tensor("head"), "head"), kTol);
     EXPECT_LT(maxError(o, c.data.tensor("o"), "o"), kTol);
     // The folding at export is exact: the training model with its branches gives the same output.
@@ -89,12 +97,9 @@ TEST_P(BaselinesParity, WskpnMatchesPyTorch)
 
 TEST_P(BaselinesParity, NbgdMatchesPyTorch)
 {
-    Case c = loadCase("nbgd");
+    const Case c = loadCase("nbgd");
     afn::nbgd::Network net;
-    net.load(c.weights);
-    afn::Image o;
-    net.run(c.input, c.cta, o);
-    std::printf("nbgd parity (%s):\n", afn::cpu::isaName(afn::cpu::activeIsa()));
+    const afn::Image o = runCase(net, c, "nbgd");
     EXPECT_LT(maxError(net.guides(), c.data.tensor("guides"), "guides"), kTol);
     EXPECT_LT(maxError(net.sliced(0), c.data.tensor("g1"), "g1"), kTol);
     EXPECT_LT(maxError(net.sliced(1), c.data.tensor("g2"), "g2"), kTol);
