@@ -183,6 +183,20 @@ def run_unet(net: nn.Module, x: torch.Tensor):
     return d2, d1
 
 
+def conv_flop(cin, cout, k, scale):
+    """FLOP per full-res pixel (2 per multiply-add) of a k x k convolution on 1/scale of them."""
+    return 2 * k * k * cin * cout / scale
+
+
+def unet_flop(in_channels: int, cfg: AFNConfig) -> float:
+    """FLOP per full-res pixel of the U-Net of :func:`add_unet` (at 1/2, 1/4 and 1/8 res)."""
+    c1, c2, c3 = cfg.enc
+    d2, d1 = cfg.dec
+    return (conv_flop(in_channels, c1, 3, 4) + conv_flop(c1, c2, 3, 16)
+            + conv_flop(c2, c3, 3, 64) + conv_flop(c3 + c2, d2, 3, 16)
+            + conv_flop(d2 + c1, d1, 3, 4))
+
+
 class AFN(nn.Module):
     """AFN: multi-scale kernel prediction, filtering + fusion, refinement (module docstring).
 
@@ -283,23 +297,17 @@ def cost_per_pixel(cfg: AFNConfig = None) -> dict:
     if cfg.variant == "large":
         from . import model_large
         return model_large.cost_per_pixel(cfg)
-    c1, c2, c3 = cfg.enc
     d2, d1 = cfg.dec
-
-    def conv(cin, cout, k, scale):
-        return 2 * k * k * cin * cout / scale
-
-    kp = (conv(INPUT_CHANNELS, c1, 3, 4) + conv(c1, c2, 3, 16) + conv(c2, c3, 3, 64)
-          + conv(c3 + c2, d2, 3, 16) + conv(d2 + c1, d1, 3, 4) + conv(d1, KERNEL_TAPS, 1, 4)
-          + conv(d1 + INPUT_CHANNELS, KERNEL_TAPS + 1, 1, 1))
+    kp = (unet_flop(INPUT_CHANNELS, cfg) + conv_flop(d1, KERNEL_TAPS, 1, 4)
+          + conv_flop(d1 + INPUT_CHANNELS, KERNEL_TAPS + 1, 1, 1))
     filt = (KERNEL_TAPS * (2 * 3 + 3)) * (1 + 0.25) + 12
     if cfg.quarter:     # head4 and one 7x7 filter at 1/4, pooling and the bilinear upsampling
-        kp += conv(d2, KERNEL_TAPS + 1, 1, 16)
+        kp += conv_flop(d2, KERNEL_TAPS + 1, 1, 16)
         filt += KERNEL_TAPS * (2 * 3 + 3) / 16 + 3 * 8
     ref = 0.0
     if cfg.variant == "full":
-        ref = (conv(REFINE_INPUT_CHANNELS, cfg.refine, 3, 1) + conv(cfg.refine, cfg.refine, 3, 1)
-               + conv(cfg.refine, 3, 3, 1))
+        ref = (conv_flop(REFINE_INPUT_CHANNELS, cfg.refine, 3, 1)
+               + conv_flop(cfg.refine, cfg.refine, 3, 1) + conv_flop(cfg.refine, 3, 3, 1))
     params = sum(p.numel() for p in AFN(cfg).parameters())
     return {"kernel_prediction": kp, "filtering_fusion": filt, "refinement": ref,
             "total": kp + filt + ref, "parameters": params}

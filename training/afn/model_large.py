@@ -48,7 +48,8 @@ import torch.nn.functional as F
 from torch import nn
 
 from .color import tonemap
-from .model import add_unet, conv3, down2, pad_to_multiple, run_unet, up2
+from .model import (add_unet, conv3, conv_flop, down2, pad_to_multiple, run_unet, unet_flop,
+                    up2)
 from .shifted_filter import shifted_filter
 
 LARGE_KERNEL_SIZE = 5
@@ -132,18 +133,14 @@ class AFNLarge(nn.Module):
 
 def cost_per_pixel(cfg):
     """FLOP per full-res pixel of each stage (2 per multiply-add) and the parameter count."""
-    c1, c2, c3 = cfg.enc
     d2, d1 = cfg.dec
-
-    def conv(cin, cout, k, scale):
-        return 2 * k * k * cin * cout / scale
-
-    kp = (conv(LARGE_INPUT_CHANNELS, c1, 3, 4) + conv(c1, c2, 3, 16) + conv(c2, c3, 3, 64)
-          + conv(c3 + c2, d2, 3, 16) + conv(d2 + c1, d1, 3, 4) + conv(d2, LARGE_TAPS, 1, 16)
-          + conv(d1, LARGE_TAPS + 1, 1, 4) + conv(d1 + LARGE_INPUT_CHANNELS, LARGE_TAPS + 1, 1, 1))
+    kp = (unet_flop(LARGE_INPUT_CHANNELS, cfg) + conv_flop(d2, LARGE_TAPS, 1, 16)
+          + conv_flop(d1, LARGE_TAPS + 1, 1, 4)
+          + conv_flop(d1 + LARGE_INPUT_CHANNELS, LARGE_TAPS + 1, 1, 1))
     filt = LARGE_TAPS * (2 * 3 + 3) * (1 + 1 / 4 + 1 / 16) + 2 * 12
-    ref = len(REFINE_MODULES) * (conv(REFINE_INPUT_CHANNELS, cfg.refine, 3, 1)
-                                 + conv(cfg.refine, cfg.refine, 3, 1) + conv(cfg.refine, 3, 3, 1))
+    ref = len(REFINE_MODULES) * (conv_flop(REFINE_INPUT_CHANNELS, cfg.refine, 3, 1)
+                                 + conv_flop(cfg.refine, cfg.refine, 3, 1)
+                                 + conv_flop(cfg.refine, 3, 3, 1))
     params = sum(p.numel() for p in AFNLarge(cfg).parameters())
     return {"kernel_prediction": kp, "filtering_fusion": filt, "refinement": ref,
             "total": kp + filt + ref, "parameters": params}
