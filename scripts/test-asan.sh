@@ -1,17 +1,23 @@
 #!/usr/bin/env bash
-# Set up, build with ASan + UBSan (scripts/build-asan.sh) and run the whole ctest suite there, the
-# replay of every fuzz target's committed corpus included. Any sanitizer report fails the run.
+# Set up, build with ASan + UBSan (scripts/build-asan.sh) and run the unit and stress suites and
+# the replay of every fuzz target's committed corpus there (ctest labels unit, stress and fuzz).
+# Any sanitizer report fails the run.
+# Left to the normal build's run (scripts/test.sh): the soak cases (label soak, the 10,000-frame
+# EveryMethod/LongRuns.* suites: the same per-frame code paths the determinism and adversarial
+# suites run here, repeated), the end-to-end afntool and plugin suites (labels integration and
+# plugin: the afntool and plugin code they drive runs here through the stress suites' afntool and
+# plugin determinism and corrupt-file cases and the fuzz targets) and the CMake package consumer.
+# AFN_ASAN_ALL=1 builds everything and runs the whole suite.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/setup.sh --sanitizers
-bash scripts/build-asan.sh
+labels=(-L '^(unit|stress|fuzz)$')
+if [ -n "${AFN_ASAN_ALL:-}" ]; then
+  labels=()
+  bash scripts/build-asan.sh
+else
+  AFN_ASAN_TARGETS=afn_sanitizer_suite bash scripts/build-asan.sh
+fi
 export ASAN_OPTIONS=${ASAN_OPTIONS:-detect_leaks=1:strict_string_checks=1}
 export UBSAN_OPTIONS=${UBSAN_OPTIONS:-print_stacktrace=1}
-# The 10,000-frame suites (EveryMethod/LongRuns.*) of the four learned baselines are left to the
-# normal build's run (scripts/test.sh): under ASan they took 19-198 s each, about 800 s of the
-# suite's 1360 s in stop 30's CI, and add no code path (the same network runs, frame after frame,
-# that their Determinism, PluginDeterminism and parity tests run here). Every other method's long
-# runs, whose histories are what those suites are about, stay in. AFN_ASAN_ALL=1 runs them all.
-exclude=()
-[ -n "${AFN_ASAN_ALL:-}" ] || exclude=(-E '^EveryMethod/LongRuns\.[A-Za-z]+/(onnd|mrkp|wskpn|nbgd)( |$)')
-(cd build-asan && ctest --output-on-failure -j"${AFN_JOBS:-2}" "${exclude[@]}")
+(cd build-asan && ctest --output-on-failure -j"${AFN_JOBS:-2}" "${labels[@]}")

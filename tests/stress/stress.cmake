@@ -10,7 +10,8 @@ afn_add_gtest(test_stress_inputs
   SOURCES stress/test_adversarial_values.cpp stress/test_adversarial_frames.cpp
     stress/test_fragile_numerics.cpp
   LIBS afn_stress_util)
-afn_add_gtest(test_stress_long SOURCES stress/test_long_runs.cpp LIBS afn_stress_util)
+# Thousands of frames per method: the soak cases, run by the normal build's ctest only.
+afn_add_gtest(test_stress_long SOURCES stress/test_long_runs.cpp LIBS afn_stress_util LABEL soak)
 afn_add_gtest(test_stress_determinism SOURCES stress/test_determinism_api.cpp LIBS afn_stress_util)
 
 # afntool on files: determinism, corrupt frames, half output.
