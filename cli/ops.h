@@ -7,6 +7,7 @@
 #include "afn/afn.hpp"
 
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -69,6 +70,7 @@ private:
     std::string m_flag; ///< "--denoise" or "--features", for messages
     bool m_features = false; ///< --features: bind the feature outputs instead of "output"
     bool m_hasSpp = false; ///< the method has an "spp" parameter (set from the file's header)
+    bool m_hasAux = false; ///< the method has an "aux" parameter (it demodulates)
     std::string m_method;
     std::string m_weights; ///< --weights or :weights= file ("" = built in)
     std::map<std::string, std::string> m_params;
@@ -79,8 +81,8 @@ private:
     std::string m_maskChannel; ///< :mask=CHANNEL, the work mask's channel ("" = none)
     std::vector<float> m_mask; ///< that channel of the current frame
     std::string m_modelWarned; ///< afn: the model path last seen (a fallback is warned once)
-    bool m_logged = false; ///< the first frame's facts line was written
-    std::string m_factsLogged; ///< model, aux decision and missing inputs last logged
+    /// Model, aux decision and missing inputs last logged (none before the first frame's line).
+    std::optional<std::string> m_factsLogged;
 };
 
 /// --compare REF: per-frame and mean metrics of the current beauty against the reference frames

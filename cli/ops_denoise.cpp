@@ -95,8 +95,10 @@ SequenceDenoiser::SequenceDenoiser(const Options& opts, const Action& action)
     }
     if (m_features && afn::filterTypeFeatures(m_method.c_str()).empty())
         throw CliError("--features: method '" + m_method + "' has no feature outputs");
-    for (const AFNParamInfo& p : afn::filterTypeParams(m_method.c_str()))
+    for (const AFNParamInfo& p : afn::filterTypeParams(m_method.c_str())) {
         m_hasSpp = m_hasSpp || std::string(p.name) == AFN_PARAM_SPP;
+        m_hasAux = m_hasAux || std::string(p.name) == AFN_PARAM_AUX;
+    }
 
     // Weights: ":weights=FILE" on this action, else --weights FILE; read once, handed over as data.
     std::string weights = opts.weights;
@@ -293,10 +295,7 @@ void SequenceDenoiser::logFrame(const LoadedFrame& frame, Progress* progress)
                 quiet, progress);
         m_modelWarned = model;
     }
-    bool hasAux = false;
-    for (const AFNParamInfo& p : afn::filterTypeParams(m_method.c_str()))
-        hasAux = hasAux || std::string(p.name) == AFN_PARAM_AUX;
-    if (hasAux) { // the method demodulates
+    if (m_hasAux) { // the method demodulates
         const std::string mode = m_filter.get<std::string>(AFN_PARAM_AUX);
         const bool noisy = m_filter.get<bool>(AFN_STAT_AUX_NOISY);
         // The sample count takes part in aux=auto's decision (stages/aux_prefilter.h): say it.
@@ -332,16 +331,15 @@ void SequenceDenoiser::logFrame(const LoadedFrame& frame, Progress* progress)
     }
     const std::string facts = joinFacts({ missingShort.empty() ? "" : "without " + missingShort,
         model, aux.empty() ? "" : aux + ")" });
-    if (!m_logged) {
+    if (!m_factsLogged) {
         // The missing inputs are in the warning above: not repeated here.
         const std::string first
             = joinFacts({ model, aux.empty() ? "" : aux + "; " + speckle + ")", skippedText });
         if (!first.empty())
             note(m_flag + ": " + m_method + " " + first, quiet, progress);
-    } else if (facts != m_factsLogged) {
+    } else if (facts != *m_factsLogged) {
         note(m_flag + ": " + m_method + " now " + facts + " " + frame.ref.path, quiet, progress);
     }
-    m_logged = true;
     m_factsLogged = facts;
 }
 

@@ -1,11 +1,12 @@
 # SPDX-License-Identifier: Apache-2.0
 # End-to-end tests of afntool: run the real binary, check exit codes, messages and written files.
 
-# afn_add_afntool_test(NAME SOURCES... [LIBS...]): a test program that runs the built afntool
-# (AFNTOOL_PATH, built first) through integration/cli_runner.cpp.
+# afn_add_afntool_test(NAME SOURCES... [LIBS...] [LABEL L]): a test program that runs the built
+# afntool (AFNTOOL_PATH, built first) through integration/cli_runner.cpp.
 function(afn_add_afntool_test name)
-  cmake_parse_arguments(ARG "" "" "SOURCES;LIBS" ${ARGN})
-  afn_add_gtest(${name} SOURCES ${ARG_SOURCES} integration/cli_runner.cpp LIBS ${ARG_LIBS})
+  cmake_parse_arguments(ARG "" "LABEL" "SOURCES;LIBS" ${ARGN})
+  afn_add_gtest(${name} SOURCES ${ARG_SOURCES} integration/cli_runner.cpp LIBS ${ARG_LIBS}
+    LABEL ${ARG_LABEL})
   target_compile_definitions(${name} PRIVATE AFNTOOL_PATH="$<TARGET_FILE:afntool>")
   add_dependencies(${name} afntool)
 endfunction()

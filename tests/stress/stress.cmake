@@ -16,12 +16,9 @@ afn_add_gtest(test_stress_determinism SOURCES stress/test_determinism_api.cpp LI
 
 # afntool on files: determinism, corrupt frames, half output.
 if(AFN_BUILD_CLI)
-  afn_add_gtest(test_stress_cli
-    SOURCES stress/test_cli_files.cpp stress/exr_sequence.cpp integration/cli_runner.cpp
+  afn_add_afntool_test(test_stress_cli SOURCES stress/test_cli_files.cpp stress/exr_sequence.cpp
     LIBS afn_stress_util afn_io)
   target_include_directories(test_stress_cli PRIVATE ${CMAKE_CURRENT_SOURCE_DIR}/integration)
-  target_compile_definitions(test_stress_cli PRIVATE AFNTOOL_PATH="$<TARGET_FILE:afntool>")
-  add_dependencies(test_stress_cli afntool)
 endif()
 
 # The OpenFX plugin through the test host of tests/plugin.
