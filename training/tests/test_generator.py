@@ -12,7 +12,7 @@ TRAINING = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 SCENES = os.path.join(TRAINING, "scenes")
 sys.path.insert(0, SCENES)
 sys.path.insert(0, TRAINING)
-from generator import camera, materials, split  # noqa: E402
+from generator import camera, lighting_change, materials, split  # noqa: E402
 from generator.describe import describe  # noqa: E402
 from generator.families import FAMILIES  # noqa: E402
 
@@ -50,7 +50,35 @@ def test_camera_has_one_key_per_frame_and_frames_do_not_change_the_layout():
     for family in FAMILIES:
         d8, d3 = describe(family, 5, 8), describe(family, 5, 3)
         assert len(d8["camera"]["keys"]) == 8 and len(d3["camera"]["keys"]) == 3
-        assert d8["objects"] == d3["objects"]
+        # The lighting event (drawn last) may animate a material at frames that depend on the
+        # length; where things are and how they move does not.
+        place = lambda d: [(o["shape"], o["location"], o["dims"], o["rotation"], o["velocity"],  # noqa: E731
+                            o["spin"]) for o in d["objects"]]
+        assert place(d8) == place(d3)
+
+
+def test_lighting_events_are_common_and_every_kind_is_built():
+    """Far more lighting change than the families' own lights: events in about 2 of 3 scenes."""
+    sums = [describe(f, s, 8)["summary"] for f, s in split.training_sequences(140)]
+    kinds = [s["lighting_event"] for s in sums]
+    assert set(kinds) - {None} == set(lighting_change.EVENTS)
+    assert 0.5 < sum(k is not None for k in kinds) / len(kinds) < 0.8
+    assert sum(s["fading_lights"] > 0 for s in sums) > 0
+    assert sum(s["animated_emission"] > 0 for s in sums) > 0
+    evals = [describe(f, s, 8)["summary"]["lighting_event"]
+             for f, s in split.evaluation_sequences(3, 3)]
+    assert sum(k is not None for k in evals) >= 3, evals
+
+
+def test_a_light_event_keys_frames_inside_the_sequence():
+    for f, seed in split.training_sequences(140):
+        d = describe(f, seed, 6)
+        for lt in d["lights"]:
+            for step in (lt["switch"] or []) + (lt["fade"] or []):
+                assert 0 <= step[0] < 6
+        for o in d["objects"]:
+            for frame, strength in o["material"].get("emission_keys", []):
+                assert 0 <= frame < 6 and strength >= 0
 
 
 def test_training_set_covers_the_generator_library():

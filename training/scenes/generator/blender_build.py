@@ -2,7 +2,8 @@
 """Build a generator scene description (``describe.py``) into the current Blender scene.
 
 Runs inside Blender 3.4. Animation is keyed linearly (constant velocity between keys, linear
-extrapolation), so the Vector pass matches the motion; light switches are constant (step) keys.
+extrapolation), so the Vector pass matches the motion; light switches are constant (step) keys, fades
+linear keys held after their last key.
 """
 
 import math
@@ -121,6 +122,11 @@ def light(desc, frames):
         _key(data, 0, constant=True, energy=desc["power"], color=desc["colour"])
         for frame, factor, colour in desc["switch"]:
             _key(data, frame, constant=True, energy=desc["power"] * factor, color=colour)
+    if desc.get("fade"):
+        for frame, factor in desc["fade"]:
+            _key(data, frame, energy=desc["power"] * factor)
+        for fc in data.animation_data.action.fcurves:
+            fc.extrapolation = "CONSTANT"  # hold the end values, not the ramp
     return obj
 
 

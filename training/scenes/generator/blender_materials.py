@@ -41,6 +41,17 @@ def _texture(nodes, links, tex, base):
     return out
 
 
+def _key_emission(mat, socket, keys, interp):
+    """Key the emission strength at ``keys`` ``[[frame, strength], ...]``, held after the last."""
+    for frame, strength in keys:
+        socket.default_value = strength
+        socket.keyframe_insert("default_value", frame=frame)
+    for fc in mat.node_tree.animation_data.action.fcurves:
+        fc.extrapolation = "CONSTANT"
+        for kp in fc.keyframe_points:
+            kp.interpolation = interp
+
+
 def material(desc, name="m"):
     """A Principled-BSDF material for ``desc``; identical descriptions share one material."""
     key = repr(sorted(desc.items()))
@@ -59,9 +70,11 @@ def material(desc, name="m"):
     inp["IOR"].default_value = desc["ior"]
     inp["Clearcoat"].default_value = desc["clearcoat"]
     inp["Clearcoat Roughness"].default_value = desc["clearcoat_roughness"]
-    if desc["emission_strength"] > 0:
+    if desc["emission_strength"] > 0 or desc.get("emission_keys"):
         inp["Emission"].default_value = _rgba(desc["emission"])
         inp["Emission Strength"].default_value = desc["emission_strength"]
+    if desc.get("emission_keys"):
+        _key_emission(mat, inp["Emission Strength"], desc["emission_keys"], desc["emission_interp"])
     if desc["texture"]:
         links.new(_texture(nodes, links, desc["texture"], desc["base"]), inp["Base Color"])
     if desc["translucency"] > 0:

@@ -16,11 +16,12 @@ import sys
 
 from . import camera as cam
 from . import lighting as L
+from . import lighting_change
 from . import sampling as s
 from .families import FAMILIES
 from .families.props import inside
 
-FORMAT = "afn-scene-1"
+FORMAT = "afn-scene-2"
 
 # Path-tracing settings shared by every generated scene (inputs and references alike).
 RENDER = {"max_bounces": 8, "diffuse_bounces": 3, "glossy_bounces": 4,
@@ -44,6 +45,9 @@ def summary(desc):
                                    if lt["type"] in ("POINT", "SPOT") and lt["size"] <= 0.02),
         "moving_lights": sum(1 for lt in lights if any(lt["velocity"])),
         "switching_lights": sum(1 for lt in lights if lt["switch"]),
+        "fading_lights": sum(1 for lt in lights if lt.get("fade")),
+        "animated_emission": sum(1 for o in objs if o["material"].get("emission_keys")),
+        "lighting_event": desc.get("lighting_event"),
         "world": desc["world"]["type"],
         "camera_motion": camera["motion"],
         "camera_speed_px": cam.speed_px(camera),
@@ -75,6 +79,9 @@ def describe(family, seed, frames=8):
         "exposure": {"key": round(s.log_uniform(rng, 0.08, 0.3), 4)},
         "render": dict(RENDER),
     }
+    # Drawn last, so the layout, camera and exposure above do not depend on it.
+    desc["lighting_event"] = lighting_change.add_event(rng, desc["lights"], desc["objects"],
+                                                       camera, frames)
     desc["summary"] = summary(desc)
     return desc
 

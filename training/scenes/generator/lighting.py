@@ -9,7 +9,8 @@ POINT/SPOT radius in metres, SUN angular diameter in degrees), ``location`` at f
 (point the light faces, or ``None``), ``velocity`` (metres per frame, constant), ``spot_deg``
 (SPOT cone), ``portal`` (AREA light that is a light portal for the world, ``size`` by ``size_y``,
 never moved or switched), ``switch`` (``None`` or a list of ``[frame, power_factor, colour]``
-steps: the light jumps to ``power * power_factor`` and ``colour`` at that frame).
+steps: the light jumps to ``power * power_factor`` and ``colour`` at that frame), ``fade``
+(``None`` or ``[[frame, power_factor], ...]`` keyed linearly; see ``lighting_change``).
 """
 
 import math
@@ -57,7 +58,7 @@ def light(kind, location, power, colour=(1.0, 1.0, 1.0), size=0.1, aim=None, spo
     return {"type": kind, "power": round(float(power), 4), "colour": [round(c, 4) for c in colour],
             "size": round(float(size), 5), "location": s.vec(*location),
             "aim": None if aim is None else s.vec(*aim), "velocity": [0.0, 0.0, 0.0],
-            "spot_deg": round(float(spot_deg), 3), "switch": None}
+            "spot_deg": round(float(spot_deg), 3), "switch": None, "fade": None}
 
 
 def portal(location, aim, width, height):
