@@ -75,7 +75,7 @@ std::string helpText()
        << "  --preview OUT.png       display-referred beauty (:display=NAME:view=NAME)\n"
        << "  --contact-sheet OUT.png every AOV as a labelled tile (:columns=4:tilesize=480)\n"
        << "  --compare REF           error metrics against a reference file or pattern\n"
-       << "  --features OUT.exr      a learned method's network inputs (:method=afn)\n"
+       << "  --features OUT.exr      network inputs, history trust (:method=afn)\n"
        << "  --benchmark:methods=a,b time and score methods (with --compare REF, --report DIR;\n"
        << "                          or :size=1920x1080 on generated frames, :sky=0.6 skipping)\n"
        << "Settings:\n"

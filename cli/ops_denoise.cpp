@@ -316,7 +316,17 @@ void SequenceDenoiser::logFrame(const LoadedFrame& frame, Progress* progress)
         skippedText = "skipped " + shareText(skipped) + " of the pixels (background, alpha 0"
             + (m_maskChannel.empty() ? "" : ", mask") + "; skip=off filters them)";
 
+    // The share of pixels whose history a change of the lighting cut (stages/history_trust.h):
+    // on the frame's own line, when there is one.
+    const float cut = m_filter.get<float>(AFN_STAT_HISTORY_CUT);
+    const std::string cutText = cut >= 0.0005f ? "history cut " + shareText(cut) : "";
+    if (!cutText.empty() && progress)
+        progress->annotate(cutText);
+
     if (m_opts.verbose) { // every frame, every figure
+        if (!cutText.empty())
+            note(m_flag + ": " + m_method + " " + cutText + " (lighting changed) " + frame.ref.path,
+                quiet, progress);
         if (!missingShort.empty())
             note(m_flag + ": " + m_method + " without " + missingShort + " " + frame.ref.path,
                 quiet, progress);

@@ -31,9 +31,10 @@ void Progress::update(int done, const std::string& label)
         // the summary.
         const auto now = std::chrono::steady_clock::now();
         if (done > 0 && m_total > 1)
-            std::fprintf(stderr, "afntool: [%d/%d] %s %.2f s\n", done, m_total, m_label.c_str(),
-                std::chrono::duration<double>(now - m_itemStart).count());
+            std::fprintf(stderr, "afntool: [%d/%d] %s %.2f s%s\n", done, m_total, m_label.c_str(),
+                std::chrono::duration<double>(now - m_itemStart).count(), m_detail.c_str());
         m_label = label;
+        m_detail.clear();
         m_itemStart = now;
         return;
     }
@@ -44,6 +45,11 @@ void Progress::update(int done, const std::string& label)
     std::fprintf(stderr, "\r\033[K[%s] %d/%d %s", bar.c_str(), done, m_total, label.c_str());
     std::fflush(stderr);
     m_drawn = true;
+}
+
+void Progress::annotate(const std::string& detail)
+{
+    m_detail += (m_detail.empty() ? ", " : "; ") + detail;
 }
 
 void Progress::clear()

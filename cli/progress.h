@@ -19,6 +19,9 @@ public:
     /// finished item with its wall time ("afntool: [3/60] shot.0002.exr 0.41 s"; none for a
     /// single item).
     void update(int done, const std::string& label);
+    /// A figure of the item in progress, printed after its time on its line ("..., history cut
+    /// 12 %"; not on the bar).
+    void annotate(const std::string& detail);
     /// Clear the bar before printing a message, so lines do not interleave.
     void clear();
     /// Print the summary line, "afntool: 8 frames in 3.21 s (2.49 fps)".
@@ -31,6 +34,7 @@ private:
     bool m_bar; ///< stderr is a terminal: one redrawn line
     bool m_drawn = false;
     std::string m_label; ///< label of the item in progress (plain lines)
+    std::string m_detail; ///< annotate()'s figures of the item in progress
     std::chrono::steady_clock::time_point m_start;
     std::chrono::steady_clock::time_point m_itemStart; ///< when the item in progress started
 };

@@ -127,6 +127,11 @@ typedef enum AFNDeviceType {
 /// need denoising come out bit-identical to skip = false.
 #define AFN_PARAM_SKIP "skip"
 #define AFN_PARAM_DENOISING_RANGE "denoisingRange"
+/// History trust (float, 0-4, default 1; every method that keeps a temporal history): how fast a
+/// change of the lighting cuts the history where the geometry still matches (a light moved or
+/// switched, a shadow or an emitter changed). 0 keeps it as the original methods do
+/// (lib/core/stages/history_trust.h).
+#define AFN_PARAM_ANTILAG "antilag"
 /// Cost/accuracy tier: "fast", "balanced" (default: the method as without the parameter), "high"
 /// (a parameter of every denoising method; what each tier does is in its help text and
 /// docs/quality.md, lib/core/filter/quality.h).
@@ -155,6 +160,10 @@ typedef enum AFNDeviceType {
 /// Share in [0, 1] of the last frame's pixels that needed no denoising (work skipping; 0 with
 /// skip = false) (afnGetFilterFloat).
 #define AFN_STAT_SKIPPED "stats.skipped"
+/// Share in [0, 1] of the last frame's pixels whose temporal history was cut because the lighting
+/// changed (history trust below one half; parameter "antilag"); 0 for methods without a history
+/// (afnGetFilterFloat). The per-pixel trust is the feature output "historyTrust".
+#define AFN_STAT_HISTORY_CUT "stats.historyCut"
 /// The inputs the method reads that the last frame lacked, with what each is for, e.g.
 /// "normal (edge-stopping); motion or position with a camera (reprojection: ...)"; "" when none
 /// (afnGetFilterString). The method still runs, with less to go on.

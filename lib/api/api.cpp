@@ -339,6 +339,8 @@ static double filterNumber(AFNFilterImpl* f, const std::string& name)
         return flt.height();
     if (name == AFN_STAT_SKIPPED)
         return flt.lastSkippedShare();
+    if (name == AFN_STAT_HISTORY_CUT)
+        return flt.lastHistoryCutShare();
     if (name == AFN_STAT_AUX_NOISY)
         return flt.auxReport().noisy ? 1.0 : 0.0;
     if (name == AFN_STAT_AUX_GRAIN_LIMITED)

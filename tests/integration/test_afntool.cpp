@@ -275,13 +275,19 @@ TEST(Afntool, FeaturesWriteTheNetworkInputsPerFrame)
     std::vector<std::string> channels = info.subimages[0].channels;
     std::sort(channels.begin(), channels.end());
     const std::vector<std::string> want = { "accumulated.B", "accumulated.G", "accumulated.R",
-        "albedo.B", "albedo.G", "albedo.R", "depth01.Z", "irradiance.B", "irradiance.G",
-        "irradiance.R", "normal01.B", "normal01.G", "normal01.R" };
+        "albedo.B", "albedo.G", "albedo.R", "depth01.Z", "historyTrust.Z", "irradiance.B",
+        "irradiance.G", "irradiance.R", "normal01.B", "normal01.G", "normal01.R" };
     EXPECT_EQ(channels, want);
     for (const std::string& t : info.subimages[0].types)
         EXPECT_EQ(t, "float");
-    expectCleanError(runAfntool({ kFrame0, "--features:method=svgf", dir.file("f.exr") }),
+    expectCleanError(runAfntool({ kFrame0, "--features:method=identity", dir.file("f.exr") }),
         "has no feature outputs");
+    // Every method with a history shows its trust map, svgf included.
+    const CliResult s = runAfntool(
+        { "--frames", "0-1", kSequence, "--features:method=svgf", dir.file("svgf.####.exr") });
+    ASSERT_EQ(s.exitCode, 0) << s.err;
+    EXPECT_EQ(afn::io::inspect(dir.file("svgf.0001.exr")).subimages[0].channels,
+        std::vector<std::string> { "historyTrust.Z" });
 }
 
 TEST(Afntool, MissingFrameIsNamed)

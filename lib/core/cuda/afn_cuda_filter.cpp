@@ -64,6 +64,8 @@ void AfnCudaFilter::configure()
         throw Exception(AFN_ERROR_UNSUPPORTED,
             "afn on a CUDA device has no post-filter yet: postFilter=on runs on the CPU device "
             "only (afntool: --device cpu)");
+    // No history trust on the GPU yet (stages/history_trust.h): antilag runs as 0 here (the
+    // history kept wherever the geometry matches; stats.historyCut 0, historyTrust all 1).
     // The same parameters as the CPU filter's stages (filter/filter.cpp commit()).
     m_reproject = reprojectBinding().read(params());
     m_accumulation = accumulationBinding().read(params());

@@ -200,8 +200,10 @@ void Filter::commit()
         r.boxFallback = m_stages.reproject == StageNeeds::Reproject::BilinearWithBoxFallback;
         m_reprojector.setSettings(r);
     }
-    if (m_stages.accumulate)
+    if (m_stages.accumulate) {
         m_accumulator.setSettings(accumulationBinding().read(m_params));
+        m_accumulator.setTrustSettings(historyTrustBinding().read(m_params));
+    }
     configure();
     m_committed = true;
 }
@@ -232,11 +234,17 @@ void Filter::runStages()
         // Demodulation (in place: the radiance is not read again), accumulation and, for ta, the
         // remodulated output run per band of rows in one pass: a band's rows are still in cache
         // for the next step (the values are those of three separate passes).
+        // The history trust (stages/history_trust.h) needs every block's statistics before the
+        // blend: two passes, demodulation with the history's gather, then blend and output.
         const bool writeOutput = outputWrittenByStages();
         m_accumulator.begin(m_reprojector, m_frame.width, m_frame.height);
         parallelRows(m_frame.height, [&](int y0, int y1) {
             demodulateRows(m_frame, m_frame.color, y0, y1);
-            m_accumulator.accumulateRows(m_reprojector, m_frame.color, y0, y1);
+            m_accumulator.gatherRows(m_reprojector, m_frame.color, y0, y1);
+        });
+        m_accumulator.finishTrust();
+        parallelRows(m_frame.height, [&](int y0, int y1) {
+            m_accumulator.blendRows(m_reprojector, m_frame.color, y0, y1);
             if (writeOutput)
                 writeRemodulatedRows(m_accumulator.color(), y0, y1);
         });
@@ -308,12 +316,27 @@ void Filter::execute()
                 writeOutput(m_output);
         }
     }
+    writeTrustFeature();
     reportProgress(1.0);
     m_prevWidth = color.width;
     m_prevHeight = color.height;
     m_prevInputs = inputs;
     m_prevCamera = m_camera;
     ++m_frameIndex;
+}
+
+void Filter::writeTrustFeature()
+{
+    if (m_images.count(std::string(AFN_IMAGE_FEATURE_PREFIX) + kHistoryTrustFeature) == 0)
+        return;
+    if (const HistoryTrust* t = historyTrust()) {
+        t->map(m_trustMap);
+    } else { // no trust measured: every history kept
+        m_trustMap.resize(m_frame.width, m_frame.height, 1);
+        for (int y = 0; y < m_frame.height; ++y)
+            std::fill(m_trustMap.at(0, y), m_trustMap.at(0, y) + m_frame.width, 1.0f);
+    }
+    writeFeature(kHistoryTrustFeature, m_trustMap);
 }
 
 void Filter::writeOutput(const Image& radiance) const

@@ -102,6 +102,19 @@ public:
     const AuxReport& auxReport() const { return m_aux.report(); }
     int width() const { return m_frame.width; }
     int height() const { return m_frame.height; }
+    /// The history trust of the last frame (stages/history_trust.h): the accumulation stage's,
+    /// or the method's own (svgf); nullptr for a method without one.
+    virtual const HistoryTrust* historyTrust() const
+    {
+        return m_stages.accumulate ? &m_accumulator.trust() : nullptr;
+    }
+    /// Share of the last frame's pixels whose history was cut (HistoryTrust::cutShare(); 0
+    /// without a history trust).
+    double lastHistoryCutShare() const
+    {
+        const HistoryTrust* t = historyTrust();
+        return t ? t->cutShare() : 0.0;
+    }
     /// A method's own statistic of the last execute ("stats.afn.*"); false when it has none of
     /// that name.
     virtual bool statistic(const std::string& name, double& value) const { return false; }
@@ -180,6 +193,8 @@ private:
     void writeRemodulatedRows(const Image& irradiance, int y0, int y1) const;
     /// runStages() writes the output in the accumulation's pass (outputIsAccumulation()).
     bool outputWrittenByStages() const;
+    /// Write the "historyTrust" feature when it is bound.
+    void writeTrustFeature();
 
     const FilterType& m_type;
     ParamSet m_params;
@@ -197,6 +212,7 @@ private:
     std::string m_prevInputs; ///< which inputs the previous frame had (history consistency)
     Frame m_frame; ///< reused across frames: allocated once per resolution
     Image m_output;
+    Image m_trustMap; ///< the "historyTrust" feature, only when it is bound
     InputStats m_stats;
     std::string m_missingInputs;
     AuxPrefilter m_aux;

@@ -3,6 +3,7 @@
 
 #include "base/exception.h"
 #include "filter/quality.h"
+#include "stages/history_trust.h"
 
 #include <algorithm>
 
@@ -25,8 +26,13 @@ FilterType registered(FilterType t)
     append(table, std::move(t.params));
     if (!t.qualityHelp.empty())
         table.push_back(qualityDescriptor(t.qualityHelp));
-    if (t.stages.reproject != StageNeeds::Reproject::None)
+    if (t.stages.reproject != StageNeeds::Reproject::None) {
         append(table, reprojectBinding().descriptors());
+        append(table, historyTrustBinding().descriptors());
+        t.features.push_back({ kHistoryTrustFeature, 1,
+            "history trust per pixel (stages/history_trust.h): 1 where the reprojected history "
+            "was kept, towards 0 where a change of the lighting cut it" });
+    }
     if (t.stages.demodulate)
         append(table, auxBinding().descriptors());
     append(table, workDescriptors(t.skipHelp));

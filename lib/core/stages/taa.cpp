@@ -277,11 +277,28 @@ void temporalAntialias(
         kRowBlock);
 }
 
-const Image& TemporalAntialiasing::apply(
-    const Reprojector& taps, const Image& current, float alpha, Image& spare)
+const Image& TemporalAntialiasing::apply(const Reprojector& taps, const Image& current, float alpha,
+    Image& spare, const HistoryTrust* trust)
 {
     static const Image kNoHistory; // after a reset: the output is the current frame
     temporalAntialias(taps, current, m_hasHistory ? m_output : kNoHistory, alpha, spare);
+    if (m_hasHistory && trust && trust->active())
+        // Where the history trust fell, the output moves towards the current frame as a blend
+        // factor alpha' = alpha + (1 - alpha) (1 - t) would (stages/history_trust.h).
+        parallelRows(spare.height(), [&](int y0, int y1) {
+            std::vector<float> t(static_cast<std::size_t>(spare.width()));
+            for (int y = y0; y < y1; ++y) {
+                if (!trust->rowTrust(y, t.data()))
+                    continue;
+                float* o = spare.at(0, y);
+                const float* c = current.at(0, y);
+                for (int x = 0; x < spare.width(); ++x)
+                    if (t[x] < 1.0f)
+                        for (int k = 0; k < 3; ++k)
+                            o[3 * x + k] = std::max(
+                                0.0f, blendHistory(o[3 * x + k], c[3 * x + k], 1.0f - t[x]));
+            }
+        });
     std::swap(m_output, spare); // this frame's output is the next frame's history
     m_hasHistory = true;
     return m_output;

@@ -21,6 +21,7 @@
 #pragma once
 
 #include "base/image.h"
+#include "stages/history_trust.h"
 #include "stages/reproject.h"
 
 namespace afn {
@@ -45,7 +46,10 @@ public:
     void reset() { m_hasHistory = false; }
     /// TAA of `current` into `spare` (a frame-size image the caller lends, e.g. a scratch image of
     /// its own), which then becomes the history: `spare` gets the previous history's buffer back.
-    const Image& apply(const Reprojector& taps, const Image& current, float alpha, Image& spare);
+    /// With `trust` (the method's history trust, stages/history_trust.h) the output is pulled
+    /// towards `current` where the trust is below 1.
+    const Image& apply(const Reprojector& taps, const Image& current, float alpha, Image& spare,
+        const HistoryTrust* trust = nullptr);
 
 private:
     Image m_output;

@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <utility>
+#include <vector>
 
 namespace afn {
 
@@ -34,54 +35,107 @@ void TemporalAccumulator::begin(const Reprojector& taps, int w, int h)
     m_spp.resize(w, h, 1);
     m_history = m_hasHistory && taps.hasHistory() && m_prevColor.width() == w
         && m_prevColor.height() == h;
+    m_trust.begin(w, h, m_history);
 }
 
 void TemporalAccumulator::accumulate(const Reprojector& taps, const Image& irr)
 {
     begin(taps, irr.width(), irr.height());
-    parallelRows(irr.height(), [&](int y0, int y1) { accumulateRows(taps, irr, y0, y1); });
+    parallelRows(irr.height(), [&](int y0, int y1) { gatherRows(taps, irr, y0, y1); });
+    finishTrust();
+    parallelRows(irr.height(), [&](int y0, int y1) { blendRows(taps, irr, y0, y1); });
     end();
 }
 
-void TemporalAccumulator::accumulateRows(const Reprojector& taps, const Image& irr, int y0, int y1)
+namespace {
+
+/// History length marking a pixel without history between gatherRows() and blendRows().
+constexpr float kNoHistory = -1.0f;
+
+} // namespace
+
+void TemporalAccumulator::gatherRows(const Reprojector& taps, const Image& irr, int y0, int y1)
+{
+    if (!m_history) {
+        for (int y = y0; y < y1; ++y)
+            std::fill(m_spp.at(0, y), m_spp.at(0, y) + irr.width(), kNoHistory);
+        return;
+    }
+    const int w = irr.width();
+    const bool measure = m_trust.enabled();
+    for (int y = y0; y < y1; ++y) {
+        const bool identity = taps.identityRow(y);
+        const float* c = irr.at(0, y);
+        float* acc = m_color.at(0, y);
+        float* spp = m_spp.at(0, y);
+        float* sums = measure ? m_trust.rowSums(y) : nullptr;
+        for (int x = 0; x < w; ++x) {
+            if (identity && taps.ownPixelAccepted(x, y)) {
+                // A static camera's row, own pixel accepted: blendRows() reads it in place.
+                if (sums)
+                    HistoryTrust::addPixel(sums, x, trustLuminance(c + 3 * x),
+                        trustLuminance(m_prevColor.at(x, y)), m_prevSpp(x, y, 0));
+                continue;
+            }
+            const PixelTaps& t = taps.taps(x, y);
+            float* prev = acc + 3 * x;
+            const float ws = gatherHistory<3>(t, m_prevColor, prev);
+            if (!(ws > 0.0f)) {
+                spp[x] = kNoHistory;
+                continue;
+            }
+            gatherHistory<1>(t, m_prevSpp, spp + x);
+            if (sums)
+                HistoryTrust::addPixel(
+                    sums, x, trustLuminance(c + 3 * x), trustLuminance(prev), spp[x]);
+        }
+    }
+}
+
+void TemporalAccumulator::blendRows(const Reprojector& taps, const Image& irr, int y0, int y1)
 {
     const int w = irr.width();
     const bool history = m_history;
     const bool avx512 = cpu::activeIsa() == cpu::Isa::Avx512;
+    std::vector<float> trustRow;
     for (int y = y0; y < y1; ++y) {
         const bool identity = history && taps.identityRow(y);
+        if (m_trust.active())
+            trustRow.resize(static_cast<std::size_t>(w));
+        const bool partial = m_trust.rowTrust(y, trustRow.data());
         const float* c = irr.at(0, y);
         float* acc = m_color.at(0, y);
         float* spp = m_spp.at(0, y);
         auto pixel = [&](int x) {
-            float prev[3], sppS = 0.0f, ws = 0.0f;
+            float prev[3], sppS;
+            float* a = acc + 3 * x;
+            const float* cx = c + 3 * x;
             if (identity && taps.ownPixelAccepted(x, y)) {
-                // A static camera's row, own pixel accepted: its previous value, no decoding.
                 const float* p = m_prevColor.at(x, y);
                 for (int k = 0; k < 3; ++k)
                     prev[k] = p[k];
                 sppS = m_prevSpp(x, y, 0);
-                ws = 1.0f;
-            } else if (history) {
-                const PixelTaps& t = taps.taps(x, y);
-                ws = gatherHistory<3>(t, m_prevColor, prev);
-                gatherHistory<1>(t, m_prevSpp, &sppS);
-            }
-            float* a = acc + 3 * x;
-            const float* cx = c + 3 * x;
-            if (ws > 0.0f) {
-                const float alpha = std::max(1.0f / (sppS + 1.0f), m_alphaMin);
+            } else if (spp[x] != kNoHistory) {
                 for (int k = 0; k < 3; ++k)
-                    a[k] = blendHistory(prev[k], cx[k], alpha);
-                spp[x] = alpha < 1.0f ? std::min(sppS + 1.0f, kMaxHistoryLength) : 1.0f;
+                    prev[k] = a[k];
+                sppS = spp[x];
             } else {
                 for (int k = 0; k < 3; ++k)
                     a[k] = cx[k];
                 spp[x] = 1.0f;
+                return;
             }
+            float alpha = std::max(1.0f / (sppS + 1.0f), m_alphaMin);
+            if (partial && trustRow[x] < 1.0f) { // history trust (stages/history_trust.h)
+                alpha += (1.0f - alpha) * (1.0f - trustRow[x]);
+                sppS *= trustRow[x];
+            }
+            for (int k = 0; k < 3; ++k)
+                a[k] = blendHistory(prev[k], cx[k], alpha);
+            spp[x] = alpha < 1.0f ? std::min(sppS + 1.0f, kMaxHistoryLength) : 1.0f;
         };
         int x = 0;
-        if (identity && avx512)
+        if (identity && avx512 && !partial)
             // 16 pixels at a time where all 16 took their own previous pixel (the same
             // operations, stages/temporal_accumulation_avx512.h); any other block per pixel.
             for (; x + 16 <= w; x += 16) {

@@ -8,8 +8,15 @@
 // exact arithmetic) so that an unchanged value stays bit-exactly unchanged. spp is kept as a float
 // capped at 255 (BMFR stores a uchar; the cap has no effect once alpha = alphaMin). Inputs are
 // finite and non-negative (stages/demodulate.h), so the history never holds NaN/Inf.
+//
+// History trust (stages/history_trust.h): the accumulation runs in two passes over the rows.
+// gatherRows() reprojects the history of each pixel (into the output buffers, or nothing on a
+// static camera's own-pixel rows) and adds it to the trust's block statistics; after
+// HistoryTrust::finish(), blendRows() blends with alpha' = alpha + (1 - alpha) * (1 - t) and
+// history length s * t + 1 (t = 1: the arithmetic above, bit for bit).
 #pragma once
 
+#include "stages/history_trust.h"
 #include "stages/reproject.h"
 
 namespace afn {
@@ -29,16 +36,23 @@ const ParamBinding<AccumulationSettings>& accumulationBinding();
 class TemporalAccumulator {
 public:
     void setSettings(const AccumulationSettings& s) { m_alphaMin = s.alphaMin; }
+    void setTrustSettings(const HistoryTrustSettings& s) { m_trust.setSettings(s); }
 
     /// Blend `irradiance` (3 ch) into the history reprojected by `taps`.
     void accumulate(const Reprojector& taps, const Image& irradiance);
     /// accumulate() in steps, for callers that run it row band by row band with other per-row
-    /// work (the Filter base: demodulation, remodulation): begin() once, then accumulateRows() over
-    /// every row exactly once (any order, any threads), then end(). The same values.
+    /// work (the Filter base: demodulation, remodulation): begin() once, then gatherRows() over
+    /// every row exactly once (any order, any threads), finishTrust(), blendRows() over every row
+    /// exactly once, then end(). The same values.
     void begin(const Reprojector& taps, int width, int height);
-    void accumulateRows(const Reprojector& taps, const Image& irradiance, int y0, int y1);
+    void gatherRows(const Reprojector& taps, const Image& irradiance, int y0, int y1);
+    void finishTrust() { m_trust.finish(); }
+    void blendRows(const Reprojector& taps, const Image& irradiance, int y0, int y1);
     void end() { m_hasHistory = true; }
     void reset();
+
+    /// The history trust of the last frame (stages/history_trust.h).
+    const HistoryTrust& trust() const { return m_trust; }
 
     /// Accumulated colour of the last frame (3 ch).
     const Image& color() const { return m_color; }
@@ -61,6 +75,7 @@ private:
     bool m_hasHistory = false;
     bool m_history = false; ///< this frame blends with a history (set by begin())
     Image m_color, m_spp, m_prevColor, m_prevSpp;
+    HistoryTrust m_trust;
 };
 
 } // namespace afn

@@ -169,7 +169,7 @@ private:
             return;
         m_inputs.radiance(in, result, out);
         if (m_taaOn)
-            out = m_taa.apply(reprojector(), out, m_settings.taaAlpha, m_taaSpare);
+            out = m_taa.apply(reprojector(), out, m_settings.taaAlpha, m_taaSpare, historyTrust());
         if (m_postOn) {
             edgeAwarePostFilter(out, guidesOf(in), m_postWorkspace, m_postScratch, result);
             out = result;
@@ -186,13 +186,15 @@ private:
         m_inputs.radiance(in, result, result);
         if (!m_postOn) {
             if (m_taaOn)
-                return &m_taa.apply(reprojector(), result, m_settings.taaAlpha, m_taaSpare);
+                return &m_taa.apply(
+                    reprojector(), result, m_settings.taaAlpha, m_taaSpare, historyTrust());
             return &result;
         }
         // The post-filter reads the TAA's output (its next history, kept as it is) and writes
         // the result; with TAA the spare the TAA handed back is free until the next frame.
         if (m_taaOn) {
-            const Image& aa = m_taa.apply(reprojector(), result, m_settings.taaAlpha, m_taaSpare);
+            const Image& aa = m_taa.apply(
+                reprojector(), result, m_settings.taaAlpha, m_taaSpare, historyTrust());
             edgeAwarePostFilter(aa, guidesOf(in), m_postWorkspace, m_taaSpare, result);
         } else {
             edgeAwarePostFilter(result, guidesOf(in), m_postWorkspace, m_postScratch, m_taaSpare);

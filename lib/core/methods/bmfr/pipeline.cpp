@@ -63,7 +63,7 @@ const Image& Denoiser::process(
     remodulate(f, m_filtered, radiance);
     if (!m_settings.taa)
         return radiance;
-    return m_taa.apply(taps, radiance, m_settings.taaAlpha, m_spare);
+    return m_taa.apply(taps, radiance, m_settings.taaAlpha, m_spare, &ta.trust());
 }
 
 const ParamBinding<Settings>& settingsBinding()

@@ -27,6 +27,7 @@
 #include "filter/work_region.h"
 #include "methods/svgf/guide.h"
 #include "methods/svgf/planes.h"
+#include "stages/history_trust.h"
 #include "stages/reproject.h"
 
 #include <vector>
@@ -44,9 +45,15 @@ public:
     /// This frame's temporal integration (kernels.h IntegratedPlane; its colour planes the
     /// feedback iteration's output): for tests.
     const Planes& integrated() const { return m_integrated; }
+    void setTrustSettings(const HistoryTrustSettings& s) { m_trust.setSettings(s); }
+    /// The history trust of the last integration (stages/history_trust.h).
+    const HistoryTrust& trust() const { return m_trust; }
 
 private:
     void integrate(const Image& irradiance, const Reprojector& taps);
+    /// The history of rows [y0, y1) gathered into this frame's planes (length kNoHistory where
+    /// none), except a static camera's own pixels, and added to the trust (temporal.cpp).
+    void gatherRows(const Image& irradiance, const Reprojector& taps, int y0, int y1);
     void estimateVariance(const WorkRegion* region);
     void atrous(const Planes& in, Planes& out, int step, const WorkRegion* region);
     /// The regions the passes compute for this frame's work mask (work_skip.cpp); false when
@@ -60,6 +67,7 @@ private:
 
     Settings m_settings;
     Guide m_guide;
+    HistoryTrust m_trust;
     bool m_hasHistory = false;
     /// This frame's integration (kernels.h IntegratedPlane), which is also the next frame's
     /// history: colour (the feedback iteration's output), moments l and l^2, history length; and

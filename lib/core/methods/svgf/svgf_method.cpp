@@ -24,7 +24,9 @@ private:
     {
         m_settings = settingsBinding().read(params());
         m_svgf.setSettings(m_settings);
+        m_svgf.setTrustSettings(historyTrustBinding().read(params()));
     }
+    const HistoryTrust* historyTrust() const override { return &m_svgf.trust(); }
     void resetHistory() override
     {
         m_svgf.reset();
@@ -34,7 +36,8 @@ private:
     {
         remodulate(in, *filter(in), out);
         if (m_settings.taa) {
-            const Image& aa = m_taa.apply(reprojector(), out, m_settings.taaAlpha, m_taaSpare);
+            const Image& aa
+                = m_taa.apply(reprojector(), out, m_settings.taaAlpha, m_taaSpare, &m_svgf.trust());
             out = aa;
         }
     }
@@ -49,7 +52,8 @@ private:
     {
         Image& radiance = *filter(in);
         remodulate(in, radiance, radiance);
-        return &m_taa.apply(reprojector(), radiance, m_settings.taaAlpha, m_taaSpare);
+        return &m_taa.apply(
+            reprojector(), radiance, m_settings.taaAlpha, m_taaSpare, &m_svgf.trust());
     }
     Image* filter(const Frame& in)
     {

@@ -10,6 +10,7 @@
 
 #include <algorithm>
 #include <utility>
+#include <vector>
 
 namespace afn::svgf {
 
@@ -24,6 +25,8 @@ namespace {
 constexpr int kHistoryPlanes[]
     = { kIntRed, kIntGreen, kIntBlue, kMoment1, kMoment2, kHistoryLength };
 constexpr int kHistoryChannels = 6;
+/// History length marking a pixel without history between gatherRows() and the blend.
+constexpr float kNoHistory = -1.0f;
 
 } // namespace
 
@@ -35,15 +38,20 @@ void Denoiser::integrate(const Image& irr, const Reprojector& taps)
     const bool history = m_hasHistory && taps.hasHistory() && m_prevIntegrated.width() == w
         && m_prevIntegrated.height() == h && m_prevIntegrated.count() == kIntegratedPlanes;
     const Planes& prevPlanes = m_prevIntegrated;
+    // Two passes for the history trust (stages/history_trust.h), as the shared accumulation:
+    // gather each pixel's history into this frame's planes (a static camera's own pixels are read
+    // in place later) and add it to the trust's blocks; then blend with the trust.
+    m_trust.begin(w, h, history);
+    if (history)
+        parallelRows(h, [&](int y0, int y1) { gatherRows(irr, taps, y0, y1); });
+    m_trust.finish();
     const bool avx512 = cpu::activeIsa() == cpu::Isa::Avx512;
     parallelRows(h, [&](int y0, int y1) {
+        std::vector<float> trustRow(m_trust.active() ? static_cast<std::size_t>(w) : 0);
         const float* prevRow[kHistoryChannels] = {};
-        auto load = [&](int x, int y, float* v) {
-            for (int k = 0; k < kHistoryChannels; ++k)
-                v[k] = prevPlanes.row(kHistoryPlanes[k], y)[x];
-        };
         for (int y = y0; y < y1; ++y) {
             const bool identity = history && taps.identityRow(y);
+            const bool partial = m_trust.rowTrust(y, trustRow.data());
             float* planes[kIntegratedPlanes];
             for (int k = 0; k < kIntegratedPlanes; ++k)
                 planes[k] = m_integrated.row(k, y);
@@ -54,21 +62,28 @@ void Denoiser::integrate(const Image& irr, const Reprojector& taps)
                 const float* c = irr.at(x, y);
                 const float l = luminance(c);
                 const float m[2] = { l, l * l };
-                // Colour, moments and length share the taps: one renormalised gather of all six.
                 float prev[kHistoryChannels];
-                float ws = 0.0f;
+                bool has = false;
                 if (identity && taps.ownPixelAccepted(x, y)) { // the gather's result, undecoded
                     for (int k = 0; k < kHistoryChannels; ++k)
                         prev[k] = prevRow[k][x];
-                    ws = 1.0f;
-                } else if (history) {
-                    ws = gatherHistoryWith<kHistoryChannels>(taps.taps(x, y), load, prev);
+                    has = true;
+                } else if (history && planes[kHistoryLength][x] != kNoHistory) {
+                    for (int k = 0; k < kHistoryChannels; ++k)
+                        prev[k] = planes[kHistoryPlanes[k]][x]; // gathered by gatherRows()
+                    has = true;
                 }
                 float o[kHistoryChannels];
-                if (ws > 0.0f) {
-                    const float len = std::min(prev[5] + 1.0f, 255.0f);
-                    const float a = std::max(m_settings.alpha, 1.0f / len);
-                    const float am = std::max(m_settings.momentsAlpha, 1.0f / len);
+                if (has) {
+                    float len = std::min(prev[5] + 1.0f, 255.0f);
+                    float a = std::max(m_settings.alpha, 1.0f / len);
+                    float am = std::max(m_settings.momentsAlpha, 1.0f / len);
+                    if (partial && trustRow[x] < 1.0f) { // history trust
+                        const float cut = 1.0f - trustRow[x];
+                        a += (1.0f - a) * cut;
+                        am += (1.0f - am) * cut;
+                        len = std::min(prev[5] * trustRow[x] + 1.0f, 255.0f);
+                    }
                     for (int k = 0; k < 3; ++k)
                         o[k] = blendHistory(prev[k], c[k], a);
                     for (int k = 0; k < 2; ++k)
@@ -86,7 +101,7 @@ void Denoiser::integrate(const Image& irr, const Reprojector& taps)
                 planes[kIntLuminance][x] = luminance(o);
             };
             int x = 0;
-            if (identity && avx512) {
+            if (identity && avx512 && !partial) {
                 // 16 pixels at a time where all 16 took their own previous pixel (the same
                 // operations, methods/svgf/integrate_avx512.h); any other block per pixel.
                 const float* prev16[kHistoryChannels];
@@ -111,6 +126,43 @@ void Denoiser::integrate(const Image& irr, const Reprojector& taps)
         }
     });
     m_hasHistory = true;
+}
+
+void Denoiser::gatherRows(const Image& irr, const Reprojector& taps, int y0, int y1)
+{
+    const int w = irr.width();
+    const Planes& prevPlanes = m_prevIntegrated;
+    auto load = [&](int x, int y, float* v) {
+        for (int k = 0; k < kHistoryChannels; ++k)
+            v[k] = prevPlanes.row(kHistoryPlanes[k], y)[x];
+    };
+    const bool measure = m_trust.enabled();
+    for (int y = y0; y < y1; ++y) {
+        const bool identity = taps.identityRow(y);
+        float* planes[kHistoryChannels];
+        for (int k = 0; k < kHistoryChannels; ++k)
+            planes[k] = m_integrated.row(kHistoryPlanes[k], y);
+        float* sums = measure ? m_trust.rowSums(y) : nullptr;
+        for (int x = 0; x < w; ++x) {
+            float prev[kHistoryChannels];
+            if (identity && taps.ownPixelAccepted(x, y)) {
+                if (sums) {
+                    load(x, y, prev);
+                    HistoryTrust::addPixel(
+                        sums, x, luminance(irr.at(x, y)), luminance(prev), prev[5]);
+                }
+                continue;
+            }
+            if (!(gatherHistoryWith<kHistoryChannels>(taps.taps(x, y), load, prev) > 0.0f)) {
+                planes[5][x] = kNoHistory;
+                continue;
+            }
+            for (int k = 0; k < kHistoryChannels; ++k)
+                planes[k][x] = prev[k];
+            if (sums)
+                HistoryTrust::addPixel(sums, x, luminance(irr.at(x, y)), luminance(prev), prev[5]);
+        }
+    }
 }
 
 void Denoiser::estimateVariance(const WorkRegion* region)

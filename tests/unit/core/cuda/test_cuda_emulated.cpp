@@ -54,6 +54,7 @@ TEST(CudaEmulated, FirstStageIsTheCpuStagesBitForBit)
         reprojector.setSettings(kReproject);
         afn::TemporalAccumulator accumulator;
         accumulator.setSettings(kAccumulation);
+        accumulator.setTrustSettings({ 0.0f }); // the GPU has no history trust yet
         afn::Image irradiance, out;
         for (int k = 0; k < 4; ++k) {
             afntest::SequenceFrame in = seq.frame(k, inputs);
@@ -89,6 +90,7 @@ TEST(CudaEmulated, NetworkInputIsTheCpuInputInHalfPrecision)
     afntest::FrameGatherer gatherer;
     afn::Reprojector reprojector;
     afn::TemporalAccumulator accumulator;
+    accumulator.setTrustSettings({ 0.0f }); // the GPU has no history trust yet
     afn::Image irradiance, albedo, normal01, depth01, result, out;
     for (int k = 0; k < 2; ++k) {
         afntest::SequenceFrame in = seq.frame(k, SequenceInputs {});
@@ -128,6 +130,7 @@ void expectFilterParity(const std::vector<char>& weights, int width, int height,
     cpu->params().setString(AFN_PARAM_AUX, "clean"); // the GPU has no aux prefilter yet
     cpu->params().setString("taa", "off"); // nor the output TAA (taa=auto runs as off there)
     cpu->params().setString("postFilter", "off"); // nor the post-filter (likewise)
+    cpu->params().setNumber("antilag", 0.0, AFN_PARAM_FLOAT); // nor the history trust (likewise)
     cpu->setData(AFN_DATA_WEIGHTS, weights.data(), weights.size());
     afntest::EmulatedAfnPipeline emulated(
         afn::afnet::networkFromData(weights.data(), weights.size()));

@@ -89,6 +89,7 @@ TEST(MethodsTa, MovingLightShowsTheDocumentedLag)
         light.push_back(k < 3 ? 0.2f : k < 12 ? 1.0f : 0.5f);
     const std::vector<double> expect = expectedSchedule(light);
     auto ta = afn::createFilter("ta");
+    ta->params().setNumber("antilag", 0.0, AFN_PARAM_FLOAT); // BMFR's schedule, no history trust
     Buffers b;
     b.albedo = Image(W, H, 3, 0.5f);
     b.normal = makeImage(W, H, 3, [](int, int, int c) { return c == 2 ? 1.0f : 0.0f; });
@@ -125,6 +126,7 @@ TEST(MethodsTa, HistoryLengthCountsAndSaturates)
 TEST(MethodsTa, ResetRestartsFromTheCurrentFrame)
 {
     auto ta = afn::createFilter("ta");
+    ta->params().setNumber("antilag", 0.0, AFN_PARAM_FLOAT); // a step of the light, kept
     Buffers b;
     b.color = Image(W, H, 3, 1.0f);
     runFrame(*ta, b);
@@ -156,6 +158,7 @@ TEST(MethodsTa, ParametersAreDescribed)
 TEST(MethodsTa, FrameSizeChangeMidSequenceThrows)
 {
     auto ta = afn::createFilter("ta");
+    ta->params().setNumber("antilag", 0.0, AFN_PARAM_FLOAT); // a step of the light, kept
     Buffers b;
     b.color = Image(W, H, 3, 1.0f);
     runFrame(*ta, b);

@@ -89,7 +89,7 @@ TEST(BaselineFilters, TypesAreRegisteredWithFeatures)
     for (const char* name : { "onnd", "mrkp" }) {
         const afn::FilterType* t = afn::findFilterType(name);
         ASSERT_NE(t, nullptr) << name;
-        EXPECT_EQ(t->features.size(), 5u) << name;
+        EXPECT_EQ(t->features.size(), 6u) << name; // the last: historyTrust (every history)
         EXPECT_TRUE(t->stages.accumulate) << name;
     }
 }

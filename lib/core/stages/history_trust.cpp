@@ -1,0 +1,161 @@
+// SPDX-License-Identifier: Apache-2.0
+// History trust from 8x8-block statistics (see stages/history_trust.h).
+#include "stages/history_trust.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace afn {
+
+namespace {
+
+/// Standard errors the change must exceed before it counts.
+constexpr float kNoiseSigmas = 3.0f;
+/// Gain of the relative change: antilag 1 drops the history from a change of one half.
+constexpr float kChangeGain = 2.0f;
+/// Pixels with accepted history a block needs for the test.
+constexpr float kMinPixels = 16.0f;
+/// Cap of the mean history length in the noise of the history's mean (the accumulation's effective
+/// sample count at alphaMin 0.2; stages/temporal_accumulation.h).
+constexpr float kMaxLength = 9.0f;
+
+/// Bilinear position of pixel coordinate p between the centres of blocks: first block index and
+/// the weight of the next one, both clamped to [0, count).
+inline void blockCoordinate(int p, int count, int& b0, int& b1, float& w)
+{
+    const float f = (static_cast<float>(p) - 0.5f * (kTrustBlock - 1)) / kTrustBlock;
+    if (f <= 0.0f) {
+        b0 = b1 = 0;
+        w = 0.0f;
+        return;
+    }
+    b0 = std::min(static_cast<int>(f), count - 1);
+    b1 = std::min(b0 + 1, count - 1);
+    w = b1 == b0 ? 0.0f : f - static_cast<float>(b0);
+}
+
+} // namespace
+
+const ParamBinding<HistoryTrustSettings>& historyTrustBinding()
+{
+    static const ParamBinding<HistoryTrustSettings> binding
+        = ParamBinding<HistoryTrustSettings>().add(&HistoryTrustSettings::antilag, "antilag", 0.0,
+            4.0, "Anti-lag",
+            "history trust: how fast a change of the lighting (a light moved, switched or "
+            "flickered, a shadow or an emitter changed) cuts the temporal history where the "
+            "geometry still matches, measured on 8x8 blocks against their noise. 1: the history "
+            "is dropped where the lighting changed by half or more; 0: never (the original "
+            "methods, which ghost after a light switch)");
+    return binding;
+}
+
+void HistoryTrust::begin(int width, int height, bool measure)
+{
+    m_width = width;
+    m_height = height;
+    m_bw = (width + kTrustBlock - 1) / kTrustBlock;
+    m_bh = (height + kTrustBlock - 1) / kTrustBlock;
+    m_measure = measure && m_antilag > 0.0f;
+    m_active = false;
+    m_cutShare = 0.0;
+    if (!m_measure)
+        return;
+    m_rowStride = static_cast<std::size_t>(m_bw) * kSums;
+    m_rowSums.assign(m_rowStride * static_cast<std::size_t>(height), 0.0f);
+}
+
+void HistoryTrust::finish()
+{
+    if (!m_measure)
+        return;
+    const std::size_t blocks = static_cast<std::size_t>(m_bw) * m_bh;
+    m_raw.assign(blocks, 1.0f);
+    std::vector<float> count(blocks, 0.0f);
+    for (int by = 0; by < m_bh; ++by)
+        for (int bx = 0; bx < m_bw; ++bx) {
+            double s[kSums] = {};
+            const int y1 = std::min(m_height, (by + 1) * kTrustBlock);
+            for (int y = by * kTrustBlock; y < y1; ++y) {
+                const float* r = rowSums(y) + static_cast<std::size_t>(bx) * kSums;
+                for (int k = 0; k < kSums; ++k)
+                    s[k] += r[k];
+            }
+            const std::size_t i = static_cast<std::size_t>(by) * m_bw + bx;
+            count[i] = static_cast<float>(s[0]);
+            if (s[0] < kMinPixels)
+                continue;
+            const double n = s[0];
+            const double mc = s[1] / n, mh = s[3] / n;
+            const double var = std::max(0.0, s[2] / n - mc * mc);
+            const double len = std::clamp(s[4] / n, 1.0, static_cast<double>(kMaxLength));
+            const double noise = std::sqrt(var / n * (1.0 + 1.0 / len));
+            const double scale = std::max({ mc, mh, 1e-12 });
+            const double change = std::max(0.0, std::fabs(mc - mh) - kNoiseSigmas * noise) / scale;
+            m_raw[i] = static_cast<float>(
+                std::clamp(1.0 - kChangeGain * m_antilag * std::min(change, 1.0), 0.0, 1.0));
+        }
+    m_block.resize(blocks);
+    m_blockRowActive.assign(static_cast<std::size_t>(m_bh), 0);
+    double cut = 0.0;
+    for (int by = 0; by < m_bh; ++by)
+        for (int bx = 0; bx < m_bw; ++bx) {
+            float lo = 1.0f;
+            for (int dy = -1; dy <= 1; ++dy)
+                for (int dx = -1; dx <= 1; ++dx) {
+                    const int qx = bx + dx, qy = by + dy;
+                    if (qx >= 0 && qy >= 0 && qx < m_bw && qy < m_bh)
+                        lo = std::min(lo, m_raw[static_cast<std::size_t>(qy) * m_bw + qx]);
+                }
+            const std::size_t i = static_cast<std::size_t>(by) * m_bw + bx;
+            const float t = lo == 1.0f ? 1.0f : 0.5f * (m_raw[i] + lo);
+            m_block[i] = t;
+            if (t < 1.0f) {
+                m_active = true;
+                m_blockRowActive[static_cast<std::size_t>(by)] = 1;
+            }
+            if (t < 0.5f)
+                cut += count[i];
+        }
+    m_cutShare = cut / (static_cast<double>(m_width) * m_height);
+}
+
+void HistoryTrust::interpolateRow(int y, float* out) const
+{
+    int by0, by1;
+    float wy;
+    blockCoordinate(y, m_bh, by0, by1, wy);
+    for (int x = 0; x < m_width; ++x) {
+        int bx0, bx1;
+        float wx;
+        blockCoordinate(x, m_bw, bx0, bx1, wx);
+        const float top = blockAt(bx0, by0) + wx * (blockAt(bx1, by0) - blockAt(bx0, by0));
+        const float bottom = blockAt(bx0, by1) + wx * (blockAt(bx1, by1) - blockAt(bx0, by1));
+        out[x] = std::clamp(top + wy * (bottom - top), 0.0f, 1.0f);
+    }
+}
+
+bool HistoryTrust::rowTrust(int y, float* out) const
+{
+    if (!m_active)
+        return false;
+    int by0, by1;
+    float wy;
+    blockCoordinate(y, m_bh, by0, by1, wy);
+    if (!m_blockRowActive[static_cast<std::size_t>(by0)]
+        && !m_blockRowActive[static_cast<std::size_t>(by1)])
+        return false;
+    interpolateRow(y, out);
+    return true;
+}
+
+void HistoryTrust::map(Image& out) const
+{
+    out.resize(m_width, m_height, 1);
+    for (int y = 0; y < m_height; ++y) {
+        float* row = out.at(0, y);
+        if (!rowTrust(y, row))
+            std::fill(row, row + m_width, 1.0f);
+    }
+}
+
+} // namespace afn

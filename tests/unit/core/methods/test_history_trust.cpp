@@ -1,0 +1,196 @@
+// SPDX-License-Identifier: Apache-2.0
+// History trust (stages/history_trust.h) for every method that keeps a history: a static scene
+// whose light switches off at frame N shows no ghost by frame N + 2 (its output is within a small
+// tolerance of the same method run on that frame alone), while antilag=0 shows the ghost the
+// original methods have; a static light still converges as before; the block test itself on
+// exact small cases; the statistic and the feature map.
+#include "afn_test_util.h"
+#include "stages/history_trust.h"
+#include "test_methods_util.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <string>
+#include <vector>
+
+namespace {
+
+using afn::Image;
+using methods_test::Buffers;
+using methods_test::makeImage;
+using methods_test::runFrame;
+
+constexpr int W = 64, H = 48;
+constexpr int kSwitch = 6; ///< the light goes off at this frame
+constexpr float kOn = 1.0f, kOff = 0.08f;
+
+/// Static camera and scene: checker albedo, normal +z, depth 2, zero motion; colour = albedo *
+/// light * noise (mean 1, +-90 %, new every frame).
+Buffers scene(float light, int frame)
+{
+    Buffers b;
+    b.albedo = makeImage(W, H, 3,
+        [](int x, int y, int c) { return ((x / 8 + y / 8) % 2 ? 0.7f : 0.3f) - 0.05f * c; });
+    b.normal = makeImage(W, H, 3, [](int, int, int c) { return c == 2 ? 1.0f : 0.0f; });
+    b.depth = Image(W, H, 1, 2.0f);
+    b.motion = Image(W, H, 2, 0.0f);
+    methods_test::Lcg rng { 977u * static_cast<std::uint32_t>(frame) + 13u };
+    b.color = makeImage(W, H, 3, [&](int x, int y, int c) {
+        return b.albedo(x, y, c) * light * (1.0f + 0.9f * rng.next());
+    });
+    return b;
+}
+
+double meanLuminance(const Image& img)
+{
+    double s = 0.0;
+    for (int y = 0; y < H; ++y)
+        for (int x = 0; x < W; ++x)
+            s += afn::trustLuminance(img.at(x, y));
+    return s / (W * H);
+}
+
+std::unique_ptr<afn::Filter> makeFilter(const std::string& method, float antilag)
+{
+    auto f = afn::createFilter(method);
+    f->params().setNumber("antilag", antilag, AFN_PARAM_FLOAT);
+    if (method == "afn" && !afn::findFilterType("afn")->ready) { // the committed parity weights
+        const auto w
+            = afntest::readBytes(std::string(AFN_TEST_DATA) + "/afn_parity/weights_full.afnw");
+        f->setData(AFN_DATA_WEIGHTS, w.data(), w.size());
+    }
+    return f;
+}
+
+/// Every method with a history that runs in this build.
+std::vector<std::string> temporalMethods()
+{
+    std::vector<std::string> out;
+    for (const char* m : { "ta", "svgf", "bmfr", "afn", "nbgd", "wskpn", "onnd", "mrkp" })
+        if (std::string(m) == "afn" || afn::findFilterType(m)->ready)
+            out.emplace_back(m);
+    return out;
+}
+
+/// Mean output luminance at frame kSwitch + 2 of the light-switch sequence.
+double afterSwitch(const std::string& method, float antilag, double* cutAtSwitch = nullptr)
+{
+    auto f = makeFilter(method, antilag);
+    Buffers b;
+    for (int k = 0; k <= kSwitch + 2; ++k) {
+        b = scene(k < kSwitch ? kOn : kOff, k);
+        runFrame(*f, b);
+        if (k == kSwitch && cutAtSwitch)
+            *cutAtSwitch = f->lastHistoryCutShare();
+    }
+    return meanLuminance(b.out);
+}
+
+/// The same frame denoised on its own (a fresh filter: no history).
+double singleFrame(const std::string& method)
+{
+    auto f = makeFilter(method, 1.0f);
+    Buffers b = scene(kOff, kSwitch + 2);
+    runFrame(*f, b);
+    return meanLuminance(b.out);
+}
+
+TEST(HistoryTrust, NoGhostTwoFramesAfterALightSwitchesOff)
+{
+    for (const std::string& m : temporalMethods()) {
+        const double single = singleFrame(m);
+        double cut = 0.0;
+        const double trusted = afterSwitch(m, 1.0f, &cut);
+        const double original = afterSwitch(m, 0.0f);
+        EXPECT_NEAR(trusted, single, 0.1 * single) << m;
+        EXPECT_GT(cut, 0.9) << m << ": the switch frame's history is cut";
+        // Without the trust the old lighting stays: the test can tell a ghost.
+        EXPECT_GT(original, 1.5 * single) << m;
+    }
+}
+
+TEST(HistoryTrust, StaticLightConvergesAsBefore)
+{
+    for (const std::string& m : temporalMethods()) {
+        double err[2] = {};
+        double lastCut = 1.0;
+        for (int a = 0; a < 2; ++a) {
+            auto f = makeFilter(m, static_cast<float>(a));
+            Buffers b;
+            for (int k = 0; k < 12; ++k) {
+                b = scene(kOn, k);
+                runFrame(*f, b);
+            }
+            err[a] = methods_test::rmse(b.out, b.albedo); // clean colour = albedo * 1
+            if (a == 1)
+                lastCut = f->lastHistoryCutShare();
+        }
+        EXPECT_LE(err[1], 1.05 * err[0] + 1e-4) << m;
+        EXPECT_LT(lastCut, 0.02) << m;
+    }
+}
+
+TEST(HistoryTrust, AntilagZeroIsTheOriginalArithmetic)
+{
+    // Noise-free frames where the light steps: with antilag 0 nothing is cut.
+    auto f = makeFilter("ta", 0.0f);
+    Buffers b;
+    for (int k = 0; k < 4; ++k) {
+        b = scene(k < 2 ? kOn : kOff, 0); // frame 0's noise every time: a static picture
+        runFrame(*f, b);
+        EXPECT_EQ(f->lastHistoryCutShare(), 0.0);
+    }
+}
+
+/// Trust of one uniform block pair: current luminance values `cur`, history `hist`.
+float blockTrust(const std::vector<float>& cur, float hist, float antilag = 1.0f)
+{
+    afn::HistoryTrust t;
+    t.setSettings({ antilag });
+    t.begin(8, 8, true);
+    for (int y = 0; y < 8; ++y)
+        for (int x = 0; x < 8; ++x)
+            afn::HistoryTrust::addPixel(t.rowSums(y), x, cur[(y * 8 + x) % cur.size()], hist, 8.0f);
+    t.finish();
+    Image map;
+    t.map(map);
+    return map(3, 3, 0);
+}
+
+TEST(HistoryTrust, BlockTestOnExactCases)
+{
+    EXPECT_EQ(blockTrust({ 1.0f }, 1.0f), 1.0f); // unchanged
+    EXPECT_EQ(blockTrust({ 0.5f }, 1.0f), 0.0f); // halved: dropped
+    EXPECT_EQ(blockTrust({ 2.0f }, 1.0f), 0.0f); // doubled: dropped
+    EXPECT_NEAR(blockTrust({ 0.9f }, 1.0f), 0.8f, 1e-5f); // 10 % less: 80 % kept
+    EXPECT_NEAR(blockTrust({ 0.9f }, 1.0f, 0.5f), 0.9f, 1e-5f); // half the strength
+    // 1-spp-like noise: values 0 and 2 (mean 1, sd 1) against a history of 1.1: within 3 standard
+    // errors (0.125 * 1.05 each), kept.
+    EXPECT_EQ(blockTrust({ 0.0f, 2.0f }, 1.1f), 1.0f);
+    // The same noise against a history of 2: a real change.
+    EXPECT_LT(blockTrust({ 0.0f, 2.0f }, 2.0f), 0.5f);
+}
+
+TEST(HistoryTrust, FeatureMapShowsWhereTheHistoryWasCut)
+{
+    auto f = makeFilter("ta", 1.0f);
+    Image map(W, H, 1);
+    f->setImage(
+        std::string(AFN_IMAGE_FEATURE_PREFIX) + afn::kHistoryTrustFeature, afntest::bindImage(map));
+    for (int k = 0; k <= kSwitch; ++k) {
+        Buffers b = scene(k < kSwitch ? kOn : kOff, k);
+        runFrame(*f, b);
+        double mean = 0.0;
+        for (int y = 0; y < H; ++y)
+            for (int x = 0; x < W; ++x)
+                mean += map(x, y, 0);
+        mean /= W * H;
+        if (k < kSwitch)
+            EXPECT_GT(mean, 0.98) << "frame " << k;
+        else
+            EXPECT_LT(mean, 0.05) << "switch frame";
+    }
+}
+
+} // namespace
