@@ -14,10 +14,9 @@ constexpr float kNoiseSigmas = 3.0f;
 /// Gain of the relative change: antilag 1 drops the history from a change of one half.
 constexpr float kChangeGain = 2.0f;
 /// Pixels with accepted history a block needs for the test.
-constexpr float kMinPixels = 16.0f;
-/// Cap of the mean history length in the noise of the history's mean (the accumulation's effective
-/// sample count at alphaMin 0.2; stages/temporal_accumulation.h).
-constexpr float kMaxLength = 9.0f;
+constexpr double kMinPixels = 16.0;
+/// Blocks per edge of the coarse level's groups (32x32 pixels).
+constexpr int kCoarse = 4;
 
 /// Bilinear position of pixel coordinate p between the centres of blocks: first block index and
 /// the weight of the next one, both clamped to [0, count).
@@ -64,36 +63,69 @@ void HistoryTrust::begin(int width, int height, bool measure)
     m_rowSums.assign(m_rowStride * static_cast<std::size_t>(height), 0.0f);
 }
 
+namespace {
+
+/// Trust of one block (or group of blocks) from its sums (HistoryTrust's kSums layout).
+double trustOf(const double* s, double antilag)
+{
+    if (s[0] < kMinPixels)
+        return 1.0;
+    const double n = s[0];
+    double change = 0.0;
+    for (int k = 0; k < 3; ++k) {
+        const double mc = s[1 + k] / n, mh = s[4 + k] / n, md = mc - mh;
+        const double var = std::max(0.0, s[7 + k] / n - md * md); // of the difference c - h
+        const double excess = std::fabs(md) - kNoiseSigmas * std::sqrt(var / n);
+        change = std::max(change, excess / std::max({ mc, mh, 1e-12 }));
+    }
+    return std::clamp(1.0 - kChangeGain * antilag * std::min(change, 1.0), 0.0, 1.0);
+}
+
+} // namespace
+
 void HistoryTrust::finish()
 {
     if (!m_measure)
         return;
     const std::size_t blocks = static_cast<std::size_t>(m_bw) * m_bh;
     m_raw.assign(blocks, 1.0f);
-    std::vector<float> count(blocks, 0.0f);
-    for (int by = 0; by < m_bh; ++by)
-        for (int bx = 0; bx < m_bw; ++bx) {
-            double s[kSums] = {};
-            const int y1 = std::min(m_height, (by + 1) * kTrustBlock);
-            for (int y = by * kTrustBlock; y < y1; ++y) {
-                const float* r = rowSums(y) + static_cast<std::size_t>(bx) * kSums;
-                for (int k = 0; k < kSums; ++k)
-                    s[k] += r[k];
+    m_count.assign(blocks, 0.0f);
+    // One band of kCoarse block rows at a time: the fine level (8x8 blocks) and the coarse one
+    // (groups of kCoarse x kCoarse blocks, 16 times the samples: a quarter of the noise), the lower
+    // trust of the two.
+    std::vector<double> sums(static_cast<std::size_t>(m_bw) * kCoarse * kSums);
+    for (int gy = 0; gy < m_bh; gy += kCoarse) {
+        const int rows = std::min(kCoarse, m_bh - gy);
+        std::fill(sums.begin(), sums.end(), 0.0);
+        for (int r = 0; r < rows; ++r)
+            for (int bx = 0; bx < m_bw; ++bx) {
+                double* s = sums.data() + (static_cast<std::size_t>(r) * m_bw + bx) * kSums;
+                const int by = gy + r;
+                for (int y = by * kTrustBlock; y < std::min(m_height, (by + 1) * kTrustBlock);
+                     ++y) {
+                    const float* v = rowSums(y) + static_cast<std::size_t>(bx) * kSums;
+                    for (int k = 0; k < kSums; ++k)
+                        s[k] += v[k];
+                }
+                m_count[static_cast<std::size_t>(by) * m_bw + bx] = static_cast<float>(s[0]);
             }
-            const std::size_t i = static_cast<std::size_t>(by) * m_bw + bx;
-            count[i] = static_cast<float>(s[0]);
-            if (s[0] < kMinPixels)
-                continue;
-            const double n = s[0];
-            const double mc = s[1] / n, mh = s[3] / n;
-            const double var = std::max(0.0, s[2] / n - mc * mc);
-            const double len = std::clamp(s[4] / n, 1.0, static_cast<double>(kMaxLength));
-            const double noise = std::sqrt(var / n * (1.0 + 1.0 / len));
-            const double scale = std::max({ mc, mh, 1e-12 });
-            const double change = std::max(0.0, std::fabs(mc - mh) - kNoiseSigmas * noise) / scale;
-            m_raw[i] = static_cast<float>(
-                std::clamp(1.0 - kChangeGain * m_antilag * std::min(change, 1.0), 0.0, 1.0));
+        for (int gx = 0; gx < m_bw; gx += kCoarse) {
+            const int cols = std::min(kCoarse, m_bw - gx);
+            double g[kSums] = {};
+            for (int r = 0; r < rows; ++r)
+                for (int bx = gx; bx < gx + cols; ++bx)
+                    for (int k = 0; k < kSums; ++k)
+                        g[k] += sums[(static_cast<std::size_t>(r) * m_bw + bx) * kSums + k];
+            const double coarse = trustOf(g, m_antilag);
+            for (int r = 0; r < rows; ++r)
+                for (int bx = gx; bx < gx + cols; ++bx) {
+                    const double fine = trustOf(
+                        sums.data() + (static_cast<std::size_t>(r) * m_bw + bx) * kSums, m_antilag);
+                    m_raw[static_cast<std::size_t>(gy + r) * m_bw + bx]
+                        = static_cast<float>(std::min(coarse, fine));
+                }
         }
+    }
     m_block.resize(blocks);
     m_blockRowActive.assign(static_cast<std::size_t>(m_bh), 0);
     double cut = 0.0;
@@ -114,7 +146,7 @@ void HistoryTrust::finish()
                 m_blockRowActive[static_cast<std::size_t>(by)] = 1;
             }
             if (t < 0.5f)
-                cut += count[i];
+                cut += m_count[i];
         }
     m_cutShare = cut / (static_cast<double>(m_width) * m_height);
 }

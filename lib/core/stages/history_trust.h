@@ -7,19 +7,24 @@
 //
 // The rule (after A-SVGF's temporal gradients, Schied et al. 2018, and NRD's anti-lag; facts, not
 // code): at 1 spp one pixel cannot tell a change from noise, so the test runs on 8x8 blocks. Over
-// the pixels of a block whose history was accepted, with l the luminance of the current
-// demodulated colour and h that of the reprojected history:
-//   mean_c, var_c = mean and variance of l;  mean_h = mean of h;  n = pixels;  L = mean history
-//   length, capped at 9 (the accumulation's effective sample count at alphaMin 0.2)
-//   noise   = sqrt(var_c / n * (1 + 1 / L))      (standard error of mean_c - mean_h)
-//   change  = max(0, |mean_c - mean_h| - 3 * noise) / max(mean_c, mean_h)   (relative, 0..1)
-//   trust_b = clamp(1 - 2 * antilag * change, 0, 1)
-// so with antilag = 1 a block whose lighting changed by half or more beyond the noise drops its
-// history, a 10 % change keeps 80 % of it. The noise term makes the test as sharp as the samples
-// allow: at 16-64 spp var_c is small and small changes count; at 1 spp only large ones do. A
-// block with fewer than 16 such pixels keeps trust 1 (its pixels mostly start afresh anyway).
-// The block trusts are softened towards their 3x3 minimum (0.5 * own + 0.5 * min), so a change
-// next to a block also shortens it, and interpolated bilinearly between block centres per pixel.
+// the n pixels of a block whose history was accepted, with c the current demodulated colour and
+// h the reprojected history:
+//   per channel k:  mc_k, mh_k = means of c_k and h_k;  var_k = variance of c_k - h_k
+//   change_k = max(0, |mc_k - mh_k| - 3 sqrt(var_k / n)) / max(mc_k, mh_k)
+//             (3 standard errors of the mean difference: the variance of the per-pixel difference
+//             holds the noise of both and none of the texture or shading they share, and a
+//             firefly on either side raises it, so it does not count as change)
+//   trust_b = clamp(1 - 2 * antilag * max_k change_k, 0, 1)
+// and the same on groups of 4x4 blocks (32x32 pixels: 16 times the samples, a quarter of the
+// noise, for the large changes that 1-spp noise hides in one block); a block takes the lower
+// trust of its own test and its group's.
+// Per channel, so a light that changes colour at the same brightness counts. With antilag = 1 a
+// block whose lighting changed by half or more beyond the noise drops its history, a 10 % change
+// keeps 80 % of it. The noise term makes the test as sharp as the samples allow: at 16-64 spp the
+// variances are small and small changes count; at 1 spp only large ones do. A block with fewer
+// than 16 such pixels keeps trust 1 (its pixels mostly start afresh anyway). The block trusts are
+// softened towards their 3x3 minimum (0.5 * own + 0.5 * min), so a change next to a block also
+// shortens it, and interpolated bilinearly between block centres per pixel.
 //
 // How a method uses trust t in [0, 1] with its usual blend factor alpha and history length s:
 //   alpha' = alpha + (1 - alpha) * (1 - t),   s' = s * t   (then + 1 for this frame)
@@ -47,10 +52,10 @@ struct HistoryTrustSettings {
 /// Descriptors of HistoryTrustSettings (in the table of every method that reprojects).
 const ParamBinding<HistoryTrustSettings>& historyTrustBinding();
 
-/// Rec. 709 luminance of an RGB triple (the test's signal).
-inline float trustLuminance(const float* c)
+/// Rec. 709 luminance of an RGB triple (the test's noise is measured on it).
+template <typename T> inline T trustLuminance(const T* c)
 {
-    return 0.2126f * c[0] + 0.7152f * c[1] + 0.0722f * c[2];
+    return T(0.2126) * c[0] + T(0.7152) * c[1] + T(0.0722) * c[2];
 }
 
 /// Per-pixel trust of a reprojected history, measured per frame (see the file comment).
@@ -64,16 +69,17 @@ public:
     void begin(int width, int height, bool measure);
     /// The sums of row y (for addPixel); rows may be filled by different threads.
     float* rowSums(int y) { return m_rowSums.data() + static_cast<std::size_t>(y) * m_rowStride; }
-    /// Add a pixel with accepted history: current luminance l, history luminance h, history
-    /// length s (before this frame).
-    static void addPixel(float* rowSums, int x, float l, float h, float s)
+    /// Add a pixel with accepted history: current colour c and history colour h (3 channels).
+    static void addPixel(float* rowSums, int x, const float* c, const float* h)
     {
         float* b = rowSums + (x / kTrustBlock) * kSums;
         b[0] += 1.0f;
-        b[1] += l;
-        b[2] += l * l;
-        b[3] += h;
-        b[4] += s;
+        for (int k = 0; k < 3; ++k) {
+            const float d = c[k] - h[k];
+            b[1 + k] += c[k];
+            b[4 + k] += h[k];
+            b[7 + k] += d * d;
+        }
     }
     /// After every row was added: the block trusts.
     void finish();
@@ -90,7 +96,7 @@ public:
     void map(Image& out) const;
 
 private:
-    static constexpr int kSums = 5; ///< count, sum l, sum l^2, sum h, sum s
+    static constexpr int kSums = 10; ///< count, sums of c, h and (c - h)^2 (3 channels each)
     float blockAt(int bx, int by) const
     {
         return m_block[static_cast<std::size_t>(by) * m_bw + bx];
@@ -105,6 +111,7 @@ private:
     std::vector<float> m_rowSums; ///< per row and block column: kSums floats
     std::vector<float> m_block; ///< trust per block (after the soft minimum)
     std::vector<float> m_raw; ///< trust per block before it
+    std::vector<float> m_count; ///< pixels with history per block
     std::vector<unsigned char> m_blockRowActive; ///< per block row: some trust < 1 in it
 };
 

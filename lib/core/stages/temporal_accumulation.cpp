@@ -73,8 +73,7 @@ void TemporalAccumulator::gatherRows(const Reprojector& taps, const Image& irr, 
             if (identity && taps.ownPixelAccepted(x, y)) {
                 // A static camera's row, own pixel accepted: blendRows() reads it in place.
                 if (sums)
-                    HistoryTrust::addPixel(sums, x, trustLuminance(c + 3 * x),
-                        trustLuminance(m_prevColor.at(x, y)), m_prevSpp(x, y, 0));
+                    HistoryTrust::addPixel(sums, x, c + 3 * x, m_prevColor.at(x, y));
                 continue;
             }
             const PixelTaps& t = taps.taps(x, y);
@@ -86,8 +85,7 @@ void TemporalAccumulator::gatherRows(const Reprojector& taps, const Image& irr, 
             }
             gatherHistory<1>(t, m_prevSpp, spp + x);
             if (sums)
-                HistoryTrust::addPixel(
-                    sums, x, trustLuminance(c + 3 * x), trustLuminance(prev), spp[x]);
+                HistoryTrust::addPixel(sums, x, c + 3 * x, prev);
         }
     }
 }

@@ -58,6 +58,8 @@ public:
     const Image& color() const { return m_color; }
     /// History length of the last frame (1 ch; 1 = reset this frame).
     const Image& historyLength() const { return m_spp; }
+    /// The minimum blend factor (AccumulationSettings::alphaMin).
+    float alphaMin() const { return m_alphaMin; }
     /// Samples whose plain mean has the variance a long history converges to: (2 - a) / a for the
     /// exponential average with blend a = alphaMin (9 at 0.2; infinite at 0, where the history
     /// is a plain mean for up to kMaxHistoryLength frames).

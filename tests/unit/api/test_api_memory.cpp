@@ -26,14 +26,14 @@ constexpr double kPlaneRow = (32.0 + kWidth + 32.0) / kWidth;
 /// The library's frame-size bytes per pixel at the peak, from docs/performance.md's accounting
 /// for these inputs (colour, albedo, normal, depth, position, static motion; clean aux), without
 /// the caller's output: frame 60, reprojection history and taps 32, the history trust's row sums
-/// 2.5 and block trusts 0.19 (stages/history_trust.h), accumulation 32 (ta, bmfr,
+/// 5 and block trusts 0.19 (stages/history_trust.h), accumulation 32 (ta, bmfr,
 /// afn); svgf's guide 6 planes, integration 2 x 7 planes, colour/variance 5 planes; bmfr's
 /// three images of its own; afn's normal01 and depth01, its TAA's history and spare, and its
 /// post-filter's 9 guide planes (8 + its luminance scale) and 3 colour planes (the 1-spp model
 /// runs with taa=auto and postFilter=auto = on, methods/afn/settings.h, post_filter.h).
 double accountedBytesPerPixel(const std::string& method)
 {
-    const double trust = 5.0 * 4 / kTrustBlock + 3.0 * 4 / (kTrustBlock * kTrustBlock);
+    const double trust = 10.0 * 4 / kTrustBlock + 3.0 * 4 / (kTrustBlock * kTrustBlock);
     const double shared = 60 + 32 + trust;
     if (method == "ta")
         return shared + 32;

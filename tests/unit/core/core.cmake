@@ -16,6 +16,7 @@ afn_add_gtest(test_methods
     unit/core/stages/test_gather_accumulate_isa.cpp
     unit/core/methods/test_methods_ta.cpp
     unit/core/methods/test_history_trust.cpp
+    unit/core/methods/test_bmfr_detail.cpp
     unit/core/methods/test_methods_filters.cpp
     unit/core/methods/test_methods_blender.cpp
     unit/core/methods/svgf/test_svgf_kernels.cpp

@@ -4,6 +4,7 @@
 #include "filter/quality.h"
 #include "filter/registry.h"
 #include "methods/bmfr/denoiser.h"
+#include "stages/aux_prefilter.h"
 
 namespace afn::bmfr {
 
@@ -17,17 +18,24 @@ public:
     }
 
 private:
-    void configure() override { m_bmfr.setSettings(settingsBinding().read(params())); }
+    void configure() override
+    {
+        Settings s = settingsBinding().read(params());
+        s.spp = auxBinding().read(params()).spp; // the shared "spp" parameter
+        m_bmfr.setSettings(s);
+    }
     void resetHistory() override { m_bmfr.reset(); }
     void denoise(const Frame& in, Image& out) override
     {
-        out = m_bmfr.process(in, reprojector(), accumulator(), accumulatorScratch());
+        out = m_bmfr.process(
+            in, reprojector(), accumulator(), accumulatorScratch(), irradianceForReuse());
     }
     // The base writes the denoiser's own output image (the TAA history, or the accumulation's
     // scratch without TAA) into the bound output.
     const Image* denoiseRadiance(const Frame& in) override
     {
-        return &m_bmfr.process(in, reprojector(), accumulator(), accumulatorScratch());
+        return &m_bmfr.process(
+            in, reprojector(), accumulator(), accumulatorScratch(), irradianceForReuse());
     }
 
     Denoiser m_bmfr;

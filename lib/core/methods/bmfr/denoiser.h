@@ -6,6 +6,8 @@
 //      1, n.xyz, p.xyz, p.xyz^2 (no cross terms); without positions the screen coordinates (and the
 //      depth when present) take the place of p; without normals those are dropped. The block grid
 //      shifts every frame by one of 16 offsets; one Householder QR per block fits all channels;
+//   2b. detail the fit cannot express, kept where it stands above the accumulation's noise
+//      (detail.h; not in the paper: the fit alone falls below the noisy input from 16 spp on);
 //   3. second accumulation of the regression output with the same taps and
 //      alpha = max(1/len, secondAlphaMin) (len = TA history length after this frame);
 //   4. remodulation by albedo, then TAA (stages/taa.h) on the linear radiance.
@@ -29,9 +31,16 @@ struct Settings {
     float secondAlphaMin = 0.1f; ///< second accumulation minimum (SECOND_BLEND_ALPHA 0.1)
     int blockSize = 32; ///< block edge in pixels (BMFR supports only 32)
     float noise = 0.01f; ///< uniform feature noise amplitude (NOISE_AMOUNT 1e-2)
+    enum class Detail { Auto, Off, On };
+    Detail detail = Detail::Auto; ///< keep the detail above the noise after the fit (detail.h)
+    int spp = 0; ///< the shared "spp" parameter (detail=auto: on from kDetailSpp)
     bool taa = true; ///< apply the final TAA step
     float taaAlpha = kTaaAlpha; ///< TAA weight of the current frame (BMFR 0.2)
 };
+
+/// detail=auto keeps detail from this many samples per pixel: below, the one-frame noise estimate
+/// is too noisy itself (at 1 spp the restored residual flickers: +0.3 dB, temporal error +20 %).
+constexpr int kDetailSpp = 4;
 
 /// The descriptors of Settings (the method's own parameters).
 const ParamBinding<Settings>& settingsBinding();
@@ -54,8 +63,10 @@ public:
     /// while `scratch` is unchanged), from the shared stages' results: the taps of this frame and
     /// the temporal accumulation of its demodulated colour. `scratch` is a frame-size image the
     /// caller lends for this frame (TemporalAccumulator::scratch()).
-    const Image& process(
-        const Frame& f, const Reprojector& taps, const TemporalAccumulator& ta, Image& scratch);
+    /// `irradiance`: the frame's demodulated colour (f.color's buffer, not read after this call),
+    /// rewritten as scratch.
+    const Image& process(const Frame& f, const Reprojector& taps, const TemporalAccumulator& ta,
+        Image& scratch, Image& irradiance);
 
 private:
     Settings m_settings;

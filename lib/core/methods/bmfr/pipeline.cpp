@@ -3,6 +3,8 @@
 // methods/bmfr/denoiser.h).
 #include "methods/bmfr/denoiser.h"
 
+#include "methods/bmfr/detail.h"
+
 #include "base/parallel.h"
 #include "stages/demodulate.h"
 
@@ -17,8 +19,8 @@ void Denoiser::reset()
     m_taa.reset();
 }
 
-const Image& Denoiser::process(
-    const Frame& f, const Reprojector& taps, const TemporalAccumulator& ta, Image& scratch)
+const Image& Denoiser::process(const Frame& f, const Reprojector& taps,
+    const TemporalAccumulator& ta, Image& scratch, Image& irradiance)
 {
     // Frame-size buffers (as few as possible): m_filtered and the TAA's output hold the histories
     // between frames, m_spare and the caller's `scratch` are free. Each frame: regression ->
@@ -32,6 +34,16 @@ const Image& Denoiser::process(
     } else {
         regression(f, ta.color(), m_settings, f.frameIndex, regressed);
     }
+    // Detail the fit cannot express, kept where it stands above the accumulation's noise
+    // (detail.h); the result takes the irradiance's place (not read again).
+    const Image* fitted = &regressed;
+    const bool detail = m_settings.detail == Settings::Detail::On
+        || (m_settings.detail == Settings::Detail::Auto && m_settings.spp >= kDetailSpp);
+    if (detail) {
+        restoreDetail(ta.color(), ta.historyLength(), ta.alphaMin(), ta.effectiveSamplesLimit(),
+            regressed, irradiance);
+        fitted = &irradiance;
+    }
     // Second accumulation with the TA's taps: alpha = max(1/len, secondAlphaMin), len after TA.
     std::swap(m_filtered, m_spare);
     const Image& prevFiltered = m_spare;
@@ -42,7 +54,7 @@ const Image& Denoiser::process(
     parallelRows(f.height, [&](int y0, int y1) {
         for (int y = y0; y < y1; ++y)
             for (int x = 0; x < f.width; ++x) {
-                const float* c = regressed.at(x, y);
+                const float* c = fitted->at(x, y);
                 float* o = m_filtered.at(x, y);
                 float prev[3];
                 const float ws
@@ -79,6 +91,14 @@ const ParamBinding<Settings>& settingsBinding()
               .add(&S::noise, "noise", 0.0, 1.0, "Feature noise",
                   "amplitude of the uniform noise added to the scaled features against singular "
                   "fits (BMFR NOISE_AMOUNT 0.01)")
+              .add(&S::detail, "detail",
+                  { { "auto", Settings::Detail::Auto }, { "off", Settings::Detail::Off },
+                      { "on", Settings::Detail::On } },
+                  "Keep detail",
+                  "keep the accumulated colour's detail where it stands above its estimated noise "
+                  "(a Wiener shrinkage of the fit's residual; methods/bmfr/detail.cpp); auto: on "
+                  "from 4 spp (the spp parameter). off: BMFR as published, whose fit removes more "
+                  "detail than noise from 16 spp on")
               .add(&S::taa, "taa", "TAA", "apply BMFR's final temporal anti-aliasing")
               .add(&S::taaAlpha, "taaAlpha", 0.0, 1.0, "TAA blend factor",
                   "weight of the current frame in the TAA blend (BMFR 0.2)");

@@ -92,7 +92,8 @@ FilterType filterType()
         = "(taa=0, the default) the variance estimate and the a-trous passes run only over the "
           "needed pixels dilated by what later passes read; skipped pixels take the "
           "temporally integrated colour; needed pixels bit-identical to skip=off where the "
-          "region ends at a depth edge. With taa=1 every pixel is filtered "
+          "region ends at a depth edge and antilag=0 (the history trust's blocks see the "
+          "skipped pixels' history within 32 px). With taa=1 every pixel is filtered "
           "(docs/work-skipping.md)";
     return t;
 }

@@ -148,8 +148,7 @@ void Denoiser::gatherRows(const Image& irr, const Reprojector& taps, int y0, int
             if (identity && taps.ownPixelAccepted(x, y)) {
                 if (sums) {
                     load(x, y, prev);
-                    HistoryTrust::addPixel(
-                        sums, x, luminance(irr.at(x, y)), luminance(prev), prev[5]);
+                    HistoryTrust::addPixel(sums, x, irr.at(x, y), prev);
                 }
                 continue;
             }
@@ -160,7 +159,7 @@ void Denoiser::gatherRows(const Image& irr, const Reprojector& taps, int y0, int
             for (int k = 0; k < kHistoryChannels; ++k)
                 planes[k][x] = prev[k];
             if (sums)
-                HistoryTrust::addPixel(sums, x, luminance(irr.at(x, y)), luminance(prev), prev[5]);
+                HistoryTrust::addPixel(sums, x, irr.at(x, y), prev);
         }
     }
 }

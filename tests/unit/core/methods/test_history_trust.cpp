@@ -10,6 +10,7 @@
 
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <string>
 #include <vector>
@@ -143,33 +144,44 @@ TEST(HistoryTrust, AntilagZeroIsTheOriginalArithmetic)
     }
 }
 
-/// Trust of one uniform block pair: current luminance values `cur`, history `hist`.
-float blockTrust(const std::vector<float>& cur, float hist, float antilag = 1.0f)
+/// Trust of one block: current colours `cur` (grey values, cycled over the pixels, or colours),
+/// history `hist` the same in every pixel.
+float blockTrust(
+    const std::vector<std::array<float, 3>>& cur, std::array<float, 3> hist, float antilag = 1.0f)
 {
     afn::HistoryTrust t;
     t.setSettings({ antilag });
     t.begin(8, 8, true);
     for (int y = 0; y < 8; ++y)
         for (int x = 0; x < 8; ++x)
-            afn::HistoryTrust::addPixel(t.rowSums(y), x, cur[(y * 8 + x) % cur.size()], hist, 8.0f);
+            afn::HistoryTrust::addPixel(
+                t.rowSums(y), x, cur[(y * 8 + x) % cur.size()].data(), hist.data());
     t.finish();
     Image map;
     t.map(map);
     return map(3, 3, 0);
 }
 
+std::array<float, 3> grey(float v)
+{
+    return { v, v, v };
+}
+
 TEST(HistoryTrust, BlockTestOnExactCases)
 {
-    EXPECT_EQ(blockTrust({ 1.0f }, 1.0f), 1.0f); // unchanged
-    EXPECT_EQ(blockTrust({ 0.5f }, 1.0f), 0.0f); // halved: dropped
-    EXPECT_EQ(blockTrust({ 2.0f }, 1.0f), 0.0f); // doubled: dropped
-    EXPECT_NEAR(blockTrust({ 0.9f }, 1.0f), 0.8f, 1e-5f); // 10 % less: 80 % kept
-    EXPECT_NEAR(blockTrust({ 0.9f }, 1.0f, 0.5f), 0.9f, 1e-5f); // half the strength
-    // 1-spp-like noise: values 0 and 2 (mean 1, sd 1) against a history of 1.1: within 3 standard
-    // errors (0.125 * 1.05 each), kept.
-    EXPECT_EQ(blockTrust({ 0.0f, 2.0f }, 1.1f), 1.0f);
-    // The same noise against a history of 2: a real change.
-    EXPECT_LT(blockTrust({ 0.0f, 2.0f }, 2.0f), 0.5f);
+    EXPECT_EQ(blockTrust({ grey(1.0f) }, grey(1.0f)), 1.0f); // unchanged
+    EXPECT_EQ(blockTrust({ grey(0.5f) }, grey(1.0f)), 0.0f); // halved: dropped
+    EXPECT_EQ(blockTrust({ grey(2.0f) }, grey(1.0f)), 0.0f); // doubled: dropped
+    EXPECT_NEAR(blockTrust({ grey(0.9f) }, grey(1.0f)), 0.8f, 1e-3f); // 10 % less: 80 % kept
+    EXPECT_NEAR(blockTrust({ grey(0.9f) }, grey(1.0f), 0.5f), 0.9f, 1e-3f); // half the strength
+    // 1-spp-like noise: values 0 and 2 (mean 1, sd 1) against a history of 1.3: within 3 standard
+    // errors (3 * 1 / 8 = 0.375), kept.
+    EXPECT_EQ(blockTrust({ grey(0.0f), grey(2.0f) }, grey(1.3f)), 1.0f);
+    // The same noise against a history of 2.5: a real change.
+    EXPECT_LT(blockTrust({ grey(0.0f), grey(2.0f) }, grey(2.5f)), 0.5f);
+    // A light that turns from green to red at the same luminance: dropped.
+    const float g = 0.7152f / 0.2126f;
+    EXPECT_EQ(blockTrust({ { g, 0.0f, 0.0f } }, { 0.0f, 1.0f, 0.0f }), 0.0f);
 }
 
 TEST(HistoryTrust, FeatureMapShowsWhereTheHistoryWasCut)
