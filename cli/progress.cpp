@@ -49,7 +49,7 @@ void Progress::update(int done, const std::string& label)
 
 void Progress::annotate(const std::string& detail)
 {
-    m_detail += (m_detail.empty() ? ", " : "; ") + detail;
+    m_detail = ", " + detail; // the item's latest (a benchmark item runs several frames)
 }
 
 void Progress::clear()

@@ -20,7 +20,7 @@ public:
     /// single item).
     void update(int done, const std::string& label);
     /// A figure of the item in progress, printed after its time on its line ("..., history cut
-    /// 12 %"; not on the bar).
+    /// 12 %"; not on the bar); a later call replaces it.
     void annotate(const std::string& detail);
     /// Clear the bar before printing a message, so lines do not interleave.
     void clear();

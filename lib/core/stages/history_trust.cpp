@@ -11,6 +11,9 @@ namespace {
 
 /// Standard errors the change must exceed before it counts.
 constexpr float kNoiseSigmas = 3.0f;
+/// Relative change ignored: the bias a reprojected, resampled or filtered history keeps (and a
+/// lag of a few per cent, which nobody sees), so that static light keeps its whole history.
+constexpr double kDeadZone = 0.05;
 /// Gain of the relative change: antilag 1 drops the history from a change of one half.
 constexpr float kChangeGain = 2.0f;
 /// Pixels with accepted history a block needs for the test.
@@ -42,9 +45,10 @@ const ParamBinding<HistoryTrustSettings>& historyTrustBinding()
             4.0, "Anti-lag",
             "history trust: how fast a change of the lighting (a light moved, switched or "
             "flickered, a shadow or an emitter changed) cuts the temporal history where the "
-            "geometry still matches, measured on 8x8 blocks against their noise. 1: the history "
-            "is dropped where the lighting changed by half or more; 0: never (the original "
-            "methods, which ghost after a light switch)");
+            "geometry still matches, measured per colour channel on 8x8 blocks and 32x32 groups "
+            "against their noise. 1: the history is dropped where the lighting changed by 55 % or "
+            "more, kept whole below 5 %; 0: never (the original methods, which ghost after a "
+            "light switch)");
     return binding;
 }
 
@@ -78,6 +82,7 @@ double trustOf(const double* s, double antilag)
         const double excess = std::fabs(md) - kNoiseSigmas * std::sqrt(var / n);
         change = std::max(change, excess / std::max({ mc, mh, 1e-12 }));
     }
+    change = std::max(0.0, change - kDeadZone);
     return std::clamp(1.0 - kChangeGain * antilag * std::min(change, 1.0), 0.0, 1.0);
 }
 

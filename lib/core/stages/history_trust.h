@@ -14,12 +14,13 @@
 //             (3 standard errors of the mean difference: the variance of the per-pixel difference
 //             holds the noise of both and none of the texture or shading they share, and a
 //             firefly on either side raises it, so it does not count as change)
-//   trust_b = clamp(1 - 2 * antilag * max_k change_k, 0, 1)
-// and the same on groups of 4x4 blocks (32x32 pixels: 16 times the samples, a quarter of the
+//   trust_b = clamp(1 - 2 * antilag * max(0, max_k change_k - 0.05), 0, 1)
+// (changes below 5 % are the bias a resampled or filtered history keeps, not lighting) and the
+// same on groups of 4x4 blocks (32x32 pixels: 16 times the samples, a quarter of the
 // noise, for the large changes that 1-spp noise hides in one block); a block takes the lower
 // trust of its own test and its group's.
 // Per channel, so a light that changes colour at the same brightness counts. With antilag = 1 a
-// block whose lighting changed by half or more beyond the noise drops its history, a 10 % change
+// block whose lighting changed by 55 % or more beyond the noise drops its history, a 15 % change
 // keeps 80 % of it. The noise term makes the test as sharp as the samples allow: at 16-64 spp the
 // variances are small and small changes count; at 1 spp only large ones do. A block with fewer
 // than 16 such pixels keeps trust 1 (its pixels mostly start afresh anyway). The block trusts are

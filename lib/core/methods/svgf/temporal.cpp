@@ -25,6 +25,18 @@ namespace {
 constexpr int kHistoryPlanes[]
     = { kIntRed, kIntGreen, kIntBlue, kMoment1, kMoment2, kHistoryLength };
 constexpr int kHistoryChannels = 6;
+/// Add a pixel to the history trust's block sums. svgf's colour history is its first à-trous
+/// output, whose blur moves light between blocks: the trust would read that as change. The
+/// history's colour is therefore scaled to the luminance of the unfiltered history (the first
+/// moment), so the test sees the unfiltered brightness and the filtered chromaticity.
+void addToTrust(float* sums, int x, const float* c, const float* prev)
+{
+    const float l = luminance(prev);
+    const float s = l > 0.0f ? prev[3] / l : 1.0f;
+    const float h[3] = { prev[0] * s, prev[1] * s, prev[2] * s };
+    HistoryTrust::addPixel(sums, x, c, h);
+}
+
 /// History length marking a pixel without history between gatherRows() and the blend.
 constexpr float kNoHistory = -1.0f;
 
@@ -148,7 +160,7 @@ void Denoiser::gatherRows(const Image& irr, const Reprojector& taps, int y0, int
             if (identity && taps.ownPixelAccepted(x, y)) {
                 if (sums) {
                     load(x, y, prev);
-                    HistoryTrust::addPixel(sums, x, irr.at(x, y), prev);
+                    addToTrust(sums, x, irr.at(x, y), prev);
                 }
                 continue;
             }
@@ -159,7 +171,7 @@ void Denoiser::gatherRows(const Image& irr, const Reprojector& taps, int y0, int
             for (int k = 0; k < kHistoryChannels; ++k)
                 planes[k][x] = prev[k];
             if (sums)
-                HistoryTrust::addPixel(sums, x, irr.at(x, y), prev);
+                addToTrust(sums, x, irr.at(x, y), prev);
         }
     }
 }

@@ -170,10 +170,13 @@ std::array<float, 3> grey(float v)
 TEST(HistoryTrust, BlockTestOnExactCases)
 {
     EXPECT_EQ(blockTrust({ grey(1.0f) }, grey(1.0f)), 1.0f); // unchanged
-    EXPECT_EQ(blockTrust({ grey(0.5f) }, grey(1.0f)), 0.0f); // halved: dropped
-    EXPECT_EQ(blockTrust({ grey(2.0f) }, grey(1.0f)), 0.0f); // doubled: dropped
-    EXPECT_NEAR(blockTrust({ grey(0.9f) }, grey(1.0f)), 0.8f, 1e-3f); // 10 % less: 80 % kept
-    EXPECT_NEAR(blockTrust({ grey(0.9f) }, grey(1.0f), 0.5f), 0.9f, 1e-3f); // half the strength
+    EXPECT_EQ(blockTrust({ grey(0.4f) }, grey(1.0f)), 0.0f); // 60 % less: dropped
+    EXPECT_EQ(blockTrust({ grey(4.0f) }, grey(1.0f)), 0.0f); // 4 times: dropped
+    EXPECT_NEAR(blockTrust({ grey(2.0f) }, grey(1.0f)), 0.1f, 1e-3f); // doubled: 10 % kept
+    EXPECT_NEAR(blockTrust({ grey(0.5f) }, grey(1.0f)), 0.1f, 1e-3f); // halved: 10 % kept
+    EXPECT_NEAR(blockTrust({ grey(0.85f) }, grey(1.0f)), 0.8f, 1e-3f); // 15 % less: 80 % kept
+    EXPECT_NEAR(blockTrust({ grey(0.85f) }, grey(1.0f), 0.5f), 0.9f, 1e-3f); // half the strength
+    EXPECT_EQ(blockTrust({ grey(0.97f) }, grey(1.0f)), 1.0f); // 3 %: within the dead zone
     // 1-spp-like noise: values 0 and 2 (mean 1, sd 1) against a history of 1.3: within 3 standard
     // errors (3 * 1 / 8 = 0.375), kept.
     EXPECT_EQ(blockTrust({ grey(0.0f), grey(2.0f) }, grey(1.3f)), 1.0f);
