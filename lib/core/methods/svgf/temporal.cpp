@@ -9,6 +9,7 @@
 #include "methods/svgf/kernels.h"
 
 #include <algorithm>
+#include <cmath>
 #include <utility>
 #include <vector>
 
@@ -94,7 +95,10 @@ void Denoiser::integrate(const Image& irr, const Reprojector& taps)
                         const float cut = 1.0f - trustRow[x];
                         a += (1.0f - a) * cut;
                         am += (1.0f - am) * cut;
-                        len = std::min(prev[5] * trustRow[x] + 1.0f, 255.0f);
+                        // Whole frames, rounded up: the length decides the spatial variance
+                        // fallback (fewer than varianceHistory frames), which a slight cut
+                        // should not trigger.
+                        len = std::min(std::ceil(prev[5] * trustRow[x]) + 1.0f, 255.0f);
                     }
                     for (int k = 0; k < 3; ++k)
                         o[k] = blendHistory(prev[k], c[k], a);
