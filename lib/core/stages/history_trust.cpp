@@ -98,7 +98,8 @@ void HistoryTrust::finish()
     // One band of kCoarse block rows at a time: the fine level (8x8 blocks) and the coarse one
     // (groups of kCoarse x kCoarse blocks, 16 times the samples: a quarter of the noise), the lower
     // trust of the two.
-    std::vector<double> sums(static_cast<std::size_t>(m_bw) * kCoarse * kSums);
+    std::vector<double>& sums = m_groupSums;
+    sums.resize(static_cast<std::size_t>(m_bw) * kCoarse * kSums);
     for (int gy = 0; gy < m_bh; gy += kCoarse) {
         const int rows = std::min(kCoarse, m_bh - gy);
         std::fill(sums.begin(), sums.end(), 0.0);
@@ -171,18 +172,20 @@ void HistoryTrust::interpolateRow(int y, float* out) const
     }
 }
 
-bool HistoryTrust::rowTrust(int y, float* out) const
+const float* HistoryTrust::rowTrust(int y) const
 {
     if (!m_active)
-        return false;
+        return nullptr;
     int by0, by1;
     float wy;
     blockCoordinate(y, m_bh, by0, by1, wy);
     if (!m_blockRowActive[static_cast<std::size_t>(by0)]
         && !m_blockRowActive[static_cast<std::size_t>(by1)])
-        return false;
-    interpolateRow(y, out);
-    return true;
+        return nullptr;
+    thread_local std::vector<float> row; // kept by each worker from frame to frame
+    row.resize(static_cast<std::size_t>(m_width));
+    interpolateRow(y, row.data());
+    return row.data();
 }
 
 void HistoryTrust::map(Image& out) const
@@ -190,7 +193,10 @@ void HistoryTrust::map(Image& out) const
     out.resize(m_width, m_height, 1);
     for (int y = 0; y < m_height; ++y) {
         float* row = out.at(0, y);
-        if (!rowTrust(y, row))
+        const float* t = rowTrust(y);
+        if (t)
+            std::copy(t, t + m_width, row);
+        else
             std::fill(row, row + m_width, 1.0f);
     }
 }

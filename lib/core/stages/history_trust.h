@@ -85,9 +85,9 @@ public:
     /// After every row was added: the block trusts.
     void finish();
 
-    /// False when every pixel of row y has trust 1 (nothing written); else writes the row's
-    /// per-pixel trust into out[0 .. width).
-    bool rowTrust(int y, float* out) const;
+    /// nullptr when every pixel of row y has trust 1; else the row's per-pixel trust (width
+    /// floats in a buffer of the calling thread, valid until its next call).
+    const float* rowTrust(int y) const;
     /// True when some pixel of the frame has trust below 1.
     bool active() const { return m_active; }
     /// Share in [0, 1] of the frame's pixels with accepted history in blocks whose trust fell
@@ -113,6 +113,7 @@ private:
     std::vector<float> m_block; ///< trust per block (after the soft minimum)
     std::vector<float> m_raw; ///< trust per block before it
     std::vector<float> m_count; ///< pixels with history per block
+    std::vector<double> m_groupSums; ///< finish()'s sums of one band of block rows
     std::vector<unsigned char> m_blockRowActive; ///< per block row: some trust < 1 in it
 };
 

@@ -286,10 +286,9 @@ const Image& TemporalAntialiasing::apply(const Reprojector& taps, const Image& c
         // Where the history trust fell, the output moves towards the current frame as a blend
         // factor alpha' = alpha + (1 - alpha) (1 - t) would (stages/history_trust.h).
         parallelRows(spare.height(), [&](int y0, int y1) {
-            thread_local std::vector<float> t; // kept by each worker (as RowScratch)
-            t.resize(static_cast<std::size_t>(spare.width()));
             for (int y = y0; y < y1; ++y) {
-                if (!trust->rowTrust(y, t.data()))
+                const float* t = trust->rowTrust(y);
+                if (!t)
                     continue;
                 float* o = spare.at(0, y);
                 const float* c = current.at(0, y);

@@ -8,7 +8,6 @@
 
 #include <algorithm>
 #include <utility>
-#include <vector>
 
 namespace afn {
 
@@ -95,12 +94,10 @@ void TemporalAccumulator::blendRows(const Reprojector& taps, const Image& irr, i
     const int w = irr.width();
     const bool history = m_history;
     const bool avx512 = cpu::activeIsa() == cpu::Isa::Avx512;
-    std::vector<float> trustRow;
     for (int y = y0; y < y1; ++y) {
         const bool identity = history && taps.identityRow(y);
-        if (m_trust.active())
-            trustRow.resize(static_cast<std::size_t>(w));
-        const bool partial = m_trust.rowTrust(y, trustRow.data());
+        const float* trustRow = m_trust.rowTrust(y);
+        const bool partial = trustRow != nullptr;
         const float* c = irr.at(0, y);
         float* acc = m_color.at(0, y);
         float* spp = m_spp.at(0, y);

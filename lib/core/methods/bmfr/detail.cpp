@@ -34,11 +34,6 @@ namespace {
 constexpr int kBlock = 8;
 constexpr float kMinPixels = 8.0f;
 
-inline float lum(const float* c)
-{
-    return trustLuminance(c);
-}
-
 /// The accumulated colour's noise variance in block (bx, by) (see the file comment); infinite
 /// where it cannot be told.
 float blockNoise(const Image& current, const Image& accumulated, const Image& length,
@@ -53,7 +48,8 @@ float blockNoise(const Image& current, const Image& accumulated, const Image& le
             if (!(len > 1.0) || !(a < 1.0))
                 continue;
             const double hist = std::min(len - 1.0, static_cast<double>(effectiveLimit));
-            const double d = lum(current.at(x, y)) - lum(accumulated.at(x, y));
+            const double d
+                = trustLuminance(current.at(x, y)) - trustLuminance(accumulated.at(x, y));
             const double frameVar = d * d / ((1.0 - a) * (1.0 - a) * (1.0 + 1.0 / hist));
             sum += frameVar * ((1.0 - a) * (1.0 - a) / hist + a * a);
             n += 1.0;
@@ -63,7 +59,8 @@ float blockNoise(const Image& current, const Image& accumulated, const Image& le
         n = 0.0;
         for (int y = by * kBlock; y < std::min(h, (by + 1) * kBlock); ++y)
             for (int x = bx * kBlock; x + 1 < std::min(w, (bx + 1) * kBlock); ++x) {
-                const double d = lum(current.at(x + 1, y)) - lum(current.at(x, y));
+                const double d
+                    = trustLuminance(current.at(x + 1, y)) - trustLuminance(current.at(x, y));
                 sum += 0.5 * d * d; // var(a - b) = 2 s^2 where both are noise
                 n += 1.0;
             }
@@ -95,12 +92,13 @@ void restoreDetail(const Image& accumulated, const Image& length, float alphaMin
             const float* a = accumulated.at(x, y);
             const float* f = fit.at(x, y);
             const float r[3] = { a[0] - f[0], a[1] - f[1], a[2] - f[2] };
-            const float l = lum(r);
+            const float l = trustLuminance(r);
             out[x] = l * l;
         }
     };
     parallelRows(h, [&](int y0, int y1) {
-        std::vector<float> ring(static_cast<std::size_t>(w) * 3);
+        thread_local std::vector<float> ring; // kept by each worker from frame to frame
+        ring.resize(static_cast<std::size_t>(w) * 3);
         auto row = [&](int y) { return ring.data() + static_cast<std::size_t>(y % 3) * w; };
         for (int y = std::max(0, y0 - 1); y < std::min(h, y0 + 1); ++y)
             residualRow(y, row(y));

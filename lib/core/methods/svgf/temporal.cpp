@@ -11,7 +11,6 @@
 #include <algorithm>
 #include <cmath>
 #include <utility>
-#include <vector>
 
 namespace afn::svgf {
 
@@ -60,11 +59,11 @@ void Denoiser::integrate(const Image& irr, const Reprojector& taps)
     m_trust.finish();
     const bool avx512 = cpu::activeIsa() == cpu::Isa::Avx512;
     parallelRows(h, [&](int y0, int y1) {
-        std::vector<float> trustRow(m_trust.active() ? static_cast<std::size_t>(w) : 0);
         const float* prevRow[kHistoryChannels] = {};
         for (int y = y0; y < y1; ++y) {
             const bool identity = history && taps.identityRow(y);
-            const bool partial = m_trust.rowTrust(y, trustRow.data());
+            const float* trustRow = m_trust.rowTrust(y);
+            const bool partial = trustRow != nullptr;
             float* planes[kIntegratedPlanes];
             for (int k = 0; k < kIntegratedPlanes; ++k)
                 planes[k] = m_integrated.row(k, y);
