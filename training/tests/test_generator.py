@@ -139,3 +139,37 @@ def test_rerun_refuses_a_description_the_generator_no_longer_makes(tmp_path):
     desc["seed"] = 99
     with pytest.raises(gd.DatasetError, match="differs"):
         gd.write_description(str(tmp_path), desc)
+
+
+def test_hard_surfaces_depth_of_field_and_blur_are_common():
+    """Metal, glass and glossy props in most scenes; depth of field and motion blur in about 1 in 3."""
+    from generator import surfaces
+    sums = [describe(f, s, 6)["summary"] for f, s in split.training_sequences(70)]
+    hard = set(surfaces.HARD_KINDS)
+    assert sum(bool(hard & set(s["materials"])) for s in sums) / len(sums) > 0.9
+    assert sum(s["hard_surfaces"] > 0 for s in sums) / len(sums) > 0.8
+    assert 0.25 < sum(s["depth_of_field"] for s in sums) / len(sums) < 0.5
+    assert 0.25 < sum(s["motion_blur"] for s in sums) / len(sums) < 0.5
+    evals = [describe(f, s, 8)["summary"] for f, s in split.evaluation_sequences(4, 3)]
+    assert sum(bool({"glass", "metal_mirror", "metal_rough"} & set(s["materials"]))
+               for s in evals) >= 5
+
+
+def test_hard_surfaces_leave_emitters_big_surfaces_and_layout_alone(monkeypatch):
+    """Only the materials of props change: emitters, walls, floors and every position stay."""
+    from generator import surfaces
+    seqs = list(split.training_sequences(35))
+    with_step = [describe(f, s, 6) for f, s in seqs]
+    monkeypatch.setattr(surfaces, "add_hard_surfaces", lambda rng, desc: 0)
+    without = [describe(f, s, 6) for f, s in seqs]
+    changed = 0
+    for a, b in zip(with_step, without):
+        assert a["lights"] == b["lights"] and a["camera"]["keys"] == b["camera"]["keys"]
+        for oa, ob in zip(a["objects"], b["objects"]):
+            assert (oa["shape"], oa["location"], oa["dims"]) == (ob["shape"], ob["location"], ob["dims"])
+            if oa["material"] != ob["material"]:
+                changed += 1
+                assert ob["material"]["kind"] != "emissive" and not ob["material"].get("emission_keys")
+                assert max(ob["dims"]) < surfaces.PROP_SIZE
+                assert oa["material"]["kind"] in surfaces.HARD_KINDS
+    assert changed > 35

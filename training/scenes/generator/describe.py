@@ -18,10 +18,11 @@ from . import camera as cam
 from . import lighting as L
 from . import lighting_change
 from . import sampling as s
+from . import surfaces
 from .families import FAMILIES
 from .families.props import inside
 
-FORMAT = "afn-scene-2"
+FORMAT = "afn-scene-3"
 
 # Path-tracing settings shared by every generated scene (inputs and references alike).
 RENDER = {"max_bounces": 8, "diffuse_bounces": 3, "glossy_bounces": 4,
@@ -53,6 +54,7 @@ def summary(desc):
         "camera_speed_px": cam.speed_px(camera),
         "depth_of_field": camera["dof"] is not None,
         "motion_blur": desc["motion_blur"] is not None,
+        "hard_surfaces": desc.get("hard_surfaces", 0),
     }
 
 
@@ -82,6 +84,8 @@ def describe(family, seed, frames=8):
     # Drawn last, so the layout, camera and exposure above do not depend on it.
     desc["lighting_event"] = lighting_change.add_event(rng, desc["lights"], desc["objects"],
                                                        camera, frames)
+    # Drawn after the event: more metal, glass, depth of field and motion blur (surfaces.py).
+    desc["hard_surfaces"] = surfaces.add_hard_surfaces(rng, desc)
     desc["summary"] = summary(desc)
     return desc
 
