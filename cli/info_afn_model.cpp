@@ -21,7 +21,8 @@ afn::Format formatOf(int components)
 
 } // namespace
 
-std::string afnModelFor(const Options& opts, const afn::io::FrameImages& frame)
+std::string afnModelFor(
+    const Options& opts, const afn::io::FrameImages& frame, std::string* network)
 {
     using afn::io::Role;
     afn::DeviceRef device = afn::newDevice(afn::DeviceType::CPU);
@@ -65,6 +66,11 @@ std::string afnModelFor(const Options& opts, const afn::io::FrameImages& frame)
     filter.commit();
     if (device.getError(&message) != afn::Error::None)
         return "error: " + message;
+    if (network)
+        *network = filter.get<int>(AFN_STAT_AFN_PRECISION) == 16
+            ? (filter.get<bool>(AFN_STAT_AFN_BF16_HARDWARE) ? "bf16 (AVX512_BF16)"
+                                                            : "bf16 (emulated)")
+            : "fp32";
     return filter.get<std::string>(AFN_STAT_AFN_MODEL);
 }
 

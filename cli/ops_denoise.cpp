@@ -285,8 +285,13 @@ void SequenceDenoiser::logFrame(const LoadedFrame& frame, Progress* progress)
 
     // What the run is doing (said on the first frame and again when it changes) and the figures
     // that vary from frame to frame (the first frame's, and every frame's with -v).
-    std::string model, aux, speckle, skippedText;
+    std::string model, network, aux, speckle, skippedText;
     if (m_method == "afn") {
+        // The network's arithmetic (precision=auto|fp32|bf16, chosen from the CPU).
+        network = m_filter.get<int>(AFN_STAT_AFN_PRECISION) == 16
+            ? (m_filter.get<bool>(AFN_STAT_AFN_BF16_HARDWARE) ? "network bf16 (AVX512_BF16)"
+                                                              : "network bf16 (emulated)")
+            : "network fp32";
         // The trained model chosen for the file's inputs; one for fewer inputs than the file has
         // is warned about (once per change).
         model = m_filter.get<std::string>(AFN_STAT_AFN_MODEL);
@@ -340,11 +345,11 @@ void SequenceDenoiser::logFrame(const LoadedFrame& frame, Progress* progress)
         return;
     }
     const std::string facts = joinFacts({ missingShort.empty() ? "" : "without " + missingShort,
-        model, aux.empty() ? "" : aux + ")" });
+        model, network, aux.empty() ? "" : aux + ")" });
     if (!m_factsLogged) {
         // The missing inputs are in the warning above: not repeated here.
-        const std::string first
-            = joinFacts({ model, aux.empty() ? "" : aux + "; " + speckle + ")", skippedText });
+        const std::string first = joinFacts(
+            { model, network, aux.empty() ? "" : aux + "; " + speckle + ")", skippedText });
         if (!first.empty())
             note(m_flag + ": " + m_method + " " + first, quiet, progress);
     } else if (facts != *m_factsLogged) {

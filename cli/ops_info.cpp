@@ -39,6 +39,7 @@ struct FileReport {
     std::map<Role, AFNAuxNoise> noise; ///< auxiliary roles only (afnEstimateAuxNoise)
     std::optional<int> samples;
     std::string afnModel; ///< the afn method's path for these inputs ("" without a colour)
+    std::string afnNetwork; ///< the network's arithmetic on this CPU ("" where not known)
 };
 
 /// The auxiliary roles whose noise --info estimates, with their afnEstimateAuxNoise names.
@@ -115,7 +116,7 @@ FileReport collect(const Options& opts, const FrameRef& ref)
             r.stats[role] = afn::io::computeStats(image);
         estimateNoise(fi, r.noise);
         if (fi.roles.count(Role::Color))
-            r.afnModel = afnModelFor(opts, fi);
+            r.afnModel = afnModelFor(opts, fi, &r.afnNetwork);
         if (ref.path.find("#bmfr:") == std::string::npos) {
             r.info = afn::io::inspect(ref.path);
         } else {
@@ -189,6 +190,8 @@ void printText(const FileReport& r)
     std::printf("  aux=auto: %s\n", autoChoice(r).c_str());
     if (!r.afnModel.empty())
         std::printf("  afn: %s\n", r.afnModel.c_str());
+    if (!r.afnNetwork.empty())
+        std::printf("  afn network: %s\n", r.afnNetwork.c_str());
     std::printf("  conventions:");
     for (const auto& [name, value] : r.mapping.tag.parameters())
         std::printf(" %s=%s", name.c_str(), value.c_str());
@@ -264,6 +267,7 @@ void writeJson(JsonWriter& j, const FileReport& r)
     j.endObject();
     j.field("auxAuto", std::string(autoNoisy(r) ? "noisy" : "clean"));
     j.field("afnModel", r.afnModel);
+    j.field("afnNetwork", r.afnNetwork);
     j.key("stats").beginObject();
     for (const auto& [role, s] : r.stats) {
         j.key(afn::io::roleName(role))

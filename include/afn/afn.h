@@ -132,6 +132,9 @@ typedef enum AFNDeviceType {
 /// switched, a shadow or an emitter changed). 0 keeps it as the original methods do
 /// (lib/core/stages/history_trust.h).
 #define AFN_PARAM_ANTILAG "antilag"
+/// The afn method's network arithmetic: "auto" (default: bf16 where the CPU has AVX512_BF16),
+/// "fp32", "bf16" (emulated where the CPU lacks AVX512_BF16: the same results, fp32's speed).
+#define AFN_PARAM_PRECISION "precision"
 /// Cost/accuracy tier: "fast", "balanced" (default: the method as without the parameter), "high"
 /// (a parameter of every denoising method; what each tier does is in its help text and
 /// docs/quality.md, lib/core/filter/quality.h).
@@ -188,6 +191,12 @@ typedef enum AFNDeviceType {
 #define AFN_STAT_AFN_REFINEMENT_MS "stats.afn.refinement.ms"
 #define AFN_STAT_AFN_REFINEMENT_GFLOP "stats.afn.refinement.gflop"
 #define AFN_STAT_AFN_AVX512 "stats.afn.avx512"
+/// The arithmetic of the network's convolutions from the committed settings on this CPU
+/// (parameter AFN_PARAM_PRECISION; AFN large always fp32): 16 for bfloat16 operands (with fp32
+/// sums), 32 for fp32; "stats.afn.bf16Hardware" is 1 when that bf16 runs on AVX512_BF16
+/// instructions, 0 when emulated or not bf16.
+#define AFN_STAT_AFN_PRECISION "stats.afn.precision"
+#define AFN_STAT_AFN_BF16_HARDWARE "stats.afn.bf16Hardware"
 
 /// Types of filter parameters, as reported by afnGetFilterTypeParam().
 typedef enum AFNParamType {

@@ -28,7 +28,7 @@ namespace afn::cpu {
 
 namespace {
 
-constexpr int kMaxPixels = 16; // largest P below: the band's zeroed slack after its last row
+constexpr int kMaxPixels = kConvBandSlackPixels; // largest P below: the band's zeroed slack
 
 #ifdef AFN_CPU_HAVE_AVX512
 
@@ -56,8 +56,12 @@ AFN_CPU_AVX512 void fillPixels(
     }
 }
 
-/// Band rows [y0 - r, y1 + r) of concat(U(up), same), (width + 2r) pixels of `c` floats each.
-void fillBand(const ConvArgs& a, int y0, int y1, int c, std::vector<float>& band)
+#endif // AFN_CPU_HAVE_AVX512
+
+} // namespace
+
+#ifdef AFN_CPU_HAVE_AVX512
+void fillConvBandAvx512(const ConvArgs& a, int y0, int y1, int c, std::vector<float>& band)
 {
     const int w = a.same->width(), h = a.same->height(), r = a.k / 2;
     const int x0 = a.x0, x1 = columnEnd(a), bw = x1 - x0 + 2 * r;
@@ -91,6 +95,11 @@ void fillBand(const ConvArgs& a, int y0, int y1, int c, std::vector<float>& band
     }
     std::memset(band.data() + rows * rowFloats, 0, sizeof(float) * slack);
 }
+#endif
+
+namespace {
+
+#ifdef AFN_CPU_HAVE_AVX512
 
 /// Operands of one row pass over one group of NV output vectors.
 struct RowPass {
@@ -258,9 +267,11 @@ AFN_CPU_AVX512 void rowsFewOutputs(
 void convRowsAvx512(const ConvArgs& a, int y0, int y1)
 {
 #ifdef AFN_CPU_HAVE_AVX512
+    if (a.wbf16)
+        return convRowsAvx512Bf16(a, y0, y1);
     const int c = (a.in + 15) / 16 * 16;
     thread_local std::vector<float> band;
-    fillBand(a, y0, y1, c, band);
+    fillConvBandAvx512(a, y0, y1, c, band);
     const int w = columnEnd(a) - a.x0; // output columns
     if (a.wt16 && a.outC <= kFewOutputs) {
         const long bandRow = static_cast<long>(w + 2 * (a.k / 2)) * c;

@@ -5,6 +5,9 @@
 
 #include "base/image.h"
 
+#include <cstdint>
+#include <vector>
+
 namespace afn::cpu {
 
 /// Most output channels of a layer that the AVX-512 code runs with input channels in the lanes.
@@ -30,6 +33,10 @@ struct ConvArgs {
     int dstY0 = 0; ///< the row that dst points to
     /// Output columns [x0, x1) (x1 < 0: to the width); dst points to column x0 of row dstY0.
     int x0 = 0, x1 = -1;
+    /// bfloat16 weights [ky][kx][ci pair][cp16][2] (ci even in the low half of each 32-bit pair):
+    /// where set (AVX-512 engine only), convRowsAvx512 runs the layer in bf16 with fp32
+    /// accumulation (cpu/conv_avx512_bf16.cpp).
+    const std::uint16_t* wbf16 = nullptr;
 };
 
 /// The end of ConvArgs' output columns (x1, or the input's width where x1 < 0).
@@ -42,7 +49,19 @@ inline int columnEnd(const ConvArgs& a)
 void convRows(const ConvArgs& a, int y0, int y1);
 
 /// Output rows [y0, y1) with the AVX-512 micro-kernels (cpu/conv_avx512.cpp; call only where
-/// activeIsa() is Avx512).
+/// activeIsa() is Avx512). Layers with `wbf16` run convRowsAvx512Bf16.
 void convRowsAvx512(const ConvArgs& a, int y0, int y1);
+
+/// The same in bfloat16 (cpu/conv_avx512_bf16.cpp; activeBf16Mode() picks VDPBF16PS or its
+/// emulation): the band's values and the weights rounded to bf16, products summed in fp32.
+void convRowsAvx512Bf16(const ConvArgs& a, int y0, int y1);
+
+/// Band rows [y0 - k/2, y1 + k/2) of concat(U(up), same) for output columns [x0, x1): (x1 - x0
+/// + 2 (k/2)) pixels of `c` floats (channels zero-padded to c, a multiple of 16), zero outside the
+/// image, then (kConvBandSlackPixels + 2) x c zero floats (cpu/conv_avx512.cpp).
+void fillConvBandAvx512(const ConvArgs& a, int y0, int y1, int c, std::vector<float>& band);
+
+/// Most pixels a micro-kernel block reads past a band row's end (the band's zeroed slack).
+constexpr int kConvBandSlackPixels = 16;
 
 } // namespace afn::cpu

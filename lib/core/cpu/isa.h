@@ -23,4 +23,20 @@ const char* isaName(Isa isa);
 /// Tests and benchmarks: use `isa` from now on (Avx512 is ignored where the CPU lacks it).
 void forceIsa(Isa isa);
 
+/// How the AVX-512 engine runs a bfloat16 convolution (cpu/conv_avx512_bf16.cpp).
+enum class Bf16Mode {
+    Hardware, ///< VDPBF16PS (AVX512_BF16): two bf16 multiply-adds per fp32 lane
+    Emulated, ///< the same arithmetic with AVX-512F FMAs (same results, no faster than fp32)
+};
+
+/// Whether the CPU has AVX512_BF16 (checked once).
+bool cpuHasAvx512Bf16();
+
+/// Hardware where the CPU has AVX512_BF16, unless AFN_CPU_BF16=emulate is set or
+/// forceBf16Mode(Emulated) was called; Emulated elsewhere.
+Bf16Mode activeBf16Mode();
+
+/// Tests: use `mode` from now on (Hardware is ignored where the CPU lacks it).
+void forceBf16Mode(Bf16Mode mode);
+
 } // namespace afn::cpu

@@ -4,6 +4,7 @@
 
 #include "base/exception.h"
 #include "base/parallel.h"
+#include "cpu/bf16.h"
 #include "cpu/conv_kernel.h"
 #include "cpu/isa.h"
 
@@ -64,6 +65,19 @@ void Conv::load(const WeightsArchive& a, const std::string& name, int expectedIn
     for (std::size_t row = 0; row < static_cast<std::size_t>(k) * k * in; ++row)
         std::copy_n(&m_wp[row * m_outPadded], out, &m_wp16[row * m_outPadded16]);
     m_wt16.clear();
+    m_wbf16.clear();
+    m_precision = Precision::Fp32;
+    if (out > cpu::kFewOutputs) {
+        const int pairs = (in + 1) / 2;
+        m_wbf16.assign(static_cast<std::size_t>(k) * k * pairs * m_outPadded16 * 2, 0);
+        for (int t = 0; t < k * k; ++t)
+            for (int ci = 0; ci < in; ++ci)
+                for (int co = 0; co < out; ++co)
+                    m_wbf16[((static_cast<std::size_t>(t) * pairs + ci / 2) * m_outPadded16 + co)
+                            * 2
+                        + (ci & 1)]
+                        = cpu::toBf16(w.data[(static_cast<std::size_t>(co) * in + ci) * k * k + t]);
+    }
     if (out <= cpu::kFewOutputs) {
         const int inPadded = (in + 15) / 16 * 16;
         m_wt16.assign(static_cast<std::size_t>(k) * k * out * inPadded, 0.0f);
@@ -87,6 +101,8 @@ cpu::ConvArgs Conv::args(const Image* up, const Image& same, bool relu) const
     a.bp16 = m_bp16.data();
     a.cp16 = m_outPadded16;
     a.wt16 = m_wt16.empty() ? nullptr : m_wt16.data();
+    if (precision() == Precision::Bf16)
+        a.wbf16 = m_wbf16.data();
     return a;
 }
 

@@ -19,6 +19,10 @@ namespace afn::nn {
 /// Most output channels of one layer (the 7x7 kernel head has 50).
 constexpr int kMaxChannels = 256;
 
+/// Arithmetic of a layer on the AVX-512 engine: fp32, or bfloat16 operands with fp32 sums
+/// (cpu/conv_avx512_bf16.cpp). The portable kernels always run fp32.
+enum class Precision { Fp32, Bf16 };
+
 /// One conv layer: PyTorch Conv2d(Cin, Cout, k, padding=k/2) with bias.
 class Conv {
 public:
@@ -48,6 +52,12 @@ public:
     void runRows(const Image* up, const Image& same, int y0, int y1, float* dst, long rowStride,
         int pixelStride, bool relu, int x0 = 0, int x1 = -1) const;
 
+    /// Run in `p` from now on (Fp32 after load). Layers of at most cpu::kFewOutputs outputs stay
+    /// fp32 (their kernel puts input channels in the lanes; they are a small share of the work).
+    void setPrecision(Precision p) { m_precision = p; }
+    /// The precision the layer runs in on the AVX-512 engine (Fp32 for few-output layers).
+    Precision precision() const { return m_wbf16.empty() ? Precision::Fp32 : m_precision; }
+
     /// Multiply-adds x 2 per output pixel (the layer's FLOP per pixel, without padding).
     double flopPerPixel() const { return 2.0 * m_k * m_k * m_in * m_out; }
 
@@ -68,6 +78,9 @@ private:
     std::vector<float> m_wp16; ///< [ky][kx][ci][co padded to 16], zero padding
     std::vector<float> m_bp16; ///< [co padded to 16]
     std::vector<float> m_wt16; ///< at most cpu::kFewOutputs outputs: [ky][kx][co][ci padded to 16]
+    /// bf16 weights [ky][kx][ci pair][co padded to 16][2] (other layers than m_wt16's)
+    std::vector<std::uint16_t> m_wbf16;
+    Precision m_precision = Precision::Fp32;
 };
 
 /// D: 2x2 average pooling of an image with even size into `out` (half size).

@@ -33,6 +33,7 @@ afn_add_gtest(test_afn
     unit/core/nn/test_afn_weights.cpp
     unit/core/nn/test_afn_layers.cpp
     unit/core/nn/test_conv5.cpp
+    unit/core/nn/test_conv_bf16.cpp
     unit/core/methods/afn/test_afn_parity.cpp
     unit/core/methods/afn/test_afn_large.cpp
     unit/core/methods/afn/test_afn_filter.cpp

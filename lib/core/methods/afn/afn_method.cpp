@@ -33,6 +33,10 @@
 // history length, post_filter_noise.h). With work skipping the network's rows are grown by
 // kPostFilterRadius more.
 //
+// precision=auto|fp32|bf16 (settings.h; auto: bf16 where the CPU has AVX512_BF16) sets the
+// arithmetic of the network's convolutions for each frame (Network::setPrecision); reported as
+// AFN_STAT_AFN_PRECISION.
+//
 // On a CUDA device (builds with AFN_HAS_CUDA) the whole filter, shared stages included, runs on
 // the GPU instead (cuda/afn_cuda_filter.h). It has no aux prefilter yet: it refuses aux=noisy and
 // runs aux=auto as clean (docs/gpu.md).
@@ -120,6 +124,14 @@ public:
             value = cpu::activeIsa() == cpu::Isa::Avx512 ? 1.0 : 0.0;
             return true;
         }
+        if (rest == "precision") {
+            value = runsBf16() ? 16.0 : 32.0;
+            return true;
+        }
+        if (rest == "bf16Hardware") {
+            value = runsBf16() && cpu::activeBf16Mode() == cpu::Bf16Mode::Hardware ? 1.0 : 0.0;
+            return true;
+        }
         if (rest == "prediction.inputMs") {
             value = m_tiers.totals().inputMs;
             return true;
@@ -144,6 +156,7 @@ private:
         m_spp = auxBinding().read(params()).spp; // the shared "spp" parameter
         m_quality = qualityBinding().read(params()).quality;
         m_settings = settingsBinding().read(params());
+        (void)precisionToRun(); // precision=bf16 without the AVX-512 engine fails the commit
         if (!outputBound())
             return;
         if (m_models.empty())
@@ -256,9 +269,37 @@ private:
         if (!m_taaOn) {
             m_taa.reset(); // a later frame with TAA starts without a stale history
         }
+        m_model->net.setPrecision(precisionToRun());
         m_tiers.run(m_quality, m_model->net, m_inputs.inputs(), result, work);
         reportProgress(0.95);
         return true;
+    }
+
+    /// Settings::precision for this CPU (settings.h): auto is bf16 only on AVX512_BF16
+    /// instructions; bf16 needs the AVX-512 engine.
+    nn::Precision precisionToRun() const
+    {
+        const bool avx512 = cpu::activeIsa() == cpu::Isa::Avx512;
+        switch (m_settings.precision) {
+        case Settings::Precision::Fp32:
+            return nn::Precision::Fp32;
+        case Settings::Precision::Bf16:
+            if (!avx512)
+                throwInvalidArgument("afn: precision=bf16 needs the AVX-512 engine (this CPU has "
+                                     "no AVX-512F, or AFN_CPU_ISA=portable is set); use "
+                                     "precision=auto or fp32");
+            return nn::Precision::Bf16;
+        default:
+            return avx512 && cpu::activeBf16Mode() == cpu::Bf16Mode::Hardware ? nn::Precision::Bf16
+                                                                              : nn::Precision::Fp32;
+        }
+    }
+
+    /// What the network runs in (AFN_STAT_AFN_PRECISION): precisionToRun(), fp32 for AFN large.
+    bool runsBf16() const
+    {
+        return precisionToRun() == nn::Precision::Bf16
+            && !(m_model && m_model->net.variant() == Variant::Large);
     }
 
     int m_spp = 0; ///< samples per pixel of the input, 0 = unknown

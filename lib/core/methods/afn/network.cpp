@@ -19,9 +19,20 @@ constexpr int kInputChannels = 13; // T(1spp) 3, T(TA) 3, albedo 3, normal01 3, 
 constexpr int kRefineChannels = 10; // T(i) 3, albedo 3, normal01 3, depth01 1
 } // namespace
 
+void Network::setPrecision(nn::Precision p)
+{
+    if (m_variant == Variant::Large)
+        p = nn::Precision::Fp32;
+    for (nn::Conv* c : { &m_enc1, &m_enc2, &m_enc3, &m_dec2, &m_dec1, &m_head1, &m_headTa, &m_head4,
+             &m_ref1, &m_ref2, &m_ref3 })
+        c->setPrecision(p);
+    m_precision = p;
+}
+
 void Network::load(const nn::WeightsArchive& a)
 {
     m_loaded = false;
+    m_precision = nn::Precision::Fp32;
     m_quarter = false;
     m_head4 = nn::Conv {};
     const std::string v = a.meta("variant", "full");

@@ -62,6 +62,12 @@ public:
     Variant variant() const { return m_variant; }
     /// Whether the weights add the quarter-resolution scale (quarter_scale.h).
     bool hasQuarterScale() const { return m_quarter; }
+    /// Run the convolutions in `p` from now on (nn::Conv::setPrecision; Fp32 after load): every
+    /// layer of kernel prediction and refinement except the 3-output last one. The 7x7 filtering,
+    /// fusion and softmax stay fp32. AFN large runs fp32 whatever `p`.
+    void setPrecision(nn::Precision p);
+    /// What the convolutions run in (Fp32 for AFN large).
+    nn::Precision precision() const { return m_precision; }
 
     /// Whole forward pass in stripes: `out` = o (3 ch, demodulated, W x H, not clamped).
     /// `work` (W x H, 1 ch, or null/empty = everywhere): only the 8-row blocks that hold a
@@ -141,6 +147,7 @@ private:
 
     bool m_loaded = false;
     bool m_quarter = false; ///< hasQuarterScale()
+    nn::Precision m_precision = nn::Precision::Fp32; ///< precision()
     int m_skippedRows = 0, m_stripes = 0, m_inputRowsReused = 0;
     Variant m_variant = Variant::Full;
     nn::Conv m_enc1, m_enc2, m_enc3, m_dec2, m_dec1, m_head1, m_headTa, m_ref1, m_ref2, m_ref3;

@@ -8,6 +8,7 @@ const ParamBinding<Settings>& settingsBinding()
     using S = Settings;
     using T = Settings::Taa;
     using P = Settings::PostFilter;
+    using R = Settings::Precision;
     static const ParamBinding<S> binding
         = ParamBinding<S>()
               .add(&S::taa, "taa", { { "auto", T::Auto }, { "off", T::Off }, { "on", T::On } },
@@ -26,7 +27,14 @@ const ParamBinding<Settings>& settingsBinding()
                   "albedo, normal, depth and luminance differences) against low-frequency "
                   "blotches; auto: on for the models trained below 16 spp, off for the 16- and "
                   "64-spp ones; under work skipping the network then also computes 14 rows "
-                  "around the needed ones; CPU device only (on CUDA auto runs as off)");
+                  "around the needed ones; CPU device only (on CUDA auto runs as off)")
+              .add(&S::precision, "precision",
+                  { { "auto", R::Auto }, { "fp32", R::Fp32 }, { "bf16", R::Bf16 } }, "precision",
+                  "arithmetic of the network's convolutions: bf16 operands with fp32 sums, or "
+                  "fp32; auto: bf16 where the CPU has AVX512_BF16, else fp32; bf16 on a CPU "
+                  "without it is emulated (the same results at fp32's speed); the filtering and "
+                  "output stages are fp32 in every case; CPU device only (CUDA runs its own half "
+                  "precision)");
     return binding;
 }
 

@@ -25,6 +25,17 @@
 // held-out results).
 // Under work skipping the network then computes kPostFilterRadius more rows around the needed
 // ones.
+//
+// precision: the arithmetic of the network's convolutions (nn::Conv, cpu/conv_avx512_bf16.cpp).
+//   auto (default)  bf16 where the CPU has AVX512_BF16 (VDPBF16PS: twice fp32's multiply-adds per
+//                   instruction), fp32 elsewhere
+//   fp32            as named
+//   bf16            bf16 operands, fp32 sums, on every CPU with AVX-512 (emulated with AVX-512F
+//                   FMAs where AVX512_BF16 is missing: the same results, fp32's speed); refused
+//                   without the AVX-512 engine
+// Why auto: on the held-out set bf16 is within 0.035 dB of fp32 for every model
+// (docs/afn-evaluation.md, "fp32 and bf16"); the filtering, fusion and the output stages stay
+// fp32.
 #pragma once
 
 #include "base/params.h"
@@ -38,6 +49,8 @@ struct Settings {
     enum class PostFilter { Auto, Off, On };
     PostFilter postFilter
         = PostFilter::Auto; ///< edge-aware smoothing of the output (post_filter.h)
+    enum class Precision { Auto, Fp32, Bf16 };
+    Precision precision = Precision::Auto; ///< the network's convolutions (see above)
 };
 
 /// Models trained at this many samples per pixel or more run without the post-filter under

@@ -1,9 +1,12 @@
 // SPDX-License-Identifier: Apache-2.0
 // The "afn" filter type: refuses to run without weights, takes weights as data (rejecting corrupt
-// ones without losing the previous), denoises a small sequence; feature scaling hand cases.
+// ones without losing the previous), denoises a small sequence; feature scaling hand cases; the
+// network's precision (auto/fp32/bf16) as chosen and reported.
 #include "afn_test_util.h"
 #include "base/exception.h"
+#include "cpu/isa.h"
 #include "filter/registry.h"
+#include "isa_scope.h"
 #include "stages/aux_prefilter.h"
 #include "stages/feature_scaling.h"
 #include "still_frame.h"
@@ -12,6 +15,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <vector>
 
 using afntest::readBytes;
 
@@ -87,4 +91,55 @@ TEST(AfnFilter, SampleCountParameter)
     params.setNumber("spp", 64, AFN_PARAM_INT);
     EXPECT_EQ(afn::auxBinding().read(params).spp, 64);
     EXPECT_THROW(params.setNumber("spp", -1, AFN_PARAM_INT), afn::Exception);
+}
+
+namespace {
+
+/// The last frame's AFN_STAT_AFN_PRECISION of an afn filter with precision `p` on a small still.
+double precisionRan(const std::string& p, std::vector<float>* out = nullptr)
+{
+    auto f = afn::createFilter("afn");
+    afntest::StillFrame still(21, 13);
+    still.bindTo(*f);
+    still.bindMotionTo(*f);
+    const auto bytes = readBytes(std::string(AFN_TEST_DATA) + "/afn_parity/weights_full.afnw");
+    f->setData("weights", bytes.data(), bytes.size());
+    f->params().setString("precision", p);
+    f->commit();
+    f->execute();
+    f->execute();
+    if (out)
+        out->assign(still.out.data(), still.out.data() + still.out.size());
+    double v = 0;
+    EXPECT_TRUE(f->statistic(AFN_STAT_AFN_PRECISION, v));
+    return v;
+}
+
+} // namespace
+
+TEST(AfnFilter, PrecisionIsChosenFromTheCpuAndReported)
+{
+    std::vector<float> fp32, bf16;
+    EXPECT_EQ(precisionRan("fp32", &fp32), 32.0);
+    if (afn::cpu::activeIsa() != afn::cpu::Isa::Avx512) {
+        EXPECT_EQ(precisionRan("auto"), 32.0);
+        EXPECT_THROW(precisionRan("bf16"), afn::Exception); // needs the AVX-512 engine
+        return;
+    }
+    EXPECT_EQ(precisionRan("bf16", &bf16), 16.0);
+    EXPECT_EQ(precisionRan("auto"), afn::cpu::cpuHasAvx512Bf16() ? 16.0 : 32.0);
+    // Close to fp32 but not the same: the convolutions did run in bf16.
+    double worst = 0;
+    bool differs = false;
+    for (std::size_t k = 0; k < fp32.size(); ++k) {
+        worst = std::max(worst, std::fabs(double(fp32[k]) - bf16[k]) / std::max(1.0f, fp32[k]));
+        differs |= fp32[k] != bf16[k];
+    }
+    EXPECT_TRUE(differs);
+    EXPECT_LT(worst, 0.05);
+    // Without the AVX-512 engine bf16 is refused at commit, auto falls back to fp32.
+    const isa_test::IsaScope portable(afn::cpu::Isa::Portable);
+    EXPECT_THROW(precisionRan("bf16"), afn::Exception);
+    EXPECT_EQ(precisionRan("auto"), 32.0);
+    EXPECT_THROW(precisionRan("fp16"), afn::Exception); // not a choice
 }

@@ -5,6 +5,7 @@
 // rounding: the two sides sum in different orders and use different exp/pow implementations.
 #include "afn_test_util.h"
 #include "base/exception.h"
+#include "isa_scope.h"
 #include "methods/afn/network.h"
 
 #include <gtest/gtest.h>
@@ -96,6 +97,43 @@ TEST(AfnParity, QuarterScaleModelMatchesPyTorch)
     // the whole-frame path, so the stripe comparison in checkVariant holds by construction and
     // the PyTorch comparison is what tests the scale.
     checkVariant("quarter", afn::afnet::Variant::Full);
+}
+
+// bf16 convolutions (cpu/conv_avx512_bf16.cpp) against the same PyTorch fp32 vectors: the
+// stated tolerance of the reduced precision. Operands rounded to 8 significant bits move each
+// layer's sums by about 2^-9 relatively; through the kernels' softmax and the fusion the output
+// (O(1) here) moved by 6.1e-4 (full) and 8.4e-4 (quarter) at most, alpha by 8.8e-4, where fp32
+// holds 4e-6. Tolerance 3e-3.
+TEST(AfnParity, Bf16WithinItsToleranceOfPyTorch)
+{
+    if (!isa_test::haveAvx512())
+        GTEST_SKIP() << "the bf16 engine is part of the AVX-512 kernels";
+    const isa_test::IsaScope isa(afn::cpu::Isa::Avx512);
+    for (const char* variant : { "full", "quarter" }) {
+        const std::string dir = std::string(AFN_TEST_DATA) + "/afn_parity/";
+        const auto c = afntest::loadFile(dir + "case_" + variant + ".afnw");
+        afn::afnet::Network net;
+        net.load(afntest::loadFile(dir + "weights_" + variant + ".afnw"));
+        net.setPrecision(afn::nn::Precision::Bf16);
+        ASSERT_EQ(net.precision(), afn::nn::Precision::Bf16);
+        const afn::Image c1 = afntest::toImage(c.tensor("c1"));
+        const afn::Image cta = afntest::toImage(c.tensor("cta"));
+        const afn::Image alb = afntest::toImage(c.tensor("albedo"));
+        const afn::Image nrm = afntest::toImage(c.tensor("normal01"));
+        const afn::Image dep = afntest::toImage(c.tensor("depth01"));
+        const afn::afnet::Inputs in { &c1, &cta, &alb, &nrm, &dep };
+        afn::Image o, striped;
+        net.runWholeFrame(in, o);
+        net.run(in, striped);
+        EXPECT_TRUE(std::equal(o.data(), o.data() + o.size(), striped.data()))
+            << "bf16: the stripe path differs from the whole-frame path";
+        std::printf("bf16 parity %s:\n", variant);
+        const Err alpha = compare(net.alpha(), c.tensor("alpha"), "alpha");
+        const Err out = compare(o, c.tensor("o"), "o");
+        EXPECT_LT(alpha.maxAbs, 3e-3);
+        EXPECT_LT(out.maxAbs, 3e-3);
+        EXPECT_GT(out.maxAbs, 4e-6) << "no bf16 rounding in the output: the layers ran in fp32";
+    }
 }
 
 TEST(AfnParity, QuarterScaleChangesTheResult)

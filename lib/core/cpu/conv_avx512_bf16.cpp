@@ -1,0 +1,269 @@
+// SPDX-License-Identifier: Apache-2.0
+// bfloat16 micro-kernels of nn::Conv (cpu/conv_kernel.h, ConvArgs::wbf16): the AFN network's
+// reduced-precision engine (methods/afn/settings.h, precision).
+//
+// The layout of cpu/conv_avx512.cpp (implicit GEMM over a zero-padded input band, P output pixels
+// x NV vectors of 16 output channels in registers) with the K dimension in pairs of input
+// channels: the band is converted to bf16 once per task (round to nearest even), so one 32-bit
+// broadcast carries channels (2q, 2q + 1) of a pixel, and one 512-bit weight vector carries 16
+// output channels x that pair. VDPBF16PS then does two multiply-adds per lane: half the
+// instructions of fp32 for the same work. Products of two bf16 values are exact in fp32; the sums
+// are fp32, in the order bias, taps (ky, kx), pairs q, and within a pair channel 2q + 1 then 2q
+// (the instruction's order), independent of how rows are split among threads.
+//
+// Without AVX512_BF16 (cpu::activeBf16Mode() Emulated) the same arithmetic runs with AVX-512F:
+// each bf16 half widened to fp32 by a shift or a mask, two FMAs per pair in the instruction's
+// order. The results are the same bit for bit (the hardware flushes denormal inputs and results,
+// which the emulation does not: a difference only for values below 1e-38); the speed is fp32's.
+#include "cpu/conv_kernel.h"
+
+#include "cpu/avx512.h"
+#include "cpu/isa.h"
+
+#include <algorithm>
+#include <cstring>
+#include <vector>
+
+namespace afn::cpu {
+
+namespace {
+
+#ifdef AFN_CPU_HAVE_AVX512
+
+#define AFN_CPU_AVX512_BF16 __attribute__((target("avx512f,avx512bw,avx512vl,avx512bf16,avx2,fma")))
+#define AFN_CPU_AVX512_BF16_INLINE AFN_CPU_AVX512_BF16 inline __attribute__((always_inline))
+
+/// The fp32 band converted to bf16 pairs: `n` floats (a multiple of 32) from s to d.
+AFN_CPU_AVX512_BF16 void toBf16Hardware(std::uint16_t* d, const float* s, std::size_t n)
+{
+    for (std::size_t k = 0; k < n; k += 32) {
+        const __m512bh v = _mm512_cvtne2ps_pbh(_mm512_loadu_ps(s + k + 16), _mm512_loadu_ps(s + k));
+        _mm512_storeu_si512(d + k, reinterpret_cast<const __m512i&>(v));
+    }
+}
+
+/// The same rounding (to nearest even, NaN kept quiet) with AVX-512F integer operations.
+AFN_CPU_AVX512 void toBf16Emulated(std::uint16_t* d, const float* s, std::size_t n)
+{
+    const __m512i one = _mm512_set1_epi32(1), bias = _mm512_set1_epi32(0x7FFF);
+    const __m512i expMask = _mm512_set1_epi32(0x7F800000), manMask = _mm512_set1_epi32(0x007FFFFF);
+    const __m512i quiet = _mm512_set1_epi32(0x00400000);
+    for (std::size_t k = 0; k < n; k += 16) {
+        __m512i u = _mm512_castps_si512(_mm512_loadu_ps(s + k));
+        const __mmask16 nan = _mm512_cmpeq_epi32_mask(_mm512_and_si512(u, expMask), expMask)
+            & _mm512_cmpneq_epi32_mask(_mm512_and_si512(u, manMask), _mm512_setzero_si512());
+        const __m512i lsb = _mm512_and_si512(_mm512_srli_epi32(u, 16), one);
+        const __m512i rounded = _mm512_add_epi32(u, _mm512_add_epi32(bias, lsb));
+        u = _mm512_mask_mov_epi32(rounded, nan, _mm512_or_si512(u, quiet));
+        _mm256_storeu_si256(
+            reinterpret_cast<__m256i*>(d + k), _mm512_cvtepi32_epi16(_mm512_srli_epi32(u, 16)));
+    }
+}
+
+/// Operands of one row pass over one group of NV output vectors (pairs: 32-bit units).
+struct RowPass {
+    const std::int32_t* band; ///< band row of output row y0, pixel -r
+    long bandRow; ///< pairs per band row
+    int c2; ///< pairs per band pixel
+    const std::int32_t* w; ///< weights [tap][pair][cp16] + first output channel of the group
+    const float* bias; ///< bias + first output channel of the group
+    int pairs, k, cp16, nOut, width, pixStride;
+    bool relu;
+    float* dst; ///< output row y0 + first output channel of the group
+    long dstRow;
+};
+
+template <int NV, int P>
+AFN_CPU_AVX512_INLINE void storeBlock(const RowPass& r, __m512 (&acc)[P][NV], float* dst, int np)
+{
+    const __m512 zero = _mm512_set1_ps(0.0f);
+    for (int p = 0; p < P; ++p) {
+        if (p >= np)
+            break;
+        float* d = dst + static_cast<long>(p) * r.pixStride;
+        for (int j = 0; j < NV; ++j) {
+            const __m512 v
+                = r.relu ? _mm512_mask_max_ps(acc[p][j], 0xFFFF, zero, acc[p][j]) : acc[p][j];
+            const int n = r.nOut - 16 * j;
+            if (n >= 16)
+                _mm512_storeu_ps(d + 16 * j, v);
+            else if (n > 0)
+                _mm512_mask_storeu_ps(d + 16 * j, static_cast<__mmask16>((1u << n) - 1u), v);
+        }
+    }
+}
+
+/// P output pixels x NV x 16 output channels, VDPBF16PS.
+template <int NV, int P>
+AFN_CPU_AVX512_BF16_INLINE void blockHardware(
+    const RowPass& r, const std::int32_t* src, float* dst, int np)
+{
+    __m512 acc[P][NV];
+    for (int j = 0; j < NV; ++j) {
+        const __m512 b = _mm512_loadu_ps(r.bias + 16 * j);
+        for (int p = 0; p < P; ++p)
+            acc[p][j] = b;
+    }
+    const std::int32_t* wt = r.w;
+    for (int ky = 0; ky < r.k; ++ky)
+        for (int kx = 0; kx < r.k; ++kx) {
+            const std::int32_t* s = src + ky * r.bandRow + kx * r.c2;
+            for (int q = 0; q < r.pairs; ++q, wt += r.cp16) {
+                __m512bh wv[NV];
+                for (int j = 0; j < NV; ++j) {
+                    const __m512i w = _mm512_loadu_si512(wt + 16 * j);
+                    wv[j] = reinterpret_cast<const __m512bh&>(w);
+                }
+                for (int p = 0; p < P; ++p) {
+                    const __m512i xi = _mm512_set1_epi32(s[p * r.c2 + q]);
+                    const __m512bh x = reinterpret_cast<const __m512bh&>(xi);
+                    for (int j = 0; j < NV; ++j)
+                        acc[p][j] = _mm512_dpbf16_ps(acc[p][j], x, wv[j]);
+                }
+            }
+        }
+    storeBlock<NV, P>(r, acc, dst, np);
+}
+
+/// The same arithmetic with AVX-512F FMAs: channel 2q + 1 (high half) first, then 2q.
+template <int NV, int P>
+AFN_CPU_AVX512_INLINE void blockEmulated(
+    const RowPass& r, const std::int32_t* src, float* dst, int np)
+{
+    const __m512i high = _mm512_set1_epi32(static_cast<int>(0xFFFF0000u));
+    __m512 acc[P][NV];
+    for (int j = 0; j < NV; ++j) {
+        const __m512 b = _mm512_loadu_ps(r.bias + 16 * j);
+        for (int p = 0; p < P; ++p)
+            acc[p][j] = b;
+    }
+    const std::int32_t* wt = r.w;
+    for (int ky = 0; ky < r.k; ++ky)
+        for (int kx = 0; kx < r.k; ++kx) {
+            const std::int32_t* s = src + ky * r.bandRow + kx * r.c2;
+            for (int q = 0; q < r.pairs; ++q, wt += r.cp16) {
+                __m512 wOdd[NV], wEven[NV];
+                for (int j = 0; j < NV; ++j) {
+                    const __m512i w = _mm512_loadu_si512(wt + 16 * j);
+                    wOdd[j] = _mm512_castsi512_ps(_mm512_and_si512(w, high));
+                    wEven[j] = _mm512_castsi512_ps(_mm512_slli_epi32(w, 16));
+                }
+                for (int p = 0; p < P; ++p) {
+                    const std::uint32_t v = static_cast<std::uint32_t>(s[p * r.c2 + q]);
+                    const __m512 xOdd
+                        = _mm512_castsi512_ps(_mm512_set1_epi32(static_cast<int>(v & 0xFFFF0000u)));
+                    const __m512 xEven
+                        = _mm512_castsi512_ps(_mm512_set1_epi32(static_cast<int>(v << 16)));
+                    for (int j = 0; j < NV; ++j) {
+                        acc[p][j] = _mm512_fmadd_ps(xOdd, wOdd[j], acc[p][j]);
+                        acc[p][j] = _mm512_fmadd_ps(xEven, wEven[j], acc[p][j]);
+                    }
+                }
+            }
+        }
+    storeBlock<NV, P>(r, acc, dst, np);
+}
+
+template <int NV, int P> AFN_CPU_AVX512_BF16 void rowsHardware(const RowPass& r, int nRows)
+{
+    for (int i = 0; i < nRows; ++i) {
+        const std::int32_t* src = r.band + i * r.bandRow;
+        float* dst = r.dst + i * r.dstRow;
+        int x = 0;
+        for (; x + P <= r.width; x += P)
+            blockHardware<NV, P>(
+                r, src + static_cast<long>(x) * r.c2, dst + static_cast<long>(x) * r.pixStride, P);
+        if (x < r.width)
+            blockHardware<NV, P>(r, src + static_cast<long>(x) * r.c2,
+                dst + static_cast<long>(x) * r.pixStride, r.width - x);
+    }
+}
+
+template <int NV, int P> AFN_CPU_AVX512 void rowsEmulated(const RowPass& r, int nRows)
+{
+    for (int i = 0; i < nRows; ++i) {
+        const std::int32_t* src = r.band + i * r.bandRow;
+        float* dst = r.dst + i * r.dstRow;
+        int x = 0;
+        for (; x + P <= r.width; x += P)
+            blockEmulated<NV, P>(
+                r, src + static_cast<long>(x) * r.c2, dst + static_cast<long>(x) * r.pixStride, P);
+        if (x < r.width)
+            blockEmulated<NV, P>(r, src + static_cast<long>(x) * r.c2,
+                dst + static_cast<long>(x) * r.pixStride, r.width - x);
+    }
+}
+
+// Pixels per block: as the fp32 kernels (24 accumulators; 14 for one vector).
+template <int NV> constexpr int pixelsFor()
+{
+    return NV == 1 ? 14 : NV == 2 ? 12 : NV == 3 ? 8 : 6;
+}
+
+template <int NV> void rowsFor(const RowPass& r, int nRows, bool hardware)
+{
+    constexpr int P = pixelsFor<NV>();
+    static_assert(P <= kConvBandSlackPixels);
+    if (hardware)
+        rowsHardware<NV, P>(r, nRows);
+    else
+        rowsEmulated<NV, P>(r, nRows);
+}
+
+#endif // AFN_CPU_HAVE_AVX512
+
+} // namespace
+
+void convRowsAvx512Bf16(const ConvArgs& a, int y0, int y1)
+{
+#ifdef AFN_CPU_HAVE_AVX512
+    const int c = (a.in + 15) / 16 * 16; // even: channel pairs never straddle two pixels
+    thread_local std::vector<float> band;
+    thread_local std::vector<std::uint16_t> band16;
+    fillConvBandAvx512(a, y0, y1, c, band);
+    const bool hardware = activeBf16Mode() == Bf16Mode::Hardware;
+    const int w = columnEnd(a) - a.x0;
+    // This call's band (fillConvBandAvx512 keeps the buffer of the largest call), whole vectors
+    // of 32 values: the zeroed slack is over 32 floats (c >= 16, 18 pixels).
+    const std::size_t used
+        = static_cast<std::size_t>(y1 - y0 + 2 * (a.k / 2)) * (w + 2 * (a.k / 2)) * c;
+    const std::size_t n = (used + 31) / 32 * 32;
+    if (band16.size() < used + static_cast<std::size_t>(kConvBandSlackPixels + 2) * c)
+        band16.resize(used + static_cast<std::size_t>(kConvBandSlackPixels + 2) * c + 32);
+    std::fill(band16.begin() + static_cast<std::ptrdiff_t>(n),
+        band16.begin() + static_cast<std::ptrdiff_t>(used)
+            + static_cast<std::ptrdiff_t>(kConvBandSlackPixels + 2) * c,
+        std::uint16_t { 0 });
+    if (hardware)
+        toBf16Hardware(band16.data(), band.data(), n);
+    else
+        toBf16Emulated(band16.data(), band.data(), n);
+    const int pairs = (a.in + 1) / 2;
+    const auto* band32 = reinterpret_cast<const std::int32_t*>(band16.data());
+    const auto* w32 = reinterpret_cast<const std::int32_t*>(a.wbf16);
+    for (int cb = 0; cb < a.cp16; cb += 64) {
+        const int nv = std::min(4, (a.cp16 - cb) / 16);
+        const RowPass r { band32, static_cast<long>(w + 2 * (a.k / 2)) * (c / 2), c / 2, w32 + cb,
+            a.bp16 + cb, pairs, a.k, a.cp16, a.outC - cb, w, a.dstPix, a.relu,
+            a.dst + (y0 - a.dstY0) * a.dstRow + cb, a.dstRow };
+        switch (nv) {
+        case 1:
+            rowsFor<1>(r, y1 - y0, hardware);
+            break;
+        case 2:
+            rowsFor<2>(r, y1 - y0, hardware);
+            break;
+        case 3:
+            rowsFor<3>(r, y1 - y0, hardware);
+            break;
+        default:
+            rowsFor<4>(r, y1 - y0, hardware);
+            break;
+        }
+    }
+#else
+    (void)a, (void)y0, (void)y1;
+#endif
+}
+
+} // namespace afn::cpu
