@@ -2,13 +2,15 @@
 // AFN inference speed per 1280x720 frame (paper Table 10 stages): kernel prediction (padding, tone
 // map, encoder-decoder), filtering + fusion (heads, softmax, 7x7 filters, Eq. 3), refinement (the
 // whole-frame stages), the whole forward pass (the stripe path, Network::run), and the whole pass
-// with 60 % of the frame masked out by a work mask. Random weights of the shipped architecture:
-// timings do not depend on the values. Each case reports GFLOP/s (counter "GFLOPs":
-// Network::stageFlop over real time); the yardstick, oneDNN's dnnl_sgemm on 1024^3 at the same
-// thread counts, runs in the same program (sgemm.1024, built with oneDNN). Run: afnBenchmarkAfn
+// with 60 % of the frame masked out by a work mask, and the 1-spp post-filter. Random weights of
+// the shipped architecture: timings do not depend on the values. Each case reports GFLOP/s (counter
+// "GFLOPs": Network::stageFlop over real time); the yardstick, oneDNN's dnnl_sgemm on 1024^3 at the
+// same thread counts, runs in the same program (sgemm.1024, built with oneDNN). Run:
+// afnBenchmarkAfn
 // [--benchmark_filter=...]; report the medians. The kernels are chosen at run time
 // (AFN_CPU_ISA=portable forces the portable ones).
 #include "methods/afn/network.h"
+#include "methods/afn/post_filter.h"
 #include "methods/afn/random_weights.h"
 
 #include <benchmark/benchmark.h>
@@ -151,6 +153,25 @@ void BM_AfnWholeWork40(benchmark::State& state)
             + s.net.stageFlop(Stage::Refinement));
 }
 BENCHMARK(BM_AfnWholeWork40)->Name("afn.whole.work40.1280x720")->Apply(configure);
+
+// afn's 1-spp post-filter (methods/afn/post_filter.h) on the random frame, its guides the
+// frame's albedo, normal and depth and its noise scale the 1-spp colour with a history of 4:
+// guide planes, noise scale and the three a-trous passes, the workspace kept across iterations
+// as the filter keeps it across frames.
+void BM_AfnPostFilter(benchmark::State& state)
+{
+    Setup& s = setup720();
+    const auto limit = threads(state);
+    afn::afnet::PostFilterGuides g { &s.albedo, &s.normal, &s.depth };
+    const afn::Image history(s.c1.width(), s.c1.height(), 1, 4.0f);
+    g.noise.irradiance = &s.c1;
+    g.noise.historyLength = &history;
+    afn::afnet::PostFilterWorkspace workspace;
+    afn::Image scratch, out;
+    for (auto _ : state)
+        afn::afnet::edgeAwarePostFilter(s.cta, g, workspace, scratch, out);
+}
+BENCHMARK(BM_AfnPostFilter)->Name("afn.post_filter.1280x720")->Apply(configure);
 
 #ifdef AFN_HAS_DNNL
 // The yardstick: dnnl_sgemm, C = A B with M = N = K = 1024 (oneDNN threads on OpenMP).

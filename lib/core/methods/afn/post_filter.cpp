@@ -1,8 +1,10 @@
 // SPDX-License-Identifier: Apache-2.0
-// afn's edge-aware post-filter (post_filter.h). Each pass works row by row: for each of the 25
-// taps it adds the tap's weighted colour into per-row accumulators, over the columns whose tap is
-// inside the image in one vectorisable loop and over the few border columns (tap clamped to the
-// first or last column) in a second one; the row is then normalised.
+// afn's edge-aware post-filter (post_filter.h). Each pass works on runs of 16 pixels of a row: the
+// pixels' own guide values are loaded once, then the 25 taps are weighted and summed in
+// registers, in the formula's order, and the run is normalised. Taps inside the image are
+// contiguous loads; runs whose taps cross the left or right border read the clamped columns one
+// by one. The depth term multiplies by the pixel's reciprocal of its scale (two per pass: rings 1
+// and 2) instead of dividing per tap.
 #include "methods/afn/post_filter.h"
 
 #include "base/parallel.h"
@@ -12,7 +14,12 @@
 #include <cfloat>
 #include <cmath>
 #include <cstdint>
+#include <cstring>
 #include <vector>
+
+// The vector helpers are always inlined into the one kernel (one target per clone): the vector
+// ABI note does not apply.
+#pragma GCC diagnostic ignored "-Wpsabi"
 
 namespace afn::afnet {
 
@@ -22,88 +29,160 @@ constexpr float kSpline[5] = { 1.0f / 16.0f, 1.0f / 4.0f, 3.0f / 8.0f, 1.0f / 4.
 constexpr float kAlbedoScale = 1.0f / 0.1f; ///< da = sum |dA| / 0.1
 constexpr float kDepthRelative = 0.02f; ///< dz's scale: 2 % of the depth per step
 
-/// e^x for x <= 0 (x < -87 and NaN are taken as -87): 2^(x log2 e) split into an integer power,
-/// built in the exponent bits, and a degree-6 Taylor polynomial of 2^f, f in [0, 1) (relative
-/// error < 2e-5). Plain float code, so the loops that call it vectorise.
-inline float expNonPositive(float x)
+inline float finiteOr(float v, float fallback)
 {
-    x = x > -87.0f ? x : -87.0f; // also NaN (std::max would keep it)
-    const float t = x * 1.44269504f;
-    // floor(t) for t <= 0 (std::floor does not vectorise here): towards 0, minus 1 below 0 (an
-    // integer t then gives f = 1, where the polynomial is 2 within its error).
-    const std::int32_t whole = static_cast<std::int32_t>(t) - (t < 0.0f ? 1 : 0);
-    const float f = t - static_cast<float>(whole);
-    float p = 1.540353e-4f;
+    return std::fabs(v) <= FLT_MAX ? v : fallback;
+}
+
+// 16 pixels of a row at a time (GCC/Clang vector extensions: one AVX-512 register in the
+// x86-64-v4 clone, two AVX or four SSE registers in the others).
+
+constexpr int kLanes = 16;
+typedef float V __attribute__((vector_size(64)));
+typedef float Vu __attribute__((vector_size(64), aligned(4))); ///< unaligned access
+typedef std::int32_t I __attribute__((vector_size(64)));
+
+#define AFN_PF_INLINE inline __attribute__((always_inline))
+
+AFN_PF_INLINE V splat(float v)
+{
+    return V {} + v;
+}
+
+AFN_PF_INLINE V loadV(const float* p)
+{
+    return *reinterpret_cast<const Vu*>(p);
+}
+
+AFN_PF_INLINE V absV(V v)
+{
+    return v < 0.0f ? -v : v;
+}
+
+AFN_PF_INLINE V maxV(V a, V b)
+{
+    return a > b ? a : b;
+}
+
+/// Below this exponent a tap's weight is 0: e^-40 is 3e-17 of the centre tap's weight, and the
+/// products of smaller weights with dark colours are denormal floats, which cost the processor
+/// about a hundred times a normal multiply (frames with sky or depth edges are full of them).
+constexpr float kMinExponent = -40.0f;
+/// Below this cosine the normal term is 0 (0.3^64 = 3e-34; smaller powers turn denormal).
+constexpr float kMinNormalCosine = 0.3f;
+
+/// e^x for x <= 0, 0 for x < kMinExponent and NaN: 2^(x log2 e) split into an integer power,
+/// built in the exponent bits, and a degree-6 Taylor polynomial of 2^f, f in [0, 1) (relative
+/// error < 2e-5). Per lane of a vector.
+AFN_PF_INLINE V expNonPositiveV(V xIn)
+{
+    const auto kept = xIn >= kMinExponent; // false for NaN
+    const V x = kept ? xIn : splat(kMinExponent);
+    const V t = x * 1.44269504f;
+    const I whole = __builtin_convertvector(t, I) + (t < 0.0f); // (t < 0) is -1 where true
+    const V f = t - __builtin_convertvector(whole, V);
+    V p = splat(1.540353e-4f);
     p = p * f + 1.333355e-3f;
     p = p * f + 9.618129e-3f;
     p = p * f + 5.550411e-2f;
     p = p * f + 2.402265e-1f;
     p = p * f + 6.931472e-1f;
     p = p * f + 1.0f;
-    const std::int32_t bits = (whole + 127) << 23;
-    return p * __builtin_bit_cast(float, bits);
+    const I bits = (whole + 127) << 23;
+    V scale;
+    std::memcpy(&scale, &bits, sizeof(scale));
+    return kept ? p * scale : splat(0.0f);
 }
 
-inline float finiteOr(float v, float fallback)
+/// One plane's 16 values of row `row` at columns x0 + dx .. x0 + dx + 15, each clamped to
+/// [0, w - 1] (taps beyond the border read the border column).
+AFN_PF_INLINE V loadTap(const float* row, int x0, int dx, int w, bool interior)
 {
-    return std::fabs(v) <= FLT_MAX ? v : fallback;
+    if (interior)
+        return loadV(row + x0 + dx);
+    V v;
+    for (int k = 0; k < kLanes; ++k)
+        v[k] = row[std::clamp(x0 + k + dx, 0, w - 1)];
+    return v;
 }
 
-/// The planes' rows: p = the pixel's row y, q = the tap's row qy.
-struct TapRows {
-    const float *rP, *gP, *bP, *rQ, *gQ, *bQ;
-    const float *a0P, *a1P, *a2P, *a0Q, *a1Q, *a2Q;
-    const float *n0P, *n1P, *n2P, *nvP, *n0Q, *n1Q, *n2Q, *nvQ;
-    const float *zP, *zQ;
-    const float* lsP; ///< the luminance term's scale s_p
-    float splineWeight; ///< h_i h_j
-    float depthScale; ///< 0.02 * step * max(|i|, |j|, 1)
+/// The pixel's own guide values (loaded once for its 25 taps).
+struct Centre {
+    V l, a0, a1, a2, n0, n1, n2, nv, ls;
+    V z;
+    V invDepth[2]; ///< 1 / (0.02 step ring max(z, 1e-3) + 1e-6) for rings 1 and 2
 };
 
-struct RowAccumulators {
-    float* r;
-    float* g;
-    float* b;
-    float* w;
-};
-
-/// Pixel x of the row and its tap at column qx: the tap's weight and colour added in.
-inline void addTap(const TapRows& t, int x, int qx, const RowAccumulators& acc)
+AFN_PF_INLINE V centrePlane(const std::vector<float>& v, std::size_t i, int n)
 {
-    const float q0 = t.rQ[qx], q1 = t.gQ[qx], q2 = t.bQ[qx];
-    const float lp = 0.2126f * t.rP[x] + 0.7152f * t.gP[x] + 0.0722f * t.bP[x];
-    const float lq = 0.2126f * q0 + 0.7152f * q1 + 0.0722f * q2;
-    float e = std::fabs(lp - lq) / (t.lsP[x] * std::max(lp + lq, 0.0f) + 1e-3f);
-    e += (std::fabs(t.a0P[x] - t.a0Q[qx]) + std::fabs(t.a1P[x] - t.a1Q[qx])
-             + std::fabs(t.a2P[x] - t.a2Q[qx]))
-        * kAlbedoScale;
-    const float zp = t.zP[x];
-    e += std::fabs(zp - t.zQ[qx]) / (t.depthScale * std::max(zp, 1e-3f) + 1e-6f);
-    float d = t.n0P[x] * t.n0Q[qx] + t.n1P[x] * t.n1Q[qx] + t.n2P[x] * t.n2Q[qx];
-    d = std::max(d, 0.0f);
-    d *= d; // ^2
-    d *= d; // ^4
-    d *= d; // ^8
-    d *= d; // ^16
-    d *= d; // ^32
-    d *= d; // ^64
-    const float both = t.nvP[x] * t.nvQ[qx]; // 1 where both normals are valid, else 0
-    const float w = t.splineWeight * expNonPositive(-e) * (1.0f + both * (d - 1.0f));
-    acc.r[x] += w * q0;
-    acc.g[x] += w * q1;
-    acc.b[x] += w * q2;
-    acc.w[x] += w;
+    if (n == kLanes)
+        return loadV(v.data() + i);
+    V r = splat(0.0f);
+    for (int k = 0; k < n; ++k)
+        r[k] = v[i + static_cast<std::size_t>(k)];
+    return r;
 }
 
-/// The columns [x0, x1), whose tap x + dx is inside the row: contiguous planes, so it vectorises.
-AFN_CPU_KERNEL_CLONES void addTapInterior(
-    const TapRows& t, int x0, int x1, int dx, const RowAccumulators& acc)
+/// Output pixels x0 .. x0 + n - 1 (n <= 16) of row y: the 25 weighted taps summed in the order
+/// (i, j) of the formula in post_filter.h, normalised, written interleaved to `out`.
+AFN_CPU_KERNEL_CLONES void filterRun(const PostFilterColourPlanes& c,
+    const PostFilterGuidePlanes& g, int w, int h, int y, int x0, int n, int step, float* out)
 {
-    // The accumulators are the filter's own rows, apart from every plane read (GCC would need
-    // more run-time alias checks than it makes).
-#pragma GCC ivdep
-    for (int x = x0; x < x1; ++x)
-        addTap(t, x, x + dx, acc);
+    const std::size_t i0 = static_cast<std::size_t>(y) * w + x0;
+    Centre p;
+    const V r = centrePlane(c.r, i0, n), gr = centrePlane(c.g, i0, n), b = centrePlane(c.b, i0, n);
+    p.l = 0.2126f * r + 0.7152f * gr + 0.0722f * b;
+    p.a0 = centrePlane(g.a0, i0, n), p.a1 = centrePlane(g.a1, i0, n),
+    p.a2 = centrePlane(g.a2, i0, n);
+    p.n0 = centrePlane(g.n0, i0, n), p.n1 = centrePlane(g.n1, i0, n),
+    p.n2 = centrePlane(g.n2, i0, n);
+    p.nv = centrePlane(g.nv, i0, n);
+    p.ls = centrePlane(g.ls, i0, n);
+    p.z = centrePlane(g.z, i0, n);
+    const V zmax = maxV(p.z, splat(1e-3f));
+    for (int ring = 1; ring <= 2; ++ring)
+        p.invDepth[ring - 1] = 1.0f
+            / (kDepthRelative * static_cast<float>(step) * static_cast<float>(ring) * zmax + 1e-6f);
+    V ar = splat(0.0f), ag = splat(0.0f), ab = splat(0.0f), aw = splat(0.0f);
+    for (int i = -2; i <= 2; ++i) {
+        const std::size_t qrow = static_cast<std::size_t>(std::clamp(y + i * step, 0, h - 1)) * w;
+        for (int j = -2; j <= 2; ++j) {
+            const int dx = j * step;
+            const bool interior = n == kLanes && x0 + dx >= 0 && x0 + dx + kLanes <= w;
+            auto tap = [&](const std::vector<float>& v) {
+                return loadTap(v.data() + qrow, x0, dx, w, interior);
+            };
+            const V q0 = tap(c.r), q1 = tap(c.g), q2 = tap(c.b);
+            const V lq = 0.2126f * q0 + 0.7152f * q1 + 0.0722f * q2;
+            V e = absV(p.l - lq) / (p.ls * maxV(p.l + lq, splat(0.0f)) + 1e-3f);
+            e += (absV(p.a0 - tap(g.a0)) + absV(p.a1 - tap(g.a1)) + absV(p.a2 - tap(g.a2)))
+                * kAlbedoScale;
+            const int ring = std::max({ std::abs(i), std::abs(j), 1 });
+            e += absV(p.z - tap(g.z)) * p.invDepth[ring - 1];
+            V d = p.n0 * tap(g.n0) + p.n1 * tap(g.n1) + p.n2 * tap(g.n2);
+            d = d > kMinNormalCosine ? d : splat(0.0f);
+            d *= d; // ^2
+            d *= d; // ^4
+            d *= d; // ^8
+            d *= d; // ^16
+            d *= d; // ^32
+            d *= d; // ^64
+            const V both = p.nv * tap(g.nv); // 1 where both normals are valid, else 0
+            const V wt = (kSpline[i + 2] * kSpline[j + 2]) * expNonPositiveV(-e)
+                * (1.0f + both * (d - 1.0f));
+            ar += wt * q0;
+            ag += wt * q1;
+            ab += wt * q2;
+            aw += wt;
+        }
+    }
+    const V inv = 1.0f / aw; // >= the centre tap's h_2^2 e^0 > 0
+    ar *= inv, ag *= inv, ab *= inv;
+    for (int k = 0; k < n; ++k) {
+        out[3 * k] = ar[k];
+        out[3 * k + 1] = ag[k];
+        out[3 * k + 2] = ab[k];
+    }
 }
 
 /// The guides as planes (PostFilterGuidePlanes, post_filter.h).
@@ -167,49 +246,9 @@ void filterPass(const Image& src, const PostFilterGuidePlanes& g, int step,
     parallelRows(
         h,
         [&](int y0, int y1) {
-            thread_local std::vector<float> buffer;
-            buffer.assign(static_cast<std::size_t>(4) * w, 0.0f);
-            const RowAccumulators acc { buffer.data(), buffer.data() + w, buffer.data() + 2 * w,
-                buffer.data() + 3 * w };
-            auto row = [&](const std::vector<float>& v, int y) {
-                return v.data() + static_cast<std::size_t>(y) * w;
-            };
-            for (int y = y0; y < y1; ++y) {
-                std::fill(buffer.begin(), buffer.end(), 0.0f);
-                for (int i = -2; i <= 2; ++i) {
-                    const int qy = std::clamp(y + i * step, 0, h - 1);
-                    TapRows t {};
-                    t.rP = row(planes.r, y), t.gP = row(planes.g, y), t.bP = row(planes.b, y);
-                    t.rQ = row(planes.r, qy), t.gQ = row(planes.g, qy), t.bQ = row(planes.b, qy);
-                    t.a0P = row(g.a0, y), t.a1P = row(g.a1, y), t.a2P = row(g.a2, y);
-                    t.a0Q = row(g.a0, qy), t.a1Q = row(g.a1, qy), t.a2Q = row(g.a2, qy);
-                    t.n0P = row(g.n0, y), t.n1P = row(g.n1, y), t.n2P = row(g.n2, y);
-                    t.nvP = row(g.nv, y);
-                    t.n0Q = row(g.n0, qy), t.n1Q = row(g.n1, qy), t.n2Q = row(g.n2, qy);
-                    t.nvQ = row(g.nv, qy);
-                    t.zP = row(g.z, y), t.zQ = row(g.z, qy);
-                    t.lsP = row(g.ls, y);
-                    for (int j = -2; j <= 2; ++j) {
-                        t.splineWeight = kSpline[i + 2] * kSpline[j + 2];
-                        t.depthScale = kDepthRelative * static_cast<float>(step)
-                            * static_cast<float>(std::max({ std::abs(i), std::abs(j), 1 }));
-                        const int dx = j * step;
-                        const int x0 = std::clamp(-dx, 0, w), x1 = std::clamp(w - dx, x0, w);
-                        addTapInterior(t, x0, x1, dx, acc);
-                        for (int x = 0; x < x0; ++x)
-                            addTap(t, x, 0, acc);
-                        for (int x = x1; x < w; ++x)
-                            addTap(t, x, w - 1, acc);
-                    }
-                }
-                float* out = dst.at(0, y);
-                for (int x = 0; x < w; ++x) {
-                    const float inv = 1.0f / acc.w[x]; // >= the centre tap's h_2^2 e^0 > 0
-                    out[3 * x] = acc.r[x] * inv;
-                    out[3 * x + 1] = acc.g[x] * inv;
-                    out[3 * x + 2] = acc.b[x] * inv;
-                }
-            }
+            for (int y = y0; y < y1; ++y)
+                for (int x = 0; x < w; x += kLanes)
+                    filterRun(planes, g, w, h, y, x, std::min(kLanes, w - x), step, dst.at(x, y));
         },
         4);
 }
