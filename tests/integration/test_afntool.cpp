@@ -275,8 +275,8 @@ TEST(Afntool, FeaturesWriteTheNetworkInputsPerFrame)
     std::vector<std::string> channels = info.subimages[0].channels;
     std::sort(channels.begin(), channels.end());
     const std::vector<std::string> want = { "accumulated.B", "accumulated.G", "accumulated.R",
-        "albedo.B", "albedo.G", "albedo.R", "depth01.Z", "historyTrust.Z", "irradiance.B",
-        "irradiance.G", "irradiance.R", "normal01.B", "normal01.G", "normal01.R" };
+        "albedo.B", "albedo.G", "albedo.R", "depth01.Z", "history01.Z", "historyTrust.Z",
+        "irradiance.B", "irradiance.G", "irradiance.R", "normal01.B", "normal01.G", "normal01.R" };
     EXPECT_EQ(channels, want);
     for (const std::string& t : info.subimages[0].types)
         EXPECT_EQ(t, "float");

@@ -17,6 +17,8 @@ feature (afnGetFilterTypeFeature):
                               [0, 1] (1 when the file has none); the remodulation multiplies by it
     normal01  normal01        prefiltered shading normal * 0.5 + 0.5, [0, 1]
     depth01   depth01         prefiltered per-frame min-max depth, [0, 1]
+    history01 history01       1 / the frames the accumulated input holds, [1/255, 1] (1 where
+                              it was reset; the history input of model.py)
     target    the reference's beauty (full radiance, albedo included), as afntool reads it
 
 A scene folder holds frame.NNNN.exr and reference.NNNN.exr; a dataset root holds scene folders,
@@ -44,11 +46,11 @@ LAYOUT = ("a scene folder holds frame.NNNN.exr (the noisy render, any renderer's
 
 class SceneError(ValueError):
     """A scene folder cannot be read as training data (the message says why and what it holds)."""
-KEYS = ("c1", "cta", "albedo", "normal01", "depth01", "target")
+KEYS = ("c1", "cta", "albedo", "normal01", "depth01", "history01", "target")
 # Dataset key -> (feature layer written by afntool --features, channel suffixes).
 FEATURES = {"c1": ("irradiance", "RGB"), "cta": ("accumulated", "RGB"),
             "albedo": ("albedo", "RGB"), "normal01": ("normal01", "RGB"),
-            "depth01": ("depth01", "Z")}
+            "depth01": ("depth01", "Z"), "history01": ("history01", "Z")}
 
 
 def read_layers(path, layers):

@@ -12,6 +12,8 @@ Files (all in the weights-archive format of weights.py, so the C++ reader is exe
   weights_quarter.afnw, case_quarter.afnw   variant full with the quarter-resolution scale
                            (model.py ``quarter``): head4 scaled like the heads and its beta
                            bias set to 0, so the scale contributes half its delta.
+  weights_history.afnw, case_history.afnw   variant full with the history input (model.py
+                           ``history``; the case holds history01 too), its weights random.
   weights_large.afnw, case_large.afnw   the same for AFN large (model_large.py): outputs o, i,
                            f1, alpha1 (full res), o2 (1/2), f3 (1/4), padded size.
 (tests/data/afn_parity/ta_case.afnw, a golden case of the core's temporal accumulation, was made
@@ -47,7 +49,9 @@ def make_inputs(seed: int = 1):
     n /= np.linalg.norm(n, axis=-1, keepdims=True)
     normal01 = (n * 0.5 + 0.5).astype(np.float32)
     depth01 = ((xx + yy) / (w + h - 2))[..., None].astype(np.float32)
-    return {"c1": c1, "cta": cta, "albedo": albedo, "normal01": normal01, "depth01": depth01}
+    history01 = (1.0 / rng.randint(1, 10, (h, w, 1))).astype(np.float32)
+    return {"c1": c1, "cta": cta, "albedo": albedo, "normal01": normal01, "depth01": depth01,
+            "history01": history01}
 
 
 OUTPUTS = {"large": ("o", "i", "f1", "alpha1", "o2", "f3")}
@@ -58,8 +62,9 @@ def make_model(variant: str, seed: int = 0):
     """Random-initialised model; heads scaled x4 so the kernels are far from uniform.
     ``quarter`` is variant full with the quarter scale."""
     torch.manual_seed(seed)
-    quarter = variant == "quarter"
-    cfg = AFNConfig(variant="full" if quarter else variant, quarter=quarter, **PARITY_CONFIG)
+    quarter, history = variant == "quarter", variant == "history"
+    cfg = AFNConfig(variant="full" if quarter or history else variant, quarter=quarter,
+                    history=history, **PARITY_CONFIG)
     model = build_model(cfg).eval()
     heads = ("head1", "head2", "head3") if variant == "large" else ("head1", "headTA")
     with torch.no_grad():
@@ -77,7 +82,9 @@ def run(model, inputs: dict) -> dict:
     def t(a):
         return torch.from_numpy(a).permute(2, 0, 1)[None]
     with torch.no_grad():
-        out = model(*(t(inputs[k]) for k in ("c1", "cta", "albedo", "normal01", "depth01")))
+        keys = ("c1", "cta", "albedo", "normal01", "depth01")
+        keys += ("history01",) if getattr(model.cfg, "history", False) else ()
+        out = model(*(t(inputs[k]) for k in keys))
     return {k: out[k][0].permute(1, 2, 0).contiguous().numpy()
             for k in OUTPUTS.get(model.cfg.variant, DEFAULT_OUTPUTS)}
 
@@ -90,12 +97,14 @@ def main(argv=None):
     args = ap.parse_args(argv)
     os.makedirs(args.out, exist_ok=True)
     inputs = make_inputs()
-    for variant in ("full", "fusion", "large", "quarter"):
+    for variant in ("full", "fusion", "large", "quarter", "history"):
         model = make_model(variant)
         save_model(os.path.join(args.out, f"weights_{variant}.afnw"), model)
         outputs = run(model, inputs)
+        # history01 only in the case of the model that reads it (the others stay as committed).
+        case_inputs = {k: v for k, v in inputs.items() if k != "history01" or variant == "history"}
         with open(os.path.join(args.out, f"case_{variant}.afnw"), "wb") as f:
-            f.write(dumps({**inputs, **outputs},
+            f.write(dumps({**case_inputs, **outputs},
                           {"width": WIDTH, "height": HEIGHT, "variant": variant,
                            "torch": torch.__version__}))
         print(f"{variant}: o range [{outputs['o'].min():.4f}, {outputs['o'].max():.4f}]")

@@ -43,6 +43,12 @@ Chosen here (the paper leaves it open; see training/README.md and shared/referen
   about 5 %) while the kernels and beta both get useful gradients. (Uniform kernels with beta at
   sigmoid(-4) do not train: beta only falls, the blur it would bring being harmful before the
   kernels learn edges.)
+* ``history`` (optional, not in the paper's graph): a 14th input channel ``history01`` = 1 / the
+  frames the TA input holds at each pixel (1 where the accumulation was reset: disocclusion, a
+  lighting change the history trust cut, the first frame; lib/core/methods/afn/network_inputs.h),
+  appended to x, so ``enc1`` and ``headTA`` take one more input. The network can then tell a
+  converged TA input from a one-frame one instead of guessing from its noise. A model grown from
+  one without it (``widen.grow_history``) starts with zero weights there: the same output.
 * ``large``: AFN large, the paper's high-spp architecture (three scales of 5x5 kernels, no TA
   input), a different graph in model_large.py; :func:`make_model` builds either.
 
@@ -62,7 +68,7 @@ from .shifted_filter import shifted_filter
 
 KERNEL_SIZE = 7
 KERNEL_TAPS = KERNEL_SIZE * KERNEL_SIZE
-INPUT_CHANNELS = 13            # T(1spp) 3, T(TA) 3, albedo 3, normal01 3, depth01 1
+INPUT_CHANNELS = 13            # T(1spp) 3, T(TA) 3, albedo 3, normal01 3, depth01 1 (+ history01)
 REFINE_INPUT_CHANNELS = 10     # T(i) 3, albedo 3, normal01 3, depth01 1
 PAD_MULTIPLE = 8               # three 2x pooling levels
 QUARTER_CENTRE_LOGIT = 6.0     # the quarter scale's initial centre-tap logit (docstring)
@@ -80,18 +86,25 @@ class AFNConfig:
     inputs: str = "albedo,normal,depth,temporal"        # input set trained for (input_sets.py)
     spp: int = 1        # samples per pixel of the training inputs: the C++ core picks by it
     quarter: bool = False   # the quarter-resolution scale (module docstring)
+    history: bool = False   # the history01 input channel (module docstring)
 
     def to_dict(self):
         return {"variant": self.variant, "enc": list(self.enc), "dec": list(self.dec),
                 "refine": self.refine, "inputs": self.inputs, "spp": self.spp,
-                "quarter": self.quarter}
+                "quarter": self.quarter, "history": self.history}
 
     @staticmethod
     def from_dict(d):
         return AFNConfig(variant=d.get("variant", "full"), enc=tuple(d.get("enc", (16, 32, 64))),
                          dec=tuple(d.get("dec", (32, 24))), refine=int(d.get("refine", 16)),
                          inputs=d.get("inputs", "albedo,normal,depth,temporal"),
-                         spp=int(d.get("spp", 1)), quarter=bool(d.get("quarter", False)))
+                         spp=int(d.get("spp", 1)), quarter=bool(d.get("quarter", False)),
+                         history=bool(d.get("history", False)))
+
+
+def input_channels(cfg: AFNConfig) -> int:
+    """Channels of the network input x: 13, or 14 with the history input."""
+    return INPUT_CHANNELS + (1 if cfg.history else 0)
 
 
 def down2(x: torch.Tensor) -> torch.Tensor:
@@ -214,9 +227,13 @@ class AFN(nn.Module):
                              f"{', '.join(VARIANTS[:-1])}; 'large' is built by make_model)")
         self.cfg = cfg
         d2, d1 = cfg.dec
-        add_unet(self, INPUT_CHANNELS, cfg)
+        if cfg.history and cfg.variant not in ("full", "fusion"):
+            raise ValueError(f"the history input needs variant full or fusion, not "
+                             f"'{cfg.variant}'")
+        cin = input_channels(cfg)
+        add_unet(self, cin, cfg)
         self.head1 = nn.Conv2d(d1, KERNEL_TAPS, 1)
-        self.headTA = nn.Conv2d(d1 + INPUT_CHANNELS, KERNEL_TAPS + 1, 1)
+        self.headTA = nn.Conv2d(d1 + cin, KERNEL_TAPS + 1, 1)
         if cfg.quarter and cfg.variant not in ("full", "fusion"):
             raise ValueError(f"the quarter-resolution scale needs variant full or fusion, not "
                              f"'{cfg.variant}'")
@@ -232,7 +249,7 @@ class AFN(nn.Module):
             self.ref2 = conv3(cfg.refine, cfg.refine)
             self.ref3 = conv3(cfg.refine, 3)
 
-    def forward(self, c1, cta, albedo, normal01, depth01):
+    def forward(self, c1, cta, albedo, normal01, depth01, history01=None):
         """Denoise one batch.
 
         Args:
@@ -241,6 +258,8 @@ class AFN(nn.Module):
             albedo: (B, 3, H, W) in [0, 1].
             normal01: (B, 3, H, W) shading normal scaled to [0, 1].
             depth01: (B, 1, H, W) depth scaled to [0, 1] per frame.
+            history01: (B, 1, H, W) 1 / frames in the TA input, in [1/255, 1]; required by a
+                model with ``cfg.history``, ignored by others.
 
         Returns:
             dict with ``o`` (B, 3, H, W) demodulated output and the intermediates (padded size):
@@ -255,6 +274,10 @@ class AFN(nn.Module):
             pad_to_multiple(t) for t in (c1, cta, albedo, normal01, depth01))
         feats = torch.cat([albedo, normal01, depth01], 1)
         x = torch.cat([tonemap(c1), tonemap(cta), feats], 1)          # (B, 13, H, W)
+        if self.cfg.history:
+            if history01 is None:
+                raise ValueError("this model takes the history input: pass history01")
+            x = torch.cat([x, pad_to_multiple(history01)], 1)         # (B, 14, H, W)
         d2, d1 = run_unet(self, x)                                    # 1/4, 1/2
         k_1spp = torch.softmax(self.head1(d1), 1)                     # (B, 49, H/2, W/2)
         full = self.headTA(torch.cat([up2(d1), x], 1))                # (B, 50, H, W)
@@ -298,8 +321,9 @@ def cost_per_pixel(cfg: AFNConfig = None) -> dict:
         from . import model_large
         return model_large.cost_per_pixel(cfg)
     d2, d1 = cfg.dec
-    kp = (unet_flop(INPUT_CHANNELS, cfg) + conv_flop(d1, KERNEL_TAPS, 1, 4)
-          + conv_flop(d1 + INPUT_CHANNELS, KERNEL_TAPS + 1, 1, 1))
+    cin = input_channels(cfg)
+    kp = (unet_flop(cin, cfg) + conv_flop(d1, KERNEL_TAPS, 1, 4)
+          + conv_flop(d1 + cin, KERNEL_TAPS + 1, 1, 1))
     filt = (KERNEL_TAPS * (2 * 3 + 3)) * (1 + 0.25) + 12
     if cfg.quarter:     # head4 and one 7x7 filter at 1/4, pooling and the bilinear upsampling
         kp += conv_flop(d2, KERNEL_TAPS + 1, 1, 16)

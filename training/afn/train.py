@@ -28,8 +28,8 @@ import torch
 
 from . import color, fast_alloc, input_sets
 from .afntool import AfntoolError
-from .dataset import (LAYOUT, CropSampler, SceneError, evaluation_scenes, find_scenes, load_scene,
-                      to_tensors)
+from .dataset import (KEYS, LAYOUT, CropSampler, SceneError, evaluation_scenes, find_scenes,
+                      load_scene, to_tensors)
 from .generated import expand
 from .loss import smape, temporal_gradient
 from .model import VARIANTS, AFNConfig, make_model
@@ -50,6 +50,10 @@ def parse_args(argv=None):
     ap.add_argument("--enc", default="16,32,64", help="encoder widths e1,e2,e3")
     ap.add_argument("--dec", default="32,24", help="decoder widths d2,d1")
     ap.add_argument("--refine", type=int, default=16, help="refinement width")
+    ap.add_argument("--history", action="store_true",
+                    help="add the history input (model.py: 1 / the frames the TA input holds, a "
+                         "14th input channel; grow a trained model with afn.widen --history and "
+                         "pass it as --init)")
     ap.add_argument("--quarter", action="store_true", help="add the quarter-resolution scale "
                     "(model.py; full and fusion only); with --init from a model without it, the "
                     "new head starts almost neutral")
@@ -113,7 +117,9 @@ def git_revision():
 
 
 def forward(model, batch):
-    out = model(batch["c1"], batch["cta"], batch["albedo"], batch["normal01"], batch["depth01"])
+    extra = (batch["history01"],) if getattr(model.cfg, "history", False) else ()
+    out = model(batch["c1"], batch["cta"], batch["albedo"], batch["normal01"], batch["depth01"],
+                *extra)
     return color.remodulate(out["o"], batch["albedo"])
 
 
@@ -221,7 +227,9 @@ def cached_scene(args, path, name, max_frames):
     e.g. the models for several input sets trained from the same data."""
     if not args.cache:
         return load_scene(path, max_frames=max_frames, aov=args.aov)
-    key = hashlib.sha1(repr((sorted(args.aov), max_frames)).encode()).hexdigest()[:10]
+    # The key names the features' layout (dataset.KEYS) too: a cache of another layout is not
+    # read as this one.
+    key = hashlib.sha1(repr((sorted(args.aov), max_frames, KEYS)).encode()).hexdigest()[:10]
     file = os.path.join(args.cache, f"{name.replace('/', '__')}-{key}.npz")
     if os.path.exists(file):
         with np.load(file) as z:
@@ -241,7 +249,7 @@ def model_config(args):
     spp = min(int(v) for v in args.spp.split(",") if v.strip()) if args.spp.strip() else 1
     return AFNConfig(variant=args.variant, enc=tuple(int(v) for v in args.enc.split(",")),
                      dec=tuple(int(v) for v in args.dec.split(",")), refine=args.refine,
-                     inputs=args.inputs, spp=spp, quarter=args.quarter)
+                     inputs=args.inputs, spp=spp, quarter=args.quarter, history=args.history)
 
 
 class RunFolder:

@@ -111,6 +111,8 @@ def save_model(path, model) -> None:
         meta["spp"] = cfg.spp
     if getattr(cfg, "quarter", False):   # absent = the paper's two scales
         meta["quarter"] = 1
+    if getattr(cfg, "history", False):   # absent = the 13 inputs of every older archive
+        meta["history"] = 1
     with open(path, "wb") as f:
         f.write(dumps(model.state_dict(), meta))
 
@@ -127,7 +129,8 @@ def load_model(path, device="cpu"):
                     dec=tuple(int(v) for v in meta.get("dec", "32,24").split(",")),
                     refine=int(meta.get("refine", 16)),
                     inputs=meta.get("inputs", "albedo,normal,depth,temporal"),
-                    spp=int(meta.get("spp", 1)), quarter=meta.get("quarter", "0") == "1")
+                    spp=int(meta.get("spp", 1)), quarter=meta.get("quarter", "0") == "1",
+                    history=meta.get("history", "0") == "1")
     model = make_model(cfg)
     model.load_state_dict({k: torch.from_numpy(v) for k, v in tensors.items()})
     return model.to(device).eval()

@@ -15,15 +15,19 @@ new units' activation times the output's gradient) and the new units start to ma
 zero-initialised variant of function-preserving growth (Net2Net, Chen, Goodfellow & Shlens 2016,
 splits duplicated units instead; duplicates need noise to break their symmetry).
 
-Only the ``full``/``fusion``/``1spp``/``ta`` variants (model.py) widen; the network's input and
-output channels (13 inputs, 49 kernel taps, the fusion weight, RGB) never change.
+Only the ``full``/``fusion``/``1spp``/``ta`` variants (model.py) widen; the network's output
+channels (49 kernel taps, the fusion weight, RGB) never change, and its inputs grow only by the
+history input (``--history``: the 14th input channel of model.py, its weights zero, so the grown
+model computes what the old one did whatever history01 holds):
+
+    /usr/bin/python3 -m afn.widen ../weights/afn.afnw --history -o results/history/init.afnw
 """
 
 import argparse
 
 import torch
 
-from .model import INPUT_CHANNELS, KERNEL_TAPS, REFINE_INPUT_CHANNELS, AFN, AFNConfig
+from .model import KERNEL_TAPS, REFINE_INPUT_CHANNELS, AFN, AFNConfig, input_channels
 from .weights import load_model, save_model
 
 
@@ -33,23 +37,29 @@ def _segments(cfg):
     c1, c2, c3 = cfg.enc
     d2, d1 = cfg.dec
     r = cfg.refine
-    return {"enc1": ([INPUT_CHANNELS], c1), "enc2": ([c1], c2), "enc3": ([c2], c3),
+    x = input_channels(cfg)
+    return {"enc1": ([x], c1), "enc2": ([c1], c2), "enc3": ([c2], c3),
             "dec2": ([c3, c2], d2), "dec1": ([d2, c1], d1), "head1": ([d1], KERNEL_TAPS),
-            "headTA": ([d1, INPUT_CHANNELS], KERNEL_TAPS + 1),
+            "headTA": ([d1, x], KERNEL_TAPS + 1),
             "ref1": ([REFINE_INPUT_CHANNELS], r), "ref2": ([r], r), "ref3": ([r], 3),
             "head4": ([d2], KERNEL_TAPS + 1)}
 
 
-def widen(model, enc=None, dec=None, refine=None, seed=0):
-    """A wider copy of `model` (model.AFN) with the same output; widths not given stay.
+def widen(model, enc=None, dec=None, refine=None, seed=0, history=None):
+    """A wider copy of `model` (model.AFN) with the same output; widths not given stay, and
+    ``history=True`` adds the history input (None: as the model).
 
     Raises:
-        ValueError: a width smaller than the model's (only growth preserves the function).
+        ValueError: a width smaller than the model's, or the history input taken away (only
+            growth preserves the function).
     """
     old = model.cfg
+    history = old.history if history is None else bool(history)
+    if old.history and not history:
+        raise ValueError("the model has the history input: only growth keeps what it computes")
     cfg = AFNConfig(variant=old.variant, enc=tuple(enc or old.enc), dec=tuple(dec or old.dec),
                     refine=int(refine or old.refine), inputs=old.inputs, spp=old.spp,
-                    quarter=old.quarter)
+                    quarter=old.quarter, history=history)
     for name, a, b in (("enc", old.enc, cfg.enc), ("dec", old.dec, cfg.dec),
                        ("refine", (old.refine,), (cfg.refine,))):
         if len(a) != len(b) or any(y < x for x, y in zip(a, b)):
@@ -89,12 +99,15 @@ def main(argv=None):
     ap.add_argument("--dec", default="", help="new decoder widths d2,d1 (default: unchanged)")
     ap.add_argument("--refine", type=int, default=0, help="new refinement width (default: unchanged)")
     ap.add_argument("--seed", type=int, default=0, help="seed of the added units' initialisation")
+    ap.add_argument("--history", action="store_true",
+                    help="add the history input (model.py; zero weights: the same output)")
     args = ap.parse_args(argv)
     model = load_model(args.weights)
     if not isinstance(model, AFN):
         raise SystemExit(f"afn.widen: {args.weights} is not an AFN model (AFN large does not widen)")
     try:
-        wide = widen(model, _widths(args.enc), _widths(args.dec), args.refine or None, args.seed)
+        wide = widen(model, _widths(args.enc), _widths(args.dec), args.refine or None, args.seed,
+                     history=True if args.history else None)
     except ValueError as e:
         raise SystemExit(f"afn.widen: {e}")
     save_model(args.out, wide)

@@ -35,6 +35,9 @@ def test_load_scene_prepares_inputs(scene):
     assert scene["depth01"].min() == 0 and scene["depth01"].max() == 1
     assert np.array_equal(scene["cta"][0], scene["c1"][0])    # first frame: no history
     assert not np.array_equal(scene["cta"][1], scene["c1"][1])
+    # history01 = 1 / frames accumulated: 1 on the first frame, 1/2 where frame 1 kept its history
+    assert np.all(scene["history01"][0] == 1.0)
+    assert 0.5 < np.mean(scene["history01"][1] == 0.5) < 1.0   # disocclusions and the sky reset
 
 
 def _passes():
@@ -89,6 +92,23 @@ def _tiny_run(out):
     return ["--data", SEQUENCE, "--out", out, "--steps", "1", "--batch", "2", "--crop", "32",
             "--max-frames", "2", "--enc", "4,4,4", "--dec", "4,4", "--refine", "4",
             "--device", "cpu"]
+
+
+def test_history_input_trains_exports_and_runs_in_the_core(tmp_path):
+    """A model with the history input trains on the features' history01, exports with
+    history=1, and the C++ core runs it (afntool --weights) on the example."""
+    if not os.path.exists(os.path.join(SEQUENCE, "frame.0000.exr")):
+        pytest.skip("examples/sequence not present")
+    out = str(tmp_path / "run")
+    train.main(_tiny_run(out) + ["--epochs", "1", "--history"])
+    export.main([out, "-o", str(tmp_path / "h.afnw")])
+    model = load_model(str(tmp_path / "h.afnw"))
+    assert model.cfg.history and model.enc1.weight.shape[1] == 14
+    from afn import afntool
+    afntool.run(["-q", "--frames", "0-1", os.path.join(SEQUENCE, "frame.####.exr"),
+                 "--denoise:method=afn:weights=" + str(tmp_path / "h.afnw"),
+                 "-o", str(tmp_path / "o.####.exr")])
+    assert os.path.exists(str(tmp_path / "o.0001.exr"))
 
 
 def test_train_resume_and_export(tmp_path):

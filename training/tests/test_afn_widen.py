@@ -53,3 +53,34 @@ def test_narrowing_is_refused_and_cli_round_trip(tmp_path):
         assert torch.allclose(narrow(*x)["o"], wide(*x)["o"], atol=1e-5)
     with pytest.raises(SystemExit, match="narrower"):
         widen.main([src, "--dec", "2,2", "-o", dst])
+
+
+def test_growing_the_history_input_keeps_the_output_and_the_input_then_matters(tmp_path):
+    """widen --history: the 14th input's weights are zero, so any history01 gives the old output;
+    the grown model is saved and read back with the flag, and after a training step the input
+    changes the output."""
+    torch.manual_seed(0)
+    old = AFN(AFNConfig(enc=(4, 6, 8), dec=(6, 5), refine=4))
+    for p in old.parameters():
+        p.data.normal_(0, 0.3)
+    src, dst = str(tmp_path / "old.afnw"), str(tmp_path / "grown.afnw")
+    save_model(src, old)
+    widen.main([src, "--history", "-o", dst])
+    grown = load_model(dst)
+    assert grown.cfg.history and grown.enc1.weight.shape[1] == 14
+    assert grown.headTA.weight.shape[1] == 5 + 14
+    x = random_inputs(24, 40, seed=1)
+    h_a = torch.rand(x[0].shape[0], 1, 24, 40)
+    with torch.no_grad():
+        ref = old(*x)["o"]
+        assert torch.allclose(grown(*x, h_a)["o"], ref, atol=1e-5)
+        assert torch.allclose(grown(*x, torch.ones_like(h_a))["o"], ref, atol=1e-5)
+    with pytest.raises(ValueError, match="history01"):
+        grown(*x)
+    with pytest.raises(ValueError, match="only growth"):
+        widen.widen(grown, history=False)
+    opt = torch.optim.Adam(grown.parameters(), lr=1e-2)
+    (grown(*x, h_a)["o"] * torch.randn_like(ref)).mean().backward()
+    opt.step()
+    with torch.no_grad():
+        assert not torch.allclose(grown(*x, h_a)["o"], grown(*x, torch.ones_like(h_a))["o"])

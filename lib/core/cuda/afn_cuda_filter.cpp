@@ -43,6 +43,10 @@ void AfnCudaFilter::configure()
         throw Exception(AFN_ERROR_UNSUPPORTED,
             "afn on a CUDA device has no quarter-resolution scale yet: weights with quarter=1 "
             "run on the CPU device (afntool: --device cpu)");
+    if (m_net.hasHistoryInput()) // no 14-channel input on the GPU yet
+        throw Exception(AFN_ERROR_UNSUPPORTED,
+            "afn on a CUDA device has no history input yet: weights with history=1 run on the "
+            "CPU device (afntool: --device cpu)");
     // No aux prefilter on the GPU yet (stages/aux_prefilter.h): aux=auto runs as clean here.
     if (auxBinding().read(params()).aux == AuxSettings::Mode::Noisy)
         throw Exception(AFN_ERROR_UNSUPPORTED,

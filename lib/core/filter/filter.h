@@ -162,6 +162,11 @@ protected:
     bool outputBound() const;
     /// True when the caller bound at least one feature output.
     bool anyFeatureBound() const;
+    /// True when the caller bound the feature output `name`.
+    bool featureBound(const std::string& name) const
+    {
+        return m_images.count(AFN_IMAGE_FEATURE_PREFIX + name) != 0;
+    }
     /// True when the caller bound the image `name` (AFN_IMAGE_*), e.g. to choose a path at commit.
     bool imageBound(const std::string& name) const { return m_images.count(name) != 0; }
     /// True when the caller set a camera (AFN_ARRAY_VIEW_PROJECTION) for the next frame.

@@ -358,13 +358,15 @@ TEST(ApiFeatures, DescribedPerType)
     EXPECT_EQ(afnGetFilterTypeNumFeatures("svgf"), 1); // every method with a history: its trust
     EXPECT_EQ(afnGetFilterTypeNumFeatures("no-such-method"), -1);
     const std::vector<AFNFeatureInfo> f = afn::filterTypeFeatures("afn");
-    ASSERT_EQ(f.size(), 6u);
+    ASSERT_EQ(f.size(), 7u);
     EXPECT_STREQ(f[0].name, "irradiance");
     EXPECT_EQ(f[4].channels, 1);
-    EXPECT_STREQ(f[5].name, "historyTrust");
+    EXPECT_STREQ(f[5].name, "history01");
     EXPECT_EQ(f[5].channels, 1);
+    EXPECT_STREQ(f[6].name, "historyTrust");
+    EXPECT_EQ(f[6].channels, 1);
     AFNFeatureInfo info {};
-    EXPECT_FALSE(afnGetFilterTypeFeature("afn", 6, &info));
+    EXPECT_FALSE(afnGetFilterTypeFeature("afn", 7, &info));
 }
 
 TEST_F(ApiTest, FeatureOutputsAreTheNetworkInputs)

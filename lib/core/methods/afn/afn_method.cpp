@@ -244,12 +244,18 @@ private:
             use = m_model->inputs;
         }
         m_path = outputBound() ? describeChoice(available, *m_model) : describePath(available, use);
-        m_inputs.prepare(in, use, irradiance(), accumulator().color());
+        // history01 only where something reads it (4 bytes per pixel otherwise saved).
+        const bool history
+            = !outputBound() || featureBound("history01") || m_model->net.hasHistoryInput();
+        m_inputs.prepare(in, use, irradiance(), accumulator().color(),
+            history ? &accumulator().historyLength() : nullptr);
         writeFeature("irradiance", m_inputs.color1());
         writeFeature("accumulated", m_inputs.colorTa());
         writeFeature("albedo", m_inputs.albedo());
         writeFeature("normal01", m_inputs.normal01());
         writeFeature("depth01", m_inputs.depth01());
+        if (!m_inputs.history01().empty())
+            writeFeature("history01", m_inputs.history01());
         if (!outputBound())
             return false; // only the network's inputs were asked for
         // Every model runs through the same quality tier (quality_tiers.h) and work skipping
@@ -364,6 +370,10 @@ FilterType filterType()
         { "normal01", 3,
             "prefiltered shading normal * 0.5 + 0.5, [0, 1] (0.5 without a normal input)" },
         { "depth01", 1, "prefiltered per-frame min-max depth, [0, 1] (0 without a depth input)" },
+        { "history01", 1,
+            "1 / the frames the accumulated input holds (history length after the history "
+            "trust), [1/255, 1]; 1 without motion or position; the 14th input of models "
+            "trained with it" },
     };
 #ifdef AFN_HAS_CUDA
     t.devices = { AFN_DEVICE_TYPE_CPU, AFN_DEVICE_TYPE_CUDA };

@@ -23,11 +23,11 @@ constexpr int kKernelTaps = kKernelSize * kKernelSize;
 /// Inputs of the fused pass; every full-resolution image has the same even size.
 struct FusionInputs {
     const Image* d1 = nullptr; ///< half-res decoder features
-    const Image* x = nullptr; ///< full-res network input (13 ch)
+    const Image* x = nullptr; ///< full-res network input (13 or 14 ch)
     const Image* colorTa = nullptr; ///< full-res TA colour, demodulated HDR (3 ch)
     const Image* color1Half = nullptr; ///< D(1-spp colour), half res (3 ch)
     const nn::Conv* head1 = nullptr; ///< 1x1, d1 -> 49
-    const nn::Conv* headTa = nullptr; ///< 1x1, d1 + 13 -> 50
+    const nn::Conv* headTa = nullptr; ///< 1x1, d1 + x -> 50
 };
 
 /// Outputs: fused image i, d_TA, alpha (full res), d_1spp (half res); all but `fused` may be null

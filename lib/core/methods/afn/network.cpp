@@ -15,7 +15,6 @@ namespace afn::afnet {
 
 namespace {
 
-constexpr int kInputChannels = 13; // T(1spp) 3, T(TA) 3, albedo 3, normal01 3, depth01 1
 constexpr int kRefineChannels = 10; // T(i) 3, albedo 3, normal01 3, depth01 1
 } // namespace
 
@@ -54,14 +53,23 @@ void Network::load(const nn::WeightsArchive& a)
         m_loaded = true;
         return;
     }
+    const std::string history = a.meta("history", "0");
+    if (history != "0" && history != "1")
+        throwInvalidArgument("invalid or corrupted weights (" + a.source() + "): history='"
+            + history + "' (0 or 1)");
+    m_history = history == "1";
+    if (m_history && m_variant != Variant::Full && m_variant != Variant::Fusion)
+        throwInvalidArgument("invalid or corrupted weights (" + a.source()
+            + "): the history input needs variant full or fusion");
+    const int inputs = inputChannels();
     // Widths follow from the tensor shapes; each layer checks its input against its producer.
-    m_enc1.load(a, "enc1", kInputChannels);
+    m_enc1.load(a, "enc1", inputs);
     m_enc2.load(a, "enc2", m_enc1.outChannels());
     m_enc3.load(a, "enc3", m_enc2.outChannels());
     m_dec2.load(a, "dec2", m_enc3.outChannels() + m_enc2.outChannels());
     m_dec1.load(a, "dec1", m_dec2.outChannels() + m_enc1.outChannels());
     m_head1.load(a, "head1", m_dec1.outChannels(), kKernelTaps);
-    m_headTa.load(a, "headTA", m_dec1.outChannels() + kInputChannels, kKernelTaps + 1);
+    m_headTa.load(a, "headTA", m_dec1.outChannels() + inputs, kKernelTaps + 1);
     for (const nn::Conv* c : { &m_enc1, &m_enc2, &m_enc3, &m_dec2, &m_dec1 })
         if (c->kernelSize() != 3)
             throwInvalidArgument("invalid or corrupted weights (" + a.source()
@@ -130,9 +138,10 @@ Inputs Network::checkInputs(const Inputs& given)
     if (!in.color1)
         throwInvalidArgument("AFN: input 0 missing or of the wrong shape");
     const int w = in.color1->width(), h = in.color1->height();
-    const Image* all[] = { in.color1, in.colorTa, in.albedo, in.normal01, in.depth01 };
-    const int chans[] = { 3, 3, 3, 3, 1 };
-    for (int k = 0; k < 5; ++k)
+    const Image* all[]
+        = { in.color1, in.colorTa, in.albedo, in.normal01, in.depth01, in.history01 };
+    const int chans[] = { 3, 3, 3, 3, 1, 1 };
+    for (int k = 0; k < (m_history ? 6 : 5); ++k)
         if (!all[k] || all[k]->width() != w || all[k]->height() != h
             || all[k]->channels() != chans[k])
             throwInvalidArgument(
@@ -170,6 +179,8 @@ void Network::fillInput(
                 cta[c] = b[c];
             }
             o[12] = in.depth01->at(sx, sy)[0];
+            if (m_history)
+                o[13] = in.history01->at(sx, sy)[0];
         }
     }
 }
@@ -180,7 +191,7 @@ void Network::prepare(const Inputs& given)
     if (m_variant == Variant::Large)
         throwInvalidOperation("AFN large runs whole (run, runWholeFrame), not by stages");
     const int wp = paddedSize(m_width), hp = paddedSize(m_height);
-    m_x.resize(wp, hp, kInputChannels);
+    m_x.resize(wp, hp, inputChannels());
     m_colorTa.resize(wp, hp, 3);
     m_color1.resize(wp, hp, 3);
     parallelRows(hp, [&](int y0, int y1) { fillInput(in, y0, y1, 0, m_x, m_color1, m_colorTa); });

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: Apache-2.0
 // The AFN inference graph (training/afn/model.py is the definition; same tensor names):
-//   x = [T(r_1spp), T(r_TA), albedo, normal01, depth01]            13 ch, full res (padded)
+//   x = [T(r_1spp), T(r_TA), albedo, normal01, depth01(, history01)] 13 (14) ch, full res (padded)
 //   e1 = relu(enc1(D x)), e2 = relu(enc2(D e1)), e3 = relu(enc3(D e2))
 //   d2 = relu(dec2([U e3, e2])), d1 = relu(dec1([U d2, e1]))          half-res-start U-Net
 //   filtering + fusion (methods/afn/fusion.h) -> i
@@ -19,6 +19,10 @@
 // Weights with quarter=1 (full and fusion only) add the quarter-resolution scale to filtering and
 // fusion (quarter_scale.h): run() then computes them through runWholeFrame (no stripes, no work
 // skipping, every row computed).
+// Weights with history=1 (full and fusion only) add a 14th input channel, history01 (Inputs): the
+// network sees how many frames its TA input holds at each pixel, so where the accumulation was
+// reset (disocclusion, a lighting change cut by the history trust, the first frame) it can lean
+// on the 1-spp branch and its spatial filtering (training/afn/model.py).
 // Weights with variant=large hold AFN large, another graph (network_large.h): run() and
 // runWholeFrame() then run it whole-frame, and the stage calls below are refused.
 #pragma once
@@ -45,6 +49,9 @@ struct Inputs {
     const Image* albedo = nullptr; ///< 3 ch, [0, 1]
     const Image* normal01 = nullptr; ///< 3 ch, shading normal * 0.5 + 0.5, [0, 1]
     const Image* depth01 = nullptr; ///< 1 ch, per-frame min-max depth, [0, 1]
+    /// 1 ch, 1 / (frames the TA input holds at the pixel), in [1/255, 1]: 1 where there is no
+    /// history. Read only by weights with history=1 (Network::hasHistoryInput).
+    const Image* history01 = nullptr;
 };
 
 /// Frame sizes are padded to a multiple of this (edge replication).
@@ -62,6 +69,10 @@ public:
     Variant variant() const { return m_variant; }
     /// Whether the weights add the quarter-resolution scale (quarter_scale.h).
     bool hasQuarterScale() const { return m_quarter; }
+    /// Whether the weights take the history input history01 (a 14th input channel).
+    bool hasHistoryInput() const { return m_history; }
+    /// Channels of the network input x: 13, or 14 with the history input.
+    int inputChannels() const { return m_history ? 14 : 13; }
     /// Run the convolutions in `p` from now on (nn::Conv::setPrecision; Fp32 after load): every
     /// layer of kernel prediction and refinement except the 3-output last one. The 7x7 filtering,
     /// fusion and softmax stay fp32. AFN large runs fp32 whatever `p`.
@@ -128,11 +139,11 @@ public:
 
 private:
     struct StripeWorkspace; // network_stripes.cpp
-    /// Rows [y0, y1) of the padded frame into x, color1, colorTa (13, 3, 3 ch), whose row 0 is
-    /// padded row `origin` (edge replication of the W x H inputs, tone map of x's colours).
+    /// Rows [y0, y1) of the padded frame into x, color1, colorTa (13 or 14, 3, 3 ch), whose row 0
+    /// is padded row `origin` (edge replication of the W x H inputs, tone map of x's colours).
     void fillInput(const Inputs& in, int y0, int y1, int origin, Image& x, Image& color1,
         Image& colorTa) const;
-    /// Refined rows [y0, y1) of `fused` (3 ch) with the features of `x` (13 ch, same rows):
+    /// Refined rows [y0, y1) of `fused` (3 ch) with the features of `x` (13-14 ch, same rows):
     /// o row y at dst + (y - y0) * dstRow, width x 3 floats. Rows outside the images read zero.
     void refineRows(
         const Image& fused, const Image& x, int y0, int y1, float* dst, long dstRow) const;
@@ -147,6 +158,7 @@ private:
 
     bool m_loaded = false;
     bool m_quarter = false; ///< hasQuarterScale()
+    bool m_history = false; ///< hasHistoryInput()
     nn::Precision m_precision = nn::Precision::Fp32; ///< precision()
     int m_skippedRows = 0, m_stripes = 0, m_inputRowsReused = 0;
     Variant m_variant = Variant::Full;

@@ -4,6 +4,7 @@
 
 #include "filter/frame.h"
 #include "stages/demodulate.h"
+#include "stages/temporal_accumulation.h"
 
 #include <algorithm>
 
@@ -21,8 +22,8 @@ void undemodulate(const Frame& in, const Image& irradiance, Image& out)
 
 } // namespace
 
-void NetworkInputs::prepare(
-    const Frame& in, const InputSet& use, const Image& irradiance, const Image& accumulated)
+void NetworkInputs::prepare(const Frame& in, const InputSet& use, const Image& irradiance,
+    const Image& accumulated, const Image* historyLength)
 {
     m_use = use;
     m_color1 = &irradiance;
@@ -45,9 +46,26 @@ void NetworkInputs::prepare(
             }
         }
     }
+    if (!historyLength) {
+        m_history01 = Image();
+    } else {
+        makeHistory01(*historyLength, use.temporal, in.width, in.height);
+    }
     static const Image none;
     normalToUnitRange(use.normal ? in.normal : none, in.width, in.height, m_normal01);
     depthToUnitRange(use.depth ? in.depth : none, in.width, in.height, m_depth01);
+}
+
+void NetworkInputs::makeHistory01(const Image& length, bool temporal, int w, int h)
+{
+    m_history01.resize(w, h, 1);
+    const bool lengths
+        = temporal && length.width() == w && length.height() == h && length.channels() == 1;
+    for (std::size_t k = 0; k < m_history01.size(); ++k) {
+        const float n = lengths ? length.data()[k] : 1.0f;
+        // n >= 1 normally; a NaN or a length below 1 counts as no history.
+        m_history01.data()[k] = n > 1.0f ? std::max(1.0f / n, 1.0f / kMaxHistoryLength) : 1.0f;
+    }
 }
 
 void NetworkInputs::radiance(const Frame& in, const Image& result, Image& out) const

@@ -157,12 +157,12 @@ void Network::runStripe(const Inputs& in, int y0, int y1, StripeWorkspace& ws, I
     // Kernel prediction. The input rows this workspace filled for the previous stripe of the same
     // run (the window moved down, same height) are moved, not computed again: the tone map and
     // the input over the halo rows the two windows share (the same values: fillInput is per row).
-    const bool sameShape = ws.x.width() == wp && ws.x.height() == n && ws.x.channels() == 13
-        && ws.color1.sameShape(ws.colorTa) && ws.color1.width() == wp && ws.color1.height() == n
-        && ws.color1.channels() == 3;
+    const bool sameShape = ws.x.width() == wp && ws.x.height() == n
+        && ws.x.channels() == inputChannels() && ws.color1.sameShape(ws.colorTa)
+        && ws.color1.width() == wp && ws.color1.height() == n && ws.color1.channels() == 3;
     const bool reuse = sameShape && ws.filledRun == runId && w0 > ws.filledW0 && w0 < ws.filledW1
         && w1 >= ws.filledW1;
-    ws.x.resize(wp, n, 13);
+    ws.x.resize(wp, n, inputChannels());
     ws.color1.resize(wp, n, 3);
     ws.colorTa.resize(wp, n, 3);
     int fillFrom = w0;

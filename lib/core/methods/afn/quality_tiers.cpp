@@ -84,7 +84,8 @@ void TierRunner::runFast(Network& net, const Inputs& in, Image& out)
 
 void TierRunner::runHigh(Network& net, const Inputs& in, Image& out)
 {
-    const Image* given[5] = { in.color1, in.colorTa, in.albedo, in.normal01, in.depth01 };
+    const Image* given[6]
+        = { in.color1, in.colorTa, in.albedo, in.normal01, in.depth01, in.history01 };
     const int w = in.color1->width(), h = in.color1->height();
     out.resize(w, h, 3);
     out.fill(0.0f);
@@ -92,10 +93,12 @@ void TierRunner::runHigh(Network& net, const Inputs& in, Image& out)
     for (int pass = 0; pass < kPasses; ++pass) {
         const bool fx = (pass & 1) != 0, fy = (pass & 2) != 0;
         Inputs flipped = in;
-        const Image** slots[5] = { &flipped.color1, &flipped.colorTa, &flipped.albedo,
-            &flipped.normal01, &flipped.depth01 };
+        const Image** slots[6] = { &flipped.color1, &flipped.colorTa, &flipped.albedo,
+            &flipped.normal01, &flipped.depth01, &flipped.history01 };
         if (pass > 0)
-            for (int k = 0; k < 5; ++k) {
+            for (int k = 0; k < 6; ++k) {
+                if (!given[k])
+                    continue; // history01 for weights without the history input
                 flipImage(*given[k], fx, fy, m_flipped[k]);
                 *slots[k] = &m_flipped[k];
             }

@@ -44,7 +44,7 @@ private:
     void add(const Network& net); ///< add the last Network::run's stage times and FLOP
 
     TierStageTotals m_totals;
-    Image m_flipped[5], m_pass; // high: flipped inputs, one pass's output
+    Image m_flipped[6], m_pass; // high: flipped inputs (history01 last), one pass's output
 };
 
 /// `dst` = `src` mirrored left-right (flipX) and/or upside down (flipY); any channel count.

@@ -12,6 +12,8 @@
 
 #include <gtest/gtest.h>
 
+#include <limits>
+
 #include <string>
 #include <utility>
 #include <vector>
@@ -201,19 +203,24 @@ TEST(AfnInputSet, UnusedInputsAreHeldNeutral)
     }
     for (std::size_t k = 0; k < f.depth.size(); ++k)
         f.depth.data()[k] = 1.0f + float(k);
-    afn::Image irradiance, accumulated(w, h, 3, 9.0f);
+    afn::Image irradiance, accumulated(w, h, 3, 9.0f), length(w, h, 1, 4.0f);
+    length.data()[1] = 1.0f; // reset there
+    length.data()[2] = 1000.0f; // beyond BMFR's cap
+    length.data()[3] = std::numeric_limits<float>::quiet_NaN();
     afn::demodulate(f, irradiance);
 
     afn::afnet::NetworkInputs colourOnly;
-    colourOnly.prepare(f, {}, irradiance, accumulated);
+    colourOnly.prepare(f, {}, irradiance, accumulated, &length);
     for (std::size_t k = 0; k < f.color.size(); ++k) {
         EXPECT_NEAR(colourOnly.color1().data()[k], f.color.data()[k], 1e-6f) << k;
         EXPECT_EQ(colourOnly.colorTa().data()[k], colourOnly.color1().data()[k]) << "single-frame";
         EXPECT_EQ(colourOnly.albedo().data()[k], 1.0f);
         EXPECT_EQ(colourOnly.normal01().data()[k], 0.5f);
     }
-    for (std::size_t k = 0; k < f.depth.size(); ++k)
+    for (std::size_t k = 0; k < f.depth.size(); ++k) {
         EXPECT_EQ(colourOnly.depth01().data()[k], 0.0f);
+        EXPECT_EQ(colourOnly.history01().data()[k], 1.0f) << "single-frame: no history";
+    }
     afn::Image result(w, h, 3, -2.0f), out;
     result.data()[4] = 3.0f;
     colourOnly.radiance(f, result, out);
@@ -221,7 +228,8 @@ TEST(AfnInputSet, UnusedInputsAreHeldNeutral)
     EXPECT_EQ(out.data()[4], 3.0f) << "not remodulated: the model filtered the colour itself";
 
     afn::afnet::NetworkInputs withAux;
-    withAux.prepare(f, { true, true, false, false }, irradiance, accumulated);
+    withAux.prepare(f, { true, true, false, false }, irradiance, accumulated, nullptr);
+    EXPECT_TRUE(withAux.history01().empty()) << "not asked for: no memory";
     EXPECT_EQ(withAux.color1().data()[4], irradiance.data()[4]);
     EXPECT_EQ(withAux.colorTa().data()[4], irradiance.data()[4]);
     EXPECT_EQ(withAux.albedo().data()[4], f.albedo.data()[4]);
@@ -229,7 +237,12 @@ TEST(AfnInputSet, UnusedInputsAreHeldNeutral)
     EXPECT_EQ(withAux.depth01().data()[1], 0.0f) << "depth present but not used";
 
     afn::afnet::NetworkInputs temporal;
-    temporal.prepare(f, InputSet::full(), irradiance, accumulated);
+    temporal.prepare(f, InputSet::full(), irradiance, accumulated, &length);
     EXPECT_EQ(temporal.colorTa().data()[4], 9.0f);
     EXPECT_GT(temporal.depth01().data()[1], 0.0f);
+    // history01 = 1 / the history length, in [1/255, 1]; NaN counts as no history.
+    EXPECT_EQ(temporal.history01().data()[0], 0.25f);
+    EXPECT_EQ(temporal.history01().data()[1], 1.0f);
+    EXPECT_EQ(temporal.history01().data()[2], 1.0f / 255.0f);
+    EXPECT_EQ(temporal.history01().data()[3], 1.0f);
 }

@@ -58,7 +58,11 @@ void checkVariant(const std::string& variant, afn::afnet::Variant expect)
     const afn::Image alb = afntest::toImage(c.tensor("albedo"));
     const afn::Image nrm = afntest::toImage(c.tensor("normal01"));
     const afn::Image dep = afntest::toImage(c.tensor("depth01"));
-    afn::afnet::Inputs in { &c1, &cta, &alb, &nrm, &dep };
+    afn::Image history;
+    if (c.has("history01"))
+        history = afntest::toImage(c.tensor("history01"));
+    afn::afnet::Inputs in { &c1, &cta, &alb, &nrm, &dep, c.has("history01") ? &history : nullptr };
+    EXPECT_EQ(net.hasHistoryInput(), c.has("history01"));
     afn::Image o, striped;
     net.runWholeFrame(in, o); // keeps the intermediates
     net.run(in, striped);
@@ -89,6 +93,43 @@ TEST(AfnParity, FullModelMatchesPyTorch)
 TEST(AfnParity, FusionModelMatchesPyTorch)
 {
     checkVariant("fusion", afn::afnet::Variant::Fusion);
+}
+
+TEST(AfnParity, HistoryInputModelMatchesPyTorch)
+{
+    // variant full with the 14th input channel history01 (model.py ``history``).
+    checkVariant("history", afn::afnet::Variant::Full);
+}
+
+// The history input is read: other history01 values give another output, and a model with the
+// history input refuses inputs without history01 (a missing input, never a silent default).
+TEST(AfnParity, HistoryInputIsReadAndRequired)
+{
+    const std::string dir = std::string(AFN_TEST_DATA) + "/afn_parity/";
+    const auto c = afntest::loadFile(dir + "case_history.afnw");
+    afn::afnet::Network net;
+    net.load(afntest::loadFile(dir + "weights_history.afnw"));
+    ASSERT_TRUE(net.hasHistoryInput());
+    EXPECT_EQ(net.inputChannels(), 14);
+    const afn::Image c1 = afntest::toImage(c.tensor("c1")), cta = afntest::toImage(c.tensor("cta"));
+    const afn::Image alb = afntest::toImage(c.tensor("albedo"));
+    const afn::Image nrm = afntest::toImage(c.tensor("normal01"));
+    const afn::Image dep = afntest::toImage(c.tensor("depth01"));
+    const afn::Image given = afntest::toImage(c.tensor("history01"));
+    const afn::Image ones(given.width(), given.height(), 1, 1.0f);
+    afn::Image a, b;
+    net.run({ &c1, &cta, &alb, &nrm, &dep, &given }, a);
+    net.run({ &c1, &cta, &alb, &nrm, &dep, &ones }, b);
+    double maxDiff = 0.0;
+    for (std::size_t k = 0; k < a.size(); ++k)
+        maxDiff = std::max(maxDiff, static_cast<double>(std::fabs(a.data()[k] - b.data()[k])));
+    EXPECT_GT(maxDiff, 1e-3);
+    EXPECT_THROW(net.run({ &c1, &cta, &alb, &nrm, &dep, nullptr }, a), afn::Exception);
+    const auto weights = afntest::loadFile(dir + "weights_history.afnw");
+    afn::afnet::Network bad;
+    EXPECT_THROW(bad.load(withMeta(weights, "history", "2")), afn::Exception);
+    EXPECT_THROW(bad.load(withMeta(weights, "history", "0")), afn::Exception); // 14-ch enc1
+    EXPECT_THROW(bad.load(withMeta(weights, "variant", "ta")), afn::Exception);
 }
 
 TEST(AfnParity, QuarterScaleModelMatchesPyTorch)
