@@ -44,24 +44,15 @@ typedef std::int32_t I __attribute__((vector_size(64)));
 
 #define AFN_PF_INLINE inline __attribute__((always_inline))
 
-AFN_PF_INLINE V splat(float v)
-{
-    return V {} + v;
-}
+// No helper takes or returns a vector by value: the clones without AVX-512 would pass 64-byte
+// vectors in another way than the AVX-512 one (Clang refuses such calls), so helpers write through
+// references and the element-wise steps are written out.
+#define AFN_PF_SPLAT(v) (V {} + (v))
+#define AFN_PF_ABS(v) ((v) < 0.0f ? -(v) : (v))
 
-AFN_PF_INLINE V loadV(const float* p)
+AFN_PF_INLINE void loadV(V& out, const float* p)
 {
-    return *reinterpret_cast<const Vu*>(p);
-}
-
-AFN_PF_INLINE V absV(V v)
-{
-    return v < 0.0f ? -v : v;
-}
-
-AFN_PF_INLINE V maxV(V a, V b)
-{
-    return a > b ? a : b;
+    std::memcpy(&out, p, sizeof(V));
 }
 
 /// Below this exponent a tap's weight is 0: e^-40 is 3e-17 of the centre tap's weight, and the
@@ -74,14 +65,15 @@ constexpr float kMinNormalCosine = 0.3f;
 /// e^x for x <= 0, 0 for x < kMinExponent and NaN: 2^(x log2 e) split into an integer power,
 /// built in the exponent bits, and a degree-6 Taylor polynomial of 2^f, f in [0, 1) (relative
 /// error < 2e-5). Per lane of a vector.
-AFN_PF_INLINE V expNonPositiveV(V xIn)
+AFN_PF_INLINE void expNonPositiveV(V& inOut)
 {
+    const V xIn = inOut;
     const auto kept = xIn >= kMinExponent; // false for NaN
-    const V x = kept ? xIn : splat(kMinExponent);
+    const V x = kept ? xIn : AFN_PF_SPLAT(kMinExponent);
     const V t = x * 1.44269504f;
     const I whole = __builtin_convertvector(t, I) + (t < 0.0f); // (t < 0) is -1 where true
     const V f = t - __builtin_convertvector(whole, V);
-    V p = splat(1.540353e-4f);
+    V p = AFN_PF_SPLAT(1.540353e-4f);
     p = p * f + 1.333355e-3f;
     p = p * f + 9.618129e-3f;
     p = p * f + 5.550411e-2f;
@@ -91,19 +83,19 @@ AFN_PF_INLINE V expNonPositiveV(V xIn)
     const I bits = (whole + 127) << 23;
     V scale;
     std::memcpy(&scale, &bits, sizeof(scale));
-    return kept ? p * scale : splat(0.0f);
+    inOut = kept ? p * scale : AFN_PF_SPLAT(0.0f);
 }
 
 /// One plane's 16 values of row `row` at columns x0 + dx .. x0 + dx + 15, each clamped to
 /// [0, w - 1] (taps beyond the border read the border column).
-AFN_PF_INLINE V loadTap(const float* row, int x0, int dx, int w, bool interior)
+AFN_PF_INLINE void loadTap(V& out, const float* row, int x0, int dx, int w, bool interior)
 {
-    if (interior)
-        return loadV(row + x0 + dx);
-    V v;
+    if (interior) {
+        loadV(out, row + x0 + dx);
+        return;
+    }
     for (int k = 0; k < kLanes; ++k)
-        v[k] = row[std::clamp(x0 + k + dx, 0, w - 1)];
-    return v;
+        out[k] = row[std::clamp(x0 + k + dx, 0, w - 1)];
 }
 
 /// The pixel's own guide values (loaded once for its 25 taps).
@@ -113,14 +105,15 @@ struct Centre {
     V invDepth[2]; ///< 1 / (0.02 step ring max(z, 1e-3) + 1e-6) for rings 1 and 2
 };
 
-AFN_PF_INLINE V centrePlane(const std::vector<float>& v, std::size_t i, int n)
+AFN_PF_INLINE void centrePlane(V& out, const std::vector<float>& v, std::size_t i, int n)
 {
-    if (n == kLanes)
-        return loadV(v.data() + i);
-    V r = splat(0.0f);
+    if (n == kLanes) {
+        loadV(out, v.data() + i);
+        return;
+    }
+    out = AFN_PF_SPLAT(0.0f);
     for (int k = 0; k < n; ++k)
-        r[k] = v[i + static_cast<std::size_t>(k)];
-    return r;
+        out[k] = v[i + static_cast<std::size_t>(k)];
 }
 
 /// Output pixels x0 .. x0 + n - 1 (n <= 16) of row y: the 25 weighted taps summed in the order
@@ -130,46 +123,56 @@ AFN_CPU_KERNEL_CLONES void filterRun(const PostFilterColourPlanes& c,
 {
     const std::size_t i0 = static_cast<std::size_t>(y) * w + x0;
     Centre p;
-    const V r = centrePlane(c.r, i0, n), gr = centrePlane(c.g, i0, n), b = centrePlane(c.b, i0, n);
+    V r, gr, b;
+    centrePlane(r, c.r, i0, n), centrePlane(gr, c.g, i0, n), centrePlane(b, c.b, i0, n);
     p.l = 0.2126f * r + 0.7152f * gr + 0.0722f * b;
-    p.a0 = centrePlane(g.a0, i0, n), p.a1 = centrePlane(g.a1, i0, n),
-    p.a2 = centrePlane(g.a2, i0, n);
-    p.n0 = centrePlane(g.n0, i0, n), p.n1 = centrePlane(g.n1, i0, n),
-    p.n2 = centrePlane(g.n2, i0, n);
-    p.nv = centrePlane(g.nv, i0, n);
-    p.ls = centrePlane(g.ls, i0, n);
-    p.z = centrePlane(g.z, i0, n);
-    const V zmax = maxV(p.z, splat(1e-3f));
+    centrePlane(p.a0, g.a0, i0, n), centrePlane(p.a1, g.a1, i0, n), centrePlane(p.a2, g.a2, i0, n);
+    centrePlane(p.n0, g.n0, i0, n), centrePlane(p.n1, g.n1, i0, n), centrePlane(p.n2, g.n2, i0, n);
+    centrePlane(p.nv, g.nv, i0, n);
+    centrePlane(p.ls, g.ls, i0, n);
+    centrePlane(p.z, g.z, i0, n);
+    const V zmax = p.z > 1e-3f ? p.z : AFN_PF_SPLAT(1e-3f);
     for (int ring = 1; ring <= 2; ++ring)
         p.invDepth[ring - 1] = 1.0f
             / (kDepthRelative * static_cast<float>(step) * static_cast<float>(ring) * zmax + 1e-6f);
-    V ar = splat(0.0f), ag = splat(0.0f), ab = splat(0.0f), aw = splat(0.0f);
+    V ar = AFN_PF_SPLAT(0.0f), ag = ar, ab = ar, aw = ar;
     for (int i = -2; i <= 2; ++i) {
         const std::size_t qrow = static_cast<std::size_t>(std::clamp(y + i * step, 0, h - 1)) * w;
         for (int j = -2; j <= 2; ++j) {
             const int dx = j * step;
             const bool interior = n == kLanes && x0 + dx >= 0 && x0 + dx + kLanes <= w;
-            auto tap = [&](const std::vector<float>& v) {
-                return loadTap(v.data() + qrow, x0, dx, w, interior);
-            };
-            const V q0 = tap(c.r), q1 = tap(c.g), q2 = tap(c.b);
+            V q0, q1, q2, t0, t1, t2, tz, tv;
+            loadTap(q0, c.r.data() + qrow, x0, dx, w, interior);
+            loadTap(q1, c.g.data() + qrow, x0, dx, w, interior);
+            loadTap(q2, c.b.data() + qrow, x0, dx, w, interior);
             const V lq = 0.2126f * q0 + 0.7152f * q1 + 0.0722f * q2;
-            V e = absV(p.l - lq) / (p.ls * maxV(p.l + lq, splat(0.0f)) + 1e-3f);
-            e += (absV(p.a0 - tap(g.a0)) + absV(p.a1 - tap(g.a1)) + absV(p.a2 - tap(g.a2)))
-                * kAlbedoScale;
+            const V sum = p.l + lq, diff = p.l - lq;
+            V e = AFN_PF_ABS(diff) / (p.ls * (sum > 0.0f ? sum : AFN_PF_SPLAT(0.0f)) + 1e-3f);
+            loadTap(t0, g.a0.data() + qrow, x0, dx, w, interior);
+            loadTap(t1, g.a1.data() + qrow, x0, dx, w, interior);
+            loadTap(t2, g.a2.data() + qrow, x0, dx, w, interior);
+            t0 = p.a0 - t0, t1 = p.a1 - t1, t2 = p.a2 - t2;
+            e += (AFN_PF_ABS(t0) + AFN_PF_ABS(t1) + AFN_PF_ABS(t2)) * kAlbedoScale;
             const int ring = std::max({ std::abs(i), std::abs(j), 1 });
-            e += absV(p.z - tap(g.z)) * p.invDepth[ring - 1];
-            V d = p.n0 * tap(g.n0) + p.n1 * tap(g.n1) + p.n2 * tap(g.n2);
-            d = d > kMinNormalCosine ? d : splat(0.0f);
+            loadTap(tz, g.z.data() + qrow, x0, dx, w, interior);
+            tz = p.z - tz;
+            e += AFN_PF_ABS(tz) * p.invDepth[ring - 1];
+            loadTap(t0, g.n0.data() + qrow, x0, dx, w, interior);
+            loadTap(t1, g.n1.data() + qrow, x0, dx, w, interior);
+            loadTap(t2, g.n2.data() + qrow, x0, dx, w, interior);
+            V d = p.n0 * t0 + p.n1 * t1 + p.n2 * t2;
+            d = d > kMinNormalCosine ? d : AFN_PF_SPLAT(0.0f);
             d *= d; // ^2
             d *= d; // ^4
             d *= d; // ^8
             d *= d; // ^16
             d *= d; // ^32
             d *= d; // ^64
-            const V both = p.nv * tap(g.nv); // 1 where both normals are valid, else 0
-            const V wt = (kSpline[i + 2] * kSpline[j + 2]) * expNonPositiveV(-e)
-                * (1.0f + both * (d - 1.0f));
+            loadTap(tv, g.nv.data() + qrow, x0, dx, w, interior);
+            const V both = p.nv * tv; // 1 where both normals are valid, else 0
+            V ex = -e;
+            expNonPositiveV(ex);
+            const V wt = (kSpline[i + 2] * kSpline[j + 2]) * ex * (1.0f + both * (d - 1.0f));
             ar += wt * q0;
             ag += wt * q1;
             ab += wt * q2;
