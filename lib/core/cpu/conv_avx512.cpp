@@ -264,13 +264,19 @@ AFN_CPU_AVX512 void rowsFewOutputs(
 
 } // namespace
 
+std::vector<float>& convBandBuffer()
+{
+    thread_local std::vector<float> band;
+    return band;
+}
+
 void convRowsAvx512(const ConvArgs& a, int y0, int y1)
 {
 #ifdef AFN_CPU_HAVE_AVX512
     if (a.wbf16)
         return convRowsAvx512Bf16(a, y0, y1);
     const int c = (a.in + 15) / 16 * 16;
-    thread_local std::vector<float> band;
+    std::vector<float>& band = convBandBuffer();
     fillConvBandAvx512(a, y0, y1, c, band);
     const int w = columnEnd(a) - a.x0; // output columns
     if (a.wt16 && a.outC <= kFewOutputs) {

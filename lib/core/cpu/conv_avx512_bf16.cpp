@@ -115,7 +115,9 @@ AFN_CPU_AVX512_BF16_INLINE void blockHardware(
                     wv[j] = reinterpret_cast<const __m512bh&>(w);
                 }
                 for (int p = 0; p < P; ++p) {
-                    const __m512i xi = _mm512_set1_epi32(s[p * r.c2 + q]);
+                    std::int32_t pair;
+                    std::memcpy(&pair, s + p * r.c2 + q, sizeof(pair));
+                    const __m512i xi = _mm512_set1_epi32(pair);
                     const __m512bh x = reinterpret_cast<const __m512bh&>(xi);
                     for (int j = 0; j < NV; ++j)
                         acc[p][j] = _mm512_dpbf16_ps(acc[p][j], x, wv[j]);
@@ -149,7 +151,8 @@ AFN_CPU_AVX512_INLINE void blockEmulated(
                     wEven[j] = _mm512_castsi512_ps(_mm512_slli_epi32(w, 16));
                 }
                 for (int p = 0; p < P; ++p) {
-                    const std::uint32_t v = static_cast<std::uint32_t>(s[p * r.c2 + q]);
+                    std::uint32_t v;
+                    std::memcpy(&v, s + p * r.c2 + q, sizeof(v));
                     const __m512 xOdd
                         = _mm512_castsi512_ps(_mm512_set1_epi32(static_cast<int>(v & 0xFFFF0000u)));
                     const __m512 xEven
@@ -218,28 +221,27 @@ void convRowsAvx512Bf16(const ConvArgs& a, int y0, int y1)
 {
 #ifdef AFN_CPU_HAVE_AVX512
     const int c = (a.in + 15) / 16 * 16; // even: channel pairs never straddle two pixels
-    thread_local std::vector<float> band;
-    thread_local std::vector<std::uint16_t> band16;
+    std::vector<float>& band = convBandBuffer();
     fillConvBandAvx512(a, y0, y1, c, band);
     const bool hardware = activeBf16Mode() == Bf16Mode::Hardware;
     const int w = columnEnd(a) - a.x0;
-    // This call's band (fillConvBandAvx512 keeps the buffer of the largest call), whole vectors
-    // of 32 values: the zeroed slack is over 32 floats (c >= 16, 18 pixels).
+    // The band is rounded to bf16 in place, front to back: value k's 2 bytes land at byte 2k,
+    // below the floats not read yet (each step loads its floats before it stores), so no second
+    // buffer is needed. This call's band is `used` values, whole steps of 32: the slack after it
+    // (over 32 floats: c >= 16, 18 pixels) covers the rounding up. The bf16 slack after the
+    // band is then zeroed (those bytes held floats already converted).
+    const std::size_t slack = static_cast<std::size_t>(kConvBandSlackPixels + 2) * c;
     const std::size_t used
         = static_cast<std::size_t>(y1 - y0 + 2 * (a.k / 2)) * (w + 2 * (a.k / 2)) * c;
     const std::size_t n = (used + 31) / 32 * 32;
-    if (band16.size() < used + static_cast<std::size_t>(kConvBandSlackPixels + 2) * c)
-        band16.resize(used + static_cast<std::size_t>(kConvBandSlackPixels + 2) * c + 32);
-    std::fill(band16.begin() + static_cast<std::ptrdiff_t>(n),
-        band16.begin() + static_cast<std::ptrdiff_t>(used)
-            + static_cast<std::ptrdiff_t>(kConvBandSlackPixels + 2) * c,
-        std::uint16_t { 0 });
+    auto* band16 = reinterpret_cast<std::uint16_t*>(band.data());
     if (hardware)
-        toBf16Hardware(band16.data(), band.data(), n);
+        toBf16Hardware(band16, band.data(), n);
     else
-        toBf16Emulated(band16.data(), band.data(), n);
+        toBf16Emulated(band16, band.data(), n);
+    std::memset(band16 + n, 0, sizeof(std::uint16_t) * slack);
     const int pairs = (a.in + 1) / 2;
-    const auto* band32 = reinterpret_cast<const std::int32_t*>(band16.data());
+    const auto* band32 = reinterpret_cast<const std::int32_t*>(band16);
     const auto* w32 = reinterpret_cast<const std::int32_t*>(a.wbf16);
     for (int cb = 0; cb < a.cp16; cb += 64) {
         const int nv = std::min(4, (a.cp16 - cb) / 16);

@@ -61,6 +61,10 @@ void convRowsAvx512Bf16(const ConvArgs& a, int y0, int y1);
 /// image, then (kConvBandSlackPixels + 2) x c zero floats (cpu/conv_avx512.cpp).
 void fillConvBandAvx512(const ConvArgs& a, int y0, int y1, int c, std::vector<float>& band);
 
+/// The calling thread's band buffer, shared by the fp32 and bf16 kernels (each call refills it;
+/// the bf16 kernel rounds it in place): one buffer per thread, the size of the largest band.
+std::vector<float>& convBandBuffer();
+
 /// Most pixels a micro-kernel block reads past a band row's end (the band's zeroed slack).
 constexpr int kConvBandSlackPixels = 16;
 
