@@ -14,6 +14,9 @@ Files (all in the weights-archive format of weights.py, so the C++ reader is exe
                            bias set to 0, so the scale contributes half its delta.
   weights_history.afnw, case_history.afnw   variant full with the history input (model.py
                            ``history``; the case holds history01 too), its weights random.
+  weights_trust.afnw, case_trust.afnw   variant full with the history input and the learned
+                           albedo trust (model.py ``albedo_trust``): headG random (bias 0, so t
+                           spreads over (0, 1)); the case holds t (half res) too.
   weights_large.afnw, case_large.afnw   the same for AFN large (model_large.py): outputs o, i,
                            f1, alpha1 (full res), o2 (1/2), f3 (1/4), padded size.
 (tests/data/afn_parity/ta_case.afnw, a golden case of the core's temporal accumulation, was made
@@ -54,7 +57,8 @@ def make_inputs(seed: int = 1):
             "history01": history01}
 
 
-OUTPUTS = {"large": ("o", "i", "f1", "alpha1", "o2", "f3")}
+OUTPUTS = {"large": ("o", "i", "f1", "alpha1", "o2", "f3"),
+           "trust": ("o", "i", "d_ta", "d_1spp", "alpha", "t")}
 DEFAULT_OUTPUTS = ("o", "i", "d_ta", "d_1spp", "alpha")
 
 
@@ -62,9 +66,10 @@ def make_model(variant: str, seed: int = 0):
     """Random-initialised model; heads scaled x4 so the kernels are far from uniform.
     ``quarter`` is variant full with the quarter scale."""
     torch.manual_seed(seed)
-    quarter, history = variant == "quarter", variant == "history"
+    quarter, trust = variant == "quarter", variant == "trust"
+    history = variant in ("history", "trust")
     cfg = AFNConfig(variant="full" if quarter or history else variant, quarter=quarter,
-                    history=history, **PARITY_CONFIG)
+                    history=history, albedo_trust=trust, **PARITY_CONFIG)
     model = build_model(cfg).eval()
     heads = ("head1", "head2", "head3") if variant == "large" else ("head1", "headTA")
     with torch.no_grad():
@@ -73,6 +78,9 @@ def make_model(variant: str, seed: int = 0):
         if quarter:
             model.head4.weight.normal_(0.0, 0.5)
             model.head4.bias.zero_()
+        if trust:
+            model.headG.weight.normal_(0.0, 0.5)
+            model.headG.bias.zero_()
     return model
 
 
@@ -85,8 +93,9 @@ def run(model, inputs: dict) -> dict:
         keys = ("c1", "cta", "albedo", "normal01", "depth01")
         keys += ("history01",) if getattr(model.cfg, "history", False) else ()
         out = model(*(t(inputs[k]) for k in keys))
-    return {k: out[k][0].permute(1, 2, 0).contiguous().numpy()
-            for k in OUTPUTS.get(model.cfg.variant, DEFAULT_OUTPUTS)}
+    names = OUTPUTS["trust"] if getattr(model.cfg, "albedo_trust", False) else OUTPUTS.get(
+        model.cfg.variant, DEFAULT_OUTPUTS)
+    return {k: out[k][0].permute(1, 2, 0).contiguous().numpy() for k in names}
 
 
 def main(argv=None):
@@ -97,12 +106,13 @@ def main(argv=None):
     args = ap.parse_args(argv)
     os.makedirs(args.out, exist_ok=True)
     inputs = make_inputs()
-    for variant in ("full", "fusion", "large", "quarter", "history"):
+    for variant in ("full", "fusion", "large", "quarter", "history", "trust"):
         model = make_model(variant)
         save_model(os.path.join(args.out, f"weights_{variant}.afnw"), model)
         outputs = run(model, inputs)
         # history01 only in the case of the model that reads it (the others stay as committed).
-        case_inputs = {k: v for k, v in inputs.items() if k != "history01" or variant == "history"}
+        reads_history = variant in ("history", "trust")
+        case_inputs = {k: v for k, v in inputs.items() if k != "history01" or reads_history}
         with open(os.path.join(args.out, f"case_{variant}.afnw"), "wb") as f:
             f.write(dumps({**case_inputs, **outputs},
                           {"width": WIDTH, "height": HEIGHT, "variant": variant,

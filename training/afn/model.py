@@ -49,6 +49,25 @@ Chosen here (the paper leaves it open; see training/README.md and shared/referen
   appended to x, so ``enc1`` and ``headTA`` take one more input. The network can then tell a
   converged TA input from a one-frame one instead of guessing from its noise. A model grown from
   one without it (``widen.grow_history``) starts with zero weights there: the same output.
+* ``albedo_trust`` (optional, not in the paper's graph): the learned albedo trust. The paper
+  filters the albedo-demodulated colour and remodulates by the albedo, which is right where the
+  albedo is clean and wrong where it is noise (glass, mirrors, metal seen through depth of field or
+  motion blur: the renderer's albedo there is a per-pixel lottery, and dividing by it and
+  multiplying by it again leaves dark and bright specks). Per pixel the network predicts
+  ``t = sigmoid(headG(e1))`` (a 3x3 conv 16->1 on the first encoder level, half resolution,
+  nearest-upsampled), the share of colour-space filtering, and the filtering runs on the colour
+  demodulated by ``a' = a + (1 - a) * t`` instead of the albedo ``a``: ``t = 0`` is the paper's
+  demodulation, ``t = 1`` filters the colour itself with the albedo and normal as guides only (as
+  Open Image Denoise does). Both colour inputs are rescaled by
+  ``s = max(a, eps) / max(a', eps)`` before the filtering (the 1-spp one before its pooling), the
+  refinement runs in the same space, and the output is returned in the albedo-demodulated space
+  (``o / s``) so the remodulation outside is unchanged and gives ``o * max(a', eps)``. Chosen over
+  a second, colour-space filtering of the same kernels blended at the end: one filtering, the
+  blend continuous per channel, and t is known before the filtering (from e1, whose rows every
+  network stripe already computes with a wide halo). The network input x is unchanged (it sees
+  the prefiltered albedo, lib/core/stages/aux_prefilter.h, as before). ``headG`` starts at zero
+  weights and bias ALBEDO_TRUST_BIAS (t = 0.0025), so a model grown from a trained one starts
+  almost where it was.
 * ``large``: AFN large, the paper's high-spp architecture (three scales of 5x5 kernels, no TA
   input), a different graph in model_large.py; :func:`make_model` builds either.
 
@@ -63,7 +82,7 @@ import torch
 import torch.nn.functional as F
 from torch import nn
 
-from .color import tonemap
+from .color import ALBEDO_EPS, tonemap
 from .shifted_filter import shifted_filter
 
 KERNEL_SIZE = 7
@@ -72,6 +91,7 @@ INPUT_CHANNELS = 13            # T(1spp) 3, T(TA) 3, albedo 3, normal01 3, depth
 REFINE_INPUT_CHANNELS = 10     # T(i) 3, albedo 3, normal01 3, depth01 1
 PAD_MULTIPLE = 8               # three 2x pooling levels
 QUARTER_CENTRE_LOGIT = 6.0     # the quarter scale's initial centre-tap logit (docstring)
+ALBEDO_TRUST_BIAS = -6.0       # headG's initial bias: colour-space share t = 0.0025 (docstring)
 VARIANTS = ("full", "fusion", "1spp", "ta", "large")
 
 
@@ -87,11 +107,13 @@ class AFNConfig:
     spp: int = 1        # samples per pixel of the training inputs: the C++ core picks by it
     quarter: bool = False   # the quarter-resolution scale (module docstring)
     history: bool = False   # the history01 input channel (module docstring)
+    albedo_trust: bool = False  # the learned albedo trust, headG (module docstring)
 
     def to_dict(self):
         return {"variant": self.variant, "enc": list(self.enc), "dec": list(self.dec),
                 "refine": self.refine, "inputs": self.inputs, "spp": self.spp,
-                "quarter": self.quarter, "history": self.history}
+                "quarter": self.quarter, "history": self.history,
+                "albedo_trust": self.albedo_trust}
 
     @staticmethod
     def from_dict(d):
@@ -99,7 +121,8 @@ class AFNConfig:
                          dec=tuple(d.get("dec", (32, 24))), refine=int(d.get("refine", 16)),
                          inputs=d.get("inputs", "albedo,normal,depth,temporal"),
                          spp=int(d.get("spp", 1)), quarter=bool(d.get("quarter", False)),
-                         history=bool(d.get("history", False)))
+                         history=bool(d.get("history", False)),
+                         albedo_trust=bool(d.get("albedo_trust", False)))
 
 
 def input_channels(cfg: AFNConfig) -> int:
@@ -158,6 +181,19 @@ def fuse(d_ta: torch.Tensor, d_1spp_half: torch.Tensor, alpha: torch.Tensor) -> 
     return d_ta - alpha * up2(down2(d_ta)) + alpha * up2(d_1spp_half)
 
 
+def albedo_trust_scale(albedo: torch.Tensor, t_half: torch.Tensor) -> torch.Tensor:
+    """The learned albedo trust's rescaling ``s = max(a, eps) / max(a', eps)``,
+    ``a' = a + (1 - a) * U(t)`` (module docstring).
+
+    Args:
+        albedo: (B, 3, H, W) the demodulation albedo a, in [0, 1].
+        t_half: (B, 1, H/2, W/2) colour-space share t in [0, 1].
+    """
+    t = up2(t_half)
+    blended = albedo + (1.0 - albedo) * t
+    return torch.clamp(albedo, min=ALBEDO_EPS) / torch.clamp(blended, min=ALBEDO_EPS)
+
+
 def pad_to_multiple(x: torch.Tensor, m: int = PAD_MULTIPLE) -> torch.Tensor:
     """Replicate-pad (B, C, H, W) at the right and bottom to multiples of m."""
     h, w = x.shape[-2:]
@@ -185,15 +221,16 @@ def add_unet(net: nn.Module, in_channels: int, cfg: AFNConfig) -> None:
     net.dec1 = conv3(d2 + c1, d1)
 
 
-def run_unet(net: nn.Module, x: torch.Tensor):
+def run_unet(net: nn.Module, x: torch.Tensor, with_e1: bool = False):
     """M of :func:`add_unet` on x (B, C, H, W), H and W multiples of 8: the decoder features
-    ``d2`` (1/4 res) and ``d1`` (1/2 res), ReLU applied."""
+    ``d2`` (1/4 res) and ``d1`` (1/2 res), ReLU applied (and the first encoder level ``e1``,
+    1/2 res, with ``with_e1``)."""
     e1 = F.relu(net.enc1(down2(x)))                               # 1/2
     e2 = F.relu(net.enc2(down2(e1)))                              # 1/4
     e3 = F.relu(net.enc3(down2(e2)))                              # 1/8
     d2 = F.relu(net.dec2(torch.cat([up2(e3), e2], 1)))            # 1/4
     d1 = F.relu(net.dec1(torch.cat([up2(d2), e1], 1)))            # 1/2
-    return d2, d1
+    return (d2, d1, e1) if with_e1 else (d2, d1)
 
 
 def conv_flop(cin, cout, k, scale):
@@ -243,6 +280,14 @@ class AFN(nn.Module):
                 self.head4.weight.zero_()
                 self.head4.bias.zero_()
                 self.head4.bias[KERNEL_TAPS // 2] = QUARTER_CENTRE_LOGIT
+        if cfg.albedo_trust and cfg.variant not in ("full", "fusion"):
+            raise ValueError(f"the albedo trust needs variant full or fusion, not "
+                             f"'{cfg.variant}'")
+        if cfg.albedo_trust:
+            self.headG = conv3(cfg.enc[0], 1)
+            with torch.no_grad():               # almost the paper's demodulation (docstring)
+                self.headG.weight.zero_()
+                self.headG.bias.fill_(ALBEDO_TRUST_BIAS)
         self.use_refine = cfg.variant == "full"
         if self.use_refine:
             self.ref1 = conv3(REFINE_INPUT_CHANNELS, cfg.refine)
@@ -263,7 +308,9 @@ class AFN(nn.Module):
 
         Returns:
             dict with ``o`` (B, 3, H, W) demodulated output and the intermediates (padded size):
-            ``i`` fused image, ``d_ta``, ``d_1spp`` (half res), ``alpha``, ``k_ta``, ``k_1spp``.
+                ``i`` fused image, ``d_ta``, ``d_1spp`` (half res), ``alpha``, ``k_ta``, ``k_1spp``
+            (and ``t``, half res, with the albedo trust; ``i`` is then in the a'-demodulated
+            space).
         """
         h, w = c1.shape[-2:]
         if self.cfg.variant == "1spp":
@@ -278,7 +325,12 @@ class AFN(nn.Module):
             if history01 is None:
                 raise ValueError("this model takes the history input: pass history01")
             x = torch.cat([x, pad_to_multiple(history01)], 1)         # (B, 14, H, W)
-        d2, d1 = run_unet(self, x)                                    # 1/4, 1/2
+        d2, d1, e1 = run_unet(self, x, with_e1=True)                  # 1/4, 1/2, 1/2
+        extra = {}
+        if self.cfg.albedo_trust:                                     # module docstring
+            extra["t"] = torch.sigmoid(self.headG(e1))                # (B, 1, H/2, W/2)
+            scale = albedo_trust_scale(albedo, extra["t"])
+            c1, cta = c1 * scale, cta * scale
         k_1spp = torch.softmax(self.head1(d1), 1)                     # (B, 49, H/2, W/2)
         full = self.headTA(torch.cat([up2(d1), x], 1))                # (B, 50, H, W)
         k_ta = torch.softmax(full[:, :KERNEL_TAPS], 1)                # (B, 49, H, W)
@@ -286,11 +338,10 @@ class AFN(nn.Module):
         d_ta = apply_kernels(cta, k_ta)
         d_1spp = apply_kernels(down2(c1), k_1spp)
         i = fuse(d_ta, d_1spp, alpha)
-        extra = {}
         if self.cfg.quarter:
             q = self.head4(d2)                                        # (B, 50, H/4, W/4)
-            extra = {"k_q": torch.softmax(q[:, :KERNEL_TAPS], 1),
-                     "beta": torch.sigmoid(q[:, KERNEL_TAPS:])}
+            extra.update(k_q=torch.softmax(q[:, :KERNEL_TAPS], 1),
+                         beta=torch.sigmoid(q[:, KERNEL_TAPS:]))
             i = fuse_quarter(i, extra["k_q"], extra["beta"])
         o = i
         if self.use_refine:
@@ -298,6 +349,8 @@ class AFN(nn.Module):
             r = F.relu(self.ref1(r))
             r = F.relu(self.ref2(r))
             o = i + self.ref3(r)
+        if self.cfg.albedo_trust:
+            o = o / scale                       # back to the albedo-demodulated space
         return {"o": o[..., :h, :w], "i": i, "d_ta": d_ta, "d_1spp": d_1spp, "alpha": alpha,
                 "k_ta": k_ta, "k_1spp": k_1spp, **extra}
 
@@ -325,6 +378,8 @@ def cost_per_pixel(cfg: AFNConfig = None) -> dict:
     kp = (unet_flop(cin, cfg) + conv_flop(d1, KERNEL_TAPS, 1, 4)
           + conv_flop(d1 + cin, KERNEL_TAPS + 1, 1, 1))
     filt = (KERNEL_TAPS * (2 * 3 + 3)) * (1 + 0.25) + 12
+    if cfg.albedo_trust:    # headG at 1/2 and the rescaling of two colours
+        kp += conv_flop(cfg.enc[0], 1, 3, 4) + 12
     if cfg.quarter:     # head4 and one 7x7 filter at 1/4, pooling and the bilinear upsampling
         kp += conv_flop(d2, KERNEL_TAPS + 1, 1, 16)
         filt += KERNEL_TAPS * (2 * 3 + 3) / 16 + 3 * 8

@@ -54,6 +54,10 @@ def parse_args(argv=None):
                     help="add the history input (model.py: 1 / the frames the TA input holds, a "
                          "14th input channel; grow a trained model with afn.widen --history and "
                          "pass it as --init)")
+    ap.add_argument("--albedo-trust", action="store_true",
+                    help="add the learned albedo trust (model.py: a per-pixel share of "
+                         "colour-space filtering; grow a trained model with afn.widen "
+                         "--albedo-trust and pass it as --init)")
     ap.add_argument("--quarter", action="store_true", help="add the quarter-resolution scale "
                     "(model.py; full and fusion only); with --init from a model without it, the "
                     "new head starts almost neutral")
@@ -249,7 +253,8 @@ def model_config(args):
     spp = min(int(v) for v in args.spp.split(",") if v.strip()) if args.spp.strip() else 1
     return AFNConfig(variant=args.variant, enc=tuple(int(v) for v in args.enc.split(",")),
                      dec=tuple(int(v) for v in args.dec.split(",")), refine=args.refine,
-                     inputs=args.inputs, spp=spp, quarter=args.quarter, history=args.history)
+                     inputs=args.inputs, spp=spp, quarter=args.quarter, history=args.history,
+                     albedo_trust=args.albedo_trust)
 
 
 class RunFolder:

@@ -113,6 +113,8 @@ def save_model(path, model) -> None:
         meta["quarter"] = 1
     if getattr(cfg, "history", False):   # absent = the 13 inputs of every older archive
         meta["history"] = 1
+    if getattr(cfg, "albedo_trust", False):  # absent = the paper's demodulation by the albedo
+        meta["albedoTrust"] = 1
     with open(path, "wb") as f:
         f.write(dumps(model.state_dict(), meta))
 
@@ -130,7 +132,8 @@ def load_model(path, device="cpu"):
                     refine=int(meta.get("refine", 16)),
                     inputs=meta.get("inputs", "albedo,normal,depth,temporal"),
                     spp=int(meta.get("spp", 1)), quarter=meta.get("quarter", "0") == "1",
-                    history=meta.get("history", "0") == "1")
+                    history=meta.get("history", "0") == "1",
+                    albedo_trust=meta.get("albedoTrust", "0") == "1")
     model = make_model(cfg)
     model.load_state_dict({k: torch.from_numpy(v) for k, v in tensors.items()})
     return model.to(device).eval()

@@ -38,16 +38,18 @@ def _segments(cfg):
     d2, d1 = cfg.dec
     r = cfg.refine
     x = input_channels(cfg)
-    return {"enc1": ([x], c1), "enc2": ([c1], c2), "enc3": ([c2], c3),
+    trust = {"headG": ([c1], 1)} if cfg.albedo_trust else {}
+    return {**trust, "enc1": ([x], c1), "enc2": ([c1], c2), "enc3": ([c2], c3),
             "dec2": ([c3, c2], d2), "dec1": ([d2, c1], d1), "head1": ([d1], KERNEL_TAPS),
             "headTA": ([d1, x], KERNEL_TAPS + 1),
             "ref1": ([REFINE_INPUT_CHANNELS], r), "ref2": ([r], r), "ref3": ([r], 3),
             "head4": ([d2], KERNEL_TAPS + 1)}
 
 
-def widen(model, enc=None, dec=None, refine=None, seed=0, history=None):
+def widen(model, enc=None, dec=None, refine=None, seed=0, history=None, albedo_trust=None):
     """A wider copy of `model` (model.AFN) with the same output; widths not given stay, and
-    ``history=True`` adds the history input (None: as the model).
+    ``history=True`` adds the history input (None: as the model). ``albedo_trust=True`` adds the
+    learned albedo trust (model.py), whose head starts at t = 0.0025: almost the same output.
 
     Raises:
         ValueError: a width smaller than the model's, or the history input taken away (only
@@ -57,9 +59,12 @@ def widen(model, enc=None, dec=None, refine=None, seed=0, history=None):
     history = old.history if history is None else bool(history)
     if old.history and not history:
         raise ValueError("the model has the history input: only growth keeps what it computes")
+    albedo_trust = old.albedo_trust if albedo_trust is None else bool(albedo_trust)
+    if old.albedo_trust and not albedo_trust:
+        raise ValueError("the model has the albedo trust: only growth keeps what it computes")
     cfg = AFNConfig(variant=old.variant, enc=tuple(enc or old.enc), dec=tuple(dec or old.dec),
                     refine=int(refine or old.refine), inputs=old.inputs, spp=old.spp,
-                    quarter=old.quarter, history=history)
+                    quarter=old.quarter, history=history, albedo_trust=albedo_trust)
     for name, a, b in (("enc", old.enc, cfg.enc), ("dec", old.dec, cfg.dec),
                        ("refine", (old.refine,), (cfg.refine,))):
         if len(a) != len(b) or any(y < x for x, y in zip(a, b)):
@@ -71,8 +76,8 @@ def widen(model, enc=None, dec=None, refine=None, seed=0, history=None):
     old_seg, new_seg = _segments(old), _segments(cfg)
     with torch.no_grad():
         for conv, (new_in, new_out) in new_seg.items():
-            if conv + ".weight" not in new_state:
-                continue                        # a variant without refinement
+            if conv + ".weight" not in new_state or conv not in old_seg:
+                continue                # a variant without refinement; a head the model lacks
             old_in, old_out = old_seg[conv]
             w, b = new_state[conv + ".weight"], new_state[conv + ".bias"]
             ow = old_state[conv + ".weight"]
@@ -101,13 +106,17 @@ def main(argv=None):
     ap.add_argument("--seed", type=int, default=0, help="seed of the added units' initialisation")
     ap.add_argument("--history", action="store_true",
                     help="add the history input (model.py; zero weights: the same output)")
+    ap.add_argument("--albedo-trust", action="store_true",
+                    help="add the learned albedo trust (model.py; starts at a colour-space share "
+                         "of 0.0025: almost the same output)")
     args = ap.parse_args(argv)
     model = load_model(args.weights)
     if not isinstance(model, AFN):
         raise SystemExit(f"afn.widen: {args.weights} is not an AFN model (AFN large does not widen)")
     try:
         wide = widen(model, _widths(args.enc), _widths(args.dec), args.refine or None, args.seed,
-                     history=True if args.history else None)
+                     history=True if args.history else None,
+                     albedo_trust=True if args.albedo_trust else None)
     except ValueError as e:
         raise SystemExit(f"afn.widen: {e}")
     save_model(args.out, wide)

@@ -83,7 +83,7 @@ def test_bad_magic_version_and_size():
         loads(bytes(bad))
 
 
-@pytest.mark.parametrize("variant", ["full", "fusion", "large", "quarter", "history"])
+@pytest.mark.parametrize("variant", ["full", "fusion", "large", "quarter", "history", "trust"])
 def test_committed_parity_vectors_match_this_model(variant):
     """The committed PyTorch outputs still equal this code's forward pass (regenerate with
     `python3 -m afn.make_parity_vectors` when the model changes on purpose)."""
@@ -97,4 +97,6 @@ def test_committed_parity_vectors_match_this_model(variant):
     for k, v in mpv.make_inputs().items():
         if k in case or k != "history01":
             np.testing.assert_array_equal(v, case[k])
-    assert ("history01" in case) == (variant == "history")
+    assert ("history01" in case) == (variant in ("history", "trust"))
+    if variant == "trust":
+        np.testing.assert_allclose(out["t"], case["t"], rtol=1e-5, atol=1e-6, err_msg="t")

@@ -47,6 +47,10 @@ void AfnCudaFilter::configure()
         throw Exception(AFN_ERROR_UNSUPPORTED,
             "afn on a CUDA device has no history input yet: weights with history=1 run on the "
             "CPU device (afntool: --device cpu)");
+    if (m_net.hasAlbedoTrust()) // no albedo trust head on the GPU yet
+        throw Exception(AFN_ERROR_UNSUPPORTED,
+            "afn on a CUDA device has no learned albedo trust yet: weights with albedoTrust=1 run "
+            "on the CPU device (afntool: --device cpu)");
     // No aux prefilter on the GPU yet (stages/aux_prefilter.h): aux=auto runs as clean here.
     if (auxBinding().read(params()).aux == AuxSettings::Mode::Noisy)
         throw Exception(AFN_ERROR_UNSUPPORTED,

@@ -43,6 +43,7 @@ afn_add_gtest(test_afn
     unit/core/methods/afn/test_afn_input_set.cpp
     unit/core/methods/afn/test_afn_engine.cpp
     unit/core/methods/afn/test_afn_stripes.cpp
+    unit/core/methods/afn/test_afn_albedo_trust.cpp
     unit/core/methods/afn/test_afn_quality.cpp
     unit/core/methods/afn/test_afn_tone_map.cpp
     unit/core/stages/test_afn_ta_parity.cpp

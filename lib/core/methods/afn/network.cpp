@@ -23,7 +23,7 @@ void Network::setPrecision(nn::Precision p)
     if (m_variant == Variant::Large)
         p = nn::Precision::Fp32;
     for (nn::Conv* c : { &m_enc1, &m_enc2, &m_enc3, &m_dec2, &m_dec1, &m_head1, &m_headTa, &m_head4,
-             &m_ref1, &m_ref2, &m_ref3 })
+             &m_headG, &m_ref1, &m_ref2, &m_ref3 })
         c->setPrecision(p);
     m_precision = p;
 }
@@ -33,7 +33,9 @@ void Network::load(const nn::WeightsArchive& a)
     m_loaded = false;
     m_precision = nn::Precision::Fp32;
     m_quarter = false;
+    m_albedoTrust = false;
     m_head4 = nn::Conv {};
+    m_headG = nn::Conv {};
     const std::string v = a.meta("variant", "full");
     if (v == "full")
         m_variant = Variant::Full;
@@ -90,6 +92,20 @@ void Network::load(const nn::WeightsArchive& a)
         if (m_head4.kernelSize() != 1)
             throwInvalidArgument(
                 "invalid or corrupted weights (" + a.source() + "): heads must be 1x1");
+    }
+    const std::string trust = a.meta("albedoTrust", "0");
+    if (trust != "0" && trust != "1")
+        throwInvalidArgument("invalid or corrupted weights (" + a.source() + "): albedoTrust='"
+            + trust + "' (0 or 1)");
+    m_albedoTrust = trust == "1";
+    if (m_albedoTrust) {
+        if (m_variant != Variant::Full && m_variant != Variant::Fusion)
+            throwInvalidArgument("invalid or corrupted weights (" + a.source()
+                + "): the albedo trust needs variant full or fusion");
+        m_headG.load(a, "headG", m_enc1.outChannels(), 1);
+        if (m_headG.kernelSize() != 3)
+            throwInvalidArgument(
+                "invalid or corrupted weights (" + a.source() + "): headG must be 3x3");
     }
     if (m_variant == Variant::Full) {
         m_ref1.load(a, "ref1", kRefineChannels);
@@ -195,13 +211,23 @@ void Network::prepare(const Inputs& given)
     m_colorTa.resize(wp, hp, 3);
     m_color1.resize(wp, hp, 3);
     parallelRows(hp, [&](int y0, int y1) { fillInput(in, y0, y1, 0, m_x, m_color1, m_colorTa); });
-    nn::down2(m_color1, m_color1Half);
+    if (!m_albedoTrust) // else in predict(), once the colours are rescaled
+        nn::down2(m_color1, m_color1Half);
 }
 
 void Network::predict()
 {
     nn::down2(m_x, m_xHalf);
     m_enc1.run(nullptr, m_xHalf, m_e1, true);
+    if (m_albedoTrust) { // albedo_trust.h: t, the rescaled colours, then D(r_1spp)
+        parallelRows(m_e1.height(),
+            [&](int y0, int y1) { albedoTrustRows(m_headG, m_e1, y0, y1, m_trust); });
+        parallelRows(m_x.height(), [&](int y0, int y1) {
+            applyAlbedoTrustRows(m_x, m_trust, y0, y1, m_color1);
+            applyAlbedoTrustRows(m_x, m_trust, y0, y1, m_colorTa);
+        });
+        nn::down2(m_color1, m_color1Half);
+    }
     nn::down2(m_e1, m_e1Pool);
     m_enc2.run(nullptr, m_e1Pool, m_e2, true);
     nn::down2(m_e2, m_e2Pool);
@@ -229,6 +255,17 @@ void Network::filterAndFuse()
         applyQuarterScale(m_head4, m_d2, m_fused, m_quarterBuf);
 }
 
+void Network::fusedToOutput(Image& out) const
+{
+    out.resize(m_width, m_height, 3);
+    for (int y = 0; y < m_height; ++y)
+        std::copy(m_fused.at(0, y), m_fused.at(0, y) + 3 * m_width, out.at(0, y));
+    if (m_albedoTrust)
+        parallelRows(m_height, [&](int y0, int y1) {
+            undoAlbedoTrustRows(m_x, m_trust, y0, y1, out.at(0, y0), 3L * m_width);
+        });
+}
+
 void Network::crop(Image& out) const
 {
     out.resize(m_width, m_height, 3);
@@ -251,9 +288,9 @@ double Network::stageFlop(Stage s) const
     const double half = full / 4, quarter = full / 16, eighth = full / 64;
     switch (s) {
     case Stage::Prediction:
-        return m_enc1.flopPerPixel() * half + m_enc2.flopPerPixel() * quarter
-            + m_enc3.flopPerPixel() * eighth + m_dec2.flopPerPixel() * quarter
-            + m_dec1.flopPerPixel() * half;
+        return (m_albedoTrust ? m_headG.flopPerPixel() * half : 0.0) + m_enc1.flopPerPixel() * half
+            + m_enc2.flopPerPixel() * quarter + m_enc3.flopPerPixel() * eighth
+            + m_dec2.flopPerPixel() * quarter + m_dec1.flopPerPixel() * half;
     case Stage::Filtering: // heads + two 7x7 x 3-channel filters (half and full resolution)
         return m_head1.flopPerPixel() * half + m_headTa.flopPerPixel() * full
             + 2.0 * kKernelTaps * 3 * (full + half)

@@ -23,11 +23,15 @@
 // network sees how many frames its TA input holds at each pixel, so where the accumulation was
 // reset (disocclusion, a lighting change cut by the history trust, the first frame) it can lean
 // on the 1-spp branch and its spatial filtering (training/afn/model.py).
+// Weights with albedoTrust=1 (full and fusion only) add the learned albedo trust
+// (albedo_trust.h): a head on e1 predicts where to filter the colour itself instead of the
+// albedo-demodulated colour; the output stays albedo-demodulated.
 // Weights with variant=large hold AFN large, another graph (network_large.h): run() and
 // runWholeFrame() then run it whole-frame, and the stage calls below are refused.
 #pragma once
 
 #include "base/image.h"
+#include "methods/afn/albedo_trust.h"
 #include "methods/afn/network_large.h"
 #include "methods/afn/quarter_scale.h"
 #include "methods/afn/tone_map.h"
@@ -71,6 +75,8 @@ public:
     bool hasQuarterScale() const { return m_quarter; }
     /// Whether the weights take the history input history01 (a 14th input channel).
     bool hasHistoryInput() const { return m_history; }
+    /// Whether the weights add the learned albedo trust (albedo_trust.h).
+    bool hasAlbedoTrust() const { return m_albedoTrust; }
     /// Channels of the network input x: 13, or 14 with the history input.
     int inputChannels() const { return m_history ? 14 : 13; }
     /// Run the convolutions in `p` from now on (nn::Conv::setPrecision; Fp32 after load): every
@@ -104,6 +110,9 @@ public:
     void filterAndFuse(); ///< heads, softmax, filtering, fusion (and the quarter scale)
     void refine(); ///< refinement (copy of i when the variant has none)
     void crop(Image& out) const; ///< o cropped to the input size
+    /// The fused image i as output (no refinement: quality_tiers.h's fast tier), cropped to the
+    /// input size, in the albedo-demodulated space (the albedo trust undone).
+    void fusedToOutput(Image& out) const;
 
     /// The stages as timed by run() (the benchmark's and afntool's GFLOP/s).
     enum class Stage { Prediction, Filtering, Refinement };
@@ -132,6 +141,8 @@ public:
     const Image& filteredTa() const { return m_dTa; }
     const Image& alpha() const { return m_alpha; }
     const Image& filtered1Half() const { return m_d1Half; }
+    /// The albedo trust's colour-space share t at half size (hasAlbedoTrust() only).
+    const Image& albedoTrust() const { return m_trust; }
     /// The quarter scale's intermediates (hasQuarterScale() only).
     const QuarterBuffers& quarter() const { return m_quarterBuf; }
     /// AFN large's graph and its intermediates (variant Large only).
@@ -159,18 +170,20 @@ private:
     bool m_loaded = false;
     bool m_quarter = false; ///< hasQuarterScale()
     bool m_history = false; ///< hasHistoryInput()
+    bool m_albedoTrust = false; ///< hasAlbedoTrust()
     nn::Precision m_precision = nn::Precision::Fp32; ///< precision()
     int m_skippedRows = 0, m_stripes = 0, m_inputRowsReused = 0;
     Variant m_variant = Variant::Full;
     nn::Conv m_enc1, m_enc2, m_enc3, m_dec2, m_dec1, m_head1, m_headTa, m_ref1, m_ref2, m_ref3;
     nn::Conv m_head4; ///< the quarter scale's head (hasQuarterScale() only)
+    nn::Conv m_headG; ///< the albedo trust's head (hasAlbedoTrust() only)
     QuarterBuffers m_quarterBuf;
     int m_width = 0, m_height = 0;
     double m_stageMs[kStages] = {};
     double m_inputMs = 0.0; ///< predictionInputMs()
     // Buffers, reused across frames of one size.
     Image m_x, m_colorTa, m_color1, m_color1Half, m_xHalf, m_e1, m_e1Pool, m_e2, m_e2Pool, m_e3;
-    Image m_d2, m_d1, m_fused, m_dTa, m_alpha, m_d1Half, m_out;
+    Image m_d2, m_d1, m_fused, m_dTa, m_alpha, m_d1Half, m_out, m_trust;
     // Stripe workspaces of run(), reused across frames; copies of the Network share them (a
     // cache behind a mutex).
     std::shared_ptr<WorkspacePool> m_pool;

@@ -81,14 +81,16 @@ void Network::refine()
 {
     const int wp = m_fused.width(), hp = m_fused.height();
     m_out.resize(wp, hp, 3);
-    if (m_variant != Variant::Full) {
+    if (m_variant != Variant::Full)
         std::copy(m_fused.data(), m_fused.data() + m_fused.size(), m_out.data());
-        return;
-    }
     parallelRows(
         hp,
         [&](int y0, int y1) {
-            refineRows(m_fused, m_x, y0, y1, m_out.at(0, y0), static_cast<long>(wp) * 3);
+            if (m_variant == Variant::Full)
+                refineRows(m_fused, m_x, y0, y1, m_out.at(0, y0), static_cast<long>(wp) * 3);
+            if (m_albedoTrust) // back to the albedo-demodulated space (albedo_trust.h)
+                undoAlbedoTrustRows(
+                    m_x, m_trust, y0, y1, m_out.at(0, y0), static_cast<long>(wp) * 3);
         },
         kStrip);
 }

@@ -21,6 +21,8 @@
 //   e3 (1/8)  [Y0/8-2, Y1/8+2)  reads D(e2) [Y0/8-3, Y1/8+3) = e2 [Y0/4-6, Y1/4+6)
 //   e2 (1/4)  [Y0/4-6, Y1/4+6)  reads D(e1) [Y0/4-7, Y1/4+7) = e1 [Y0/2-14, Y1/2+14)
 //   e1 (1/2)  [Y0/2-14, Y1/2+14) reads D(x) [Y0/2-15, Y1/2+15) = x [Y0-30, Y1+30)
+//   albedo trust (albedo_trust.h) t half [Y0/2-5, Y1/2+5) reads e1 [Y0/2-6, Y1/2+6); the colours
+//             are rescaled over [Y0-10, Y1+10) (what the pooling and the filtering read)
 // so kHalo = 32 (30 rounded up to 8, keeping the window on the 1/8 grid: U's row r / 2 and D's
 // rows 2r, 2r+1 then map window-local rows to window-local rows). The pointwise buffers (x, D(x),
 // colours, the pools) are filled over the whole window; the convolutions run on their rows only.
@@ -79,6 +81,7 @@ struct Rows {
 
 struct Network::StripeWorkspace {
     Image x, color1, colorTa, color1Half, xHalf, e1, e1Pool, e2, e2Pool, e3, d2, d1, fused;
+    Image trust; ///< the albedo trust's t (half res; weights with albedoTrust=1)
     std::vector<float> out; ///< the stripe's refined rows, padded width
     /// The run and the padded rows [filledW0, filledW1) that x, color1 and colorTa hold.
     std::uint64_t filledRun = 0;
@@ -160,8 +163,9 @@ void Network::runStripe(const Inputs& in, int y0, int y1, StripeWorkspace& ws, I
     const bool sameShape = ws.x.width() == wp && ws.x.height() == n
         && ws.x.channels() == inputChannels() && ws.color1.sameShape(ws.colorTa)
         && ws.color1.width() == wp && ws.color1.height() == n && ws.color1.channels() == 3;
-    const bool reuse = sameShape && ws.filledRun == runId && w0 > ws.filledW0 && w0 < ws.filledW1
-        && w1 >= ws.filledW1;
+    // With the albedo trust the colours are rescaled in place below: nothing is taken over.
+    const bool reuse = !m_albedoTrust && sameShape && ws.filledRun == runId && w0 > ws.filledW0
+        && w0 < ws.filledW1 && w1 >= ws.filledW1;
     ws.x.resize(wp, n, inputChannels());
     ws.color1.resize(wp, n, 3);
     ws.colorTa.resize(wp, n, 3);
@@ -174,10 +178,18 @@ void Network::runStripe(const Inputs& in, int y0, int y1, StripeWorkspace& ws, I
     }
     fillInput(in, fillFrom, w1, w0, ws.x, ws.color1, ws.colorTa);
     ws.filledRun = runId, ws.filledW0 = w0, ws.filledW1 = w1;
-    pool(ws.color1, ws.color1Half, rows(1, y0 / 2 - 5, y1 / 2 + 5));
+    if (!m_albedoTrust) // else once the colours are rescaled, below
+        pool(ws.color1, ws.color1Half, rows(1, y0 / 2 - 5, y1 / 2 + 5));
     const Clock::time_point tInput = Clock::now(); // the input is ready (predictionInputMs)
     pool(ws.x, ws.xHalf, rows(1, y0 / 2 - 15, y1 / 2 + 15));
     conv(m_enc1, nullptr, ws.xHalf, ws.e1, rows(1, y0 / 2 - 14, y1 / 2 + 14));
+    if (m_albedoTrust) { // albedo_trust.h: t where the filtering reads the colours, then D(r_1spp)
+        const Rows t = rows(1, y0 / 2 - 5, y1 / 2 + 5), c = rows(0, y0 - 10, y1 + 10);
+        albedoTrustRows(m_headG, ws.e1, t.y0, t.y1, ws.trust);
+        applyAlbedoTrustRows(ws.x, ws.trust, c.y0, c.y1, ws.color1);
+        applyAlbedoTrustRows(ws.x, ws.trust, c.y0, c.y1, ws.colorTa);
+        pool(ws.color1, ws.color1Half, t);
+    }
     pool(ws.e1, ws.e1Pool, rows(2, y0 / 4 - 7, y1 / 4 + 7));
     conv(m_enc2, nullptr, ws.e1Pool, ws.e2, rows(2, y0 / 4 - 6, y1 / 4 + 6));
     pool(ws.e2, ws.e2Pool, rows(3, y0 / 8 - 3, y1 / 8 + 3));
@@ -209,6 +221,8 @@ void Network::runStripe(const Inputs& in, int y0, int y1, StripeWorkspace& ws, I
             refineRows(ws.fused, ws.x, y - w0, e - w0, dst, row);
         else
             std::copy(ws.fused.at(0, y - w0), ws.fused.at(0, e - w0), dst);
+        if (m_albedoTrust) // back to the albedo-demodulated space (albedo_trust.h)
+            undoAlbedoTrustRows(ws.x, ws.trust, y - w0, e - w0, dst, row);
     }
     for (int y = y0; y < std::min(y1, m_height); ++y) {
         const float* src = ws.out.data() + (y - y0) * row;

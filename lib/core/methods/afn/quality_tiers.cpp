@@ -71,11 +71,7 @@ void TierRunner::runFast(Network& net, const Inputs& in, Image& out)
     const Clock::time_point t1 = Clock::now();
     net.filterAndFuse();
     const Clock::time_point t2 = Clock::now();
-    const Image& fused = net.fused(); // padded at the right and bottom
-    const int w = in.color1->width(), h = in.color1->height();
-    out.resize(w, h, 3);
-    for (int y = 0; y < h; ++y)
-        std::copy(fused.at(0, y), fused.at(0, y) + 3 * w, out.at(0, y));
+    net.fusedToOutput(out);
     m_totals.ms[kPrediction] = msBetween(t0, t1);
     m_totals.ms[kFiltering] = msBetween(t1, t2);
     m_totals.flop[kPrediction] = net.stageFlop(Network::Stage::Prediction);

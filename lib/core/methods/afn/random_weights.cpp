@@ -38,8 +38,12 @@ nn::WeightsArchive randomWeights(const Architecture& a, unsigned seed)
         conv("ref2", a.refine, a.refine, 3);
         conv("ref3", a.refine, 3, 3);
     }
-    return nn::WeightsArchive::fromTensors(
-        std::move(t), { { "variant", a.variant } }, "random weights");
+    std::map<std::string, std::string> meta { { "variant", a.variant } };
+    if (a.albedoTrust) { // drawn last: the other tensors are those of the same seed without it
+        conv("headG", a.enc[0], 1, 3);
+        meta["albedoTrust"] = "1";
+    }
+    return nn::WeightsArchive::fromTensors(std::move(t), std::move(meta), "random weights");
 }
 
 } // namespace afn::afnet

@@ -16,6 +16,7 @@ struct Architecture {
     std::array<int, 2> dec { 32, 24 }; ///< d2, d1 channels
     int refine = 16; ///< refinement hidden channels
     std::string variant = "full"; ///< full | fusion | 1spp | ta
+    bool albedoTrust = false; ///< the learned albedo trust's head (albedo_trust.h; full, fusion)
 };
 
 /// Build random weights for `arch` with a fixed seed.

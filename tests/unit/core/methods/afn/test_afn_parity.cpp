@@ -77,6 +77,9 @@ void checkVariant(const std::string& variant, afn::afnet::Variant expect)
     EXPECT_LT(compare(net.filteredTa(), c.tensor("d_ta"), "d_ta").maxAbs, tol);
     EXPECT_LT(compare(net.fused(), c.tensor("i"), "i").maxAbs, tol);
     EXPECT_LT(compare(o, c.tensor("o"), "o").maxAbs, tol);
+    EXPECT_EQ(net.hasAlbedoTrust(), c.has("t"));
+    if (c.has("t"))
+        EXPECT_LT(compare(net.albedoTrust(), c.tensor("t"), "t").maxAbs, tol);
     // The same engine run twice (buffers reused) gives identical results.
     afn::Image o2;
     net.run(in, o2);
@@ -99,6 +102,27 @@ TEST(AfnParity, HistoryInputModelMatchesPyTorch)
 {
     // variant full with the 14th input channel history01 (model.py ``history``).
     checkVariant("history", afn::afnet::Variant::Full);
+}
+
+TEST(AfnParity, AlbedoTrustModelMatchesPyTorch)
+{
+    // variant full with the history input and the learned albedo trust (model.py
+    // ``albedo_trust``, methods/afn/albedo_trust.h), its head random so t spreads over (0, 1).
+    checkVariant("trust", afn::afnet::Variant::Full);
+}
+
+// Weights that declare the albedo trust wrongly are refused at load.
+TEST(AfnParity, RejectsAnAlbedoTrustItCannotRun)
+{
+    const std::string dir = std::string(AFN_TEST_DATA) + "/afn_parity/";
+    const auto weights = afntest::loadFile(dir + "weights_trust.afnw");
+    afn::afnet::Network net;
+    EXPECT_THROW(net.load(withMeta(weights, "albedoTrust", "2")), afn::Exception);
+    EXPECT_THROW(net.load(withMeta(weights, "variant", "1spp")), afn::Exception);
+    const auto plain = afntest::loadFile(dir + "weights_full.afnw");
+    EXPECT_THROW(net.load(withMeta(plain, "albedoTrust", "1")), afn::Exception); // no headG
+    net.load(weights);
+    EXPECT_TRUE(net.hasAlbedoTrust());
 }
 
 // The history input is read: other history01 values give another output, and a model with the
