@@ -5,6 +5,7 @@
 #include "report.h"
 
 #ifdef AFN_HAS_DNNL
+#include "bf16_gemm_peak.h"
 #include "sgemm_peak.h"
 #endif
 
@@ -44,6 +45,7 @@ EnginePoint EngineCollector::finish(int width, int height) const
 {
     EnginePoint p;
     p.width = width, p.height = height, p.avx512 = m_avx512;
+    p.precisionBits = m_precisionBits;
     static const char* names[] = { "prediction", "filtering", "refinement" };
     EngineStage total { "network" };
     for (int k = 0; k < 3; ++k) {
@@ -76,6 +78,12 @@ EngineYardstick measureYardstick(int threads)
     y.n = one.n;
     y.peak1 = one.bestGflops, y.median1 = one.medianGflops;
     y.peakN = all.bestGflops, y.medianN = all.medianGflops;
+    const Bf16GemmPeak bf1 = measureBf16GemmPeak(1);
+    const Bf16GemmPeak bfN = bf1.available ? measureBf16GemmPeak(y.threads) : bf1;
+    y.bf16Available = bf1.available && bfN.available;
+    y.bf16Why = bf1.available ? bfN.why : bf1.why;
+    y.bf16Peak1 = bf1.rate.bestGflops, y.bf16Median1 = bf1.rate.medianGflops;
+    y.bf16PeakN = bfN.rate.bestGflops, y.bf16MedianN = bfN.rate.medianGflops;
 #endif
     return y;
 }
@@ -90,23 +98,32 @@ void printEngineReport(const EngineYardstick& y, const std::vector<EnginePoint>&
             y.n, y.peak1, y.median1, y.threads, y.peakN, y.medianN);
     else
         std::printf("\nsgemm yardstick: not measured (afntool was built without oneDNN)\n");
-    const double ideal = y.peak1 * y.threads; // N threads at the 1-thread rate
-    std::printf("%-11s %11s %-8s %11s %10s %9s %14s %13s\n", "afn stage", "size", "kernels",
-        "GFLOP/frame", "ms/frame", "GFLOP/s", "% sgemm peak", "% N x 1-thr");
+    if (y.bf16Available)
+        std::printf("bf16 yardstick (oneDNN matmul, bf16 inputs, fp32 sums, %d^3): 1 thread "
+                    "%.1f / %.1f GFLOP/s, %d threads %.1f / %.1f GFLOP/s\n",
+            y.n, y.bf16Peak1, y.bf16Median1, y.threads, y.bf16PeakN, y.bf16MedianN);
+    else if (y.available)
+        std::printf("bf16 yardstick: not measured (%s)\n", y.bf16Why.c_str());
+    std::printf("%-11s %11s %-8s %-4s %11s %10s %9s %13s %13s\n", "afn stage", "size", "kernels",
+        "prec", "GFLOP/frame", "ms/frame", "GFLOP/s", "% GEMM peak", "% N x 1-thr");
     for (const EnginePoint& p : points)
         for (const EngineStage& s : p.stages) {
+            const bool bf16 = p.precisionBits == 16;
+            const double peak = y.peakFor(p.precisionBits);
+            const double ideal = (bf16 ? y.bf16Peak1 : y.peak1) * y.threads; // N x 1-thread
             char pct[32] = "-", pctIdeal[32] = "-";
-            if (y.available && y.peakN > 0.0)
-                std::snprintf(pct, sizeof pct, "%.0f %%", 100.0 * s.gflops() / y.peakN);
+            if (y.available && peak > 0.0)
+                std::snprintf(pct, sizeof pct, "%.0f %%", 100.0 * s.gflops() / peak);
             if (y.available && ideal > 0.0)
                 std::snprintf(pctIdeal, sizeof pctIdeal, "%.0f %%", 100.0 * s.gflops() / ideal);
-            std::printf("%-11s %5dx%-5d %-8s %11.2f %10.2f %9.1f %14s %13s\n", s.name.c_str(),
-                p.width, p.height, p.avx512 ? "avx512" : "portable", s.gflop, s.ms, s.gflops(), pct,
-                pctIdeal);
+            std::printf("%-11s %5dx%-5d %-8s %-4s %11.2f %10.2f %9.1f %13s %13s\n", s.name.c_str(),
+                p.width, p.height, p.avx512 ? "avx512" : "portable", bf16 ? "bf16" : "fp32",
+                s.gflop, s.ms, s.gflops(), pct, pctIdeal);
         }
     std::printf(
         "(afn stage times: median wall-clock ms of the timed frames, from the filter's "
-        "stats.afn.*; %% of the best %d-thread dnnl_sgemm call of this run, and of %d x the "
+        "stats.afn.*; %% of the best %d-thread GEMM call of this run in the precision the "
+        "convolutions ran in (fp32: dnnl_sgemm; bf16: oneDNN's bf16 matmul), and of %d x its "
         "best 1-thread call: under glibc's malloc the multi-thread dnnl_sgemm falls short of "
         "N x its 1-thread rate, docs/performance.md)\n",
         y.threads, y.threads);
@@ -123,15 +140,23 @@ void writeEngineJson(
     j.key("sgemm").beginObject().field("available", y.available).field("n", y.n);
     j.field("threads", y.threads).field("peak1Gflops", y.peak1).field("median1Gflops", y.median1);
     j.field("peakGflops", y.peakN).field("medianGflops", y.medianN).endObject();
+    j.key("bf16Gemm").beginObject().field("available", y.bf16Available);
+    if (!y.bf16Available)
+        j.field("why", y.bf16Why);
+    j.field("bf16Peak1Gflops", y.bf16Peak1).field("bf16Median1Gflops", y.bf16Median1);
+    j.field("bf16PeakNGflops", y.bf16PeakN).field("bf16MedianNGflops", y.bf16MedianN).endObject();
     j.key("points").beginArray();
     for (const EnginePoint& p : points) {
         j.beginObject().field("width", p.width).field("height", p.height);
         j.field("kernels", p.avx512 ? "avx512" : "portable");
+        j.field("precision", p.precisionBits == 16 ? "bf16" : "fp32");
         j.key("stages").beginArray();
         for (const EngineStage& s : p.stages) {
             j.beginObject().field("stage", s.name).field("gflopPerFrame", s.gflop);
             j.field("msPerFrame", s.ms).field("gflops", s.gflops());
             j.field("fractionOfSgemmPeak", y.peakN > 0.0 ? s.gflops() / y.peakN : 0.0);
+            const double peak = y.peakFor(p.precisionBits);
+            j.field("fractionOfGemmPeak", peak > 0.0 ? s.gflops() / peak : 0.0);
             j.field("note", stageNote(s.name)).endObject();
         }
         j.endArray().endObject();
@@ -141,15 +166,19 @@ void writeEngineJson(
 
 std::string engineCsv(const EngineYardstick& y, const std::vector<EnginePoint>& points)
 {
-    std::string csv = "stage,width,height,kernels,gflopPerFrame,msPerFrame,gflops,"
-                      "sgemmThreads,sgemmPeakGflops,sgemmPeak1Gflops,fractionOfSgemmPeak,note\n";
+    std::string csv = "stage,width,height,kernels,precision,gflopPerFrame,msPerFrame,gflops,"
+                      "sgemmThreads,sgemmPeakGflops,sgemmPeak1Gflops,fractionOfSgemmPeak,"
+                      "bf16PeakGflops,bf16Peak1Gflops,fractionOfGemmPeak,note\n";
     for (const EnginePoint& p : points)
         for (const EngineStage& s : p.stages) {
-            char line[768];
+            const double peak = y.peakFor(p.precisionBits);
+            char line[896];
             std::snprintf(line, sizeof line,
-                "%s,%d,%d,%s,%.4f,%.3f,%.2f,%d,%.2f,%.2f,%.4f,\"%s\"\n", s.name.c_str(), p.width,
-                p.height, p.avx512 ? "avx512" : "portable", s.gflop, s.ms, s.gflops(), y.threads,
-                y.peakN, y.peak1, y.peakN > 0.0 ? s.gflops() / y.peakN : 0.0, stageNote(s.name));
+                "%s,%d,%d,%s,%s,%.4f,%.3f,%.2f,%d,%.2f,%.2f,%.4f,%.2f,%.2f,%.4f,\"%s\"\n",
+                s.name.c_str(), p.width, p.height, p.avx512 ? "avx512" : "portable",
+                p.precisionBits == 16 ? "bf16" : "fp32", s.gflop, s.ms, s.gflops(), y.threads,
+                y.peakN, y.peak1, y.peakN > 0.0 ? s.gflops() / y.peakN : 0.0, y.bf16PeakN,
+                y.bf16Peak1, peak > 0.0 ? s.gflops() / peak : 0.0, stageNote(s.name));
             csv += line;
         }
     return csv;

@@ -1,7 +1,9 @@
 // SPDX-License-Identifier: Apache-2.0
 // The afn engine's part of --benchmark:size: achieved GFLOP/s per network stage (from the filter's
-// "stats.afn.*" statistics, afn.h) beside the machine's dnnl_sgemm rate at 1 thread and at the
-// run's thread count, measured in the same run (sgemm_peak.h).
+// "stats.afn.*" statistics, afn.h) beside the machine's GEMM rate at 1 thread and at the run's
+// thread count, measured in the same run: dnnl_sgemm (sgemm_peak.h) and oneDNN's bf16 matmul
+// (bf16_gemm_peak.h). Each stage's share is of the GEMM of the precision its convolutions ran in
+// (stats.afn.precision; the filtering's softmax and taps are fp32 either way).
 #pragma once
 
 #include "json_writer.h"
@@ -25,6 +27,7 @@ struct EngineStage {
 struct EnginePoint {
     int width = 0, height = 0;
     bool avx512 = false; ///< the AVX-512 kernels ran (else the portable ones)
+    int precisionBits = 32; ///< what the convolutions ran in: 32 (fp32) or 16 (bf16)
     std::vector<EngineStage> stages;
 };
 
@@ -35,6 +38,15 @@ struct EngineYardstick {
     double peak1 = 0.0, median1 = 0.0; ///< GFLOP/s on 1 thread: fastest and median call
     double peakN = 0.0, medianN = 0.0; ///< on `threads` threads
     int n = 0; ///< M = N = K
+    /// oneDNN's bf16 matmul (bf16 inputs, fp32 sums), the same sizes and thread counts.
+    bool bf16Available = false;
+    std::string bf16Why; ///< why there is no bf16 rate (bf16Available false with oneDNN)
+    double bf16Peak1 = 0.0, bf16Median1 = 0.0, bf16PeakN = 0.0, bf16MedianN = 0.0;
+    /// The best `threads`-thread rate of the GEMM of `precisionBits` (0: not measured).
+    double peakFor(int precisionBits) const
+    {
+        return precisionBits == 16 ? (bf16Available ? bf16PeakN : 0.0) : peakN;
+    }
 };
 
 /// Collects afn's per-frame stage statistics (call add() after each timed frame).
@@ -51,6 +63,7 @@ public:
         }
         m_inputMs.push_back(stat("stats.afn.prediction.inputMs"));
         m_avx512 = stat("stats.afn.avx512") != 0.0;
+        m_precisionBits = stat("stats.afn.precision") == 16.0 ? 16 : 32;
     }
     EnginePoint finish(int width, int height) const;
 
@@ -59,6 +72,7 @@ private:
     std::vector<double> m_inputMs; ///< of the prediction's ms, the input preparation's
     double m_gflop[3] = {};
     bool m_avx512 = false;
+    int m_precisionBits = 32;
 };
 
 /// Measure the yardstick (oneDNN threads: 1 and `threads`, 0 = all hardware threads).

@@ -188,9 +188,22 @@ TEST(AfntoolCompare, SizeBenchmarkReportsEngineAndHeap)
     // The stages below the GEMM rate say why (the prediction: its input preparation).
     EXPECT_NE(r.out.find("\"note\": \"includes its input preparation"), std::string::npos) << r.out;
     EXPECT_NE(r.out.find("exponentials per pixel"), std::string::npos) << r.out;
+    // Each point says what its convolutions ran in; their share is of that precision's GEMM.
+    const bool bf16 = r.out.find("\"precision\": \"bf16\"") != std::string::npos;
+    EXPECT_TRUE(bf16 || r.out.find("\"precision\": \"fp32\"") != std::string::npos) << r.out;
 #ifdef AFN_HAS_DNNL
     for (double v : jsonNumbers(r.out, "peakGflops"))
         EXPECT_GT(v, 0.0);
+    // The bf16 yardstick: measured, or why not (oneDNN without a bf16 matmul for this CPU).
+    const bool bf16Gemm = r.out.find("\"bf16Gemm\": {\"available\": true") != std::string::npos;
+    if (bf16Gemm)
+        for (double v : jsonNumbers(r.out, "bf16PeakNGflops"))
+            EXPECT_GT(v, 0.0);
+    else
+        EXPECT_NE(r.out.find("\"why\": \"oneDNN"), std::string::npos) << r.out;
+    if (!bf16 || bf16Gemm)
+        for (double v : jsonNumbers(r.out, "fractionOfGemmPeak"))
+            EXPECT_GT(v, 0.0);
 #endif
 }
 
