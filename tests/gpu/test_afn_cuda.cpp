@@ -53,10 +53,12 @@ std::vector<char> weightsBytes(const std::string& which)
     return {};
 }
 
+/// Built-in weights the CUDA filter runs: present, and without the history input or the learned
+/// albedo trust, which it refuses until they are ported (docs/gpu.md).
 bool hasShippedWeights()
 {
     afn::afnet::Network net;
-    return afn::afnet::loadEmbeddedNetwork(net);
+    return afn::afnet::loadEmbeddedNetwork(net) && !net.hasHistoryInput() && !net.hasAlbedoTrust();
 }
 
 afn::cuda::AfnCudaFilter& cudaFilter(afn::Filter& f)
@@ -173,7 +175,8 @@ TEST_F(CudaAfn, ParityWithTheCpuEngine)
     const bool shipped = hasShippedWeights();
     for (const ParityCase& c : afntest::gpuParityCases()) {
         if (c.weights == "shipped" && !shipped) {
-            std::cout << "[ parity ] " << c.name() << ": no shipped weights in this build\n";
+            std::cout << "[ parity ] " << c.name()
+                      << ": no shipped weights the CUDA engine runs in this build\n";
             continue;
         }
         if (!afntest::cpuRunsTheFullModel(c.inputs)) {

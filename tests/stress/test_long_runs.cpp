@@ -77,14 +77,17 @@ TEST_P(LongRuns, ConstantSceneReachesAFixedPoint)
 {
     Runner runner(GetParam());
     const FrameData in = constantFrame(kSize, kSize, 0.37f);
-    FrameResult r, atFour;
+    // Every method settles by frame 4, but afn's network also reads 1 / the history length
+    // (its history input), which stops changing when the length reaches its cap of 255 frames.
+    const int settled = GetParam() == std::string("afn") ? 300 : 3;
+    FrameResult r, atSettled;
     for (int f = 0; f < kFrames; ++f) {
         ASSERT_TRUE(runner.run(in, r)) << runner.error();
-        if (f == 3)
-            atFour = r;
+        if (f == settled)
+            atSettled = r;
     }
     std::string where;
-    EXPECT_TRUE(bitIdentical(r.output, atFour.output, &where)) << where;
+    EXPECT_TRUE(bitIdentical(r.output, atSettled.output, &where)) << where;
 }
 
 TEST_P(LongRuns, SceneTurningBlackDecaysToExactZero)

@@ -173,6 +173,11 @@ TEST(CudaEmulated, FilterMatchesCpuWithShippedWeights)
     const auto shipped = shippedWeights();
     if (shipped.empty())
         GTEST_SKIP() << "weights/afn.afnw is not in this checkout";
+    afn::afnet::Network net;
+    net.load(afn::nn::WeightsArchive::parse(shipped.data(), shipped.size(), "weights/afn.afnw"));
+    if (net.hasHistoryInput() || net.hasAlbedoTrust()) // the CUDA filter refuses them (gpu.md)
+        GTEST_SKIP() << "weights/afn.afnw has the history input or the learned albedo trust, "
+                        "which the CUDA engine does not run yet (docs/gpu.md)";
     expectFilterParity(shipped, 64, 40, SequenceInputs {}, 3);
     SequenceInputs camera;
     camera.motion = false;
