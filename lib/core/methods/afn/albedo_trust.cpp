@@ -22,7 +22,6 @@ inline float trustScale(float a, float t)
 
 void albedoTrustRows(const nn::Conv& headG, const Image& e1, int y0, int y1, Image& t)
 {
-    t.resize(e1.width(), e1.height(), 1);
     if (y1 <= y0)
         return;
     headG.runRows(nullptr, e1, y0, y1, t.at(0, y0), t.width(), 1, false);

@@ -19,7 +19,8 @@
 
 namespace afn::afnet {
 
-/// Rows [y0, y1) of t (half resolution, 1 ch; resized to e1's size) from e1 (ReLU applied).
+/// Rows [y0, y1) of t (half resolution, 1 ch, already of e1's size: rows run on several threads)
+/// from e1 (ReLU applied).
 void albedoTrustRows(const nn::Conv& headG, const Image& e1, int y0, int y1, Image& t);
 
 /// Multiply full-resolution rows [y0, y1) of `color` (3 ch) by s; the albedo is channels 6-8 of

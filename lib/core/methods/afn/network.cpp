@@ -220,6 +220,7 @@ void Network::predict()
     nn::down2(m_x, m_xHalf);
     m_enc1.run(nullptr, m_xHalf, m_e1, true);
     if (m_albedoTrust) { // albedo_trust.h: t, the rescaled colours, then D(r_1spp)
+        m_trust.resize(m_e1.width(), m_e1.height(), 1);
         parallelRows(m_e1.height(),
             [&](int y0, int y1) { albedoTrustRows(m_headG, m_e1, y0, y1, m_trust); });
         parallelRows(m_x.height(), [&](int y0, int y1) {

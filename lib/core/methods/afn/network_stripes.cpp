@@ -185,6 +185,7 @@ void Network::runStripe(const Inputs& in, int y0, int y1, StripeWorkspace& ws, I
     conv(m_enc1, nullptr, ws.xHalf, ws.e1, rows(1, y0 / 2 - 14, y1 / 2 + 14));
     if (m_albedoTrust) { // albedo_trust.h: t where the filtering reads the colours, then D(r_1spp)
         const Rows t = rows(1, y0 / 2 - 5, y1 / 2 + 5), c = rows(0, y0 - 10, y1 + 10);
+        ws.trust.resize(ws.e1.width(), ws.e1.height(), 1);
         albedoTrustRows(m_headG, ws.e1, t.y0, t.y1, ws.trust);
         applyAlbedoTrustRows(ws.x, ws.trust, c.y0, c.y1, ws.color1);
         applyAlbedoTrustRows(ws.x, ws.trust, c.y0, c.y1, ws.colorTa);
