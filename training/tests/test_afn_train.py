@@ -94,16 +94,18 @@ def _tiny_run(out):
             "--device", "cpu"]
 
 
-def test_history_input_trains_exports_and_runs_in_the_core(tmp_path):
-    """A model with the history input trains on the features' history01, exports with
-    history=1, and the C++ core runs it (afntool --weights) on the example."""
+def test_history_input_and_albedo_trust_train_export_and_run_in_the_core(tmp_path):
+    """A model with the history input and the learned albedo trust trains on the features'
+    history01, exports with history=1 and albedoTrust=1, and the C++ core runs it (afntool
+    --weights) on the example."""
     if not os.path.exists(os.path.join(SEQUENCE, "frame.0000.exr")):
         pytest.skip("examples/sequence not present")
     out = str(tmp_path / "run")
-    train.main(_tiny_run(out) + ["--epochs", "1", "--history"])
+    train.main(_tiny_run(out) + ["--epochs", "1", "--history", "--albedo-trust"])
     export.main([out, "-o", str(tmp_path / "h.afnw")])
     model = load_model(str(tmp_path / "h.afnw"))
     assert model.cfg.history and model.enc1.weight.shape[1] == 14
+    assert model.cfg.albedo_trust and model.headG.weight.shape[1] == model.cfg.enc[0]
     from afn import afntool
     afntool.run(["-q", "--frames", "0-1", os.path.join(SEQUENCE, "frame.####.exr"),
                  "--denoise:method=afn:weights=" + str(tmp_path / "h.afnw"),
