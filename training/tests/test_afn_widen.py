@@ -55,18 +55,23 @@ def test_narrowing_is_refused_and_cli_round_trip(tmp_path):
         widen.main([src, "--dec", "2,2", "-o", dst])
 
 
-def test_growing_the_history_input_keeps_the_output_and_the_input_then_matters(tmp_path):
-    """widen --history: the 14th input's weights are zero, so any history01 gives the old output;
-    the grown model is saved and read back with the flag, and after a training step the input
-    changes the output."""
+def _grow_random_model(tmp_path, flag):
+    """A small random model and what ``afn.widen`` FLAG makes of it, read back from its archive."""
     torch.manual_seed(0)
     old = AFN(AFNConfig(enc=(4, 6, 8), dec=(6, 5), refine=4))
     for p in old.parameters():
         p.data.normal_(0, 0.3)
     src, dst = str(tmp_path / "old.afnw"), str(tmp_path / "grown.afnw")
     save_model(src, old)
-    widen.main([src, "--history", "-o", dst])
-    grown = load_model(dst)
+    widen.main([src, flag, "-o", dst])
+    return old, load_model(dst)
+
+
+def test_growing_the_history_input_keeps_the_output_and_the_input_then_matters(tmp_path):
+    """widen --history: the 14th input's weights are zero, so any history01 gives the old output;
+    the grown model is saved and read back with the flag, and after a training step the input
+    changes the output."""
+    old, grown = _grow_random_model(tmp_path, "--history")
     assert grown.cfg.history and grown.enc1.weight.shape[1] == 14
     assert grown.headTA.weight.shape[1] == 5 + 14
     x = random_inputs(24, 40, seed=1)
@@ -90,14 +95,7 @@ def test_growing_the_albedo_trust_starts_near_the_old_output_and_the_head_then_m
     """widen --albedo-trust: headG starts at t = sigmoid(-6), so a' = a + 0.0025 (1 - a) and,
     for albedos of 0.2 and more, the output moves by about a percent; the flag survives the
     archive, and a training step moves the head off its constant."""
-    torch.manual_seed(0)
-    old = AFN(AFNConfig(enc=(4, 6, 8), dec=(6, 5), refine=4))
-    for p in old.parameters():
-        p.data.normal_(0, 0.3)
-    src, dst = str(tmp_path / "old.afnw"), str(tmp_path / "grown.afnw")
-    save_model(src, old)
-    widen.main([src, "--albedo-trust", "-o", dst])
-    grown = load_model(dst)
+    old, grown = _grow_random_model(tmp_path, "--albedo-trust")
     assert grown.cfg.albedo_trust and tuple(grown.headG.weight.shape) == (1, 4, 3, 3)
     x = list(random_inputs(24, 40, seed=1))
     x[2] = 0.2 + 0.8 * x[2]

@@ -16,6 +16,16 @@ namespace afn::afnet {
 namespace {
 
 constexpr int kRefineChannels = 10; // T(i) 3, albedo 3, normal01 3, depth01 1
+
+/// An optional 0/1 flag of the archive's metadata (absent = 0); anything else is refused.
+bool metaFlag(const nn::WeightsArchive& a, const std::string& key)
+{
+    const std::string v = a.meta(key, "0");
+    if (v != "0" && v != "1")
+        throwInvalidArgument(
+            "invalid or corrupted weights (" + a.source() + "): " + key + "='" + v + "' (0 or 1)");
+    return v == "1";
+}
 } // namespace
 
 void Network::setPrecision(nn::Precision p)
@@ -55,11 +65,7 @@ void Network::load(const nn::WeightsArchive& a)
         m_loaded = true;
         return;
     }
-    const std::string history = a.meta("history", "0");
-    if (history != "0" && history != "1")
-        throwInvalidArgument("invalid or corrupted weights (" + a.source() + "): history='"
-            + history + "' (0 or 1)");
-    m_history = history == "1";
+    m_history = metaFlag(a, "history");
     if (m_history && m_variant != Variant::Full && m_variant != Variant::Fusion)
         throwInvalidArgument("invalid or corrupted weights (" + a.source()
             + "): the history input needs variant full or fusion");
@@ -79,11 +85,7 @@ void Network::load(const nn::WeightsArchive& a)
     if (m_head1.kernelSize() != 1 || m_headTa.kernelSize() != 1)
         throwInvalidArgument(
             "invalid or corrupted weights (" + a.source() + "): heads must be 1x1");
-    const std::string quarter = a.meta("quarter", "0");
-    if (quarter != "0" && quarter != "1")
-        throwInvalidArgument("invalid or corrupted weights (" + a.source() + "): quarter='"
-            + quarter + "' (0 or 1)");
-    m_quarter = quarter == "1";
+    m_quarter = metaFlag(a, "quarter");
     if (m_quarter) {
         if (m_variant != Variant::Full && m_variant != Variant::Fusion)
             throwInvalidArgument("invalid or corrupted weights (" + a.source()
@@ -93,11 +95,7 @@ void Network::load(const nn::WeightsArchive& a)
             throwInvalidArgument(
                 "invalid or corrupted weights (" + a.source() + "): heads must be 1x1");
     }
-    const std::string trust = a.meta("albedoTrust", "0");
-    if (trust != "0" && trust != "1")
-        throwInvalidArgument("invalid or corrupted weights (" + a.source() + "): albedoTrust='"
-            + trust + "' (0 or 1)");
-    m_albedoTrust = trust == "1";
+    m_albedoTrust = metaFlag(a, "albedoTrust");
     if (m_albedoTrust) {
         if (m_variant != Variant::Full && m_variant != Variant::Fusion)
             throwInvalidArgument("invalid or corrupted weights (" + a.source()
