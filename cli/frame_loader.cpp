@@ -127,6 +127,10 @@ LoadedFrame loadFrame(RunContext& ctx, const FrameRef& ref, bool keepAll)
     for (const Action& a : opts.actions)
         mask = mask || (a.name == "denoise" && a.mods.count("mask"));
     ro.keepAll = keepAll || mask;
+    // --denoise:passes= reads the light-path passes too.
+    for (const Action& a : opts.actions)
+        if (a.name == "denoise" && a.mods.count("passes") && a.mods.at("passes") != "none")
+            ro.passes = true;
     ro.required = { afn::io::Role::Color };
     try {
         lf.images = afn::io::readFrame(ref.path, ro);
@@ -144,6 +148,10 @@ LoadedFrame loadFrame(RunContext& ctx, const FrameRef& ref, bool keepAll)
     try {
         cm.toWorking(
             color.pixels.data(), color.width, color.height, color.components, lf.colorSpace);
+        // Light passes and their colour factors are in the beauty's space, as the albedo.
+        for (auto& [name, pass] : lf.images.passes)
+            cm.toWorking(
+                pass.pixels.data(), pass.width, pass.height, pass.components, lf.colorSpace);
         auto alb = lf.images.roles.find(afn::io::Role::Albedo);
         if (alb != lf.images.roles.end())
             cm.toWorking(alb->second.pixels.data(), alb->second.width, alb->second.height,

@@ -9,6 +9,7 @@
 #include "afn/io.hpp"
 
 #include <memory>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -38,6 +39,9 @@ struct LoadedFrame {
     /// What was done to the beauty so far, one afntool argument per step (--denoise:method=...
     /// with every parameter), for the outputs' history attribute.
     std::vector<std::string> history;
+    /// Light passes in images.passes that a --denoise:passes= replaced by denoised ones (working
+    /// space, as the beauty); the others there hold the file's values converted to working space.
+    std::set<std::string> denoisedPasses;
 };
 
 /// Shared state of a run: options and the lazily loaded colour config.

@@ -62,6 +62,9 @@ private:
     void check(const std::string& what, const std::string& file);
     /// Bind the :mask= channel of the frame (or unbind the mask); CliError when the file lacks it.
     void bindMask(const LoadedFrame& frame);
+    /// Bind the :passes= light passes of the frame (denoised in place into frame.images.passes),
+    /// or unbind those of the previous frame; CliError when the file lacks one.
+    void bindPasses(LoadedFrame& frame, Progress* progress);
     /// --device cuda|auto: the filter on the CUDA device; with auto, nothing (the CPU is used)
     /// when there is no CUDA device or the method does not run there.
     void openOnCuda(const std::string& choice);
@@ -80,6 +83,9 @@ private:
     std::string m_missingWarned; ///< the missing inputs last warned about (warned once per change)
     std::string m_maskChannel; ///< :mask=CHANNEL, the work mask's channel ("" = none)
     std::vector<float> m_mask; ///< that channel of the current frame
+    std::string m_passes = "none"; ///< :passes=all|none|NAME,... (light passes denoised too)
+    std::vector<std::string> m_passesBound; ///< the passes bound for the current frame
+    bool m_recompositionChecked = false; ///< the passes' sum was checked against the beauty
     std::string m_modelWarned; ///< afn: the model path last seen (a fallback is warned once)
     /// Model, aux decision and missing inputs last logged (none before the first frame's line).
     std::optional<std::string> m_factsLogged;

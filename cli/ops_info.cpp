@@ -40,6 +40,8 @@ struct FileReport {
     std::optional<int> samples;
     std::string afnModel; ///< the afn method's path for these inputs ("" without a colour)
     std::string afnNetwork; ///< the network's arithmetic on this CPU ("" where not known)
+    afn::io::PassRecipe passes; ///< light-path passes and how they rebuild the beauty
+    std::optional<afn::io::Recomposition> recomposition; ///< their sum against the beauty
 };
 
 /// The auxiliary roles whose noise --info estimates, with their afnEstimateAuxNoise names.
@@ -109,8 +111,11 @@ FileReport collect(const Options& opts, const FrameRef& ref)
         afn::io::ReadOptions ro;
         ro.overrides = opts.overrides;
         ro.required = {};
+        ro.passes = true;
         const afn::io::FrameImages fi = afn::io::readFrame(ref.path, ro);
         r.mapping = fi.mapping;
+        r.passes = fi.passRecipe;
+        r.recomposition = afn::io::recompositionOf(fi);
         r.samples = fi.samples;
         for (const auto& [role, image] : fi.roles)
             r.stats[role] = afn::io::computeStats(image);
@@ -127,6 +132,32 @@ FileReport collect(const Options& opts, const FrameRef& ref)
         throw CliError(e.what(), e.file().empty() ? ref.path : e.file());
     }
     return r;
+}
+
+/// The light-path passes, their roles and whether they add up to the beauty.
+void printPasses(const FileReport& r)
+{
+    const afn::io::PassRecipe& p = r.passes;
+    if (p.empty() && p.missing.empty()) {
+        std::printf("  light passes: none (name them with --aov lights=LAYER,LAYER*FACTOR)\n");
+        return;
+    }
+    std::printf("  light passes (%s): %s\n", p.renderer.c_str(), p.formula.c_str());
+    for (const afn::io::LightPass& l : p.lights)
+        std::printf("    light     %-22s %s%s\n", l.name.c_str(), join(l.channels).c_str(),
+            l.factor.empty() ? "" : ("  (x " + l.factor + ")").c_str());
+    for (const afn::io::LightPass& f : p.factors)
+        std::printf("    factor    %-22s %s  (albedo-like: not denoised)\n", f.name.c_str(),
+            join(f.channels).c_str());
+    if (r.recomposition)
+        std::printf("    recomposition: PSNR %.1f dB against the beauty (tone-mapped), relative RMS "
+                    "error %.3g, largest difference %.4g\n",
+            r.recomposition->psnr, r.recomposition->relativeRms, r.recomposition->maxAbsolute);
+    const std::string warning = r.recomposition
+        ? afn::io::recompositionWarning(p, *r.recomposition)
+        : afn::io::recompositionWarning(p, afn::io::Recomposition { 1e9, 0, 0, 0 });
+    if (!warning.empty())
+        std::printf("    WARNING: %s\n", warning.c_str());
 }
 
 void printText(const FileReport& r)
@@ -187,6 +218,7 @@ void printText(const FileReport& r)
                 "    %-9s (not found; looked for %s)\n", afn::io::roleName(role), tried.c_str());
         }
     }
+    printPasses(r);
     std::printf("  aux=auto: %s\n", autoChoice(r).c_str());
     if (!r.afnModel.empty())
         std::printf("  afn: %s\n", r.afnModel.c_str());
@@ -268,6 +300,27 @@ void writeJson(JsonWriter& j, const FileReport& r)
     j.field("auxAuto", std::string(autoNoisy(r) ? "noisy" : "clean"));
     j.field("afnModel", r.afnModel);
     j.field("afnNetwork", r.afnNetwork);
+    j.key("lightPasses").beginObject();
+    j.field("recipe", r.passes.renderer);
+    j.field("formula", r.passes.formula);
+    j.key("lights").beginArray();
+    for (const afn::io::LightPass& l : r.passes.lights)
+        j.beginObject()
+            .field("name", l.name)
+            .field("factor", l.factor)
+            .field("channels", l.channels)
+            .endObject();
+    j.endArray();
+    j.key("factors").beginArray();
+    for (const afn::io::LightPass& f : r.passes.factors)
+        j.beginObject().field("name", f.name).field("channels", f.channels).endObject();
+    j.endArray();
+    j.key("missing").value(r.passes.missing);
+    if (r.recomposition)
+        j.field("recompositionPsnr", r.recomposition->psnr)
+            .field("recompositionMaxDifference", r.recomposition->maxAbsolute)
+            .field("recompositionRelativeRms", r.recomposition->relativeRms);
+    j.endObject();
     j.key("stats").beginObject();
     for (const auto& [role, s] : r.stats) {
         j.key(afn::io::roleName(role))

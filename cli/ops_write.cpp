@@ -6,6 +6,7 @@
 #include "contact_sheet_layers.h"
 #include "output_header.h"
 
+#include <map>
 #include <set>
 
 namespace afntool {
@@ -61,6 +62,26 @@ afn::io::OutputFormat formatOf(const std::string& path)
     }
 }
 
+std::size_t npxOf(const afn::io::RoleImage& image)
+{
+    return static_cast<std::size_t>(image.width) * image.height;
+}
+
+/// Index in `all` of a file channel (parts after the first are named "<part>.<name>"), -1 if none.
+int layeredIndex(const afn::io::LayeredImage& all, const std::string& channel)
+{
+    for (std::size_t c = 0; c < all.channels.size(); ++c)
+        if (all.channels[c] == channel)
+            return static_cast<int>(c);
+    for (std::size_t c = 0; c < all.channels.size(); ++c) {
+        const std::string& n = all.channels[c];
+        if (n.size() > channel.size() + 1
+            && n.compare(n.size() - channel.size() - 1, std::string::npos, "." + channel) == 0)
+            return static_cast<int>(c);
+    }
+    return -1;
+}
+
 } // namespace
 
 void writeOutput(RunContext& ctx, const LoadedFrame& frame, const std::string& path,
@@ -104,6 +125,32 @@ void writeOutput(RunContext& ctx, const LoadedFrame& frame, const std::string& p
         }
     }
 
+    // Denoised light passes replace the noisy ones under their own names, back in the file's
+    // colour space as the other layers.
+    std::map<int, const float*> replaced; // layered channel index -> denoised values (3 apart)
+    std::map<std::string, std::vector<float>> passValues;
+    if (all)
+        for (const std::string& name : frame.denoisedPasses) {
+            const afn::io::LightPass* l = frame.images.passRecipe.find(name);
+            const afn::io::RoleImage& p = frame.images.passes.at(name);
+            std::vector<float>& v = passValues[name];
+            v.resize(npxOf(p) * 3);
+            for (std::size_t i = 0; i < npxOf(p); ++i)
+                for (int c = 0; c < 3; ++c)
+                    v[i * 3 + c] = p.pixels[i * p.components + c];
+            try {
+                ctx.color().convert(
+                    v.data(), p.width, p.height, 3, ctx.color().workingSpace(), frame.colorSpace);
+            } catch (const afn::color::ColorError& e) {
+                throw CliError(std::string("colour conversion: ") + e.what(), path);
+            }
+            for (int c = 0; c < 3 && l; ++c) {
+                const int index = layeredIndex(*all, l->channels[c]);
+                if (index >= 0)
+                    replaced[index] = v.data() + c;
+            }
+        }
+
     const std::size_t nch = channels.size(), npx = static_cast<std::size_t>(w) * h;
     std::vector<float> pixels(npx * nch);
     for (std::size_t i = 0; i < npx; ++i) {
@@ -114,8 +161,11 @@ void writeOutput(RunContext& ctx, const LoadedFrame& frame, const std::string& p
         std::size_t k = 3;
         if (hasAlpha)
             p[k++] = alpha->second.pixels[i * componentsOf(alpha->second)];
-        for (int c : extra)
-            p[k++] = all->pixels[i * all->channels.size() + c];
+        for (int c : extra) {
+            auto r = replaced.find(c);
+            p[k++] = r != replaced.end() ? r->second[i * 3]
+                                         : all->pixels[i * all->channels.size() + c];
+        }
     }
 
     afn::io::WriteOptions wo;

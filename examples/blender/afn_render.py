@@ -44,9 +44,18 @@ def configure_cycles(scene, width, height, samples, seed):
     scene.view_settings.view_transform = "Standard"  # EXR is scene-linear regardless; for previews
 
 
-def configure_passes(scene, all_passes):
-    """Enable every pass afn maps (``all_passes``) or Combined only (references)."""
+LIGHT_PASSES = ("diffuse_direct", "diffuse_indirect", "diffuse_color", "glossy_direct",
+                "glossy_indirect", "glossy_color", "transmission_direct", "transmission_indirect",
+                "transmission_color", "emit", "environment")
+
+
+def configure_passes(scene, all_passes, light_passes=False):
+    """Enable every pass afn maps (``all_passes``) or Combined only (references); with
+    ``light_passes`` also the light-path passes a compositor rebuilds Combined from (DiffDir,
+    DiffInd, DiffCol, Gloss*, Trans*, Emit, Env)."""
     layer = scene.view_layers[0]
+    for name in LIGHT_PASSES:
+        setattr(layer, "use_pass_" + name, bool(light_passes))
     layer.name = VIEW_LAYER_NAME
     layer.use_pass_combined = True
     layer.use_pass_normal = all_passes
@@ -67,7 +76,8 @@ def configure_output(scene, half):
     scene.render.use_file_extension = True
 
 
-def setup(scene, kind, width, height, samples, seed, ref_seed_offset=REFERENCE_SEED_OFFSET):
+def setup(scene, kind, width, height, samples, seed, ref_seed_offset=REFERENCE_SEED_OFFSET,
+          light_passes=False):
     """Configure ``scene`` for one output kind, ``"noisy"`` or ``"reference"``.
 
     References use noise seed ``seed + ref_seed_offset``.
@@ -76,7 +86,7 @@ def setup(scene, kind, width, height, samples, seed, ref_seed_offset=REFERENCE_S
         raise ValueError("unknown render kind: %r" % kind)
     noisy = kind == "noisy"
     configure_cycles(scene, width, height, samples, seed if noisy else seed + ref_seed_offset)
-    configure_passes(scene, all_passes=noisy)
+    configure_passes(scene, all_passes=noisy, light_passes=light_passes)
     configure_output(scene, half=noisy)
 
 

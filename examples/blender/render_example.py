@@ -4,7 +4,7 @@
 Usage: blender -b --factory-startup --python examples/blender/render_example.py -- \
            --out DIR [--frames 8] [--first 0] [--width 320] [--height 180] [--spp 1] \
            [--ref-spp 1024] [--seed 1] [--kinds noisy,reference] [--noisy-name frame] \
-           [--ref-name reference] [--only-frames 0,3] [--skip-existing]
+           [--ref-name reference] [--only-frames 0,3] [--skip-existing] [--light-passes]
 
 Writes DIR/<noisy-name>.NNNN.exr (all passes, ``--spp`` samples) and DIR/<ref-name>.NNNN.exr
 (Combined only, float, ``--ref-spp`` samples) and appends per-frame timings to DIR/render-times.json.
@@ -38,6 +38,8 @@ def parse_args():
     ap.add_argument("--ref-name", default="reference")
     ap.add_argument("--only-frames", default="", help="comma-separated subset of frames")
     ap.add_argument("--skip-existing", action="store_true")
+    ap.add_argument("--light-passes", action="store_true",
+                    help="also write the light-path passes (DiffDir, ..., Emit, Env) in both kinds")
     return ap.parse_args(argv)
 
 
@@ -54,7 +56,8 @@ def main():
     for kind in args.kinds.split(","):
         spp = args.spp if kind == "noisy" else args.ref_spp
         name = args.noisy_name if kind == "noisy" else args.ref_name
-        afn_render.setup(scene, kind, args.width, args.height, spp, args.seed)
+        afn_render.setup(scene, kind, args.width, args.height, spp, args.seed,
+                         light_passes=args.light_passes)
         for f in frames:
             path = os.path.join(out, "%s.%04d.exr" % (name, f))
             if args.skip_existing and os.path.exists(path):

@@ -103,6 +103,14 @@ typedef enum AFNDeviceType {
 #define AFN_IMAGE_OUTPUT "output"
 /// Prefix of a method's feature outputs ("feature.<name>", see afnGetFilterTypeFeature).
 #define AFN_IMAGE_FEATURE_PREFIX "feature."
+/// Light-path passes denoised with the beauty (docs/passes.md), any method: "pass.<name>" is an
+/// additive light pass (FLOAT3/FLOAT4), "passFactor.<name>" its optional colour factor (the pass
+/// adds pass x factor to the beauty, e.g. Blender's DiffDir x DiffCol), "passOutput.<name>" where
+/// the denoised pass goes (needs "output"; may be the pass's own buffer). Denoised passes that
+/// add up to the beauty add up to "output".
+#define AFN_IMAGE_PASS_PREFIX "pass."
+#define AFN_IMAGE_PASS_FACTOR_PREFIX "passFactor."
+#define AFN_IMAGE_PASS_OUTPUT_PREFIX "passOutput."
 /// Parameters every filter has: the conventions of the bound inputs.
 #define AFN_CONVENTION_NORMAL_SPACE "normal.space"
 #define AFN_CONVENTION_DEPTH_KIND "depth.kind"

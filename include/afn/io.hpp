@@ -105,9 +105,14 @@ struct RoleMapping {
 struct MappingOverrides {
     std::map<Role, std::vector<std::string>> channels;
     std::map<std::string, std::string> tags; ///< "normal.space" -> "camera", ...
+    /// "--aov lights=A,B*F,...": the additive light passes (layer names; "B*F": B multiplied by
+    /// the colour factor layer F) replacing the renderer's recipe; an empty list ("lights=none")
+    /// turns the light passes off. Unset: the renderer's recipe (findLightPasses).
+    std::optional<std::vector<std::string>> lights;
 };
 
-/// Parse one "--aov" argument ("role=channels" or "normal.space=value"); throws IoError.
+/// Parse one "--aov" argument ("role=channels", "normal.space=value" or "lights=A,B*F"); throws
+/// IoError.
 AFN_IO_API void parseOverride(const std::string& text, MappingOverrides& overrides);
 
 // ---- File inspection ----------------------------------------------------------------------------
@@ -149,6 +154,52 @@ AFN_IO_API std::optional<int> samplesPerPixel(
 /// lookedFor); throws IoError when an override names channels the file does not have. An override
 /// "ROLE=none" unbinds the role (as if the file lacked it; not allowed for colour).
 AFN_IO_API RoleMapping mapRoles(const FileInfo& info, const MappingOverrides& overrides = {});
+
+// ---- Light-path passes --------------------------------------------------------------------------
+
+/// One light-path pass of a file: an additive light pass, or a colour factor (albedo-like, e.g.
+/// Blender's DiffCol) a light pass is multiplied by.
+struct LightPass {
+    std::string name; ///< as the renderer names it: "DiffDir", "diffuse_direct", "VRayLighting"
+    int subimage = 0;
+    std::vector<std::string> channels; ///< full channel names, in R,G,B order
+    std::vector<int> indices; ///< channel indices within the subimage
+    std::string factor; ///< light passes: the factor pass it is multiplied by ("DiffCol"); ""
+};
+
+/// How a file's beauty is rebuilt from its passes (lib/io/light_passes.cpp has the recipes):
+/// beauty = sum over `lights` of light x (its factor, or 1).
+struct PassRecipe {
+    std::string renderer; ///< the preset whose names were found ("blender", ...; "--aov lights")
+    std::vector<LightPass> lights; ///< additive passes, in the order of the renderer's formula
+    std::vector<LightPass> factors; ///< colour factors (albedo-like: not denoised)
+    std::string formula; ///< "Combined = (DiffDir + DiffInd) x DiffCol + ... + Env" as found
+    /// Passes of a partly written family (DiffInd without DiffDir): the sum cannot match.
+    std::vector<std::string> missing;
+    bool empty() const { return lights.empty(); }
+    AFN_IO_API const LightPass* find(const std::string& name) const;
+};
+
+/// The light-path passes of a file by its renderer's names (Blender Cycles, Arnold, V-Ray; light
+/// groups when a file has no light passes), or by overrides.lights. Empty when it has none.
+/// Throws IoError when an override names a layer the file lacks.
+AFN_IO_API PassRecipe findLightPasses(
+    const FileInfo& info, const RoleMapping& mapping, const MappingOverrides& overrides = {});
+
+/// How far the recomposed passes are from the beauty.
+struct Recomposition {
+    double psnr = 0; ///< dB on T(x) = clip(max(x,0)^(1/2.2), 0, 1), as afn's metrics; +inf if equal
+    double maxAbsolute = 0; ///< largest |sum - beauty| over the RGB values (linear)
+    double meanBeauty = 0; ///< mean beauty value, for scale
+    /// sqrt(mean((sum - beauty)^2)) / mean(|beauty|) on linear values: sees what the tone map's
+    /// clip at 1 hides (bright pixels).
+    double relativeRms = 0;
+};
+/// PSNR (tone-mapped, as afn's metrics) under which recomposed passes count as not adding up to
+/// the beauty (half-float passes of a matching file reach 60 dB and more).
+constexpr double kRecompositionWarnPsnr = 40.0;
+/// Linear relative RMS error above which they do not add up either (half floats: about 1e-3).
+constexpr double kRecompositionWarnRelative = 0.01;
 
 // ---- Reading frames -----------------------------------------------------------------------------
 
@@ -221,11 +272,29 @@ struct FrameImages {
     std::optional<int> samples; ///< samples per pixel from the header (samplesPerPixel)
     /// Ground truth when the input provides one (BMFR reference{N}.exr, full radiance), else empty.
     std::optional<RoleImage> reference;
+    PassRecipe passRecipe; ///< the file's light-path passes (findLightPasses); always filled
+    /// Pixels of every pass of passRecipe (lights and factors, 3 components), by name, when
+    /// ReadOptions::passes.
+    std::map<std::string, RoleImage> passes;
 };
+
+/// The beauty rebuilt from `passes` by `recipe` (width x height x 3); passes it lacks count as 0.
+AFN_IO_API RoleImage recompose(const PassRecipe& recipe,
+    const std::map<std::string, RoleImage>& passes, int width, int height);
+/// Error of a recomposition against a beauty (first 3 components of each).
+AFN_IO_API Recomposition recompositionError(const RoleImage& recomposed, const RoleImage& beauty);
+/// The recomposition of a read frame (readFrame with ReadOptions::passes) against its colour;
+/// nullopt when it has no light passes or no colour.
+AFN_IO_API std::optional<Recomposition> recompositionOf(const FrameImages& frame);
+/// A warning naming the error when the passes do not add up to the beauty (PSNR below
+/// kRecompositionWarnPsnr, relative RMS above kRecompositionWarnRelative, or a family written only
+/// in part); "" when they do.
+AFN_IO_API std::string recompositionWarning(const PassRecipe& recipe, const Recomposition& error);
 
 struct ReadOptions {
     MappingOverrides overrides;
     bool keepAll = false; ///< also read every channel (for --keep-aovs)
+    bool passes = false; ///< also read the pixels of the light-path passes (FrameImages::passes)
     std::vector<Role> required = { Role::Color }; ///< missing -> IoError naming what was looked for
 };
 

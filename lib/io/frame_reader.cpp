@@ -185,6 +185,18 @@ FrameImages readFrame(const std::string& path, const ReadOptions& options)
         out.mapping.warnings.push_back(msg + ": ignored");
     }
     out.mapping.roles = kept;
+    out.passRecipe = findLightPasses(info, out.mapping, options.overrides);
+    std::vector<LightPass> passesRead;
+    if (options.passes) {
+        for (const auto* list : { &out.passRecipe.lights, &out.passRecipe.factors })
+            for (const LightPass& p : *list) {
+                if (sameWindow(specs[p.subimage], specs[ref]))
+                    passesRead.push_back(p);
+                else
+                    out.mapping.warnings.push_back("light pass " + p.name
+                        + " has a different data window from the colour: not read");
+            }
+    }
 
     // Channel range to decode per subimage: the roles' channels, or all with keepAll.
     const int nsub = static_cast<int>(specs.size());
@@ -192,6 +204,12 @@ FrameImages readFrame(const std::string& path, const ReadOptions& options)
     for (const RoleChannels& rc : kept)
         for (int i : rc.indices) {
             auto& [lo, hi] = range[rc.subimage];
+            lo = hi == 0 ? i : std::min(lo, i);
+            hi = std::max(hi, i + 1);
+        }
+    for (const LightPass& p : passesRead)
+        for (int i : p.indices) {
+            auto& [lo, hi] = range[p.subimage];
             lo = hi == 0 ? i : std::min(lo, i);
             hi = std::max(hi, i + 1);
         }
@@ -205,6 +223,8 @@ FrameImages readFrame(const std::string& path, const ReadOptions& options)
             dec[s] = decode(*in, s, specs[s], range[s].first, range[s].second, path);
     for (const RoleChannels& rc : kept)
         out.roles[rc.role] = gather(dec[rc.subimage], rc.indices);
+    for (const LightPass& p : passesRead)
+        out.passes[p.name] = gather(dec[p.subimage], p.indices);
 
     auto motion = out.roles.find(Role::Motion);
     if (motion != out.roles.end() && out.mapping.renderer == "blender" && allZero(motion->second))

@@ -71,6 +71,7 @@ const RoleChannels* RoleMapping::find(Role role) const
 
 void parseOverride(const std::string& text, MappingOverrides& overrides)
 {
+    static const std::string kNone = "none";
     const auto eq = text.find('=');
     if (eq == std::string::npos || eq == 0 || eq + 1 == text.size())
         throw IoError("--aov expects role=channels or tag=value, got '" + text + "'");
@@ -85,6 +86,28 @@ void parseOverride(const std::string& text, MappingOverrides& overrides)
                   "motion.yUp=true|false, motion.units=pixels|ndc|uv, "
                   "color.demodulated=true|false)");
         overrides.tags[key] = value;
+        return;
+    }
+    if (key == "lights") {
+        // Light-path passes: "lights=none" or "lights=A,B*F,..." (B times the factor layer F).
+        std::vector<std::string> lights;
+        if (value != kNone) {
+            std::size_t start = 0;
+            while (start <= value.size()) {
+                const auto comma = value.find(',', start);
+                const std::string part = trim(value.substr(
+                    start, comma == std::string::npos ? std::string::npos : comma - start));
+                const auto star = part.find('*');
+                if (part.empty() || star == 0
+                    || (star != std::string::npos && star + 1 == part.size()))
+                    throw IoError("--aov lights: expected LAYER or LAYER*FACTOR in '" + text + "'");
+                lights.push_back(part);
+                if (comma == std::string::npos)
+                    break;
+                start = comma + 1;
+            }
+        }
+        overrides.lights = lights;
         return;
     }
     const std::optional<Role> role = roleFromName(key);

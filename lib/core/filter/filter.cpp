@@ -8,6 +8,7 @@
 #include "stages/demodulate.h"
 
 #include <algorithm>
+#include <cstring>
 #include <sstream>
 
 namespace afn {
@@ -24,6 +25,20 @@ static bool isInputName(const std::string& n)
 {
     const auto& v = inputImageNames();
     return std::find(v.begin(), v.end(), n) != v.end();
+}
+
+/// The pass name of "pass.<name>", "passFactor.<name>" or "passOutput.<name>"; "" otherwise.
+static std::string passNameOf(const std::string& n, const char* prefix)
+{
+    const std::size_t len = std::strlen(prefix);
+    return n.size() > len && n.compare(0, len, prefix) == 0 ? n.substr(len) : std::string();
+}
+
+static bool isPassImageName(const std::string& n)
+{
+    return !passNameOf(n, AFN_IMAGE_PASS_PREFIX).empty()
+        || !passNameOf(n, AFN_IMAGE_PASS_FACTOR_PREFIX).empty()
+        || !passNameOf(n, AFN_IMAGE_PASS_OUTPUT_PREFIX).empty();
 }
 
 static std::string sizeText(int w, int h)
@@ -110,13 +125,13 @@ ImageView ImageBinding::view() const
 void Filter::setImage(const std::string& name, const ImageBinding& b)
 {
     const FeatureOutput* feature = featureOf(m_type, name);
-    if (name != AFN_IMAGE_OUTPUT && !isInputName(name) && !feature) {
+    if (name != AFN_IMAGE_OUTPUT && !isInputName(name) && !feature && !isPassImageName(name)) {
         std::string features;
         for (const FeatureOutput& f : m_type.features)
             features += (features.empty() ? "" : ", ") + (AFN_IMAGE_FEATURE_PREFIX + f.name);
         throwInvalidArgument("unknown image '" + name
-            + "' (inputs: color, albedo, normal, depth, position, motion, alpha, mask; output: "
-              "output"
+            + "' (inputs: color, albedo, normal, depth, position, motion, alpha, mask, "
+              "pass.<name>, passFactor.<name>; outputs: output, passOutput.<name>"
             + (features.empty() ? "" : "; features of " + m_type.name + ": " + features) + ")");
     }
     if (b.ptr == nullptr)
@@ -184,8 +199,61 @@ void Filter::validateBindings() const
     need(AFN_IMAGE_OUTPUT, 3);
     for (const FeatureOutput& f : m_type.features)
         need((AFN_IMAGE_FEATURE_PREFIX + f.name).c_str(), f.channels);
+    for (const auto& [name, b] : m_images) {
+        if (isPassImageName(name) && b.channels() < 3)
+            throwInvalidArgument("image '" + name + "' needs at least 3 channels");
+        const std::string pass = passNameOf(name, AFN_IMAGE_PASS_PREFIX);
+        const std::string factor = passNameOf(name, AFN_IMAGE_PASS_FACTOR_PREFIX);
+        const std::string out = passNameOf(name, AFN_IMAGE_PASS_OUTPUT_PREFIX);
+        if (!factor.empty() && !m_images.count(AFN_IMAGE_PASS_PREFIX + factor))
+            throwInvalidArgument("image '" + name + "' has no pass 'pass." + factor + "'");
+        if (!out.empty() && !m_images.count(AFN_IMAGE_PASS_PREFIX + out))
+            throwInvalidArgument("image '" + name + "' has no pass 'pass." + out + "'");
+        if (!pass.empty() && !m_images.count(AFN_IMAGE_PASS_OUTPUT_PREFIX + pass))
+            throwInvalidArgument("pass '" + name + "' has no output 'passOutput." + pass + "'");
+        if (!out.empty() && !outputBound())
+            throwInvalidArgument("image '" + name
+                + "': denoised passes are made from the denoised beauty; bind 'output' too");
+    }
     if (!outputBound() && !anyFeatureBound())
         throwInvalidOperation("no 'output' image set");
+}
+
+std::vector<PassBinding> Filter::passBindings() const
+{
+    std::vector<PassBinding> passes;
+    for (const auto& [name, b] : m_images) {
+        const std::string pass = passNameOf(name, AFN_IMAGE_PASS_PREFIX);
+        if (pass.empty())
+            continue;
+        PassBinding p;
+        p.name = pass;
+        p.light = b.view();
+        p.output = m_images.at(AFN_IMAGE_PASS_OUTPUT_PREFIX + pass).view();
+        auto f = m_images.find(AFN_IMAGE_PASS_FACTOR_PREFIX + pass);
+        if (f != m_images.end())
+            p.factor = f->second.view();
+        passes.push_back(p);
+    }
+    return passes;
+}
+
+void Filter::runPassTransfer()
+{
+    const std::vector<PassBinding> passes = passBindings();
+    if (passes.empty())
+        return;
+    PassGuides g;
+    g.beauty = m_images.at(AFN_IMAGE_COLOR).view();
+    g.denoised = m_images.at(AFN_IMAGE_OUTPUT).view();
+    if (auto n = m_images.find(AFN_IMAGE_NORMAL); n != m_images.end())
+        g.normal = n->second.view();
+    if (auto d = m_images.find(AFN_IMAGE_DEPTH); d != m_images.end())
+        g.depth = d->second.view();
+    if (m_stages.reproject != StageNeeds::Reproject::None)
+        g.reprojector = &m_reprojector;
+    g.trust = historyTrust();
+    m_passTransfer.run(g, passes);
 }
 
 void Filter::commit()
@@ -222,6 +290,7 @@ void Filter::runStages()
         m_accumulator.reset();
         m_aux.reset();
         resetHistory();
+        m_passTransfer.reset();
     }
     const bool reproject = m_stages.reproject != StageNeeds::Reproject::None;
     if (m_stages.demodulate)
@@ -316,6 +385,8 @@ void Filter::execute()
                 writeOutput(m_output);
         }
     }
+    if (outputBound())
+        runPassTransfer();
     writeTrustFeature();
     reportProgress(1.0);
     m_prevWidth = color.width;

@@ -16,6 +16,7 @@
 #include "filter/frame.h"
 #include "filter/work_mask.h"
 #include "stages/aux_prefilter.h"
+#include "stages/pass_transfer.h"
 #include "stages/temporal_accumulation.h"
 
 #include <functional>
@@ -193,6 +194,10 @@ private:
     void validateBindings() const;
     void runStages();
     void writeOutput(const Image& radiance) const;
+    /// The light-path passes bound as "pass.<name>" with their factors and outputs.
+    std::vector<PassBinding> passBindings() const;
+    /// Denoise the bound passes with the frame's output (stages/pass_transfer.h).
+    void runPassTransfer();
     /// writeOutput(remodulate(irradiance)) in one pass (denoiseDemodulated()).
     void writeRemodulated(const Image& irradiance) const;
     void writeRemodulatedRows(const Image& irradiance, int y0, int y1) const;
@@ -223,6 +228,7 @@ private:
     AuxPrefilter m_aux;
     Reprojector m_reprojector;
     TemporalAccumulator m_accumulator;
+    PassTransfer m_passTransfer;
 };
 
 /// Convert the bound images into a canonical frame (see filter/frame.h), counting sanitised values.

@@ -11,6 +11,7 @@ afn_add_gtest(test_io
     unit/io/test_io_write_header.cpp
     unit/io/test_io_bmfr.cpp
     unit/io/test_io_exr_header.cpp
+    unit/io/test_io_passes.cpp
   LIBS afn_io PkgConfig::OIIO)
 
 # The shared library exports only what include/afn/io.hpp declares.
