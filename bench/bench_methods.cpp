@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: Apache-2.0
 // ms per frame of "ta", "svgf", "bmfr" and (when the build embeds trained weights) the whole "afn"
 // filter at 1280x720 on a synthetic moving sequence with warm history (colour, albedo, normal,
-// world position, motion). Run:
+// world position, motion); "<method>_passes/N": the same with N light passes denoised with the
+// beauty (docs/passes.md; half of them with a colour factor). Run:
 //   bench_methods --benchmark_repetitions=5 --benchmark_report_aggregates_only=true
 // bench_afn_vs_methods (bench/afn.cmake) links this file with bench_afn.cpp, so that AFN's stages
 // and these methods are measured in one run (AFN_BENCH_NO_MAIN leaves out this file's main).
@@ -12,6 +13,7 @@
 
 #include <cmath>
 #include <cstdint>
+#include <string>
 #include <vector>
 
 namespace {
@@ -57,10 +59,24 @@ struct Sequence {
     }
 };
 
-void runMethod(benchmark::State& state, const char* method)
+void runMethod(benchmark::State& state, const char* method, int passes = 0)
 {
     static Sequence seq;
     auto f = afn::createFilter(method);
+    // Light passes: each a share of the colour (the first frame's; their noise is not what the
+    // timing depends on), every other one with the albedo as its factor.
+    std::vector<Image> passIn(static_cast<std::size_t>(passes)), passOut(passIn.size());
+    for (int i = 0; i < passes; ++i) {
+        passIn[i] = seq.color[0];
+        for (std::size_t k = 0; k < passIn[i].size(); ++k)
+            passIn[i].data()[k] *= 1.0f / static_cast<float>(passes);
+        passOut[i] = Image(kWidth, kHeight, 3);
+        const std::string name = "p" + std::to_string(i);
+        f->setImage("pass." + name, bindImage(passIn[i]));
+        f->setImage("passOutput." + name, bindImage(passOut[i]));
+        if (i % 2)
+            f->setImage("passFactor." + name, bindImage(seq.albedo));
+    }
     f->setImage("albedo", bindImage(seq.albedo));
     f->setImage("normal", bindImage(seq.normal));
     f->setImage("position", bindImage(seq.position));
@@ -78,7 +94,21 @@ void runMethod(benchmark::State& state, const char* method)
         step();
         benchmark::DoNotOptimize(seq.out.data());
     }
-    state.SetLabel(std::string(method) + " 1280x720");
+    state.SetLabel(std::string(method) + " 1280x720" + (passes ? ", passes" : ""));
+}
+
+void BM_svgf_passes(benchmark::State& s)
+{
+    runMethod(s, "svgf", static_cast<int>(s.range(0)));
+}
+
+void BM_afn_passes(benchmark::State& s)
+{
+    if (!afn::findFilterType("afn")->ready) {
+        s.SkipWithError("this build embeds no AFN weights");
+        return;
+    }
+    runMethod(s, "afn", static_cast<int>(s.range(0)));
 }
 
 void BM_ta(benchmark::State& s)
@@ -107,6 +137,8 @@ BENCHMARK(BM_ta)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_svgf)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_bmfr)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_afn)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_svgf_passes)->Arg(0)->Arg(1)->Arg(8)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_afn_passes)->Arg(0)->Arg(1)->Arg(8)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 } // namespace
 

@@ -54,8 +54,9 @@ void parseAovArgument(const std::string& text, afn::io::MappingOverrides& overri
             if (std::find(names.begin(), names.end(), key) == names.end())
                 throw CliError("--aov: unknown convention '" + key + "'" + didYouMean(key, names)
                     + " (conventions: " + joinNames(names) + ")");
-        } else if (!afn::io::roleFromName(key)) {
-            const std::vector<std::string> roles = roleNames();
+        } else if (!afn::io::roleFromName(key) && key != "lights") {
+            std::vector<std::string> roles = roleNames();
+            roles.push_back("lights");
             throw CliError("--aov: unknown role '" + key + "'" + didYouMean(key, roles)
                 + " (roles: " + joinNames(roles) + ")");
         }

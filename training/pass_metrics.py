@@ -85,7 +85,8 @@ def main(argv=None):
             rows[n]["denoised"].append(psnr(layer_rgb(den, n, paths[1]), r))
         info = json.loads(subprocess.run([a.afntool, "--info", "--json", paths[1]], check=True,
                                          capture_output=True, text=True).stdout)
-        recomposition.append(info["lightPasses"].get("recompositionPsnr", float("nan")))
+        value = info["lightPasses"].get("recompositionPsnr")
+        recomposition.append(float("inf") if value is None else value)  # null: identical
     out = {"frames": frames, "passes": {}, "recompositionPsnr": recomposition,
            "recompositionPsnrMin": min(recomposition)}
     print("%-10s %12s %14s %8s" % ("pass", "noisy (dB)", "denoised (dB)", "gain"))

@@ -61,3 +61,6 @@ afn_add_afntool_test(test_afntool_quality SOURCES integration/test_afntool_quali
 # Work skipping end to end: :mask=, sky depth, skip=off comparison, the sky benchmark.
 afn_add_afntool_test(test_afntool_skip SOURCES integration/test_afntool_skip.cpp
   LIBS PkgConfig::OIIO)
+# Light-path passes denoised with the beauty on examples/passes: they rebuild the denoised beauty.
+afn_add_afntool_test(test_afntool_passes SOURCES integration/test_afntool_passes.cpp
+  LIBS afn_io PkgConfig::OIIO)

@@ -5,19 +5,23 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 
 namespace afn {
 namespace {
 
-/// Edge stops of the shared filter (see pass_transfer.h): relative luminance difference of the
-/// denoised beauty, normal cosine power, relative depth difference (per a-trous step).
+/// Edge stops of the shared filter (see pass_transfer.h): luminance difference of the denoised
+/// beauty relative to the centre pixel's, normal cosine^16, relative depth difference per a-trous
+/// step.
 constexpr float kLumaSigma = 0.2f;
-constexpr float kNormalPower = 16.0f;
 constexpr float kDepthSigma = 0.02f;
-/// The guide channels: luminance, normal xyz, depth.
-constexpr int kGuide = 5;
+/// The guide planes (PassTransfer::m_guide, each w x h): luminance, normal xyz, depth, then the
+/// centre pixel's scales 1 / (kLumaSigma lum + 1e-4) and 1 / (kDepthSigma |depth| + 1e-6).
+enum Plane { Luma, Nx, Ny, Nz, Depth, LumaScale, DepthScale, kGuide };
 /// A filtered beauty at or below this is black: the gain is 1 there.
 constexpr float kBlack = 1e-12f;
+/// The smallest factor through which a black neighbourhood's B' is put into a pass.
+constexpr float kFallbackFactor = 0.01f;
 
 /// NaN/Inf and negatives as 0, as the methods read their colour.
 float sanitize(float v)
@@ -25,21 +29,72 @@ float sanitize(float v)
     return std::isfinite(v) && v > 0.0f ? v : 0.0f;
 }
 
-float guideWeight(const float* gp, const float* gq, bool normals, bool depth, int step)
+/// exp(-x) for x >= 0 to 6e-5 relative (2^-t: the integer part in the exponent bits, the fraction
+/// by a polynomial); x is clamped at 87 (exp(-87) = 1.6e-38, a normal float). The weights only need
+/// to be the same for every image of the stack, not exact: the filter's linearity does not depend
+/// on them.
+inline float expNeg(float x)
 {
-    const float lp = gp[0], lq = gq[0];
-    float e = std::fabs(lp - lq) / (kLumaSigma * std::max(lp, lq) + 1e-4f);
-    if (depth) {
-        const float zp = gp[4], zq = gq[4];
-        e += std::fabs(zp - zq)
-            / (kDepthSigma * step * std::max(std::fabs(zp), std::fabs(zq)) + 1e-6f);
+    const float t = (x < 87.0f ? x : 87.0f) * 1.44269504f; // log2(e)
+    // t = i + f with i = round(t) (the 1.5 x 2^23 trick: no float-to-int conversion, so that the
+    // loops vectorise) and |f| <= 1/2; 2^-f by its Taylor series (error below 6e-5).
+    constexpr float kMagic = 12582912.0f;
+    const float r = t + kMagic;
+    const std::int32_t i
+        = __builtin_bit_cast(std::int32_t, r) - __builtin_bit_cast(std::int32_t, kMagic);
+    const float f = t - (r - kMagic);
+    const float p = 1.0f + f * (-0.693147f + f * (0.240227f + f * (-0.0555041f + f * 0.00961813f)));
+    return p * __builtin_bit_cast(float, static_cast<std::int32_t>((127 - i) << 23));
+}
+
+/// Weights of the tap (dx, row q) for the pixels [xs, xe) of row p: hk x exp(-(|dl| sl + |dz| sz /
+/// step)) x cos^16, from the planes of the two rows (one branch-free loop, so that it vectorises).
+/// Built for AVX-512 and for the baseline; the processor picks at load time (GCC function clones).
+#define AFN_PASS_CLONES __attribute__((target_clones("avx512f", "default")))
+
+template <bool kNormals, bool kDepth>
+AFN_PASS_CLONES void weightRow(const float* const* p, const float* const* q, int dx, int xs, int xe,
+    float hk, float depthScale, float* __restrict wrow)
+{
+    const float* __restrict pl = p[Luma];
+    const float* __restrict ps = p[LumaScale];
+    const float* __restrict pz = p[Depth];
+    const float* __restrict pzs = p[DepthScale];
+    const float* __restrict px = p[Nx];
+    const float* __restrict py = p[Ny];
+    const float* __restrict pn = p[Nz];
+    const float* __restrict ql = q[Luma] + dx;
+    const float* __restrict qz = q[Depth] + dx;
+    const float* __restrict qx = q[Nx] + dx;
+    const float* __restrict qy = q[Ny] + dx;
+    const float* __restrict qn = q[Nz] + dx;
+    for (int x = xs; x < xe; ++x) {
+        float e = std::fabs(pl[x] - ql[x]) * ps[x];
+        if (kDepth)
+            e += std::fabs(pz[x] - qz[x]) * pzs[x] * depthScale;
+        float wq = hk * expNeg(e);
+        if (kNormals) {
+            const float dot = px[x] * qx[x] + py[x] * qy[x] + pn[x] * qn[x];
+            const float d = dot > 0.0f ? dot : 0.0f;
+            const float d2 = d * d, d4 = d2 * d2, d8 = d4 * d4;
+            wq *= d8 * d8;
+        }
+        wrow[x] = wq;
     }
-    float w = std::exp(-e);
-    if (normals) {
-        const float d = std::max(0.0f, gp[1] * gq[1] + gp[2] * gq[2] + gp[3] * gq[3]);
-        w *= std::pow(d, kNormalPower);
+}
+
+/// acc[x][c] += w[x] v[x][c], wsum[x] += w[x] for the pixels [xs, xe) of a row of C channels.
+AFN_PASS_CLONES void accumulateRow(const float* __restrict w, const float* __restrict v,
+    float* __restrict acc, float* __restrict wsum, int xs, int xe, std::size_t C)
+{
+    for (int x = xs; x < xe; ++x) {
+        const float wq = w[x];
+        float* a = acc + static_cast<std::size_t>(x) * C;
+        const float* vx = v + static_cast<std::size_t>(x) * C;
+        for (std::size_t c = 0; c < C; ++c)
+            a[c] += wq * vx[c];
+        wsum[x] += wq;
     }
-    return w;
 }
 
 } // namespace
@@ -52,40 +107,59 @@ void PassTransfer::filterSpatial(const PassGuides& g, int channels)
     m_scratch.resize(w, ht, channels);
     Image* src = &m_stack;
     Image* dst = &m_scratch;
+    const std::size_t C = static_cast<std::size_t>(channels);
+    auto row = [&](int k, int y) {
+        return m_guide.data()
+            + (static_cast<std::size_t>(k) * ht + y) * static_cast<std::size_t>(w);
+    };
     for (int level = 0; level < kLevels; ++level) {
         const int step = 1 << level;
+        const float depthScale = 1.0f / static_cast<float>(step);
+        // Row by row: for each of the 25 taps, the weights of the whole row, then the stack's
+        // channels accumulated with them (contiguous, so the loops vectorise).
         parallelRows(ht, [&](int y0, int y1) {
-            std::vector<float> acc(static_cast<std::size_t>(channels));
-            for (int y = y0; y < y1; ++y)
-                for (int x = 0; x < w; ++x) {
-                    const float* gp = m_guide.at(x, y);
-                    std::fill(acc.begin(), acc.end(), 0.0f);
-                    float wsum = 0.0f;
-                    for (int j = -2; j <= 2; ++j) {
-                        const int qy = y + j * step;
-                        if (qy < 0 || qy >= ht)
-                            continue;
-                        for (int i = -2; i <= 2; ++i) {
-                            const int qx = x + i * step;
-                            if (qx < 0 || qx >= w)
-                                continue;
-                            const float wq = h[i + 2] * h[j + 2]
-                                * (i == 0 && j == 0 ? 1.0f
-                                                    : guideWeight(gp, m_guide.at(qx, qy), normals,
-                                                        depth, step));
-                            if (!(wq > 0.0f))
-                                continue;
-                            const float* v = src->at(qx, qy);
-                            for (int c = 0; c < channels; ++c)
-                                acc[c] += wq * v[c];
-                            wsum += wq;
-                        }
+            std::vector<float> acc(static_cast<std::size_t>(w) * C), wsum(w), wrow(w);
+            for (int y = y0; y < y1; ++y) {
+                std::fill(acc.begin(), acc.end(), 0.0f);
+                std::fill(wsum.begin(), wsum.end(), 0.0f);
+                const float* py[kGuide];
+                for (int k = 0; k < kGuide; ++k)
+                    py[k] = row(k, y);
+                for (int j = -2; j <= 2; ++j) {
+                    const int qy = y + j * step;
+                    if (qy < 0 || qy >= ht)
+                        continue;
+                    const float* pq[kGuide];
+                    for (int k = 0; k < kGuide; ++k)
+                        pq[k] = row(k, qy);
+                    for (int i = -2; i <= 2; ++i) {
+                        const int dx = i * step;
+                        const int xs = std::max(0, -dx), xe = std::min(w, w - dx);
+                        const float hk = h[i + 2] * h[j + 2];
+                        float* wr = wrow.data();
+                        if (i == 0 && j == 0)
+                            std::fill(wr + xs, wr + xe, hk);
+                        else if (normals && depth)
+                            weightRow<true, true>(py, pq, dx, xs, xe, hk, depthScale, wr);
+                        else if (normals)
+                            weightRow<true, false>(py, pq, dx, xs, xe, hk, depthScale, wr);
+                        else if (depth)
+                            weightRow<false, true>(py, pq, dx, xs, xe, hk, depthScale, wr);
+                        else
+                            weightRow<false, false>(py, pq, dx, xs, xe, hk, depthScale, wr);
+                        const float* v
+                            = src->at(0, qy) + static_cast<std::ptrdiff_t>(dx) * channels;
+                        accumulateRow(wr, v, acc.data(), wsum.data(), xs, xe, C);
                     }
-                    float* o = dst->at(x, y);
-                    const float inv = 1.0f / wsum; // the centre tap is always in: wsum > 0
-                    for (int c = 0; c < channels; ++c)
-                        o[c] = acc[c] * inv;
                 }
+                float* o = dst->at(0, y);
+                for (int x = 0; x < w; ++x) {
+                    const float inv = 1.0f / wsum[x]; // the centre tap is always in: wsum > 0
+                    for (std::size_t c = 0; c < C; ++c)
+                        o[static_cast<std::size_t>(x) * C + c]
+                            = acc[static_cast<std::size_t>(x) * C + c] * inv;
+                }
+            }
         });
         std::swap(src, dst);
     }
@@ -155,9 +229,10 @@ void PassTransfer::run(const PassGuides& g, const std::vector<PassBinding>& pass
 
     // The stack: the rest R = B - sum_i P_i x F_i (what the bound passes do not hold; about 0
     // when every pass is bound and they add up), then every light pass P_i as given (NaN/Inf and
-    // negatives as 0, as the method's colour).
+    // negatives as 0, as the method's colour). The guide planes from B', normal and depth.
     m_stack.resize(w, ht, channels);
-    m_guide.resize(w, ht, kGuide);
+    m_guide.resize(w, ht * kGuide, 1);
+    const std::size_t planeSize = static_cast<std::size_t>(w) * ht;
     parallelRows(ht, [&](int y0, int y1) {
         for (int y = y0; y < y1; ++y)
             for (int x = 0; x < w; ++x) {
@@ -174,16 +249,20 @@ void PassTransfer::run(const PassGuides& g, const std::vector<PassBinding>& pass
                     }
                 }
                 const float* d = g.denoised.at(x, y);
-                float* gd = m_guide.at(x, y);
-                gd[0] = 0.2126f * sanitize(d[0]) + 0.7152f * sanitize(d[1])
+                float gd[kGuide];
+                gd[Luma] = 0.2126f * sanitize(d[0]) + 0.7152f * sanitize(d[1])
                     + 0.0722f * sanitize(d[2]);
                 for (int c = 0; c < 3; ++c)
-                    gd[1 + c] = g.normal.empty() ? 0.0f : g.normal.at(x, y)[c];
-                const float len = std::sqrt(gd[1] * gd[1] + gd[2] * gd[2] + gd[3] * gd[3]);
+                    gd[Nx + c] = g.normal.empty() ? 0.0f : g.normal.at(x, y)[c];
+                const float len = std::sqrt(gd[Nx] * gd[Nx] + gd[Ny] * gd[Ny] + gd[Nz] * gd[Nz]);
                 for (int c = 0; c < 3; ++c)
-                    gd[1 + c] = std::isfinite(len) && len > 0.0f ? gd[1 + c] / len : 0.0f;
+                    gd[Nx + c] = std::isfinite(len) && len > 0.0f ? gd[Nx + c] / len : 0.0f;
                 const float z = g.depth.empty() ? 0.0f : g.depth.at(x, y)[0];
-                gd[4] = std::isfinite(z) ? z : 0.0f;
+                gd[Depth] = std::isfinite(z) ? z : 0.0f;
+                gd[LumaScale] = 1.0f / (kLumaSigma * gd[Luma] + 1e-4f);
+                gd[DepthScale] = 1.0f / (kDepthSigma * std::fabs(gd[Depth]) + 1e-6f);
+                for (int k = 0; k < kGuide; ++k)
+                    m_guide.data()[k * planeSize + static_cast<std::size_t>(y) * w + x] = gd[k];
             }
     });
     filterSpatial(g, channels);
@@ -207,10 +286,21 @@ void PassTransfer::run(const PassGuides& g, const std::vector<PassBinding>& pass
                 float gain[3];
                 for (int c = 0; c < 3; ++c)
                     gain[c] = denom[c] > kBlack ? sanitize(d[c]) / denom[c] : 1.0f;
+                // Where the filtered passes are black but B' is not (the method carried light into
+                // a neighbourhood where no sample found any), B' goes to the first bound pass
+                // whose factor there is at least kFallbackFactor (or that has none).
+                bool placed[3] = { false, false, false };
                 for (int i = 0; i < n; ++i) {
                     float* o = passes[i].output.atMutable(x, y);
-                    for (int c = 0; c < 3; ++c)
+                    const float* f = passes[i].factor.empty() ? nullptr : passes[i].factor.at(x, y);
+                    for (int c = 0; c < 3; ++c) {
                         o[c] = s[3 * (i + 1) + c] * gain[c];
+                        const float fc = f ? sanitize(f[c]) : 1.0f;
+                        if (!(denom[c] > kBlack) && !placed[c] && fc >= kFallbackFactor) {
+                            o[c] += sanitize(d[c]) / fc;
+                            placed[c] = true;
+                        }
+                    }
                     if (passes[i].output.channels >= 4)
                         o[3] = 1.0f;
                 }

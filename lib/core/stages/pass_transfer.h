@@ -5,8 +5,8 @@
 // (+ R), with P_i a light pass, F_i its colour factor (Blender's DiffCol; 1 for passes without one)
 // and R what the bound passes do not hold (about 0 when every pass is bound and they add up). With
 // A ONE linear filter, the same weights for every image -- an edge-aware a-trous (5x5 B3-spline
-// taps, steps 1, 2, 4, 8; weights from the denoised beauty's luminance and the normal and depth the
-// method was given), then an exponential history (alpha 0.2, reprojected with the method's own
+// taps, steps 1, 2, 4, 8; weights from the denoised beauty's luminance difference relative to the
+// centre pixel's, the normals' cosine^16 and the relative depth difference the method was given), then an exponential history (alpha 0.2, reprojected with the method's own
 // taps, cut by its history trust) -- the denoised passes are
 //     P_i' = A(P_i) x g,   g = B' / D,   D = sum_i A(P_i) x F_i + A(R)   (per pixel and channel),
 // so that sum_i P_i' x F_i + A(R) x g = B' exactly: with every pass bound, the denoised passes
@@ -20,8 +20,9 @@
 // Choice: this is one stage for every method (ta, svgf, bmfr, afn, the learned baselines), rather
 // than each method's own per-pixel kernels applied to each pass: the methods' last steps are not
 // linear (afn's refinement, the post-filter, TAA clamping), and a share carried through g keeps
-// the sum exact where re-running them per pass would not. Where D is 0 (black), g = 1. Colour
-// factors are not denoised (albedo-like).
+// the sum exact where re-running them per pass would not. Where D is 0 (no sample in the filter's
+// reach found light) but B' is not, B' goes to the first bound pass (by name) whose factor there is
+// at least 0.01 (or that has none). Colour factors are not denoised (albedo-like).
 #pragma once
 
 #include "base/image.h"
@@ -73,7 +74,7 @@ private:
 
     Image m_stack; ///< R then every P_i, 3 channels each
     Image m_scratch;
-    Image m_guide; ///< luminance of B', normal xyz, depth
+    Image m_guide; ///< luminance of B', normal xyz, depth, their scales (pass_transfer.cpp)
     Image m_history; ///< last frame's accumulated stack
     std::vector<std::string> m_names; ///< passes of the history, in stack order
 };
