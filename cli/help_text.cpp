@@ -70,8 +70,7 @@ std::string helpText()
        << "Actions:\n"
        << "  --info                  channels, AOV roles found, statistics (--json: as JSON)\n"
        << "  --denoise:method=NAME   denoise in frame order; :param=value (--help NAME);\n"
-       << "                          :mask=CHANNEL: only where that channel is > 0;\n"
-       << "                          :passes=all|NAME,...: light passes too (with --keep-aovs)\n"
+       << "                          :mask=CHANNEL (only where > 0); :passes=all|NAME,...\n"
        << "  -o OUT                  write the beauty (never over an input; atomic)\n"
        << "  --preview OUT.png       display-referred beauty (:display=NAME:view=NAME)\n"
        << "  --contact-sheet OUT.png every AOV as a labelled tile (:columns=4:tilesize=480)\n"
@@ -83,9 +82,8 @@ std::string helpText()
        << "  --frames A-B            frames of a pattern (1-10, 1-10x2, 3,5,7)\n"
        << "  --preroll N             rebuild the history from N unwritten frames (docs/farm.md)\n"
        << "  --aov ROLE=CHANNELS     name a role's channels (albedo=diffuse, or\n"
-       << "                          albedo=d.R,d.G,d.B), ROLE=none (as if absent), or a\n"
-       << "                          convention (normal.space=world); lights=A,B*F: the light\n"
-       << "                          passes (B times factor F) that add up to the beauty\n"
+       << "                          albedo=d.R,d.G,d.B), ROLE=none, a convention\n"
+       << "                          (normal.space=world) or lights=A,B*F (light passes)\n"
        << "  --colorconfig FILE      OpenColorIO config (default: $OCIO, else afn's own)\n"
        << "  --incolorspace NAME     colour space of the input (default: the file's)\n"
        << "  --outcolorspace NAME    colour space of written images (default: the input's)\n"
@@ -110,9 +108,7 @@ std::string helpText()
     }
     os << "Examples:\n"
        << "  afntool --info render.exr\n"
-       << "  afntool --frames 0-59 shot.####.exr --denoise:method=svgf -o out.####.exr\n"
-       << "  afntool --frames 0-59 shot.####.exr --keep-aovs -o out.####.exr \\\n"
-       << "          --denoise:method=afn:passes=all   (light passes add up to the beauty)\n";
+       << "  afntool --frames 0-59 shot.####.exr --denoise:method=svgf -o out.####.exr\n";
     return os.str();
 }
 

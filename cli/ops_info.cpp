@@ -150,8 +150,9 @@ void printPasses(const FileReport& r)
         std::printf("    factor    %-22s %s  (albedo-like: not denoised)\n", f.name.c_str(),
             join(f.channels).c_str());
     if (r.recomposition)
-        std::printf("    recomposition: PSNR %.1f dB against the beauty (tone-mapped), relative RMS "
-                    "error %.3g, largest difference %.4g\n",
+        std::printf(
+            "    recomposition: PSNR %.1f dB against the beauty (tone-mapped), relative RMS "
+            "error %.3g, largest difference %.4g\n",
             r.recomposition->psnr, r.recomposition->relativeRms, r.recomposition->maxAbsolute);
     const std::string warning = r.recomposition
         ? afn::io::recompositionWarning(p, *r.recomposition)

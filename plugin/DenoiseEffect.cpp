@@ -27,6 +27,11 @@ const ClipRole kAuxClips[] = { { "Albedo", AFN_IMAGE_ALBEDO }, { "Normal", AFN_I
     // need no denoising (docs/work-skipping.md; parameter "skip").
     { "Mask", AFN_IMAGE_MASK } };
 constexpr int kNumAux = sizeof(kAuxClips) / sizeof(kAuxClips[0]);
+// A light-path pass and its colour factor (version 1.2; docs/passes.md): read only when the
+// Output choice is "pass".
+const ClipRole kPassClips[] = { { "Pass", AFN_IMAGE_PASS_PREFIX "pass" },
+    { "PassFactor", AFN_IMAGE_PASS_FACTOR_PREFIX "pass" } };
+constexpr int kNumPass = sizeof(kPassClips) / sizeof(kPassClips[0]);
 
 /// Per-instance state; render calls of one instance are serialised by `mutex`, so the effect is
 /// declared fully thread-safe (different instances and frames may render at the same time).
@@ -35,6 +40,7 @@ struct Instance {
     OfxImageClipHandle source = nullptr;
     OfxImageClipHandle output = nullptr;
     OfxImageClipHandle aux[kNumAux] = {};
+    OfxImageClipHandle pass[kNumPass] = {};
     std::mutex mutex;
     SequenceRunner runner;
 };
@@ -124,10 +130,13 @@ void describeInContext(OfxImageEffectHandle effect, OfxPropertySetHandle inArgs)
         throw OfxError(kOfxStatErrUnsupported, "context " + context + " is not supported");
     defineClip(effect, kOfxImageEffectOutputClipName, false, false);
     defineClip(effect, kOfxImageEffectSimpleSourceClipName, false, false);
-    if (general)
+    if (general) {
         for (const ClipRole& c : kAuxClips)
             defineClip(effect, c.clip, true,
                 std::string(c.role) == AFN_IMAGE_DEPTH || std::string(c.role) == AFN_IMAGE_MASK);
+        for (const ClipRole& c : kPassClips)
+            defineClip(effect, c.clip, true, false);
+    }
     // The Filter context has only Source: frames are denoised on their own unless asked, and the
     // parameters that need auxiliary inputs are hidden.
     defineParams(effect, general);
@@ -146,9 +155,12 @@ void createInstance(OfxImageEffectHandle effect)
     };
     inst->source = clip(kOfxImageEffectSimpleSourceClipName);
     inst->output = clip(kOfxImageEffectOutputClipName);
-    if (inst->general)
+    if (inst->general) {
         for (int i = 0; i < kNumAux; ++i)
             inst->aux[i] = clip(kAuxClips[i].clip);
+        for (int i = 0; i < kNumPass; ++i)
+            inst->pass[i] = clip(kPassClips[i].clip);
+    }
     const bool general = inst->general;
     p.setPointer(kOfxPropInstanceData, inst.release());
     updateParamStates(effect, general);
@@ -171,14 +183,26 @@ double historyStart(const Instance& inst, const Settings& s)
     return s.useStartFrame ? std::max(first, double(s.startFrame)) : first;
 }
 
-/// Input clips that take part (Source plus the connected optional clips), with their names.
-std::vector<std::pair<const char*, InputClip>> inputClips(const Instance& inst)
+/// Input clips that take part (Source plus the connected optional clips; the pass clips when the
+/// Output is the pass), with their names. OfxError when the Output is the pass and the Pass clip
+/// is not connected.
+std::vector<std::pair<const char*, InputClip>> inputClips(
+    const Instance& inst, const Settings& settings)
 {
     std::vector<std::pair<const char*, InputClip>> out;
     out.push_back({ kOfxImageEffectSimpleSourceClipName, { AFN_IMAGE_COLOR, inst.source } });
     for (int i = 0; i < kNumAux; ++i)
         if (connected(inst.aux[i]))
             out.push_back({ kAuxClips[i].clip, { kAuxClips[i].role, inst.aux[i] } });
+    if (settings.outputPass) {
+        if (!connected(inst.pass[0]))
+            throw OfxError(kOfxStatFailed,
+                "Output is set to Pass, but the Pass clip is not connected (connect a light-path "
+                "pass, or set Output to Beauty)");
+        for (int i = 0; i < kNumPass; ++i)
+            if (connected(inst.pass[i]))
+                out.push_back({ kPassClips[i].clip, { kPassClips[i].role, inst.pass[i] } });
+    }
     return out;
 }
 
@@ -186,13 +210,14 @@ OfxStatus regionsOfInterest(
     OfxImageEffectHandle effect, OfxPropertySetHandle inArgs, OfxPropertySetHandle outArgs)
 {
     Instance& inst = instanceOf(effect);
-    if (readSettings(effect).method == "identity")
+    const Settings settings = readSettings(effect);
+    if (settings.method == "identity")
         return kOfxStatReplyDefault;
     // Every method works on whole frames (temporal history, global regressions, wide kernels):
     // ask for the full Source frame whatever the tile.
     const OfxRectD rod = sourceRod(inst, Props(inArgs).getDouble(kOfxPropTime));
     Props out(outArgs);
-    for (const auto& [name, in] : inputClips(inst))
+    for (const auto& [name, in] : inputClips(inst, settings))
         out.setDoubles(
             (std::string(kOfxImageClipPropRoI) + name).c_str(), { rod.x1, rod.y1, rod.x2, rod.y2 });
     return kOfxStatOK;
@@ -206,7 +231,7 @@ OfxStatus framesNeeded(
     const Settings s = readSettings(effect);
     const double first = s.method != "identity" ? t - replayFrames(t, s, historyStart(inst, s)) : t;
     Props out(outArgs);
-    for (const auto& [name, in] : inputClips(inst))
+    for (const auto& [name, in] : inputClips(inst, s))
         out.setDoubles((std::string(kOfxImageClipPropFrameRange) + name).c_str(), { first, t });
     return kOfxStatOK;
 }
@@ -233,22 +258,24 @@ OfxStatus render(OfxImageEffectHandle effect, OfxPropertySetHandle inArgs)
     if (req.window.x2 <= req.window.x1 || req.window.y2 <= req.window.y1)
         throw OfxError(kOfxStatFailed, "the Source clip has an empty region of definition");
     req.renderScale = sx;
-    for (const auto& [name, in] : inputClips(inst))
-        req.inputs.push_back(in);
     const Settings settings = readSettings(effect);
+    for (const auto& [name, in] : inputClips(inst, settings))
+        req.inputs.push_back(in);
     req.historyStart = historyStart(inst, settings);
 
     ClipImage out(inst.output, time);
     if (!out.valid())
         throw OfxError(kOfxStatFailed, "the host gave no Output image");
-    // mix < 1: the tile of Source at this time, blended in after denoising (the cached denoised
-    // frames do not depend on the mix, so changing or animating it never replays the history).
+    // mix < 1: the tile of Source (of Pass, when that is the output) at this time, blended in
+    // after denoising (the cached denoised frames do not depend on the mix, so changing or
+    // animating it never replays the history).
     const float mix = static_cast<float>(readMix(effect, time));
     std::unique_ptr<ClipImage> source;
     if (mix < 1.0f) {
         const OfxRectD tile = { renderWindow.x1 / sx, renderWindow.y1 / sy, renderWindow.x2 / sx,
             renderWindow.y2 / sy };
-        source = std::make_unique<ClipImage>(inst.source, time, &tile);
+        source = std::make_unique<ClipImage>(
+            settings.outputPass ? inst.pass[0] : inst.source, time, &tile);
         if (!source->valid())
             throw OfxError(kOfxStatFailed, "no Source image at time " + std::to_string(time));
     }
@@ -307,12 +334,15 @@ OfxStatus denoiseAction(const std::string& action, OfxImageEffectHandle effect,
     if (action == kOfxImageEffectActionGetFramesNeeded)
         return framesNeeded(effect, inArgs, outArgs);
     if (action == kOfxImageEffectActionIsIdentity) {
-        // The identity method, or a mix of 0: the host passes Source through.
+        // The identity method, or a mix of 0: the host passes Source (or Pass, when that is the
+        // output) through.
         const double time = Props(inArgs).getDouble(kOfxPropTime);
-        if (readSettings(effect).method != "identity" && readMix(effect, time) > 0.0)
+        const Settings settings = readSettings(effect);
+        if (settings.method != "identity" && readMix(effect, time) > 0.0)
             return kOfxStatReplyDefault;
         Props out(outArgs);
-        out.set(kOfxPropName, kOfxImageEffectSimpleSourceClipName);
+        out.set(kOfxPropName,
+            settings.outputPass ? kPassClips[0].clip : kOfxImageEffectSimpleSourceClipName);
         out.set(kOfxPropTime, time);
         return kOfxStatOK;
     }

@@ -246,6 +246,16 @@ void defineParams(OfxImageEffectHandle descriptor, bool general)
     device.set(kOfxParamPropDefault, 0);
 
     defineHistoryAndMix(set);
+    // Version 1.2: the output choice (General context only: the Pass clip is there).
+    Props output(defineFixed(set, kOfxParamTypeChoice, kParamOutputPass, "Output",
+        "Beauty: the denoised Source. Pass: the Pass clip (a light-path pass, times PassFactor "
+        "when that is connected) denoised with Source, so that the denoised passes add up to the "
+        "denoised Source (docs/passes.md)"));
+    output.setStrings(kOfxParamPropChoiceOption,
+        { "Beauty (the denoised Source)", "Pass (the Pass clip, denoised with Source)" });
+    output.set(kOfxParamPropDefault, 0);
+    if (!general)
+        output.set(kOfxParamPropSecret, 1);
 }
 
 static OfxParamHandle paramHandle(OfxParamSetHandle set, const std::string& name)
@@ -319,6 +329,7 @@ Settings readSettings(OfxImageEffectHandle instance)
     s.historyFrames = std::max(0, getIntValue(set, kParamHistoryFrames));
     s.useStartFrame = getIntValue(set, kParamUseStartFrame) != 0;
     s.startFrame = getIntValue(set, kParamStartFrame);
+    s.outputPass = getIntValue(set, kParamOutputPass) == 1;
     char* path = nullptr;
     check(suites().param->paramGetValue(paramHandle(set, kParamWeights), &path),
         "reading parameter weights");
@@ -352,7 +363,8 @@ std::string Settings::key() const
     std::ostringstream os;
     os.precision(17);
     os << method << ';' << temporal << ';' << weightsPath << ';' << weightsStamp << ';' << device
-       << ";history=" << historyFrames; // the start frame is in the runner's key (historyStart)
+       << ";history=" << historyFrames // the start frame is in the runner's key (historyStart)
+       << ";output=" << (outputPass ? "pass" : "beauty");
     for (const Value& v : values)
         os << ';' << v.spec->ofxName << '=' << v.number << v.choice;
     return os.str();

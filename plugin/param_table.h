@@ -38,6 +38,10 @@ constexpr const char* kParamStartFrame = "startFrame";
 /// OFX name of the mix: output = mix * denoised + (1 - mix) * Source. Animates (it does not touch
 /// the history).
 constexpr const char* kParamMix = "mix";
+/// Version 1.2 (after "mix"): what the Output clip shows, the denoised Source or the Pass clip
+/// denoised with it (docs/passes.md). Options in order (saved projects store the index).
+constexpr const char* kParamOutputPass = "outputPass";
+constexpr const char* kOutputPassOptions[] = { "beauty", "pass" };
 
 /// One OFX parameter mirroring one library parameter.
 struct ParamSpec {
@@ -57,9 +61,10 @@ struct ParamCatalog {
 const ParamCatalog& paramCatalog();
 
 /// Define the method choice, the temporal switch, every catalog parameter, the device choice, the
-/// history controls and the mix on a descriptor. `general`: the General context (temporal on by
-/// default, auxiliary inputs); in the Filter context the parameters that need auxiliary inputs
-/// are defined hidden (kOfxParamPropSecret), so that both contexts keep the same names.
+/// history controls, the mix and the output choice on a descriptor. `general`: the General context
+/// (temporal on by default, auxiliary inputs); in the Filter context the parameters that need
+/// auxiliary inputs are defined hidden (kOfxParamPropSecret), so that both contexts keep the same
+/// names.
 void defineParams(OfxImageEffectHandle descriptor, bool general);
 
 /// Show the parameters of the instance's current method and hide (kOfxParamPropSecret) the other
@@ -81,6 +86,7 @@ struct Settings {
     int historyFrames = kDefaultHistoryFrames; ///< frames replayed at most before a requested one
     bool useStartFrame = false;
     int startFrame = 1; ///< first frame the history may use (when useStartFrame)
+    bool outputPass = false; ///< the Output shows the Pass clip denoised with Source
     struct Value {
         const ParamSpec* spec;
         double number; ///< bool/int/float value

@@ -231,6 +231,17 @@ void SequenceRunner::runFrame(
     }
     out.resize(size_t(w) * h * 4);
     afnSetFilterImage(f, AFN_IMAGE_OUTPUT, out.data(), AFN_FORMAT_FLOAT4, w, h, 0, 0, 0);
+    // The Pass clip (Output = Pass): denoised with the beauty into a buffer of its own, then
+    // returned in the beauty's place with the beauty's alpha.
+    const std::string passName = std::string(AFN_IMAGE_PASS_PREFIX) + "pass";
+    const bool pass = std::any_of(req.inputs.begin(), req.inputs.end(),
+        [&](const InputClip& in) { return passName == in.role; });
+    const std::string passOutput = std::string(AFN_IMAGE_PASS_OUTPUT_PREFIX) + "pass";
+    if (pass) {
+        m_passOut.resize(size_t(w) * h * 3);
+        afnSetFilterImage(
+            f, passOutput.c_str(), m_passOut.data(), AFN_FORMAT_FLOAT3, w, h, 0, 0, 0);
+    }
     applySettings(settings, f);
     if (methodHasParam(settings.method, AFN_CONVENTION_MOTION_Y_UP))
         afnSetFilterBool(f, AFN_CONVENTION_MOTION_Y_UP, true);
@@ -244,7 +255,12 @@ void SequenceRunner::runFrame(
         afnUnsetFilterImage(f, in.role);
     afnUnsetFilterImage(f, AFN_IMAGE_ALPHA);
     afnUnsetFilterImage(f, AFN_IMAGE_OUTPUT);
+    afnUnsetFilterImage(f, passOutput.c_str());
     checkError("afn execute");
+    if (pass)
+        for (size_t i = 0; i < size_t(w) * h; ++i)
+            for (int c = 0; c < 3; ++c)
+                out[i * 4 + c] = m_passOut[i * 3 + c];
     if (settings.method == "afn") {
         // The trained model afn chose for the connected clips' inputs, logged when it changes.
         const char* model = afnGetFilterString(f, AFN_STAT_AFN_MODEL);

@@ -78,6 +78,7 @@ private:
     };
     std::deque<Result> m_results; ///< recent outputs, oldest first
     std::vector<std::vector<float>> m_scratch;
+    std::vector<float> m_passOut; ///< the denoised Pass clip (Output = Pass)
     std::string m_afnModel; ///< the afn path last logged (AFN_STAT_AFN_MODEL)
 };
 

@@ -68,7 +68,8 @@ TEST(AfntoolPasses, DenoisedPassesRebuildTheDenoisedBeauty)
         auto in = OIIO::ImageInput::open(last);
         ASSERT_TRUE(in);
         const std::string history = in->spec().get_string_attribute("Exif:ImageHistory");
-        EXPECT_NE(history.find(":passes=DiffDir,DiffInd,GlossDir,GlossInd,TransDir,TransInd,Emit,Env"),
+        EXPECT_NE(
+            history.find(":passes=DiffDir,DiffInd,GlossDir,GlossInd,TransDir,TransInd,Emit,Env"),
             std::string::npos)
             << history;
     }
@@ -89,16 +90,16 @@ TEST(AfntoolPasses, ASubsetIsDenoisedAndTheRestCopied)
 TEST(AfntoolPasses, BadPassNamesAndFilesWithoutPassesAreErrors)
 {
     TempDir dir;
-    CliResult r = runAfntool({ kFrame0, "--denoise:method=ta:passes=GlosDir", "--keep-aovs", "-o",
-        dir.file("o.exr") });
+    CliResult r = runAfntool(
+        { kFrame0, "--denoise:method=ta:passes=GlosDir", "--keep-aovs", "-o", dir.file("o.exr") });
     EXPECT_NE(r.exitCode, 0);
     EXPECT_NE(r.err.find("afntool ERROR: --denoise: :passes= names 'GlosDir', not a light pass"),
         std::string::npos)
         << r.err;
     EXPECT_NE(r.err.find("GlossDir"), std::string::npos) << r.err; // did you mean
     const std::string plain = std::string(AFN_EXAMPLES_DIR) + "/sequence/frame.0000.exr";
-    r = runAfntool({ plain, "--denoise:method=ta:passes=all", "--keep-aovs", "-o",
-        dir.file("p.exr") });
+    r = runAfntool(
+        { plain, "--denoise:method=ta:passes=all", "--keep-aovs", "-o", dir.file("p.exr") });
     EXPECT_NE(r.exitCode, 0);
     EXPECT_NE(r.err.find("the file has no light passes"), std::string::npos) << r.err;
     EXPECT_TRUE(dir.entries().empty());

@@ -10,7 +10,7 @@ target_link_libraries(afn_ofx_test_host PUBLIC ${CMAKE_DL_LIBS} Threads::Threads
 
 # Tests that drive the plugin over the synthetic sequence, one executable per subject.
 foreach(name test_plugin_host test_plugin_history test_plugin_presentation test_plugin_quality
-    test_plugin_skip test_plugin_input_sets)
+    test_plugin_skip test_plugin_input_sets test_plugin_passes)
   afn_add_gtest(${name}
     SOURCES plugin/${name}.cpp plugin/plugin_session.cpp plugin/synthetic_sequence.cpp
     LIBS afn afn_ofx_test_host)

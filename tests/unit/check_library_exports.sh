@@ -8,8 +8,9 @@ lib="$1" header="$2" ns="$3"
 [[ -f "$lib" ]] || { echo "library_exports: $lib not found" >&2; exit 1; }
 bad=0
 while IFS= read -r sym; do
-  # afn::io::readFrame(...) -> readFrame; afn::color::ColorManager::views(...) -> ColorManager
-  name=${sym#"$ns::"}; name=${name%%(*}; name=${name%%::*}
+  # afn::io::readFrame(...) -> readFrame; afn::color::ColorManager::views(...) -> ColorManager;
+  # f[abi:cxx11](...) (a function returning std::string) -> f
+  name=${sym#"$ns::"}; name=${name%%(*}; name=${name%%::*}; name=${name%%\[abi:*}
   if ! grep -qE "\b${name}\b" "$header"; then echo "library_exports: $lib exports $sym" >&2; bad=1; fi
 done < <(nm -DC --defined-only "$lib" | awk '$2 == "T" || $2 == "W"' | cut -d' ' -f3- | grep "^$ns::" || true)
 [[ $bad -eq 0 ]] || exit 1

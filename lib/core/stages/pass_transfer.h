@@ -6,8 +6,9 @@
 // and R what the bound passes do not hold (about 0 when every pass is bound and they add up). With
 // A ONE linear filter, the same weights for every image -- an edge-aware a-trous (5x5 B3-spline
 // taps, steps 1, 2, 4, 8; weights from the denoised beauty's luminance difference relative to the
-// centre pixel's, the normals' cosine^16 and the relative depth difference the method was given), then an exponential history (alpha 0.2, reprojected with the method's own
-// taps, cut by its history trust) -- the denoised passes are
+// centre pixel's, the normals' cosine^16 and the relative depth difference the method was given),
+// then an exponential history (alpha 0.2, reprojected with the method's own taps, cut by its
+// history trust) -- the denoised passes are
 //     P_i' = A(P_i) x g,   g = B' / D,   D = sum_i A(P_i) x F_i + A(R)   (per pixel and channel),
 // so that sum_i P_i' x F_i + A(R) x g = B' exactly: with every pass bound, the denoised passes
 // rebuild the denoised beauty by the renderer's own formula, whatever the method did (its network,

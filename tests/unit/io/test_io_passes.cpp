@@ -71,9 +71,10 @@ std::vector<std::string> lightNames(const afn::io::PassRecipe& r)
     return names;
 }
 
-const std::vector<std::pair<std::string, std::string>> kBlenderTerms = { { "VL.DiffDir", "VL.DiffCol" },
-    { "VL.DiffInd", "VL.DiffCol" }, { "VL.GlossDir", "VL.GlossCol" },
-    { "VL.GlossInd", "VL.GlossCol" }, { "VL.Emit", "" }, { "VL.Env", "" } };
+const std::vector<std::pair<std::string, std::string>> kBlenderTerms
+    = { { "VL.DiffDir", "VL.DiffCol" }, { "VL.DiffInd", "VL.DiffCol" },
+          { "VL.GlossDir", "VL.GlossCol" }, { "VL.GlossInd", "VL.GlossCol" }, { "VL.Emit", "" },
+          { "VL.Env", "" } };
 
 std::vector<Layer> blenderLayers()
 {
@@ -135,7 +136,8 @@ TEST(IoPasses, AFamilyWrittenInPartIsNamed)
     EXPECT_EQ(f.passRecipe.missing, (std::vector<std::string> { "DiffInd" }));
     const auto r = afn::io::recompositionOf(f);
     ASSERT_TRUE(r);
-    EXPECT_NE(afn::io::recompositionWarning(f.passRecipe, *r).find("missing from the formula: DiffInd"),
+    EXPECT_NE(
+        afn::io::recompositionWarning(f.passRecipe, *r).find("missing from the formula: DiffInd"),
         std::string::npos);
 }
 
@@ -147,8 +149,8 @@ TEST(IoPasses, BlenderLightGroupsWhenThereAreNoLightPasses)
         { { "VL.Combined_key", "" }, { "VL.Combined_fill", "" } });
     const afn::io::FrameImages f = readWithPasses(path);
     // In the file's channel order (EXR sorts channels by name).
-    EXPECT_EQ(lightNames(f.passRecipe),
-        (std::vector<std::string> { "Combined_fill", "Combined_key" }));
+    EXPECT_EQ(
+        lightNames(f.passRecipe), (std::vector<std::string> { "Combined_fill", "Combined_key" }));
     EXPECT_GT(afn::io::recompositionOf(f)->psnr, 100.0);
 }
 
@@ -164,9 +166,10 @@ TEST(IoPasses, ArnoldAovsWithAndWithoutTheDirectIndirectSplit)
     const afn::io::FrameImages f = readWithPasses(path);
     EXPECT_EQ(f.passRecipe.renderer, "arnold");
     EXPECT_EQ(lightNames(f.passRecipe),
-        (std::vector<std::string> { "diffuse_direct", "diffuse_indirect", "specular", "emission" }));
-    EXPECT_EQ(f.passRecipe.formula,
-        "RGBA = diffuse_direct + diffuse_indirect + specular + emission");
+        (std::vector<std::string> {
+            "diffuse_direct", "diffuse_indirect", "specular", "emission" }));
+    EXPECT_EQ(
+        f.passRecipe.formula, "RGBA = diffuse_direct + diffuse_indirect + specular + emission");
     // transmission_direct without transmission_indirect: named, and the sum falls short.
     EXPECT_EQ(f.passRecipe.missing, (std::vector<std::string> { "transmission_indirect" }));
     EXPECT_LT(afn::io::recompositionOf(f)->psnr, 60.0);
