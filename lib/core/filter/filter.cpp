@@ -3,12 +3,12 @@
 
 #include "base/exception.h"
 #include "base/parallel.h"
+#include "filter/pass_images.h"
 #include "filter/registry.h"
 #include "filter/work_mask.h"
 #include "stages/demodulate.h"
 
 #include <algorithm>
-#include <cstring>
 #include <sstream>
 
 namespace afn {
@@ -25,20 +25,6 @@ static bool isInputName(const std::string& n)
 {
     const auto& v = inputImageNames();
     return std::find(v.begin(), v.end(), n) != v.end();
-}
-
-/// The pass name of "pass.<name>", "passFactor.<name>" or "passOutput.<name>"; "" otherwise.
-static std::string passNameOf(const std::string& n, const char* prefix)
-{
-    const std::size_t len = std::strlen(prefix);
-    return n.size() > len && n.compare(0, len, prefix) == 0 ? n.substr(len) : std::string();
-}
-
-static bool isPassImageName(const std::string& n)
-{
-    return !passNameOf(n, AFN_IMAGE_PASS_PREFIX).empty()
-        || !passNameOf(n, AFN_IMAGE_PASS_FACTOR_PREFIX).empty()
-        || !passNameOf(n, AFN_IMAGE_PASS_OUTPUT_PREFIX).empty();
 }
 
 static std::string sizeText(int w, int h)
@@ -199,48 +185,14 @@ void Filter::validateBindings() const
     need(AFN_IMAGE_OUTPUT, 3);
     for (const FeatureOutput& f : m_type.features)
         need((AFN_IMAGE_FEATURE_PREFIX + f.name).c_str(), f.channels);
-    for (const auto& [name, b] : m_images) {
-        if (isPassImageName(name) && b.channels() < 3)
-            throwInvalidArgument("image '" + name + "' needs at least 3 channels");
-        const std::string pass = passNameOf(name, AFN_IMAGE_PASS_PREFIX);
-        const std::string factor = passNameOf(name, AFN_IMAGE_PASS_FACTOR_PREFIX);
-        const std::string out = passNameOf(name, AFN_IMAGE_PASS_OUTPUT_PREFIX);
-        if (!factor.empty() && !m_images.count(AFN_IMAGE_PASS_PREFIX + factor))
-            throwInvalidArgument("image '" + name + "' has no pass 'pass." + factor + "'");
-        if (!out.empty() && !m_images.count(AFN_IMAGE_PASS_PREFIX + out))
-            throwInvalidArgument("image '" + name + "' has no pass 'pass." + out + "'");
-        if (!pass.empty() && !m_images.count(AFN_IMAGE_PASS_OUTPUT_PREFIX + pass))
-            throwInvalidArgument("pass '" + name + "' has no output 'passOutput." + pass + "'");
-        if (!out.empty() && !outputBound())
-            throwInvalidArgument("image '" + name
-                + "': denoised passes are made from the denoised beauty; bind 'output' too");
-    }
+    validatePassImages(m_images, outputBound());
     if (!outputBound() && !anyFeatureBound())
         throwInvalidOperation("no 'output' image set");
 }
 
-std::vector<PassBinding> Filter::passBindings() const
-{
-    std::vector<PassBinding> passes;
-    for (const auto& [name, b] : m_images) {
-        const std::string pass = passNameOf(name, AFN_IMAGE_PASS_PREFIX);
-        if (pass.empty())
-            continue;
-        PassBinding p;
-        p.name = pass;
-        p.light = b.view();
-        p.output = m_images.at(AFN_IMAGE_PASS_OUTPUT_PREFIX + pass).view();
-        auto f = m_images.find(AFN_IMAGE_PASS_FACTOR_PREFIX + pass);
-        if (f != m_images.end())
-            p.factor = f->second.view();
-        passes.push_back(p);
-    }
-    return passes;
-}
-
 void Filter::runPassTransfer()
 {
-    const std::vector<PassBinding> passes = passBindings();
+    const std::vector<PassBinding> passes = passBindingsOf(m_images);
     if (passes.empty())
         return;
     PassGuides g;

@@ -194,8 +194,6 @@ private:
     void validateBindings() const;
     void runStages();
     void writeOutput(const Image& radiance) const;
-    /// The light-path passes bound as "pass.<name>" with their factors and outputs.
-    std::vector<PassBinding> passBindings() const;
     /// Denoise the bound passes with the frame's output (stages/pass_transfer.h).
     void runPassTransfer();
     /// writeOutput(remodulate(irradiance)) in one pass (denoiseDemodulated()).
