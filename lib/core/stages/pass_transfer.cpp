@@ -52,9 +52,9 @@ inline float expNeg(float x)
 /// Built for AVX-512 and for the baseline; the processor picks at load time (GCC function clones).
 #define AFN_PASS_CLONES __attribute__((target_clones("avx512f", "default")))
 
-template <bool kNormals, bool kDepth>
-AFN_PASS_CLONES void weightRow(const float* const* p, const float* const* q, int dx, int xs, int xe,
-    float hk, float depthScale, float* __restrict wrow)
+AFN_PASS_CLONES void weightRow(bool normals, bool depth, const float* const* p,
+    const float* const* q, int dx, int xs, int xe, float hk, float depthScale,
+    float* __restrict wrow)
 {
     const float* __restrict pl = p[Luma];
     const float* __restrict ps = p[LumaScale];
@@ -68,18 +68,16 @@ AFN_PASS_CLONES void weightRow(const float* const* p, const float* const* q, int
     const float* __restrict qx = q[Nx] + dx;
     const float* __restrict qy = q[Ny] + dx;
     const float* __restrict qn = q[Nz] + dx;
+    // Absent guides are planes of 0 (finite): their terms are switched off arithmetically.
+    const float depthOn = depth ? depthScale : 0.0f;
+    const float normalOn = normals ? 1.0f : 0.0f;
     for (int x = xs; x < xe; ++x) {
-        float e = std::fabs(pl[x] - ql[x]) * ps[x];
-        if (kDepth)
-            e += std::fabs(pz[x] - qz[x]) * pzs[x] * depthScale;
-        float wq = hk * expNeg(e);
-        if (kNormals) {
-            const float dot = px[x] * qx[x] + py[x] * qy[x] + pn[x] * qn[x];
-            const float d = dot > 0.0f ? dot : 0.0f;
-            const float d2 = d * d, d4 = d2 * d2, d8 = d4 * d4;
-            wq *= d8 * d8;
-        }
-        wrow[x] = wq;
+        const float e
+            = std::fabs(pl[x] - ql[x]) * ps[x] + std::fabs(pz[x] - qz[x]) * pzs[x] * depthOn;
+        const float dot = px[x] * qx[x] + py[x] * qy[x] + pn[x] * qn[x];
+        const float d = dot > 0.0f ? dot : 0.0f;
+        const float d2 = d * d, d4 = d2 * d2, d8 = d4 * d4;
+        wrow[x] = hk * expNeg(e) * (1.0f - normalOn + normalOn * (d8 * d8));
     }
 }
 
@@ -139,14 +137,8 @@ void PassTransfer::filterSpatial(const PassGuides& g, int channels)
                         float* wr = wrow.data();
                         if (i == 0 && j == 0)
                             std::fill(wr + xs, wr + xe, hk);
-                        else if (normals && depth)
-                            weightRow<true, true>(py, pq, dx, xs, xe, hk, depthScale, wr);
-                        else if (normals)
-                            weightRow<true, false>(py, pq, dx, xs, xe, hk, depthScale, wr);
-                        else if (depth)
-                            weightRow<false, true>(py, pq, dx, xs, xe, hk, depthScale, wr);
                         else
-                            weightRow<false, false>(py, pq, dx, xs, xe, hk, depthScale, wr);
+                            weightRow(normals, depth, py, pq, dx, xs, xe, hk, depthScale, wr);
                         const float* v
                             = src->at(0, qy) + static_cast<std::ptrdiff_t>(dx) * channels;
                         accumulateRow(wr, v, acc.data(), wsum.data(), xs, xe, C);
