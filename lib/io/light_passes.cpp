@@ -6,7 +6,8 @@
 //                             + VolumeInd]; light groups Combined_<group> add up to Combined.
 //   Arnold          beauty = diffuse + specular + transmission + sss + coat + sheen + volume
 //                             + emission + background, each family as <f>_direct + <f>_indirect
-//                             where both are written, else <f>; light groups RGBA_<group>.
+//                             where both are written, else <f>; or direct + indirect + emission
+//                             + background (its built-in LPEs); light groups RGBA_<group>.
 //   V-Ray           beauty = VRayLighting + VRayGlobalIllumination + VRayReflection
 //                             + VRayRefraction + VRaySpecular + VRaySelfIllumination + VRaySSS2
 //                             + VRayCaustics + VRayBackground (short names "lighting", "GI", ...
@@ -56,6 +57,12 @@ const std::vector<Recipe>& recipes()
                 { { { "sheen_direct", "sheen_indirect" }, "" }, { { "sheen" }, "" } },
                 { { { "volume_direct", "volume_indirect" }, "" }, { { "volume" }, "" } },
                 { { { "emission" }, "" } }, { { { "background" }, "" } } },
+            "RGBA_" },
+        // Arnold's built-in LPEs split another way: direct (C[DSV]L) + indirect + emission
+        // (C[LO]) + background (CB); used where a file holds these rather than the families.
+        { "arnold", "RGBA",
+            { { { { "direct" }, "" } }, { { { "indirect" }, "" } }, { { { "emission" }, "" } },
+                { { { "background" }, "" } } },
             "RGBA_" },
         { "vray", "RGB",
             { { { { "VRayLighting" }, "" }, { { "lighting" }, "" },
@@ -230,8 +237,8 @@ PassRecipe findLightPasses(
     const std::string prefix = colorPrefix(mapping);
     if (overrides.lights)
         return fromOverride(info, *overrides.lights, prefix);
-    // The renderer's recipe first, then the others (a file of an unrecognised renderer may still
-    // use one of these naming schemes); the recipe that finds the most passes wins.
+    // Every recipe is tried (a file of an unrecognised renderer may still use one of these naming
+    // schemes); the one that finds the most passes wins, the file's renderer's on a tie.
     PassRecipe best;
     for (const Recipe& recipe : recipes()) {
         PassRecipe r;

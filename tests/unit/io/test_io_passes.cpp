@@ -175,6 +175,19 @@ TEST(IoPasses, ArnoldAovsWithAndWithoutTheDirectIndirectSplit)
     EXPECT_LT(afn::io::recompositionOf(f)->psnr, 60.0);
 }
 
+TEST(IoPasses, ArnoldDirectAndIndirectLpes)
+{
+    ScratchDir dir;
+    const std::string path = dir.file("lpe.exr");
+    writePassFile(path,
+        { { "", true }, { "direct" }, { "indirect" }, { "emission" }, { "background" } },
+        { { "direct", "" }, { "indirect", "" }, { "emission", "" }, { "background", "" } });
+    const afn::io::FrameImages f = readWithPasses(path);
+    EXPECT_EQ(f.passRecipe.renderer, "arnold");
+    EXPECT_EQ(f.passRecipe.formula, "RGBA = direct + indirect + emission + background");
+    EXPECT_GT(afn::io::recompositionOf(f)->psnr, 100.0);
+}
+
 TEST(IoPasses, ArnoldAovsInPartsOfTheirOwnName)
 {
     ScratchDir dir;
