@@ -56,8 +56,13 @@ void fuzzOverride(const std::string& text)
     afn::io::MappingOverrides overrides;
     try {
         afn::io::parseOverride(text, overrides);
-        check(overrides.channels.size() + overrides.tags.size() == 1,
-            "an accepted override sets exactly one role or tag");
+        const std::size_t lights = overrides.lights ? 1 : 0;
+        check(overrides.channels.size() + overrides.tags.size() + lights == 1,
+            "an accepted override sets exactly one role, tag or the light passes");
+        if (overrides.lights)
+            for (const std::string& item : *overrides.lights)
+                check(!item.empty() && item.front() != '*' && item.back() != '*',
+                    "an accepted light pass names a layer (and a factor after '*')");
     } catch (const afn::io::IoError&) {
     }
 }
