@@ -99,7 +99,9 @@ void parseOverride(const std::string& text, MappingOverrides& overrides)
                     start, comma == std::string::npos ? std::string::npos : comma - start));
                 const auto star = part.find('*');
                 if (part.empty() || star == 0
-                    || (star != std::string::npos && star + 1 == part.size()))
+                    || (star != std::string::npos
+                        && (star + 1 == part.size()
+                            || part.find('*', star + 1) != std::string::npos)))
                     throw IoError("--aov lights: expected LAYER or LAYER*FACTOR in '" + text + "'");
                 lights.push_back(part);
                 if (comma == std::string::npos)

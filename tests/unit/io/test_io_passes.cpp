@@ -257,7 +257,8 @@ TEST(IoPasses, AovOverrideNamesTheLightsAndTheirFactors)
     } catch (const afn::io::IoError& e) {
         EXPECT_NE(std::string(e.what()).find("no layer 'nosuch'"), std::string::npos) << e.what();
     }
-    for (const char* text : { "lights=*tint", "lights=key*", "lights=key,,fill" }) {
+    for (const char* text :
+        { "lights=*tint", "lights=key*", "lights=key,,fill", "lights=a**", "lights=a*b*c" }) {
         afn::io::MappingOverrides o2;
         EXPECT_THROW(afn::io::parseOverride(text, o2), afn::io::IoError) << text;
     }
