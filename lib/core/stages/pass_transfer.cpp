@@ -103,6 +103,9 @@ void PassTransfer::filterSpatial(const PassGuides& g, int channels)
     const int w = m_stack.width(), ht = m_stack.height();
     const bool normals = !g.normal.empty(), depth = !g.depth.empty();
     m_scratch.resize(w, ht, channels);
+    // One row of tap weights and of their sums per image row (rows run in parallel).
+    m_weightRows.resize(static_cast<std::size_t>(w) * ht);
+    m_weightSums.resize(static_cast<std::size_t>(w) * ht);
     Image* src = &m_stack;
     Image* dst = &m_scratch;
     const std::size_t C = static_cast<std::size_t>(channels);
@@ -116,10 +119,13 @@ void PassTransfer::filterSpatial(const PassGuides& g, int channels)
         // Row by row: for each of the 25 taps, the weights of the whole row, then the stack's
         // channels accumulated with them (contiguous, so the loops vectorise).
         parallelRows(ht, [&](int y0, int y1) {
-            std::vector<float> acc(static_cast<std::size_t>(w) * C), wsum(w), wrow(w);
             for (int y = y0; y < y1; ++y) {
-                std::fill(acc.begin(), acc.end(), 0.0f);
-                std::fill(wsum.begin(), wsum.end(), 0.0f);
+                // The output row holds the weighted sums until they are normalised.
+                float* acc = dst->at(0, y);
+                std::fill(acc, acc + static_cast<std::size_t>(w) * C, 0.0f);
+                float* wsum = m_weightSums.data() + static_cast<std::size_t>(y) * w;
+                std::fill(wsum, wsum + w, 0.0f);
+                float* wr = m_weightRows.data() + static_cast<std::size_t>(y) * w;
                 const float* py[kGuide];
                 for (int k = 0; k < kGuide; ++k)
                     py[k] = row(k, y);
@@ -134,22 +140,19 @@ void PassTransfer::filterSpatial(const PassGuides& g, int channels)
                         const int dx = i * step;
                         const int xs = std::max(0, -dx), xe = std::min(w, w - dx);
                         const float hk = h[i + 2] * h[j + 2];
-                        float* wr = wrow.data();
                         if (i == 0 && j == 0)
                             std::fill(wr + xs, wr + xe, hk);
                         else
                             weightRow(normals, depth, py, pq, dx, xs, xe, hk, depthScale, wr);
                         const float* v
                             = src->at(0, qy) + static_cast<std::ptrdiff_t>(dx) * channels;
-                        accumulateRow(wr, v, acc.data(), wsum.data(), xs, xe, C);
+                        accumulateRow(wr, v, acc, wsum, xs, xe, C);
                     }
                 }
-                float* o = dst->at(0, y);
                 for (int x = 0; x < w; ++x) {
                     const float inv = 1.0f / wsum[x]; // the centre tap is always in: wsum > 0
                     for (std::size_t c = 0; c < C; ++c)
-                        o[static_cast<std::size_t>(x) * C + c]
-                            = acc[static_cast<std::size_t>(x) * C + c] * inv;
+                        acc[static_cast<std::size_t>(x) * C + c] *= inv;
                 }
             }
         });
@@ -170,30 +173,18 @@ void PassTransfer::accumulate(const PassGuides& g, bool useHistory)
     const Reprojector& rp = *g.reprojector;
     const bool trust = g.trust && g.trust->active();
     parallelRows(ht, [&](int y0, int y1) {
-        std::vector<float> prev(static_cast<std::size_t>(channels));
         for (int y = y0; y < y1; ++y) {
             const float* rowTrust = trust ? g.trust->rowTrust(y) : nullptr;
             for (int x = 0; x < w; ++x) {
-                const PixelTaps t = rp.taps(x, y);
-                std::fill(prev.begin(), prev.end(), 0.0f);
-                float ws = 0.0f;
-                auto add = [&](int qx, int qy, float wk) {
+                // The output pixel holds the history's weighted sum until the blend.
+                float* o = m_scratch.at(x, y);
+                std::fill(o, o + channels, 0.0f);
+                const float ws = forEachHistoryTap(rp.taps(x, y), [&](int qx, int qy, float wk) {
                     const float* v = m_history.at(qx, qy);
                     for (int c = 0; c < channels; ++c)
-                        prev[c] += wk * v[c];
-                    ws += wk;
-                };
-                if (!t.box) {
-                    for (int k = 0; k < 4; ++k)
-                        if ((t.mask & (1u << k)) && t.w[k] > 0.0f)
-                            add(t.x0 + (k & 1), t.y0 + (k >> 1), t.w[k]);
-                } else {
-                    for (int k = 0; k < 9; ++k)
-                        if (t.mask & (1u << k))
-                            add(t.x0 + k % 3 - 1, t.y0 + k / 3 - 1, 1.0f);
-                }
+                        o[c] += wk * v[c];
+                });
                 const float* cur = m_stack.at(x, y);
-                float* o = m_scratch.at(x, y);
                 if (!(ws > 0.0f)) {
                     std::copy(cur, cur + channels, o);
                     continue;
@@ -202,7 +193,7 @@ void PassTransfer::accumulate(const PassGuides& g, bool useHistory)
                 const float a = kAlpha + (1.0f - kAlpha) * (1.0f - tr);
                 const float inv = 1.0f / ws;
                 for (int c = 0; c < channels; ++c)
-                    o[c] = blendHistory(prev[c] * inv, cur[c], a);
+                    o[c] = blendHistory(o[c] * inv, cur[c], a);
             }
         }
     });

@@ -169,6 +169,30 @@ inline float blendHistory(float prev, float cur, float alpha)
     return std::fabs(v) < FLT_MIN ? 0.0f : v;
 }
 
+/// Calls visit(x, y, w) for each accepted tap of `t` into the previous frame, in the one order
+/// every history gather uses: the bilinear taps with their weights, or the 3x3 box's taps with
+/// weight 1. Returns sum(w); 0 means no history.
+template <typename Visit> inline float forEachHistoryTap(const PixelTaps& t, Visit&& visit)
+{
+    float ws = 0.0f;
+    if (!t.box) {
+        for (int k = 0; k < 4; ++k) {
+            if (!(t.mask & (1u << k)) || !(t.w[k] > 0.0f))
+                continue;
+            visit(t.x0 + (k & 1), t.y0 + (k >> 1), t.w[k]);
+            ws += t.w[k];
+        }
+    } else {
+        for (int k = 0; k < 9; ++k) {
+            if (!(t.mask & (1u << k)))
+                continue;
+            visit(t.x0 + k % 3 - 1, t.y0 + k / 3 - 1, 1.0f);
+            ws += 1.0f;
+        }
+    }
+    return ws;
+}
+
 /// Renormalised history over any storage of the previous frame's values: out[c] = sum(w_k *
 /// v_k[c]) / sum(w_k) over the accepted taps of `t`, where `load(x, y, v)` writes the first C
 /// channels of pixel (x, y) into v (an Image: gatherHistory; structure-of-arrays planes: svgf).
@@ -178,26 +202,12 @@ inline float gatherHistoryWith(const PixelTaps& t, Load&& load, float* out)
 {
     for (int c = 0; c < C; ++c)
         out[c] = 0.0f;
-    float ws = 0.0f, v[C];
-    if (!t.box) {
-        for (int k = 0; k < 4; ++k) {
-            if (!(t.mask & (1u << k)) || !(t.w[k] > 0.0f))
-                continue;
-            load(t.x0 + (k & 1), t.y0 + (k >> 1), v);
-            for (int c = 0; c < C; ++c)
-                out[c] += t.w[k] * v[c];
-            ws += t.w[k];
-        }
-    } else {
-        for (int k = 0; k < 9; ++k) {
-            if (!(t.mask & (1u << k)))
-                continue;
-            load(t.x0 + k % 3 - 1, t.y0 + k / 3 - 1, v);
-            for (int c = 0; c < C; ++c)
-                out[c] += v[c];
-            ws += 1.0f;
-        }
-    }
+    const float ws = forEachHistoryTap(t, [&](int x, int y, float wk) {
+        float v[C];
+        load(x, y, v);
+        for (int c = 0; c < C; ++c)
+            out[c] += wk * v[c]; // wk is 1 in the box: the same bits as a plain sum
+    });
     if (ws > 0.0f)
         for (int c = 0; c < C; ++c)
             out[c] /= ws;
