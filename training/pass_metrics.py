@@ -17,12 +17,13 @@ denoised passes rebuilt by the renderer's formula against the denoised beauty) i
 
 import argparse
 import json
-import math
 import subprocess
 import sys
 
 import numpy as np
 import OpenImageIO as oiio
+
+from error_bands import frame_range, psnr as psnr_of_error, tonemap
 
 
 def read_layers(path):
@@ -44,18 +45,8 @@ def layer_rgb(channels, name, path):
     raise SystemExit(f"pass_metrics: {path}: no layer {name} with R,G,B")
 
 
-def tonemap(x):
-    return np.clip(np.maximum(x, 0.0) ** (1.0 / 2.2), 0.0, 1.0)
-
-
 def psnr(a, b):
-    e = tonemap(a).astype(np.float64) - tonemap(b).astype(np.float64)
-    return 10.0 * math.log10(1.0 / max(float(np.mean(e * e)), 1e-20))
-
-
-def frame_range(text):
-    a, _, b = text.partition("-")
-    return list(range(int(a), int(b or a) + 1))
+    return psnr_of_error(tonemap(a).astype(np.float64) - tonemap(b).astype(np.float64))
 
 
 def expand(pattern, f):
