@@ -156,8 +156,8 @@ BENCHMARK(BM_AfnWholeWork40)->Name("afn.whole.work40.1280x720")->Apply(configure
 
 // afn's 1-spp post-filter (methods/afn/post_filter.h) on the random frame, its guides the
 // frame's albedo, normal and depth and its noise scale the 1-spp colour with a history of 4:
-// guide planes, noise scale and the three a-trous passes, the workspace kept across iterations
-// as the filter keeps it across frames.
+// guide planes, noise scale and the three separable a-trous passes, the workspace kept across
+// iterations as the filter keeps it across frames.
 void BM_AfnPostFilter(benchmark::State& state)
 {
     Setup& s = setup720();

@@ -4,16 +4,19 @@
 // depth, to take out the low-frequency blotches the network leaves on flat surfaces. Not in the
 // AFN paper; the weights are SVGF's kind (Schied et al. 2017, Sec. 4.3), chosen for afn's output:
 //
-//   kPostFilterIterations passes of the 5x5 B3-spline a-trous kernel (h = 1/16, 1/4, 3/8, 1/4,
-//   1/16) at steps 1, 2, 4 (footprint 29 x 29 pixels), each tap q of pixel p weighted by
-//     h_i h_j * wn * exp(-(dz + dl + da)) with
+//   kPostFilterIterations passes of the B3-spline a-trous kernel (h = 1/16, 1/4, 3/8, 1/4, 1/16)
+//   at steps 1, 2, 4 (footprint 29 x 29 pixels), each pass separable: a horizontal half (taps
+//   q = p + (j step, 0), j = -2..2), normalised, then a vertical half (q = p + (0, j step)) on its
+//   result, normalised, each tap q of pixel p weighted by
+//     h_j * wn * exp(-(dz + dl + da)) with
 //     wn = max(0, n_p . n_q / (|n_p| |n_q|))^64           (1 where either normal is ~0 or absent)
-//     dz = |z_p - z_q| / (0.02 max(z_p, 1e-3) step max(|i|, |j|, 1) + 1e-6)  (relative depth)
+//     dz = |z_p - z_q| / (0.02 max(z_p, 1e-3) step max(|j|, 1) + 1e-6)  (relative depth)
 //     dl = |l_p - l_q| / (s_p max(l_p + l_q, 0) + 1e-3)  (relative luminance of the pass's
-//          input, Rec. 709 weights; s_p the pixel's scale from the noise left in afn's estimate
-//          there, post_filter_noise.h: kPostFilterSigmaLuminance / 2 where that noise is typical)
+//          half's input, Rec. 709 weights; s_p the pixel's scale from the noise left in afn's
+//          estimate there, post_filter_noise.h: kPostFilterSigmaLuminance / 2 where that noise is
+//          typical)
 //     da = (|dA_r| + |dA_g| + |dA_b|) / 0.1                (albedo: keeps texture edges)
-//   taps outside the image clamped to the border. The centre tap's weight is about h_2^2 > 0, so
+//   taps outside the image clamped to the border. The centre tap's weight is h_2 = 3/8 > 0, so
 //   the normalisation never divides by zero. A tap whose exp(-(dz + dl + da)) is below e^-40, or
 //   whose normals' cosine is below 0.3 (both valid), weighs 0: at most 3e-17 of the centre tap's
 //   weight, and it keeps denormal floats (about a hundred times slower) out of the sums.
@@ -22,9 +25,13 @@
 //
 // The parameters (3 passes, sigma_l 0.25, the depth, normal and albedo scales; the noise scale's
 // constants) were chosen on the rendered training sequences only; the held-out set was then run
-// once (docs/afn-evaluation.md, post-filter). The guides are the frame's as
-// the shared stages leave them (the aux prefilter's). exp is a polynomial approximation (relative
-// error < 2e-5) so the rows vectorise.
+// once (docs/afn-evaluation.md, post-filter). Choice: the separable halves (10 taps a pass
+// instead of the 5x5 kernel's 25, whose edge stops a separable pass approximates: a tap reaches a
+// diagonal neighbour through the row between) cost 2.5 times fewer weights for the same
+// footprint and spline; on afn-v4's 77 training sequences at 1 spp they scored 0.008 dB below the
+// 5x5 kernel (27.324 against 27.332 dB, SSIM -0.0004); the held-out set: docs/afn-evaluation.md.
+// The guides are the frame's as the shared stages leave them (the aux prefilter's). exp is a
+// polynomial approximation (relative error < 3e-6) so the rows vectorise.
 #pragma once
 
 #include "base/image.h"
@@ -53,28 +60,32 @@ struct PostFilterGuides {
 /// The guides as planes, sanitised once per frame: albedo (non-finite -> 0; absent: 0), unit
 /// normals and their validity (1 where the normal is finite and |n|^2 > 0.5; absent: 0), depth
 /// (non-finite -> 1e30, a far background; absent: 1). Absent guides so give their terms 0. `ls`
-/// is the luminance term's scale per pixel (post_filter_noise.h).
+/// is the luminance term's scale per pixel (post_filter_noise.h). Planes of the workspace.
 struct PostFilterGuidePlanes {
-    std::vector<float> a0, a1, a2, n0, n1, n2, nv, z, ls;
+    float *a0 = nullptr, *a1 = nullptr, *a2 = nullptr, *n0 = nullptr, *n1 = nullptr, *n2 = nullptr,
+          *nv = nullptr, *z = nullptr, *ls = nullptr;
 };
 
-/// Radiance planes of a pass's input.
-struct PostFilterColourPlanes {
-    std::vector<float> r, g, b;
-};
-
-/// The planes the filter works on (48 bytes a pixel), kept by the caller from frame to frame so
-/// that a sequence allocates them once. Their contents between calls mean nothing.
+/// The planes the filter works on (the 9 guide planes and 3 colour planes: 48 bytes a pixel, in
+/// one allocation), kept by the caller from frame to frame so that a sequence allocates them
+/// once. Their contents between calls mean nothing.
 struct PostFilterWorkspace {
-    PostFilterGuidePlanes guides;
-    PostFilterColourPlanes colour;
+    /// Plane k starts k * (w h + kPostFilterPlaneStagger) floats in: planes of a frame whose
+    /// size is a multiple of 4 KiB would otherwise start at the same offset within a page and
+    /// share the processor's L1 cache sets, which the 5 rows of a vertical pass's taps (x 12
+    /// planes) overflow.
+    std::vector<float> storage;
+    PostFilterGuidePlanes guides; ///< the guide planes of the last call, in `storage`
 };
 
-/// The edge-aware post-filter of `radiance` (3 ch) into `out` (resized), with `scratch` (resized)
-/// for the passes between and `workspace`'s planes. `out` and `scratch` may not alias `radiance`
-/// or each other. Non-finite guide values count as absent (normal), far (depth) or 0 (albedo). The
-/// radiance is taken as finite (afn's inputs are sanitised before the network, gather.cpp);
-/// negative radiance counts as luminance 0 in dl.
+/// Floats between one plane's end and the next one's start (one 64-byte cache line).
+constexpr int kPostFilterPlaneStagger = 16;
+
+/// The edge-aware post-filter of `radiance` (3 ch) into `out` (resized), with `scratch` (resized
+/// to the radiance's shape and used as three colour planes) and `workspace`'s planes. `out` and
+/// `scratch` may not alias `radiance` or each other. Non-finite guide values count as absent
+/// (normal), far (depth) or 0 (albedo). The radiance is taken as finite (afn's inputs are sanitised
+/// before the network, gather.cpp); negative radiance counts as luminance 0 in dl.
 void edgeAwarePostFilter(const Image& radiance, const PostFilterGuides& guides,
     PostFilterWorkspace& workspace, Image& scratch, Image& out);
 

@@ -28,34 +28,39 @@ float luminance(const float* c)
 } // namespace
 
 void postFilterLuminanceScale(const PostFilterNoiseInputs& in, int w, int h, float sigmaLuminance,
-    std::vector<float>& meanPlane, std::vector<float>& squarePlane, std::vector<float>& scale)
+    float* meanPlane, float* squarePlane, float* scale)
 {
     const std::size_t n = static_cast<std::size_t>(w) * h;
     const float base = 0.5f * sigmaLuminance;
-    scale.assign(n, base);
-    if (n == 0 || !usable(in.irradiance, w, h, 3))
+    if (n == 0 || !usable(in.irradiance, w, h, 3)) {
+        std::fill(scale, scale + n, base);
         return;
+    }
     const bool history = usable(in.historyLength, w, h, 1);
     const float maxSamples = std::max(in.maxSamples, 1.0f);
     constexpr int r = kPostFilterNoiseRadius;
     constexpr float inverseTaps = 1.0f / static_cast<float>(2 * r + 1);
-    meanPlane.resize(n);
-    squarePlane.resize(n);
     // Rows: the box means of l and l^2 along x.
     parallelRows(h, [&](int y0, int y1) {
-        // One row's luminance, kept by each worker from frame to frame (as filterPass's rows).
-        thread_local std::vector<float> l;
-        l.resize(static_cast<std::size_t>(w));
+        // One row's luminance with r border columns repeated on each side (so that the box's
+        // loop has no clamp and vectorises), kept by each worker from frame to frame.
+        thread_local std::vector<float> padded;
+        padded.resize(static_cast<std::size_t>(w + 2 * r));
         for (int y = y0; y < y1; ++y) {
             const float* row = in.irradiance->at(0, y);
+            float* l = padded.data() + r;
             for (int x = 0; x < w; ++x)
                 l[x] = luminance(row + 3 * x);
-            float* mean = meanPlane.data() + static_cast<std::size_t>(y) * w;
-            float* square = squarePlane.data() + static_cast<std::size_t>(y) * w;
+            for (int k = 1; k <= r; ++k) {
+                l[-k] = l[0];
+                l[w - 1 + k] = l[w - 1];
+            }
+            float* mean = meanPlane + static_cast<std::size_t>(y) * w;
+            float* square = squarePlane + static_cast<std::size_t>(y) * w;
             for (int x = 0; x < w; ++x) {
                 float s1 = 0.0f, s2 = 0.0f;
                 for (int dx = -r; dx <= r; ++dx) {
-                    const float v = l[std::clamp(x + dx, 0, w - 1)];
+                    const float v = l[x + dx];
                     s1 += v;
                     s2 += v * v;
                 }
@@ -72,8 +77,8 @@ void postFilterLuminanceScale(const PostFilterNoiseInputs& in, int w, int h, flo
             const float* rows[2 * r + 1][2];
             for (int dy = -r; dy <= r; ++dy) {
                 const std::size_t o = static_cast<std::size_t>(std::clamp(y + dy, 0, h - 1)) * w;
-                rows[dy + r][0] = meanPlane.data() + o;
-                rows[dy + r][1] = squarePlane.data() + o;
+                rows[dy + r][0] = meanPlane + o;
+                rows[dy + r][1] = squarePlane + o;
             }
             const std::size_t o = static_cast<std::size_t>(y) * w;
             for (int x = 0; x < w; ++x) {

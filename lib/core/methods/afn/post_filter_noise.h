@@ -44,9 +44,9 @@ struct PostFilterNoiseInputs {
     float maxSamples = 9.0f; ///< (2 - alphaMin) / alphaMin of the accumulation
 };
 
-/// `scale` (w * h) = scale_p above for every pixel of a w x h frame, `sigmaLuminance` being the
-/// filter's sigma_l; `meanPlane` and `squarePlane` are resized and used as scratch.
+/// `scale` = scale_p above for every pixel of a w x h frame, `sigmaLuminance` being the filter's
+/// sigma_l; `meanPlane` and `squarePlane` are scratch. Each of the three holds w * h floats.
 void postFilterLuminanceScale(const PostFilterNoiseInputs& in, int w, int h, float sigmaLuminance,
-    std::vector<float>& meanPlane, std::vector<float>& squarePlane, std::vector<float>& scale);
+    float* meanPlane, float* squarePlane, float* scale);
 
 } // namespace afn::afnet

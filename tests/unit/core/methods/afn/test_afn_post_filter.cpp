@@ -261,7 +261,7 @@ TEST(AfnPostFilter, AutoFollowsTheSampleCountOfTheModel)
 
 namespace {
 
-/// The formula of post_filter.h, in double, pass by pass (taps clamped to the border).
+/// The formula of post_filter.h, in double, half-pass by half-pass (taps clamped to the border).
 std::vector<double> referencePostFilter(const Image& radiance, const Image& albedo,
     const Image& normal, const Image& depth, float sigma)
 {
@@ -277,8 +277,9 @@ std::vector<double> referencePostFilter(const Image& radiance, const Image& albe
             n[c] = m[c] / std::sqrt(len2);
         return true;
     };
-    for (int pass = 0; pass < afn::afnet::kPostFilterIterations; ++pass) {
-        const int step = 1 << pass;
+    for (int half = 0; half < 2 * afn::afnet::kPostFilterIterations; ++half) {
+        const int step = 1 << (half / 2);
+        const bool horizontal = half % 2 == 0;
         std::vector<double> next(cur.size());
         for (int y = 0; y < h; ++y)
             for (int x = 0; x < w; ++x) {
@@ -288,28 +289,27 @@ std::vector<double> referencePostFilter(const Image& radiance, const Image& albe
                 const bool vp = unit(x, y, np);
                 const double zp = depth(x, y, 0);
                 double acc[4] = {};
-                for (int i = -2; i <= 2; ++i)
-                    for (int j = -2; j <= 2; ++j) {
-                        const int qx = std::clamp(x + j * step, 0, w - 1);
-                        const int qy = std::clamp(y + i * step, 0, h - 1);
-                        const double* cq = &cur[(std::size_t(qy) * w + qx) * 3];
-                        const double lq = 0.2126 * cq[0] + 0.7152 * cq[1] + 0.0722 * cq[2];
-                        const double ring = std::max({ std::abs(i), std::abs(j), 1 });
-                        double e = std::fabs(lp - lq) / (sigma * std::max(lp + lq, 0.0) + 1e-3);
-                        for (int c = 0; c < 3; ++c)
-                            e += std::fabs(double(albedo(x, y, c)) - albedo(qx, qy, c)) / 0.1;
-                        e += std::fabs(zp - depth(qx, qy, 0))
-                            / (0.02 * step * ring * std::max(zp, 1e-3) + 1e-6);
-                        double nq[3];
-                        double wn = 1.0;
-                        if (vp && unit(qx, qy, nq))
-                            wn = std::pow(
-                                std::max(0.0, np[0] * nq[0] + np[1] * nq[1] + np[2] * nq[2]), 64);
-                        const double wt = spline[i + 2] * spline[j + 2] * wn * std::exp(-e);
-                        for (int c = 0; c < 3; ++c)
-                            acc[c] += wt * cq[c];
-                        acc[3] += wt;
-                    }
+                for (int j = -2; j <= 2; ++j) {
+                    const int qx = std::clamp(x + (horizontal ? j * step : 0), 0, w - 1);
+                    const int qy = std::clamp(y + (horizontal ? 0 : j * step), 0, h - 1);
+                    const double* cq = &cur[(std::size_t(qy) * w + qx) * 3];
+                    const double lq = 0.2126 * cq[0] + 0.7152 * cq[1] + 0.0722 * cq[2];
+                    const double ring = std::max(std::abs(j), 1);
+                    double e = std::fabs(lp - lq) / (sigma * std::max(lp + lq, 0.0) + 1e-3);
+                    for (int c = 0; c < 3; ++c)
+                        e += std::fabs(double(albedo(x, y, c)) - albedo(qx, qy, c)) / 0.1;
+                    e += std::fabs(zp - depth(qx, qy, 0))
+                        / (0.02 * step * ring * std::max(zp, 1e-3) + 1e-6);
+                    double nq[3];
+                    double wn = 1.0;
+                    if (vp && unit(qx, qy, nq))
+                        wn = std::pow(
+                            std::max(0.0, np[0] * nq[0] + np[1] * nq[1] + np[2] * nq[2]), 64);
+                    const double wt = spline[j + 2] * wn * std::exp(-e);
+                    for (int c = 0; c < 3; ++c)
+                        acc[c] += wt * cq[c];
+                    acc[3] += wt;
+                }
                 for (int c = 0; c < 3; ++c)
                     next[(std::size_t(y) * w + x) * 3 + c] = acc[c] / acc[3];
             }
@@ -322,8 +322,8 @@ std::vector<double> referencePostFilter(const Image& radiance, const Image& albe
 
 // Random radiance and guides (some normals invalid, depth and albedo edges everywhere) on a frame
 // whose width is not a multiple of the 16-pixel runs: every run kind (interior, border, short
-// tail) against the formula in double. The filter's exp is a polynomial (relative error < 2e-5)
-// and it sums in float: 5e-5 relative (measured 7e-6).
+// tail) against the formula in double. The filter's exp is a polynomial (relative error < 3e-6)
+// and it sums in float: 5e-5 relative.
 TEST(AfnPostFilter, MatchesTheFormulaOnEveryRunKind)
 {
     const int w = 53, h = 19;

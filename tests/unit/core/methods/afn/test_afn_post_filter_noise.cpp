@@ -26,9 +26,9 @@ constexpr float kBase = 0.5f * kPostFilterSigmaLuminance;
 
 std::vector<float> scaleOf(const PostFilterNoiseInputs& in)
 {
-    std::vector<float> mean, square, scale;
+    std::vector<float> mean(kW * kH), square(kW * kH), scale(kW * kH);
     afn::afnet::postFilterLuminanceScale(
-        in, kW, kH, kPostFilterSigmaLuminance, mean, square, scale);
+        in, kW, kH, kPostFilterSigmaLuminance, mean.data(), square.data(), scale.data());
     return scale;
 }
 
