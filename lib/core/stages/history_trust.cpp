@@ -2,6 +2,8 @@
 // History trust from 8x8-block statistics (see stages/history_trust.h).
 #include "stages/history_trust.h"
 
+#include "base/parallel.h"
+
 #include <algorithm>
 #include <cmath>
 
@@ -64,7 +66,10 @@ void HistoryTrust::begin(int width, int height, bool measure)
     if (!m_measure)
         return;
     m_rowStride = static_cast<std::size_t>(m_bw) * kSums;
-    m_rowSums.assign(m_rowStride * static_cast<std::size_t>(height), 0.0f);
+    m_rowSums.resize(m_rowStride * static_cast<std::size_t>(height));
+    parallelRows(height, [&](int y0, int y1) {
+        std::fill(rowSums(y0), rowSums(y0) + (y1 - y0) * m_rowStride, 0.0f);
+    });
 }
 
 namespace {
@@ -95,14 +100,15 @@ void HistoryTrust::finish()
     const std::size_t blocks = static_cast<std::size_t>(m_bw) * m_bh;
     m_raw.assign(blocks, 1.0f);
     m_count.assign(blocks, 0.0f);
-    // One band of kCoarse block rows at a time: the fine level (8x8 blocks) and the coarse one
-    // (groups of kCoarse x kCoarse blocks, 16 times the samples: a quarter of the noise), the lower
-    // trust of the two.
-    std::vector<double>& sums = m_groupSums;
-    sums.resize(static_cast<std::size_t>(m_bw) * kCoarse * kSums);
-    for (int gy = 0; gy < m_bh; gy += kCoarse) {
+    // Bands of kCoarse block rows, in parallel: in each, the fine level (8x8 blocks) and the
+    // coarse one (groups of kCoarse x kCoarse blocks, 16 times the samples: a quarter of the
+    // noise), the lower trust of the two.
+    const int bands = (m_bh + kCoarse - 1) / kCoarse;
+    parallelFor(bands, [&](int band) {
+        const int gy = band * kCoarse;
         const int rows = std::min(kCoarse, m_bh - gy);
-        std::fill(sums.begin(), sums.end(), 0.0);
+        thread_local std::vector<double> sums; // kept by each worker from frame to frame
+        sums.assign(static_cast<std::size_t>(m_bw) * kCoarse * kSums, 0.0);
         for (int r = 0; r < rows; ++r)
             for (int bx = 0; bx < m_bw; ++bx) {
                 double* s = sums.data() + (static_cast<std::size_t>(r) * m_bw + bx) * kSums;
@@ -131,6 +137,13 @@ void HistoryTrust::finish()
                         = static_cast<float>(std::min(coarse, fine));
                 }
         }
+    });
+    m_columnBlock.resize(static_cast<std::size_t>(m_width));
+    m_columnWeight.resize(static_cast<std::size_t>(m_width));
+    for (int x = 0; x < m_width; ++x) {
+        int bx1;
+        blockCoordinate(x, m_bw, m_columnBlock[static_cast<std::size_t>(x)], bx1,
+            m_columnWeight[static_cast<std::size_t>(x)]);
     }
     m_block.resize(blocks);
     m_blockRowActive.assign(static_cast<std::size_t>(m_bh), 0);
@@ -162,13 +175,23 @@ void HistoryTrust::interpolateRow(int y, float* out) const
     int by0, by1;
     float wy;
     blockCoordinate(y, m_bh, by0, by1, wy);
-    for (int x = 0; x < m_width; ++x) {
-        int bx0, bx1;
-        float wx;
-        blockCoordinate(x, m_bw, bx0, bx1, wx);
-        const float top = blockAt(bx0, by0) + wx * (blockAt(bx1, by0) - blockAt(bx0, by0));
-        const float bottom = blockAt(bx0, by1) + wx * (blockAt(bx1, by1) - blockAt(bx0, by1));
-        out[x] = std::clamp(top + wy * (bottom - top), 0.0f, 1.0f);
+    // Runs of columns between the same two block centres (m_column: each column's first block
+    // and weight): the runs' loops have no lookups and vectorise.
+    const float* wx = m_columnWeight.data();
+    for (int x0 = 0; x0 < m_width;) {
+        const int bx0 = m_columnBlock[static_cast<std::size_t>(x0)];
+        int x1 = x0 + 1;
+        while (x1 < m_width && m_columnBlock[static_cast<std::size_t>(x1)] == bx0)
+            ++x1;
+        const int bx1 = std::min(bx0 + 1, m_bw - 1);
+        const float t0 = blockAt(bx0, by0), t1 = blockAt(bx1, by0);
+        const float b0 = blockAt(bx0, by1), b1 = blockAt(bx1, by1);
+        for (int x = x0; x < x1; ++x) {
+            const float top = t0 + wx[x] * (t1 - t0);
+            const float bottom = b0 + wx[x] * (b1 - b0);
+            out[x] = std::clamp(top + wy * (bottom - top), 0.0f, 1.0f);
+        }
+        x0 = x1;
     }
 }
 

@@ -66,22 +66,62 @@ public:
     bool enabled() const { return m_antilag > 0.0f; }
 
     /// Start a frame of w x h. `measure` false (no history, or antilag 0): trust 1 everywhere and
-    /// addPixel() must not be called.
+    /// no pixel may be added.
     void begin(int width, int height, bool measure);
-    /// The sums of row y (for addPixel); rows may be filled by different threads.
+    /// Floats per block of a row's sums: count, sums of c, h and (c - h)^2 (3 channels each).
+    static constexpr int kSums = 10;
+    /// The sums of row y (for a RowAdder); rows may be filled by different threads.
     float* rowSums(int y) { return m_rowSums.data() + static_cast<std::size_t>(y) * m_rowStride; }
-    /// Add a pixel with accepted history: current colour c and history colour h (3 channels).
-    static void addPixel(float* rowSums, int x, const float* c, const float* h)
-    {
-        float* b = rowSums + (x / kTrustBlock) * kSums;
-        b[0] += 1.0f;
-        for (int k = 0; k < 3; ++k) {
-            const float d = c[k] - h[k];
-            b[1 + k] += c[k];
-            b[4 + k] += h[k];
-            b[7 + k] += d * d;
+
+    /// Adds the pixels of one row, left to right, to the row's block sums: a block's sums stay in
+    /// registers while its pixels come and are written once, when the row moves to the next
+    /// block (bit for bit what adding each pixel to the row's sums gives: they start at 0).
+    class RowAdder {
+    public:
+        /// `rowSums`: rowSums(y), or nullptr to add nothing.
+        explicit RowAdder(float* rowSums)
+            : m_row(rowSums)
+        {
         }
-    }
+        RowAdder(const RowAdder&) = delete;
+        RowAdder& operator=(const RowAdder&) = delete;
+        ~RowAdder() { flush(); }
+        /// Add pixel x (not left of the last one added) with accepted history: current colour c
+        /// and history colour h (3 channels).
+        void add(int x, const float* c, const float* h)
+        {
+            const int block = x / kTrustBlock;
+            if (block != m_block) {
+                flush();
+                m_block = block;
+            }
+            m_s[0] += 1.0f;
+            for (int k = 0; k < 3; ++k) {
+                const float d = c[k] - h[k];
+                m_s[1 + k] += c[k];
+                m_s[4 + k] += h[k];
+                m_s[7 + k] += d * d;
+            }
+        }
+
+    private:
+        void flush()
+        {
+            if (m_block < 0)
+                return;
+            if (m_row) {
+                float* b = m_row + static_cast<std::size_t>(m_block) * kSums;
+                for (int k = 0; k < kSums; ++k)
+                    b[k] += m_s[k];
+            }
+            for (float& v : m_s)
+                v = 0.0f;
+            m_block = -1;
+        }
+        float* m_row;
+        int m_block = -1;
+        float m_s[kSums] = {};
+    };
     /// After every row was added: the block trusts.
     void finish();
 
@@ -97,7 +137,6 @@ public:
     void map(Image& out) const;
 
 private:
-    static constexpr int kSums = 10; ///< count, sums of c, h and (c - h)^2 (3 channels each)
     float blockAt(int bx, int by) const
     {
         return m_block[static_cast<std::size_t>(by) * m_bw + bx];
@@ -113,8 +152,9 @@ private:
     std::vector<float> m_block; ///< trust per block (after the soft minimum)
     std::vector<float> m_raw; ///< trust per block before it
     std::vector<float> m_count; ///< pixels with history per block
-    std::vector<double> m_groupSums; ///< finish()'s sums of one band of block rows
     std::vector<unsigned char> m_blockRowActive; ///< per block row: some trust < 1 in it
+    std::vector<int> m_columnBlock; ///< per column: the block centre at or left of it
+    std::vector<float> m_columnWeight; ///< and the next centre's bilinear weight
 };
 
 } // namespace afn

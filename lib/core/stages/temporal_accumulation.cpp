@@ -67,12 +67,12 @@ void TemporalAccumulator::gatherRows(const Reprojector& taps, const Image& irr, 
         const float* c = irr.at(0, y);
         float* acc = m_color.at(0, y);
         float* spp = m_spp.at(0, y);
-        float* sums = measure ? m_trust.rowSums(y) : nullptr;
+        HistoryTrust::RowAdder trust(measure ? m_trust.rowSums(y) : nullptr);
         for (int x = 0; x < w; ++x) {
             if (identity && taps.ownPixelAccepted(x, y)) {
                 // A static camera's row, own pixel accepted: blendRows() reads it in place.
-                if (sums)
-                    HistoryTrust::addPixel(sums, x, c + 3 * x, m_prevColor.at(x, y));
+                if (measure)
+                    trust.add(x, c + 3 * x, m_prevColor.at(x, y));
                 continue;
             }
             const PixelTaps& t = taps.taps(x, y);
@@ -83,8 +83,8 @@ void TemporalAccumulator::gatherRows(const Reprojector& taps, const Image& irr, 
                 continue;
             }
             gatherHistory<1>(t, m_prevSpp, spp + x);
-            if (sums)
-                HistoryTrust::addPixel(sums, x, c + 3 * x, prev);
+            if (measure)
+                trust.add(x, c + 3 * x, prev);
         }
     }
 }
@@ -130,13 +130,13 @@ void TemporalAccumulator::blendRows(const Reprojector& taps, const Image& irr, i
             spp[x] = alpha < 1.0f ? std::min(sppS + 1.0f, kMaxHistoryLength) : 1.0f;
         };
         int x = 0;
-        if (identity && avx512 && !partial)
+        if (identity && avx512)
             // 16 pixels at a time where all 16 took their own previous pixel (the same
             // operations, stages/temporal_accumulation_avx512.h); any other block per pixel.
             for (; x + 16 <= w; x += 16) {
                 if (taps.ownPixelsAccepted16(x, y) == 0xFFFFu)
                     blendOwnHistory16(c + 3 * x, m_prevColor.at(x, y), &m_prevSpp(x, y, 0),
-                        m_alphaMin, acc + 3 * x, spp + x);
+                        m_alphaMin, partial ? trustRow + x : nullptr, acc + 3 * x, spp + x);
                 else
                     for (int i = x; i < x + 16; ++i)
                         pixel(i);

@@ -17,17 +17,26 @@ namespace afn {
 
 #ifdef AFN_CPU_HAVE_AVX512
 
-AFN_CPU_AVX512 void blendOwnHistory16(
-    const float* c, const float* prev, const float* prevSpp, float alphaMin, float* acc, float* spp)
+AFN_CPU_AVX512 void blendOwnHistory16(const float* c, const float* prev, const float* prevSpp,
+    float alphaMin, const float* trust, float* acc, float* spp)
 {
     const __m512 one = _mm512_set1_ps(1.0f);
     const __m512 s = _mm512_loadu_ps(prevSpp);
-    const __m512 s1 = _mm512_add_ps(s, one);
+    __m512 s1 = _mm512_add_ps(s, one);
     // std::max(1 / (s + 1), alphaMin): alphaMin where 1 / (s + 1) < alphaMin.
     const __m512 inv = _mm512_div_ps(one, s1);
     const __m512 alphaMinV = _mm512_set1_ps(alphaMin);
-    const __m512 alpha
+    __m512 alpha
         = _mm512_mask_mov_ps(inv, _mm512_cmp_ps_mask(inv, alphaMinV, _CMP_LT_OQ), alphaMinV);
+    if (trust) {
+        // Where t < 1: alpha + (1 - alpha) * (1 - t), and the length s * t (+ 1 below).
+        const __m512 t = _mm512_loadu_ps(trust);
+        const __mmask16 cut = _mm512_cmp_ps_mask(t, one, _CMP_LT_OQ);
+        const __m512 raised
+            = _mm512_add_ps(alpha, _mm512_mul_ps(_mm512_sub_ps(one, alpha), _mm512_sub_ps(one, t)));
+        alpha = _mm512_mask_mov_ps(alpha, cut, raised);
+        s1 = _mm512_mask_mov_ps(s1, cut, _mm512_add_ps(_mm512_mul_ps(s, t), one));
+    }
     // alpha < 1 ? min(s + 1, kMaxHistoryLength) : 1 (std::min(a, b) is b where b < a).
     const __m512 cap = _mm512_set1_ps(kMaxHistoryLength);
     const __m512 capped = _mm512_mask_mov_ps(s1, _mm512_cmp_ps_mask(cap, s1, _CMP_LT_OQ), cap);
@@ -41,7 +50,10 @@ AFN_CPU_AVX512 void blendOwnHistory16(
 
 #else
 
-void blendOwnHistory16(const float*, const float*, const float*, float, float*, float*) { }
+void blendOwnHistory16(
+    const float*, const float*, const float*, float, const float*, float*, float*)
+{
+}
 
 #endif
 

@@ -29,12 +29,12 @@ constexpr int kHistoryChannels = 6;
 /// output, whose blur moves light between blocks: the trust would read that as change. The
 /// history's colour is therefore scaled to the luminance of the unfiltered history (the first
 /// moment), so the test sees the unfiltered brightness and the filtered chromaticity.
-void addToTrust(float* sums, int x, const float* c, const float* prev)
+void addToTrust(HistoryTrust::RowAdder& trust, int x, const float* c, const float* prev)
 {
     const float l = luminance(prev);
     const float s = l > 0.0f ? prev[3] / l : 1.0f;
     const float h[3] = { prev[0] * s, prev[1] * s, prev[2] * s };
-    HistoryTrust::addPixel(sums, x, c, h);
+    trust.add(x, c, h);
 }
 
 /// History length marking a pixel without history between gatherRows() and the blend.
@@ -157,13 +157,13 @@ void Denoiser::gatherRows(const Image& irr, const Reprojector& taps, int y0, int
         float* planes[kHistoryChannels];
         for (int k = 0; k < kHistoryChannels; ++k)
             planes[k] = m_integrated.row(kHistoryPlanes[k], y);
-        float* sums = measure ? m_trust.rowSums(y) : nullptr;
+        HistoryTrust::RowAdder trust(measure ? m_trust.rowSums(y) : nullptr);
         for (int x = 0; x < w; ++x) {
             float prev[kHistoryChannels];
             if (identity && taps.ownPixelAccepted(x, y)) {
-                if (sums) {
+                if (measure) {
                     load(x, y, prev);
-                    addToTrust(sums, x, irr.at(x, y), prev);
+                    addToTrust(trust, x, irr.at(x, y), prev);
                 }
                 continue;
             }
@@ -173,8 +173,8 @@ void Denoiser::gatherRows(const Image& irr, const Reprojector& taps, int y0, int
             }
             for (int k = 0; k < kHistoryChannels; ++k)
                 planes[k][x] = prev[k];
-            if (sums)
-                addToTrust(sums, x, irr.at(x, y), prev);
+            if (measure)
+                addToTrust(trust, x, irr.at(x, y), prev);
         }
     }
 }

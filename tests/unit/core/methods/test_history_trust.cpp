@@ -152,10 +152,11 @@ float blockTrust(
     afn::HistoryTrust t;
     t.setSettings({ antilag });
     t.begin(8, 8, true);
-    for (int y = 0; y < 8; ++y)
+    for (int y = 0; y < 8; ++y) {
+        afn::HistoryTrust::RowAdder row(t.rowSums(y));
         for (int x = 0; x < 8; ++x)
-            afn::HistoryTrust::addPixel(
-                t.rowSums(y), x, cur[(y * 8 + x) % cur.size()].data(), hist.data());
+            row.add(x, cur[(y * 8 + x) % cur.size()].data(), hist.data());
+    }
     t.finish();
     Image map;
     t.map(map);

@@ -161,4 +161,42 @@ TEST(GatherAccumulateIsa, StaticRowAccumulationMatchesThePortablePath)
     }
 }
 
+// The same with the history trust on: every 7th frame the left half turns 3 times brighter, so
+// that blocks of rows the AVX-512 path blends 16 pixels at a time have trust below 1 (its masked
+// alpha and length) next to blocks with trust 1.
+TEST(GatherAccumulateIsa, StaticRowAccumulationWithHistoryCutsMatchesThePortablePath)
+{
+    constexpr int kW = 64, kH = 24;
+    afn::Reprojector taps;
+    afn::TemporalAccumulator v, p;
+    v.setSettings({ 0.2f });
+    p.setSettings({ 0.2f });
+    int cutFrames = 0;
+    for (int t = 0; t < 40; ++t) {
+        Frame f = methods_test::staticCameraFrame(kW, kH, static_cast<std::uint32_t>(2000 + t));
+        if (t % 7 == 6)
+            for (int y = 0; y < kH; ++y)
+                for (int x = 0; x < kW / 2; ++x)
+                    for (int c = 0; c < 3; ++c)
+                        f.color(x, y, c) *= 3.0f;
+        taps.compute(f);
+        {
+            IsaScope s(Isa::Avx512);
+            v.accumulate(taps, f.color);
+        }
+        {
+            IsaScope s(Isa::Portable);
+            p.accumulate(taps, f.color);
+        }
+        expectSameBits(v.color(), p.color(), "accumulated colour");
+        expectSameBits(v.historyLength(), p.historyLength(), "history length");
+        cutFrames += p.trust().active();
+        Frame geometry = f;
+        taps.takeGeometry(geometry);
+    }
+    EXPECT_GE(cutFrames, 5) << "the brightness jumps did not lower the trust";
+    if (!haveAvx512())
+        std::cout << "no AVX-512F on this CPU: both runs took the portable path\n";
+}
+
 } // namespace
