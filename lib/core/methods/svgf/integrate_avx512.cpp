@@ -34,8 +34,8 @@ AFN_CPU_AVX512_INLINE __m512 maxOf(__m512 floor, __m512 v)
 
 } // namespace
 
-AFN_CPU_AVX512 void integrateOwnHistory16(
-    const float* c, const float* const* prev, float alpha, float momentsAlpha, float* const* out)
+AFN_CPU_AVX512 void integrateOwnHistory16(const float* c, const float* const* prev, float alpha,
+    float momentsAlpha, const float* trust, float* const* out)
 {
     const __m512 packed[3]
         = { _mm512_loadu_ps(c), _mm512_loadu_ps(c + 16), _mm512_loadu_ps(c + 32) };
@@ -48,9 +48,26 @@ AFN_CPU_AVX512 void integrateOwnHistory16(
     const __m512 cap = _mm512_set1_ps(255.0f);
     __m512 len = _mm512_add_ps(_mm512_loadu_ps(prev[5]), _mm512_set1_ps(1.0f));
     len = _mm512_mask_mov_ps(len, _mm512_cmp_ps_mask(cap, len, _CMP_LT_OQ), cap);
-    const __m512 inv = _mm512_div_ps(_mm512_set1_ps(1.0f), len);
-    const __m512 a = maxOf(_mm512_set1_ps(alpha), inv);
-    const __m512 am = maxOf(_mm512_set1_ps(momentsAlpha), inv);
+    const __m512 one = _mm512_set1_ps(1.0f);
+    const __m512 inv = _mm512_div_ps(one, len);
+    __m512 a = maxOf(_mm512_set1_ps(alpha), inv);
+    __m512 am = maxOf(_mm512_set1_ps(momentsAlpha), inv);
+    if (trust) {
+        // Where t < 1: both alphas + (1 - alpha) (1 - t), len = min(ceil(prev length t) + 1, 255).
+        const __m512 t = _mm512_loadu_ps(trust);
+        const __mmask16 lower = _mm512_cmp_ps_mask(t, one, _CMP_LT_OQ);
+        const __m512 cut = _mm512_sub_ps(one, t);
+        a = _mm512_mask_mov_ps(
+            a, lower, _mm512_add_ps(a, _mm512_mul_ps(_mm512_sub_ps(one, a), cut)));
+        am = _mm512_mask_mov_ps(
+            am, lower, _mm512_add_ps(am, _mm512_mul_ps(_mm512_sub_ps(one, am), cut)));
+        __m512 cutLen
+            = _mm512_add_ps(_mm512_roundscale_ps(_mm512_mul_ps(_mm512_loadu_ps(prev[5]), t),
+                                _MM_FROUND_TO_POS_INF | _MM_FROUND_NO_EXC),
+                one);
+        cutLen = _mm512_mask_mov_ps(cutLen, _mm512_cmp_ps_mask(cap, cutLen, _CMP_LT_OQ), cap);
+        len = _mm512_mask_mov_ps(len, lower, cutLen);
+    }
     __m512 o[3];
     for (int k = 0; k < 3; ++k) {
         o[k] = blendHistory16(_mm512_loadu_ps(prev[k]), cur[k], a);
@@ -64,7 +81,10 @@ AFN_CPU_AVX512 void integrateOwnHistory16(
 
 #else
 
-void integrateOwnHistory16(const float*, const float* const*, float, float, float* const*) { }
+void integrateOwnHistory16(
+    const float*, const float* const*, float, float, const float*, float* const*)
+{
+}
 
 #endif
 

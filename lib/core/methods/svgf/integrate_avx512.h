@@ -9,10 +9,12 @@ namespace afn::svgf {
 /// the scalar operations of Denoiser::integrate lane by lane (the same bits): l = luminance(c),
 /// len = min(prevLength + 1, 255), alpha = max(alpha, 1 / len) and momentsAlpha likewise, colour
 /// and moments (l, l^2) blended with blendHistory (stages/reproject.h), length = len, and the
-/// luminance of the blended colour. `c` is 48 packed floats (RGB); `prev` the previous frame's
-/// colour, moment 1, moment 2 and length (6 pointers to 16 floats); `out` the same 6 and the
-/// luminance (7 pointers). AVX-512F only (cpu::activeIsa() == Avx512).
-void integrateOwnHistory16(
-    const float* c, const float* const* prev, float alpha, float momentsAlpha, float* const* out);
+/// luminance of the blended colour; where the history trust t (16 floats; nullptr: 1) is below 1,
+/// both alphas are raised by (1 - alpha) (1 - t) and len = min(ceil(prevLength t) + 1, 255). `c`
+/// is 48 packed floats (RGB); `prev` the previous frame's colour, moment 1, moment 2 and length (6
+/// pointers to 16 floats); `out` the same 6 and the luminance (7 pointers). AVX-512F only
+/// (cpu::activeIsa() == Avx512).
+void integrateOwnHistory16(const float* c, const float* const* prev, float alpha,
+    float momentsAlpha, const float* trust, float* const* out);
 
 } // namespace afn::svgf

@@ -116,7 +116,7 @@ void Denoiser::integrate(const Image& irr, const Reprojector& taps)
                 planes[kIntLuminance][x] = luminance(o);
             };
             int x = 0;
-            if (identity && avx512 && !partial) {
+            if (identity && avx512) {
                 // 16 pixels at a time where all 16 took their own previous pixel (the same
                 // operations, methods/svgf/integrate_avx512.h); any other block per pixel.
                 const float* prev16[kHistoryChannels];
@@ -132,8 +132,8 @@ void Denoiser::integrate(const Image& irr, const Reprojector& taps)
                         out16[k] = planes[kHistoryPlanes[k]] + x;
                     }
                     out16[kHistoryChannels] = planes[kIntLuminance] + x;
-                    integrateOwnHistory16(
-                        irr.at(x, y), prev16, m_settings.alpha, m_settings.momentsAlpha, out16);
+                    integrateOwnHistory16(irr.at(x, y), prev16, m_settings.alpha,
+                        m_settings.momentsAlpha, partial ? trustRow + x : nullptr, out16);
                 }
             }
             for (; x < w; ++x)

@@ -5,7 +5,8 @@
 // length), over 300 frames (past the 255 cap on the history length), on a frame wide enough for
 // three 16-pixel blocks and a tail, with pixels that move (their history restarts, so blocks mix
 // both paths), black pixels, and values whose blend underflows below FLT_MIN. On a CPU without
-// AVX-512F both runs take the per-pixel path and the test says so.
+// AVX-512F both runs take the per-pixel path and the test says so. The same with the history
+// trust cutting some blocks.
 #include "isa_scope.h"
 #include "methods/svgf/denoiser.h"
 #include "methods/svgf/kernels.h"
@@ -68,6 +69,48 @@ TEST(SvgfIntegrate, StaticRowsMatchThePerPixelPath)
         }
         EXPECT_GT(capped, 0) << "no history reached the cap";
     }
+}
+
+// With the history trust on: every 7th frame the left half turns 3 times brighter, so that 16-pixel
+// blocks the AVX-512 path integrates have trust below 1 (raised alphas, a shortened length
+// rounded up) beside blocks with trust 1.
+TEST(SvgfIntegrate, StaticRowsWithHistoryCutsMatchThePerPixelPath)
+{
+    constexpr int kW = 64, kH = 24;
+    afn::svgf::Settings settings;
+    settings.feedbackTap = -1;
+    afn::svgf::Denoiser vector, perPixel;
+    vector.setSettings(settings);
+    perPixel.setSettings(settings);
+    afn::Reprojector taps;
+    int cutFrames = 0;
+    for (int t = 0; t < 40; ++t) {
+        Frame f = methods_test::staticCameraFrame(kW, kH, static_cast<std::uint32_t>(9000 + t));
+        if (t % 7 == 6)
+            for (int y = 0; y < kH; ++y)
+                for (int x = 0; x < kW / 2; ++x)
+                    for (int c = 0; c < 3; ++c)
+                        f.color(x, y, c) *= 3.0f;
+        taps.compute(f);
+        Image out;
+        {
+            IsaScope s(Isa::Avx512);
+            vector.process(f, f.color, taps, out);
+        }
+        {
+            IsaScope s(Isa::Portable);
+            perPixel.process(f, f.color, taps, out);
+        }
+        const afn::svgf::Planes& a = vector.integrated();
+        const afn::svgf::Planes& b = perPixel.integrated();
+        for (int k = 0; k < afn::svgf::kIntegratedPlanes; ++k)
+            for (int y = 0; y < kH; ++y)
+                ASSERT_EQ(std::memcmp(a.row(k, y), b.row(k, y), kW * sizeof(float)), 0)
+                    << "plane " << k << " row " << y << " frame " << t;
+        cutFrames += perPixel.trust().active();
+        taps.takeGeometry(f);
+    }
+    EXPECT_GE(cutFrames, 5) << "the brightness jumps did not lower the trust";
 }
 
 } // namespace
