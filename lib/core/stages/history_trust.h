@@ -104,6 +104,14 @@ public:
             }
         }
 
+        /// The sums of the two whole blocks of pixels [x, x + 16), x a multiple of 16, for the
+        /// caller to add those pixels to (they are still 0); nullptr when adding nothing.
+        float* wholeBlocks16(int x)
+        {
+            flush();
+            return m_row ? m_row + static_cast<std::size_t>(x / kTrustBlock) * kSums : nullptr;
+        }
+
     private:
         void flush()
         {

@@ -62,30 +62,44 @@ void TemporalAccumulator::gatherRows(const Reprojector& taps, const Image& irr, 
     }
     const int w = irr.width();
     const bool measure = m_trust.enabled();
+    const bool avx512 = cpu::activeIsa() == cpu::Isa::Avx512;
     for (int y = y0; y < y1; ++y) {
         const bool identity = taps.identityRow(y);
         const float* c = irr.at(0, y);
         float* acc = m_color.at(0, y);
         float* spp = m_spp.at(0, y);
         HistoryTrust::RowAdder trust(measure ? m_trust.rowSums(y) : nullptr);
-        for (int x = 0; x < w; ++x) {
+        auto pixel = [&](int x) {
             if (identity && taps.ownPixelAccepted(x, y)) {
                 // A static camera's row, own pixel accepted: blendRows() reads it in place.
                 if (measure)
                     trust.add(x, c + 3 * x, m_prevColor.at(x, y));
-                continue;
+                return;
             }
             const PixelTaps& t = taps.taps(x, y);
             float* prev = acc + 3 * x;
             const float ws = gatherHistory<3>(t, m_prevColor, prev);
             if (!(ws > 0.0f)) {
                 spp[x] = kNoHistory;
-                continue;
+                return;
             }
             gatherHistory<1>(t, m_prevSpp, spp + x);
             if (measure)
                 trust.add(x, c + 3 * x, prev);
-        }
+        };
+        int x = 0;
+        if (identity && measure && avx512)
+            // Two whole trust blocks at a time where all 16 pixels took their own previous pixel
+            // (the same sums, stages/temporal_accumulation_avx512.h); any other run per pixel.
+            for (; x + 16 <= w; x += 16) {
+                if (taps.ownPixelsAccepted16(x, y) == 0xFFFFu)
+                    addOwnHistoryTrust16(c + 3 * x, m_prevColor.at(x, y), trust.wholeBlocks16(x));
+                else
+                    for (int i = x; i < x + 16; ++i)
+                        pixel(i);
+            }
+        for (; x < w; ++x)
+            pixel(x);
     }
 }
 

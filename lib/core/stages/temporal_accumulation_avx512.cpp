@@ -5,7 +5,8 @@
 // (stages/reproject.h), lane by lane: 1 / (s + 1) (division, correctly rounded as the scalar one),
 // the max with alphaMin (no NaN can occur: the history length is finite), prev + alpha * (c - prev)
 // without FMA (compiled with -ffp-contract=off, see CMakeLists.txt), then |v| < FLT_MIN flushed to
-// 0. The per-pixel alpha is spread to the 3 channels of the packed layout by lane moves.
+// 0. The per-pixel alpha is spread to the 3 channels of the packed layout by lane moves. The
+// history trust's block sums of such rows likewise: each sum added pixel by pixel in order.
 #include "stages/temporal_accumulation_avx512.h"
 
 #include "cpu/avx512.h"
@@ -48,7 +49,44 @@ AFN_CPU_AVX512 void blendOwnHistory16(const float* c, const float* prev, const f
                 cpu::spreadToPacked(alpha, k)));
 }
 
+AFN_CPU_AVX512 void addOwnHistoryTrust16(const float* c, const float* h, float* sums)
+{
+    if (!sums)
+        return;
+    // Lanes 0-2: the channels of the first block's pixel i, lanes 3-5: the second block's; the
+    // 8 pixels of each block added in order.
+    constexpr __mmask16 kFirst = 0x07, kSecond = 0x38;
+    __m512 sc = _mm512_setzero_ps(), sh = sc, sd = sc;
+    for (int i = 0; i < kTrustBlock; ++i) {
+        // Lane 3 + k of a load from p reads p[3 + k]: p = first pixel of the second block - 3.
+        const __m512 cv = _mm512_mask_loadu_ps(
+            _mm512_maskz_loadu_ps(kFirst, c + 3 * i), kSecond, c + 3 * (kTrustBlock + i) - 3);
+        const __m512 hv = _mm512_mask_loadu_ps(
+            _mm512_maskz_loadu_ps(kFirst, h + 3 * i), kSecond, h + 3 * (kTrustBlock + i) - 3);
+        const __m512 d = _mm512_sub_ps(cv, hv);
+        sc = _mm512_add_ps(sc, cv);
+        sh = _mm512_add_ps(sh, hv);
+        sd = _mm512_add_ps(sd, _mm512_mul_ps(d, d));
+    }
+    alignas(64) float vc[16], vh[16], vd[16];
+    _mm512_store_ps(vc, sc);
+    _mm512_store_ps(vh, sh);
+    _mm512_store_ps(vd, sd);
+    constexpr int kSums = HistoryTrust::kSums;
+    for (int b = 0; b < 2; ++b) {
+        float* s = sums + b * kSums;
+        s[0] += static_cast<float>(kTrustBlock);
+        for (int k = 0; k < 3; ++k) {
+            s[1 + k] += vc[3 * b + k];
+            s[4 + k] += vh[3 * b + k];
+            s[7 + k] += vd[3 * b + k];
+        }
+    }
+}
+
 #else
+
+void addOwnHistoryTrust16(const float*, const float*, float*) { }
 
 void blendOwnHistory16(
     const float*, const float*, const float*, float, const float*, float*, float*)

@@ -15,4 +15,11 @@ namespace afn {
 void blendOwnHistory16(const float* c, const float* prev, const float* prevSpp, float alphaMin,
     const float* trust, float* acc, float* spp);
 
+/// The history trust's sums (stages/history_trust.h) of 16 consecutive pixels whose own previous
+/// pixel was accepted, two whole blocks: into sums[0 .. 2 kSums) (block x / 8 and the next, both
+/// 0 before) the count 8 and, per channel, the sums of c, of h and of (c - h)^2, each summed pixel
+/// by pixel from the left as HistoryTrust::RowAdder sums (the same bits). `c` and `h` are 48
+/// packed floats; nothing is written where `sums` is nullptr. AVX-512F only.
+void addOwnHistoryTrust16(const float* c, const float* h, float* sums);
+
 } // namespace afn

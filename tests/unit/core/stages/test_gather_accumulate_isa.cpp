@@ -11,6 +11,7 @@
 #include "filter/filter.h"
 #include "isa_scope.h"
 #include "stages/temporal_accumulation.h"
+#include "stages/temporal_accumulation_avx512.h"
 #include "test_methods_util.h"
 
 #include <gtest/gtest.h>
@@ -197,6 +198,39 @@ TEST(GatherAccumulateIsa, StaticRowAccumulationWithHistoryCutsMatchesThePortable
     EXPECT_GE(cutFrames, 5) << "the brightness jumps did not lower the trust";
     if (!haveAvx512())
         std::cout << "no AVX-512F on this CPU: both runs took the portable path\n";
+}
+
+// The trust's sums of two whole blocks from the AVX-512 kernel against HistoryTrust::RowAdder's
+// pixel-by-pixel sums, bit for bit, on random colours spanning several orders of magnitude.
+TEST(GatherAccumulateIsa, TrustSumsOfTwoBlocksMatchTheRowAdder)
+{
+    if (!haveAvx512()) {
+        std::cout << "no AVX-512F on this CPU: nothing to compare\n";
+        return;
+    }
+    constexpr int kSums = afn::HistoryTrust::kSums;
+    Lcg rng { 77 };
+    auto u = [&rng] { return 0.5f * (rng.next() + 1.0f); }; // [0, 1)
+    for (int round = 0; round < 50; ++round) {
+        std::vector<float> c(48), h(48);
+        for (int i = 0; i < 48; ++i) {
+            c[i] = u() * std::pow(10.0f, u() * 6.0f - 3.0f);
+            h[i] = u() * std::pow(10.0f, u() * 6.0f - 3.0f);
+        }
+        std::vector<float> want(4 * kSums, 0.0f), got(4 * kSums, 0.0f);
+        {
+            afn::HistoryTrust::RowAdder row(want.data());
+            for (int x = 16; x < 32; ++x)
+                row.add(x, c.data() + 3 * (x - 16), h.data() + 3 * (x - 16));
+        }
+        {
+            IsaScope s(Isa::Avx512);
+            afn::addOwnHistoryTrust16(c.data(), h.data(), got.data() + 2 * kSums);
+        }
+        for (int k = 0; k < 4 * kSums; ++k)
+            ASSERT_TRUE(sameBits(want[k], got[k]))
+                << "sum " << k << " round " << round << ": " << want[k] << " vs " << got[k];
+    }
 }
 
 } // namespace
