@@ -135,4 +135,17 @@ inline afn::Frame staticCameraFrame(int w, int h, std::uint32_t seed)
     return f;
 }
 
+/// staticCameraFrame for frame `t` of a sequence whose left half turns 3 times brighter on every
+/// 7th frame (t % 7 == 6): the history trust cuts the history of those blocks, not the others'.
+inline afn::Frame staticCameraFrameWithLightJumps(int w, int h, std::uint32_t seed, int t)
+{
+    afn::Frame f = staticCameraFrame(w, h, seed);
+    if (t % 7 == 6)
+        for (int y = 0; y < h; ++y)
+            for (int x = 0; x < w / 2; ++x)
+                for (int c = 0; c < 3; ++c)
+                    f.color(x, y, c) *= 3.0f;
+    return f;
+}
+
 } // namespace methods_test
