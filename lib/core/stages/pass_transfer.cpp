@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <vector>
 
 namespace afn {
 namespace {
@@ -103,9 +104,6 @@ void PassTransfer::filterSpatial(const PassGuides& g, int channels)
     const int w = m_stack.width(), ht = m_stack.height();
     const bool normals = !g.normal.empty(), depth = !g.depth.empty();
     m_scratch.resize(w, ht, channels);
-    // One row of tap weights and of their sums per image row (rows run in parallel).
-    m_weightRows.resize(static_cast<std::size_t>(w) * ht);
-    m_weightSums.resize(static_cast<std::size_t>(w) * ht);
     Image* src = &m_stack;
     Image* dst = &m_scratch;
     const std::size_t C = static_cast<std::size_t>(channels);
@@ -119,13 +117,17 @@ void PassTransfer::filterSpatial(const PassGuides& g, int channels)
         // Row by row: for each of the 25 taps, the weights of the whole row, then the stack's
         // channels accumulated with them (contiguous, so the loops vectorise).
         parallelRows(ht, [&](int y0, int y1) {
+            // One row of tap weights and of their sums, kept by each worker from frame to frame.
+            thread_local std::vector<float> weights, sums;
+            weights.resize(static_cast<std::size_t>(w));
+            sums.resize(static_cast<std::size_t>(w));
+            float* wr = weights.data();
+            float* wsum = sums.data();
             for (int y = y0; y < y1; ++y) {
                 // The output row holds the weighted sums until they are normalised.
                 float* acc = dst->at(0, y);
                 std::fill(acc, acc + static_cast<std::size_t>(w) * C, 0.0f);
-                float* wsum = m_weightSums.data() + static_cast<std::size_t>(y) * w;
                 std::fill(wsum, wsum + w, 0.0f);
-                float* wr = m_weightRows.data() + static_cast<std::size_t>(y) * w;
                 const float* py[kGuide];
                 for (int k = 0; k < kGuide; ++k)
                     py[k] = row(k, y);

@@ -77,8 +77,6 @@ private:
     Image m_scratch;
     Image m_guide; ///< luminance of B', normal xyz, depth, their scales (pass_transfer.cpp)
     Image m_history; ///< last frame's accumulated stack
-    std::vector<float> m_weightRows; ///< filterSpatial's tap weights, one row per image row
-    std::vector<float> m_weightSums; ///< and their sums
     std::vector<std::string> m_names; ///< passes of the history, in stack order
 };
 
