@@ -10,6 +10,7 @@
 #include "methods/afn/post_filter.h"
 
 #include "base/parallel.h"
+#include "cpu/rgb_rows.h"
 #include "cpu/target.h"
 
 #include <algorithm>
@@ -288,9 +289,8 @@ void edgeAwarePostFilter(const Image& radiance, const PostFilterGuides& guides,
     float* planes[12];
     for (int k = 0; k < 12; ++k)
         planes[k] = workspace.storage.data() + static_cast<std::size_t>(k) * pitch;
-    PostFilterGuidePlanes& g = workspace.guides;
-    g = { planes[0], planes[1], planes[2], planes[3], planes[4], planes[5], planes[6], planes[7],
-        planes[8] };
+    const PostFilterGuidePlanes g { planes[0], planes[1], planes[2], planes[3], planes[4],
+        planes[5], planes[6], planes[7], planes[8] };
     buildGuidePlanes(guides, w, h, g);
     // The colour planes are free until the first pass writes them: the noise scale's scratch.
     postFilterLuminanceScale(
@@ -302,10 +302,11 @@ void edgeAwarePostFilter(const Image& radiance, const PostFilterGuides& guides,
     float* const planesA[3] = { planes[9], planes[10], planes[11] };
     float* const planesB[3] = { scratch.data(), scratch.data() + n, scratch.data() + 2 * n };
     parallelRows(h, [&](int y0, int y1) {
-        for (std::size_t i = static_cast<std::size_t>(y0) * w; i < static_cast<std::size_t>(y1) * w;
-             ++i)
-            for (int c = 0; c < 3; ++c)
-                planesB[c][i] = radiance.data()[3 * i + c];
+        for (int y = y0; y < y1; ++y) {
+            const std::size_t i = static_cast<std::size_t>(y) * w;
+            cpu::deinterleaveRgbRow(
+                radiance.at(0, y), planesB[0] + i, planesB[1] + i, planesB[2] + i, w);
+        }
     });
     out.resize(w, h, 3);
     const float* const* src = planesB;

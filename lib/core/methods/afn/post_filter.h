@@ -60,7 +60,8 @@ struct PostFilterGuides {
 /// The guides as planes, sanitised once per frame: albedo (non-finite -> 0; absent: 0), unit
 /// normals and their validity (1 where the normal is finite and |n|^2 > 0.5; absent: 0), depth
 /// (non-finite -> 1e30, a far background; absent: 1). Absent guides so give their terms 0. `ls`
-/// is the luminance term's scale per pixel (post_filter_noise.h). Planes of the workspace.
+/// is the luminance term's scale per pixel (post_filter_noise.h). Planes of the workspace's
+/// storage.
 struct PostFilterGuidePlanes {
     float *a0 = nullptr, *a1 = nullptr, *a2 = nullptr, *n0 = nullptr, *n1 = nullptr, *n2 = nullptr,
           *nv = nullptr, *z = nullptr, *ls = nullptr;
@@ -75,7 +76,6 @@ struct PostFilterWorkspace {
     /// share the processor's L1 cache sets, which the 5 rows of a vertical pass's taps (x 12
     /// planes) overflow.
     std::vector<float> storage;
-    PostFilterGuidePlanes guides; ///< the guide planes of the last call, in `storage`
 };
 
 /// Floats between one plane's end and the next one's start (one 64-byte cache line).

@@ -3,8 +3,8 @@
 #include "methods/svgf/guide.h"
 
 #include "base/parallel.h"
+#include "cpu/rgb_rows.h"
 #include "cpu/target.h"
-#include "methods/svgf/rgb_rows.h"
 
 #include <cmath>
 
@@ -65,7 +65,7 @@ void Guide::build(const Frame& f, const Settings& s)
     parallelRows(h, [&](int y0, int y1) {
         for (int y = y0; y < y1; ++y) {
             if (hasNormal)
-                deinterleaveRgbRow(f.normal.at(0, y), planes.row(kNormalX, y),
+                cpu::deinterleaveRgbRow(f.normal.at(0, y), planes.row(kNormalX, y),
                     planes.row(kNormalY, y), planes.row(kNormalZ, y), w);
             if (!hasDepth)
                 continue;

@@ -21,9 +21,9 @@
 // skipped sky pixels skip-independent (Falcor leaves environment pixels unfiltered) is the way
 // back.
 #include "base/parallel.h"
+#include "cpu/rgb_rows.h"
 #include "methods/svgf/denoiser.h"
 #include "methods/svgf/kernels.h"
-#include "methods/svgf/rgb_rows.h"
 
 #include <algorithm>
 
@@ -59,7 +59,7 @@ void Denoiser::copyColor(const Planes& src, int firstPlane, const WorkRegion* re
     parallelRows(dst.height(), [&](int y0, int y1) {
         for (int y = y0; y < y1; ++y) {
             const int x0 = region ? region->x0(y) : 0, x1 = region ? region->x1(y) : w;
-            interleaveRgbRow(src.row(firstPlane, y), src.row(firstPlane + 1, y),
+            cpu::interleaveRgbRow(src.row(firstPlane, y), src.row(firstPlane + 1, y),
                 src.row(firstPlane + 2, y), dst.at(0, y), x0, x1);
         }
     });

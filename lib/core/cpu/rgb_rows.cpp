@@ -1,10 +1,10 @@
 // SPDX-License-Identifier: Apache-2.0
-// See methods/svgf/rgb_rows.h.
-#include "methods/svgf/rgb_rows.h"
+// See cpu/rgb_rows.h.
+#include "cpu/rgb_rows.h"
 
 #include "cpu/target.h"
 
-namespace afn::svgf {
+namespace afn::cpu {
 
 AFN_CPU_KERNEL_CLONES void interleaveRgbRow(
     const float* r, const float* g, const float* b, float* dst, int x0, int x1)
@@ -25,4 +25,4 @@ AFN_CPU_KERNEL_CLONES void deinterleaveRgbRow(const float* src, float* r, float*
     }
 }
 
-} // namespace afn::svgf
+} // namespace afn::cpu
