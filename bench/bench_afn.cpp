@@ -9,9 +9,11 @@
 // afnBenchmarkAfn
 // [--benchmark_filter=...]; report the medians. The kernels are chosen at run time
 // (AFN_CPU_ISA=portable forces the portable ones).
+#include "cpu/isa.h"
 #include "methods/afn/network.h"
 #include "methods/afn/post_filter.h"
 #include "methods/afn/random_weights.h"
+#include "nn/conv.h"
 
 #include <benchmark/benchmark.h>
 #include <tbb/global_control.h>
@@ -103,6 +105,56 @@ void BM_AfnKernelPrediction(benchmark::State& state)
     setFlops(state, s.net.stageFlop(Stage::Prediction));
 }
 BENCHMARK(BM_AfnKernelPrediction)->Name("afn.kernel_prediction.1280x720")->Apply(configure);
+
+// One 3x3 or 1x1 layer over a 1280x720 image, one thread: the convolution kernels alone (fp32,
+// and bf16 with the kernel activeBf16Mode() picks: AMX, VDPBF16PS or its emulation). Arguments:
+// input channels, output channels, kernel size, 16 for bf16 (32 for fp32).
+void BM_ConvLayer(benchmark::State& state)
+{
+    const int cin = static_cast<int>(state.range(0)), cout = static_cast<int>(state.range(1));
+    const int k = static_cast<int>(state.range(2));
+    std::mt19937 rng(3);
+    std::uniform_real_distribution<float> u(-0.5f, 0.5f);
+    afn::nn::WeightTensor w { { cout, cin, k, k }, {} }, b { { cout }, {} };
+    w.data.resize(static_cast<std::size_t>(cout) * cin * k * k);
+    b.data.resize(cout);
+    for (float& v : w.data)
+        v = u(rng);
+    for (float& v : b.data)
+        v = u(rng);
+    const auto archive = afn::nn::WeightsArchive::fromTensors(
+        { { "c.weight", w }, { "c.bias", b } }, {}, "benchmark");
+    afn::nn::Conv conv;
+    conv.load(archive, "c", cin);
+    if (state.range(3) == 16)
+        conv.setPrecision(afn::nn::Precision::Bf16);
+    afn::Image in(1280, 720, cin), out;
+    for (std::size_t i = 0; i < in.size(); ++i)
+        in.data()[i] = u(rng);
+    tbb::global_control one(tbb::global_control::max_allowed_parallelism, 1);
+    for (auto _ : state)
+        conv.run(nullptr, in, out, true);
+    setFlops(state, conv.flopPerPixel() * 1280.0 * 720.0);
+    state.SetLabel(state.range(3) == 16 && conv.precision() == afn::nn::Precision::Bf16
+            ? afn::cpu::bf16ModeName(afn::cpu::activeBf16Mode())
+            : "fp32");
+}
+BENCHMARK(BM_ConvLayer)
+    ->Name("nn.conv.1280x720")
+    ->ArgNames({ "in", "out", "k", "bits" })
+    ->Args({ 32, 32, 3, 32 })
+    ->Args({ 32, 32, 3, 16 })
+    ->Args({ 16, 16, 3, 32 })
+    ->Args({ 16, 16, 3, 16 })
+    ->Args({ 64, 64, 3, 32 })
+    ->Args({ 64, 64, 3, 16 })
+    ->Args({ 37, 50, 1, 32 })
+    ->Args({ 37, 50, 1, 16 })
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(3)
+    ->Repetitions(3)
+    ->ReportAggregatesOnly(true)
+    ->UseRealTime();
 
 void BM_AfnFilterFuse(benchmark::State& state)
 {

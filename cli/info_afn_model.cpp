@@ -67,11 +67,17 @@ std::string afnModelFor(
     if (device.getError(&message) != afn::Error::None)
         return "error: " + message;
     if (network)
-        *network = filter.get<int>(AFN_STAT_AFN_PRECISION) == 16
-            ? (filter.get<bool>(AFN_STAT_AFN_BF16_HARDWARE) ? "bf16 (AVX512_BF16)"
-                                                            : "bf16 (emulated)")
-            : "fp32";
+        *network = networkArithmetic(filter);
     return filter.get<std::string>(AFN_STAT_AFN_MODEL);
+}
+
+std::string networkArithmetic(const afn::FilterRef& filter)
+{
+    if (filter.get<int>(AFN_STAT_AFN_PRECISION) != 16)
+        return "fp32";
+    if (filter.get<bool>(AFN_STAT_AFN_BF16_AMX))
+        return "bf16 (AMX)";
+    return filter.get<bool>(AFN_STAT_AFN_BF16_HARDWARE) ? "bf16 (AVX512_BF16)" : "bf16 (emulated)";
 }
 
 } // namespace afntool

@@ -3,6 +3,7 @@
 
 #include "arg_checks.h"
 #include "cli_error.h"
+#include "info_afn_model.h"
 #include "near_match.h"
 #include "output_header.h"
 #include "progress.h"
@@ -303,10 +304,7 @@ void SequenceDenoiser::logFrame(const LoadedFrame& frame, Progress* progress)
     std::string model, network, aux, speckle, skippedText;
     if (m_method == "afn") {
         // The network's arithmetic (precision=auto|fp32|bf16, chosen from the CPU).
-        network = m_filter.get<int>(AFN_STAT_AFN_PRECISION) == 16
-            ? (m_filter.get<bool>(AFN_STAT_AFN_BF16_HARDWARE) ? "network bf16 (AVX512_BF16)"
-                                                              : "network bf16 (emulated)")
-            : "network fp32";
+        network = "network " + networkArithmetic(m_filter);
         // The trained model chosen for the file's inputs; one for fewer inputs than the file has
         // is warned about (once per change).
         model = m_filter.get<std::string>(AFN_STAT_AFN_MODEL);

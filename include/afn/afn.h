@@ -201,10 +201,12 @@ typedef enum AFNDeviceType {
 #define AFN_STAT_AFN_AVX512 "stats.afn.avx512"
 /// The arithmetic of the network's convolutions from the committed settings on this CPU
 /// (parameter AFN_PARAM_PRECISION; AFN large always fp32): 16 for bfloat16 operands (with fp32
-/// sums), 32 for fp32; "stats.afn.bf16Hardware" is 1 when that bf16 runs on AVX512_BF16
-/// instructions, 0 when emulated or not bf16.
+/// sums), 32 for fp32; "stats.afn.bf16Hardware" is 1 when that bf16 runs on bf16 instructions
+/// (AVX512_BF16 or AMX), 0 when emulated or not bf16; "stats.afn.bf16Amx" is 1 when it runs on
+/// AMX tiles.
 #define AFN_STAT_AFN_PRECISION "stats.afn.precision"
 #define AFN_STAT_AFN_BF16_HARDWARE "stats.afn.bf16Hardware"
+#define AFN_STAT_AFN_BF16_AMX "stats.afn.bf16Amx"
 
 /// Types of filter parameters, as reported by afnGetFilterTypeParam().
 typedef enum AFNParamType {

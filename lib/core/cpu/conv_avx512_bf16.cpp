@@ -11,6 +11,9 @@
 // are fp32, in the order bias, taps (ky, kx), pairs q, and within a pair channel 2q + 1 then 2q
 // (the instruction's order), independent of how rows are split among threads.
 //
+// Where the CPU runs AMX (cpu::activeBf16Mode() Amx) the same band goes to the tile kernel
+// (cpu/conv_amx_bf16.cpp) instead of these micro-kernels.
+//
 // Without AVX512_BF16 (cpu::activeBf16Mode() Emulated) the same arithmetic runs with AVX-512F:
 // each bf16 half widened to fp32 by a shift or a mask, two FMAs per pair in the instruction's
 // order. The results are the same bit for bit (the hardware flushes denormal inputs and results,
@@ -18,6 +21,7 @@
 #include "cpu/conv_kernel.h"
 
 #include "cpu/avx512.h"
+#include "cpu/conv_amx_bf16.h"
 #include "cpu/isa.h"
 
 #include <algorithm>
@@ -217,13 +221,16 @@ template <int NV> void rowsFor(const RowPass& r, int nRows, bool hardware)
 
 } // namespace
 
-void convRowsAvx512Bf16(const ConvArgs& a, int y0, int y1)
+namespace {
+
+void bandRowsBf16(const ConvArgs& a, int y0, int y1)
 {
 #ifdef AFN_CPU_HAVE_AVX512
     const int c = (a.in + 15) / 16 * 16; // even: channel pairs never straddle two pixels
     std::vector<float>& band = convBandBuffer();
     fillConvBandAvx512(a, y0, y1, c, band);
-    const bool hardware = activeBf16Mode() == Bf16Mode::Hardware;
+    const Bf16Mode mode = activeBf16Mode();
+    const bool hardware = mode != Bf16Mode::Emulated; // AMX implies AVX512_BF16 (cpu/isa.h)
     const int w = columnEnd(a) - a.x0;
     // The band is rounded to bf16 in place, front to back: value k's 2 bytes land at byte 2k,
     // below the floats not read yet (each step loads its floats before it stores), so no second
@@ -240,6 +247,12 @@ void convRowsAvx512Bf16(const ConvArgs& a, int y0, int y1)
     else
         toBf16Emulated(band16, band.data(), n);
     std::memset(band16 + n, 0, sizeof(std::uint16_t) * slack);
+    if (mode == Bf16Mode::Amx && a.wamx) {
+        const AmxConvPass p { band16, static_cast<long>(w + 2 * (a.k / 2)) * c, c, a.wamx, a.bp16,
+            a.k, a.cp16, a.outC, w, a.dstPix, a.relu, a.dst + (y0 - a.dstY0) * a.dstRow, a.dstRow };
+        convRowsAmxBf16(p, y1 - y0);
+        return;
+    }
     const int pairs = (a.in + 1) / 2;
     const auto* band32 = reinterpret_cast<const std::int32_t*>(band16);
     const auto* w32 = reinterpret_cast<const std::int32_t*>(a.wbf16);
@@ -266,6 +279,23 @@ void convRowsAvx512Bf16(const ConvArgs& a, int y0, int y1)
 #else
     (void)a, (void)y0, (void)y1;
 #endif
+}
+
+} // namespace
+
+void convRowsAvx512Bf16(const ConvArgs& a, int y0, int y1)
+{
+    // Output rows in groups whose fp32 band (rows + halo) fits in about kBandBytes, so that the
+    // band is filled, rounded and read by the kernel while it is in the core's L2 cache (a band
+    // of a whole stripe is megabytes: 64 rows x 1280 pixels x 64 channels is 21 MB). The halo
+    // rows are filled once per group; every output is the same whatever the grouping.
+    constexpr std::size_t kBandBytes = 512 * 1024;
+    const int r = a.k / 2, c = (a.in + 15) / 16 * 16;
+    const std::size_t rowBytes
+        = static_cast<std::size_t>(columnEnd(a) - a.x0 + 2 * r) * c * sizeof(float);
+    const int group = std::max(1, static_cast<int>(kBandBytes / rowBytes) - 2 * r);
+    for (int ya = y0; ya < y1; ya += group)
+        bandRowsBf16(a, ya, std::min(y1, ya + group));
 }
 
 } // namespace afn::cpu

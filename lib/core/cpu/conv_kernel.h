@@ -37,6 +37,10 @@ struct ConvArgs {
     /// where set (AVX-512 engine only), convRowsAvx512 runs the layer in bf16 with fp32
     /// accumulation (cpu/conv_avx512_bf16.cpp).
     const std::uint16_t* wbf16 = nullptr;
+    /// The same weights with each tap's pairs padded with zeros to c / 2, c = the input channels
+    /// rounded up to 16 (the band's channels): the AMX kernel's B tiles (cpu/conv_amx_bf16.h).
+    /// Set with wbf16 where the CPU can run AMX.
+    const std::uint16_t* wamx = nullptr;
 };
 
 /// The end of ConvArgs' output columns (x1, or the input's width where x1 < 0).

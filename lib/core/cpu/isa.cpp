@@ -6,6 +6,14 @@
 #include <cstdlib>
 #include <cstring>
 
+#if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__))
+#include <cpuid.h>
+#endif
+#if defined(__linux__)
+#include <sys/syscall.h>
+#include <unistd.h>
+#endif
+
 namespace afn::cpu {
 
 namespace {
@@ -30,6 +38,33 @@ bool detectBf16()
 #endif
 }
 
+bool detectAmxBf16()
+{
+#if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__))
+    unsigned a = 0, b = 0, c = 0, d = 0;
+    if (!__get_cpuid_count(7, 0, &a, &b, &c, &d))
+        return false;
+    const bool amxBf16 = (d >> 22) & 1u, amxTile = (d >> 24) & 1u;
+    const bool osxsave = __get_cpuid(1, &a, &b, &c, &d) && ((c >> 27) & 1u);
+    if (!amxBf16 || !amxTile || !osxsave || !detectBf16())
+        return false;
+    unsigned lo = 0, hi = 0;
+    __asm__ volatile("xgetbv" : "=a"(lo), "=d"(hi) : "c"(0));
+    if (((lo >> 17) & 3u) != 3u) // XTILECFG and XTILEDATA enabled by the OS
+        return false;
+#if defined(__linux__)
+    // Linux hands the tile data state to a process only when asked (ARCH_REQ_XCOMP_PERM for
+    // XFEATURE_XTILEDATA); without it the first tile instruction would kill the process.
+    constexpr long kReqXcompPerm = 0x1023, kXfeatureXtiledata = 18;
+    return syscall(SYS_arch_prctl, kReqXcompPerm, kXfeatureXtiledata) == 0;
+#else
+    return false;
+#endif
+#else
+    return false;
+#endif
+}
+
 Isa detect()
 {
     const char* env = std::getenv("AFN_CPU_ISA");
@@ -49,7 +84,10 @@ std::atomic<int>& currentBf16()
     static std::atomic<int> mode { [] {
         const char* env = std::getenv("AFN_CPU_BF16");
         const bool emulate = (env && std::strcmp(env, "emulate") == 0) || !cpuHasAvx512Bf16();
-        return static_cast<int>(emulate ? Bf16Mode::Emulated : Bf16Mode::Hardware);
+        const bool noAmx = env && std::strcmp(env, "avx512") == 0;
+        if (emulate)
+            return static_cast<int>(Bf16Mode::Emulated);
+        return static_cast<int>(!noAmx && cpuHasAmxBf16() ? Bf16Mode::Amx : Bf16Mode::Hardware);
     }() };
     return mode;
 }
@@ -62,6 +100,12 @@ bool cpuHasAvx512Bf16()
     return has;
 }
 
+bool cpuHasAmxBf16()
+{
+    static const bool has = detectAmxBf16();
+    return has;
+}
+
 Bf16Mode activeBf16Mode()
 {
     return static_cast<Bf16Mode>(currentBf16().load(std::memory_order_relaxed));
@@ -69,9 +113,16 @@ Bf16Mode activeBf16Mode()
 
 void forceBf16Mode(Bf16Mode mode)
 {
+    if (mode == Bf16Mode::Amx && !cpuHasAmxBf16())
+        mode = Bf16Mode::Hardware;
     if (mode == Bf16Mode::Hardware && !cpuHasAvx512Bf16())
         mode = Bf16Mode::Emulated;
     currentBf16().store(static_cast<int>(mode), std::memory_order_relaxed);
+}
+
+const char* bf16ModeName(Bf16Mode mode)
+{
+    return mode == Bf16Mode::Amx ? "amx" : mode == Bf16Mode::Hardware ? "avx512bf16" : "emulated";
 }
 
 Isa activeIsa()

@@ -27,16 +27,27 @@ void forceIsa(Isa isa);
 enum class Bf16Mode {
     Hardware, ///< VDPBF16PS (AVX512_BF16): two bf16 multiply-adds per fp32 lane
     Emulated, ///< the same arithmetic with AVX-512F FMAs (same results, no faster than fp32)
+    Amx, ///< AMX tiles (TDPBF16PS, cpu/conv_amx_bf16.cpp): 16 pixels x 16 channels per tile
 };
 
 /// Whether the CPU has AVX512_BF16 (checked once).
 bool cpuHasAvx512Bf16();
 
-/// Hardware where the CPU has AVX512_BF16, unless AFN_CPU_BF16=emulate is set or
-/// forceBf16Mode(Emulated) was called; Emulated elsewhere.
+/// Whether AMX bf16 tiles can run: the CPU has AMX-TILE, AMX-BF16 and AVX512_BF16, the OS
+/// enables the tile state (XCR0) and, on Linux, granted this process its use (arch_prctl
+/// ARCH_REQ_XCOMP_PERM, asked once here).
+bool cpuHasAmxBf16();
+
+/// Amx where cpuHasAmxBf16(), else Hardware where the CPU has AVX512_BF16, else Emulated.
+/// AFN_CPU_BF16=emulate selects Emulated and AFN_CPU_BF16=avx512 the VDPBF16PS kernel (Hardware)
+/// on a CPU with AMX; forceBf16Mode() overrides all of these.
 Bf16Mode activeBf16Mode();
 
-/// Tests: use `mode` from now on (Hardware is ignored where the CPU lacks it).
+/// Tests: use `mode` from now on (a mode the CPU lacks falls back: Amx to Hardware, Hardware to
+/// Emulated).
 void forceBf16Mode(Bf16Mode mode);
+
+/// Name for reports: "amx", "avx512bf16" or "emulated".
+const char* bf16ModeName(Bf16Mode mode);
 
 } // namespace afn::cpu

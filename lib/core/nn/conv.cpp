@@ -66,6 +66,7 @@ void Conv::load(const WeightsArchive& a, const std::string& name, int expectedIn
         std::copy_n(&m_wp[row * m_outPadded], out, &m_wp16[row * m_outPadded16]);
     m_wt16.clear();
     m_wbf16.clear();
+    m_wamx.clear();
     m_precision = Precision::Fp32;
     if (out > cpu::kFewOutputs) {
         const int pairs = (in + 1) / 2;
@@ -77,6 +78,16 @@ void Conv::load(const WeightsArchive& a, const std::string& name, int expectedIn
                             * 2
                         + (ci & 1)]
                         = cpu::toBf16(w.data[(static_cast<std::size_t>(co) * in + ci) * k * k + t]);
+        if (cpu::cpuHasAmxBf16()) {
+            // cpu/conv_amx_bf16.h: each tap's pairs padded with zero pairs to c / 2, c = the
+            // input channels rounded up to 16, so that every chunk of the band is a whole tile.
+            const std::size_t rowPairs = static_cast<std::size_t>(m_outPadded16) * 2;
+            const int padded = (in + 15) / 16 * 8;
+            m_wamx.assign(static_cast<std::size_t>(k) * k * padded * rowPairs, 0);
+            for (int t = 0; t < k * k; ++t)
+                std::copy_n(&m_wbf16[static_cast<std::size_t>(t) * pairs * rowPairs],
+                    pairs * rowPairs, &m_wamx[static_cast<std::size_t>(t) * padded * rowPairs]);
+        }
     }
     if (out <= cpu::kFewOutputs) {
         const int inPadded = (in + 15) / 16 * 16;
@@ -103,6 +114,8 @@ cpu::ConvArgs Conv::args(const Image* up, const Image& same, bool relu) const
     a.wt16 = m_wt16.empty() ? nullptr : m_wt16.data();
     if (precision() == Precision::Bf16)
         a.wbf16 = m_wbf16.data();
+    if (precision() == Precision::Bf16 && !m_wamx.empty())
+        a.wamx = m_wamx.data();
     return a;
 }
 

@@ -80,6 +80,8 @@ private:
     std::vector<float> m_wt16; ///< at most cpu::kFewOutputs outputs: [ky][kx][co][ci padded to 16]
     /// bf16 weights [ky][kx][ci pair][co padded to 16][2] (other layers than m_wt16's)
     std::vector<std::uint16_t> m_wbf16;
+    /// m_wbf16 with each tap's pairs padded to (in rounded up to 16) / 2, where the CPU runs AMX
+    std::vector<std::uint16_t> m_wamx;
     Precision m_precision = Precision::Fp32;
 };
 

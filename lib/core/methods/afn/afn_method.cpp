@@ -33,7 +33,8 @@
 // history length, post_filter_noise.h). With work skipping the network's rows are grown by
 // kPostFilterRadius more.
 //
-// precision=auto|fp32|bf16 (settings.h; auto: bf16 where the CPU has AVX512_BF16) sets the
+// precision=auto|fp32|bf16 (settings.h; auto: bf16 where the CPU has AVX512_BF16, on AMX tiles
+// where it has AMX-BF16 too) sets the
 // arithmetic of the network's convolutions for each frame (Network::setPrecision); reported as
 // AFN_STAT_AFN_PRECISION.
 //
@@ -129,7 +130,11 @@ public:
             return true;
         }
         if (rest == "bf16Hardware") {
-            value = runsBf16() && cpu::activeBf16Mode() == cpu::Bf16Mode::Hardware ? 1.0 : 0.0;
+            value = runsBf16() && cpu::activeBf16Mode() != cpu::Bf16Mode::Emulated ? 1.0 : 0.0;
+            return true;
+        }
+        if (rest == "bf16Amx") {
+            value = runsBf16() && cpu::activeBf16Mode() == cpu::Bf16Mode::Amx ? 1.0 : 0.0;
             return true;
         }
         if (rest == "prediction.inputMs") {
@@ -281,8 +286,8 @@ private:
         return true;
     }
 
-    /// Settings::precision for this CPU (settings.h): auto is bf16 only on AVX512_BF16
-    /// instructions; bf16 needs the AVX-512 engine.
+    /// Settings::precision for this CPU (settings.h): auto is bf16 only on bf16 instructions
+    /// (AVX512_BF16 or AMX); bf16 needs the AVX-512 engine.
     nn::Precision precisionToRun() const
     {
         const bool avx512 = cpu::activeIsa() == cpu::Isa::Avx512;
@@ -296,7 +301,7 @@ private:
                                      "precision=auto or fp32");
             return nn::Precision::Bf16;
         default:
-            return avx512 && cpu::activeBf16Mode() == cpu::Bf16Mode::Hardware ? nn::Precision::Bf16
+            return avx512 && cpu::activeBf16Mode() != cpu::Bf16Mode::Emulated ? nn::Precision::Bf16
                                                                               : nn::Precision::Fp32;
         }
     }

@@ -27,8 +27,9 @@
 // ones.
 //
 // precision: the arithmetic of the network's convolutions (nn::Conv, cpu/conv_avx512_bf16.cpp).
-//   auto (default)  bf16 where the CPU has AVX512_BF16 (VDPBF16PS: twice fp32's multiply-adds per
-//                   instruction), fp32 elsewhere
+//   auto (default)  bf16 where the CPU has AMX-BF16 (tiles of 16 pixels x 16 channels,
+//                   cpu/conv_amx_bf16.cpp) or AVX512_BF16 (VDPBF16PS: twice fp32's multiply-adds
+//                   per instruction), fp32 elsewhere
 //   fp32            as named
 //   bf16            bf16 operands, fp32 sums, on every CPU with AVX-512 (emulated with AVX-512F
 //                   FMAs where AVX512_BF16 is missing: the same results, fp32's speed); refused

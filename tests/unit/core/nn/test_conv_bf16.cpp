@@ -151,8 +151,10 @@ TEST(Bf16, RoundsToNearestEvenAndKeepsSpecialValues)
 
 TEST_F(ConvBf16, MatchesTheReferenceOfBf16OperandsOnEveryBlockShape)
 {
-    for (const auto mode : { afn::cpu::Bf16Mode::Hardware, afn::cpu::Bf16Mode::Emulated }) {
+    for (const auto mode :
+        { afn::cpu::Bf16Mode::Amx, afn::cpu::Bf16Mode::Hardware, afn::cpu::Bf16Mode::Emulated }) {
         const Bf16Scope scope(mode);
+        SCOPED_TRACE(afn::cpu::bf16ModeName(afn::cpu::activeBf16Mode()));
         checkLayer(0, 13, 16, 3, 37, 9, true); // AFN enc1 (odd input channels)
         checkLayer(16, 32, 32, 3, 30, 8, true); // a decoder (upsampled part)
         checkLayer(24, 13, 50, 1, 45, 4, false); // headTA: 4 vectors, last one partial

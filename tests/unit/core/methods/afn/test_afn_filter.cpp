@@ -15,6 +15,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <vector>
 
 using afntest::readBytes;
@@ -96,7 +97,7 @@ TEST(AfnFilter, SampleCountParameter)
 namespace {
 
 /// The last frame's AFN_STAT_AFN_PRECISION of an afn filter with precision `p` on a small still.
-double precisionRan(const std::string& p, std::vector<float>* out = nullptr)
+double precisionRan(const std::string& p, std::vector<float>* out = nullptr, double* amx = nullptr)
 {
     auto f = afn::createFilter("afn");
     afntest::StillFrame still(21, 13);
@@ -112,6 +113,8 @@ double precisionRan(const std::string& p, std::vector<float>* out = nullptr)
         out->assign(still.out.data(), still.out.data() + still.out.size());
     double v = 0;
     EXPECT_TRUE(f->statistic(AFN_STAT_AFN_PRECISION, v));
+    if (amx)
+        EXPECT_TRUE(f->statistic(AFN_STAT_AFN_BF16_AMX, *amx));
     return v;
 }
 
@@ -127,7 +130,12 @@ TEST(AfnFilter, PrecisionIsChosenFromTheCpuAndReported)
         return;
     }
     EXPECT_EQ(precisionRan("bf16", &bf16), 16.0);
-    EXPECT_EQ(precisionRan("auto"), afn::cpu::cpuHasAvx512Bf16() ? 16.0 : 32.0);
+    double amx = -1;
+    EXPECT_EQ(precisionRan("auto", nullptr, &amx), afn::cpu::cpuHasAvx512Bf16() ? 16.0 : 32.0);
+    // AMX tiles where the CPU and the OS allow them (cpu/isa.h), reported as such.
+    EXPECT_EQ(amx, afn::cpu::activeBf16Mode() == afn::cpu::Bf16Mode::Amx ? 1.0 : 0.0);
+    if (!std::getenv("AFN_CPU_BF16")) // AFN_CPU_BF16=avx512|emulate overrides the choice
+        EXPECT_EQ(afn::cpu::activeBf16Mode() == afn::cpu::Bf16Mode::Amx, afn::cpu::cpuHasAmxBf16());
     // Close to fp32 but not the same: the convolutions did run in bf16.
     double worst = 0;
     bool differs = false;
