@@ -73,6 +73,19 @@ public:
         m_channels = channels;
         m_data.assign(static_cast<std::size_t>(width) * height * channels, 0.0f);
     }
+    /// As resize, for an image whose every value that is read will be written first: a change
+    /// of shape keeps the allocation and the old values where the capacity suffices (no pass
+    /// that zeroes the whole image; values past the old size are zero).
+    void reshape(int width, int height, int channels)
+    {
+        const std::size_t n = static_cast<std::size_t>(width) * height * channels;
+        if (n > m_data.capacity())
+            m_data.reserve(n); // exactly n (resize alone may allocate up to twice the old size)
+        m_width = width;
+        m_height = height;
+        m_channels = channels;
+        m_data.resize(n);
+    }
     void fill(float v) { m_data.assign(m_data.size(), v); }
     bool sameShape(const Image& o) const
     {

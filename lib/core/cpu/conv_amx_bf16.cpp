@@ -5,10 +5,11 @@
 // Per tap (ky, kx) and per chunk of 32 input channels (16 where C is not a multiple of 32), an A
 // tile holds 16 consecutive output pixels' input channels (one pixel per tile row: rows 2 C bytes
 // apart in the band) and a B tile the tap's weights for those channel pairs x 16 output channels
-// (ConvArgs::wamx, pairs padded with zero rows to C / 2 per tap, so every chunk is a whole tile). A C tile sums 16 pixels x 16 output
-// channels in fp32. Eight tiles: C0..C3 = 2 pixel blocks x 2 output groups, A4/A5 the two pixel
-// blocks, B6/B7 the two output groups; each A tile is used by two products and each B tile by two.
-// Layers with more than 32 output channels repeat the taps per pair of groups.
+// (ConvArgs::wamx, pairs padded with zero rows to C / 2 per tap, so every chunk is a whole tile). A
+// C tile sums 16 pixels x 16 output channels in fp32. Eight tiles: C0..C3 = 2 pixel blocks x 2
+// output groups, A4/A5 the two pixel blocks, B6/B7 the two output groups; each A tile is used by
+// two products and each B tile by two. Layers with more than 32 output channels repeat the taps per
+// pair of groups.
 //
 // Arithmetic: products of bf16 values summed in fp32 from zero, the bias added at the end, then
 // ReLU. The instruction's summation order inside a tile product is the hardware's (not

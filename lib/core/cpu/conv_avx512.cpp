@@ -270,11 +270,11 @@ std::vector<float>& convBandBuffer()
     return band;
 }
 
-void convRowsAvx512(const ConvArgs& a, int y0, int y1)
+namespace {
+
+void bandRowsFp32(const ConvArgs& a, int y0, int y1)
 {
 #ifdef AFN_CPU_HAVE_AVX512
-    if (a.wbf16)
-        return convRowsAvx512Bf16(a, y0, y1);
     const int c = (a.in + 15) / 16 * 16;
     std::vector<float>& band = convBandBuffer();
     fillConvBandAvx512(a, y0, y1, c, band);
@@ -316,6 +316,17 @@ void convRowsAvx512(const ConvArgs& a, int y0, int y1)
 #else
     (void)a, (void)y0, (void)y1;
 #endif
+}
+
+} // namespace
+
+void convRowsAvx512(const ConvArgs& a, int y0, int y1)
+{
+    if (a.wbf16)
+        return convRowsAvx512Bf16(a, y0, y1);
+    const int group = bandRowGroup(a);
+    for (int ya = y0; ya < y1; ya += group)
+        bandRowsFp32(a, ya, std::min(y1, ya + group));
 }
 
 } // namespace afn::cpu

@@ -285,15 +285,7 @@ void bandRowsBf16(const ConvArgs& a, int y0, int y1)
 
 void convRowsAvx512Bf16(const ConvArgs& a, int y0, int y1)
 {
-    // Output rows in groups whose fp32 band (rows + halo) fits in about kBandBytes, so that the
-    // band is filled, rounded and read by the kernel while it is in the core's L2 cache (a band
-    // of a whole stripe is megabytes: 64 rows x 1280 pixels x 64 channels is 21 MB). The halo
-    // rows are filled once per group; every output is the same whatever the grouping.
-    constexpr std::size_t kBandBytes = 512 * 1024;
-    const int r = a.k / 2, c = (a.in + 15) / 16 * 16;
-    const std::size_t rowBytes
-        = static_cast<std::size_t>(columnEnd(a) - a.x0 + 2 * r) * c * sizeof(float);
-    const int group = std::max(1, static_cast<int>(kBandBytes / rowBytes) - 2 * r);
+    const int group = bandRowGroup(a);
     for (int ya = y0; ya < y1; ya += group)
         bandRowsBf16(a, ya, std::min(y1, ya + group));
 }

@@ -72,4 +72,18 @@ std::vector<float>& convBandBuffer();
 /// Most pixels a micro-kernel block reads past a band row's end (the band's zeroed slack).
 constexpr int kConvBandSlackPixels = 16;
 
+/// Output rows per band of the AVX-512 kernels: a band (its rows plus the k/2-row halos, fp32)
+/// of about 512 KB, so that it is filled, (rounded to bf16) and read by the kernel while it is in
+/// the core's L2 cache; a band of a whole stripe is megabytes (64 rows x 1280 pixels x 64
+/// channels: 21 MB). The halo rows are filled once per band; the outputs do not depend on it.
+inline int bandRowGroup(const ConvArgs& a)
+{
+    constexpr long kBandBytes = 512 * 1024;
+    const int r = a.k / 2;
+    const long rowBytes
+        = static_cast<long>(columnEnd(a) - a.x0 + 2 * r) * ((a.in + 15) / 16 * 16) * 4;
+    const long group = kBandBytes / rowBytes - 2 * r;
+    return group < 1 ? 1 : static_cast<int>(group);
+}
+
 } // namespace afn::cpu

@@ -149,14 +149,19 @@ void Network::runStripe(const Inputs& in, int y0, int y1, StripeWorkspace& ws, I
         return Rows { std::clamp(lo, a, b) - a, std::clamp(hi, a, b) - a };
     };
     auto conv = [](const nn::Conv& c, const Image* up, const Image& same, Image& dst, Rows r) {
-        dst.resize(same.width(), same.height(), c.outChannels());
+        dst.reshape(same.width(), same.height(), c.outChannels());
         c.runRows(up, same, r.y0, r.y1, dst.at(0, r.y0),
             static_cast<long>(dst.width()) * dst.channels(), dst.channels(), true);
     };
     auto pool = [](const Image& src, Image& dst, Rows r) {
-        dst.resize(src.width() / 2, src.height() / 2, src.channels());
+        dst.reshape(src.width() / 2, src.height() / 2, src.channels());
         nn::down2Rows(src, dst, r.y0, r.y1);
     };
+    // The workspace's images change shape between the first, the inner and the last stripes of a
+    // frame: reshape (no zeroing pass). Every row a step reads is written by an earlier step of
+    // this stripe (each layer's rows are the next one's plus its halo; rows past the window are
+    // the kernels' zero padding, not stored rows), so no value of an earlier stripe is read
+    // (FilterStripes tests: stripes against the whole-frame path, bit for bit).
     // Kernel prediction. The input rows this workspace filled for the previous stripe of the same
     // run (the window moved down, same height) are moved, not computed again: the tone map and
     // the input over the halo rows the two windows share (the same values: fillInput is per row).
@@ -166,9 +171,9 @@ void Network::runStripe(const Inputs& in, int y0, int y1, StripeWorkspace& ws, I
     // With the albedo trust the colours are rescaled in place below: nothing is taken over.
     const bool reuse = !m_albedoTrust && sameShape && ws.filledRun == runId && w0 > ws.filledW0
         && w0 < ws.filledW1 && w1 >= ws.filledW1;
-    ws.x.resize(wp, n, inputChannels());
-    ws.color1.resize(wp, n, 3);
-    ws.colorTa.resize(wp, n, 3);
+    ws.x.reshape(wp, n, inputChannels());
+    ws.color1.reshape(wp, n, 3);
+    ws.colorTa.reshape(wp, n, 3);
     int fillFrom = w0;
     if (reuse) {
         for (Image* img : { &ws.x, &ws.color1, &ws.colorTa })
@@ -185,7 +190,7 @@ void Network::runStripe(const Inputs& in, int y0, int y1, StripeWorkspace& ws, I
     conv(m_enc1, nullptr, ws.xHalf, ws.e1, rows(1, y0 / 2 - 14, y1 / 2 + 14));
     if (m_albedoTrust) { // albedo_trust.h: t where the filtering reads the colours, then D(r_1spp)
         const Rows t = rows(1, y0 / 2 - 5, y1 / 2 + 5), c = rows(0, y0 - 10, y1 + 10);
-        ws.trust.resize(ws.e1.width(), ws.e1.height(), 1);
+        ws.trust.reshape(ws.e1.width(), ws.e1.height(), 1);
         albedoTrustRows(m_headG, ws.e1, t.y0, t.y1, ws.trust);
         applyAlbedoTrustRows(ws.x, ws.trust, c.y0, c.y1, ws.color1);
         applyAlbedoTrustRows(ws.x, ws.trust, c.y0, c.y1, ws.colorTa);
@@ -199,7 +204,7 @@ void Network::runStripe(const Inputs& in, int y0, int y1, StripeWorkspace& ws, I
     conv(m_dec1, &ws.d2, ws.e1, ws.d1, rows(1, y0 / 2 - 2, y1 / 2 + 2));
     const Clock::time_point t1 = Clock::now();
     // Filtering and fusion.
-    ws.fused.resize(wp, n, 3);
+    ws.fused.reshape(wp, n, 3);
     FusionInputs fin;
     fin.d1 = &ws.d1;
     fin.x = &ws.x;

@@ -11,6 +11,7 @@
 #include <tbb/global_control.h>
 
 #include <algorithm>
+#include <memory>
 
 using afn::Image;
 using afn::afnet::Network;
@@ -66,6 +67,31 @@ TEST(AfnStripes, EqualWholeFramePathBitForBit)
             }
             EXPECT_EQ(differingValues(whole, oneThread), 0) << variant << " 1 thread";
         }
+}
+
+TEST(AfnStripes, WorkspacesKeepNoTraceOfEarlierStripesOrFrames)
+{
+    // The stripe workspaces change shape between the first, inner and last stripes without being
+    // cleared (Image::reshape): after frames of other contents and another size, on one thread
+    // (one workspace through every shape) and on all, the result is the whole-frame path's.
+    for (const std::string variant : { "full", "trust" }) {
+        Network net = randomNetwork(variant);
+        const afntest::RandomAfnInputs other(45, 203, 99u);
+        const afntest::RandomAfnInputs big(61, 250, 7u);
+        Frame f(45, 203);
+        Image whole, scratch, striped;
+        net.runWholeFrame(f.in, whole);
+        for (const int threads : { 1, 0 }) {
+            std::unique_ptr<tbb::global_control> limit;
+            if (threads)
+                limit = std::make_unique<tbb::global_control>(
+                    tbb::global_control::max_allowed_parallelism, threads);
+            net.run(other.in, scratch);
+            net.run(big.in, scratch);
+            net.run(f.in, striped);
+            EXPECT_EQ(differingValues(whole, striped), 0) << variant << " threads " << threads;
+        }
+    }
 }
 
 TEST(AfnStripes, InputRowsTakenOverFromThePreviousStripeAreBitIdentical)
