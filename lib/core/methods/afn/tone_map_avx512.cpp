@@ -1,10 +1,10 @@
 // SPDX-License-Identifier: Apache-2.0
 // The AFN input tone map with AVX-512F, operation for operation the scalar toneMap
 // (methods/afn/tone_map.cpp; the method in tone_map.h): getexp/getmant give the exponent and the
-// mantissa in [1, 2) exactly as frexp does (denormals included); q = floor(e / 11) from a
-// correctly rounded division (exact for multiples of 11, never an integer otherwise) and j = e -
-// 11 q are exact; the polynomials are evaluated in the same order without FMA (-ffp-contract=off,
-// see CMakeLists.txt); the table is read by a lane permute; scalef multiplies by 2^(5 q) as ldexp.
+// mantissa in [1, 2) exactly as frexp does (denormals included); q = floor(e / 11) (exactly, from
+// a multiply: below) and j = e - 11 q are exact; the polynomials are evaluated in the same order
+// without FMA (-ffp-contract=off, see CMakeLists.txt); the table is read by a lane permute; scalef
+// multiplies by 2^(5 q) as ldexp.
 #include "methods/afn/tone_map_avx512.h"
 
 #include "cpu/avx512.h"
@@ -33,8 +33,12 @@ AFN_CPU_AVX512 int toneMapRunAvx512(const float* in, float* out, int n)
         const __mmask16 big = _mm512_cmp_ps_mask(m, _mm512_set1_ps(kSqrt2), _CMP_GE_OQ);
         m = _mm512_mask_mul_ps(m, big, m, half);
         e = _mm512_mask_add_ps(e, big, e, one);
+        // floor(e / 11) as floor((e + 1/2) / 11) with a multiply: e is an integer in [-149, 0],
+        // so (e + 1/2) / 11 is at least 1/22 from any integer and the product's error (below
+        // 2e-6) cannot change the floor.
         const __m512 q = _mm512_roundscale_ps(
-            _mm512_div_ps(e, eleven), _MM_FROUND_TO_NEG_INF | _MM_FROUND_NO_EXC);
+            _mm512_mul_ps(_mm512_add_ps(e, half), _mm512_set1_ps(1.0f / 11.0f)),
+            _MM_FROUND_TO_NEG_INF | _MM_FROUND_NO_EXC);
         const __m512 j = _mm512_sub_ps(e, _mm512_mul_ps(eleven, q));
         const __m512 t = _mm512_permutexvar_ps(_mm512_cvttps_epi32(j), table);
         const __m512 s = _mm512_div_ps(_mm512_sub_ps(m, one), _mm512_add_ps(m, one));
