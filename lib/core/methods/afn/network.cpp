@@ -171,31 +171,42 @@ void Network::fillInput(
     const int w = m_width, h = m_height, wp = x.width();
     thread_local std::vector<float> tone; // the row's two tone-mapped colours
     tone.resize(static_cast<std::size_t>(6) * w);
+    const int nc = x.channels();
+    // Pixel xx >= w of a padded row repeats pixel w - 1 (edge replication), as rows >= h repeat
+    // row h - 1.
+    auto replicate = [&](Image& img, int row) {
+        const int c = img.channels();
+        const float* last = img.at(w - 1, row);
+        for (int xx = w; xx < wp; ++xx)
+            std::copy(last, last + c, img.at(xx, row));
+    };
     for (int y = y0; y < y1; ++y) {
         const int sy = std::min(y, h - 1); // edge replication
+        const int row = y - origin;
         toneMapRun(in.color1->at(0, sy), tone.data(), 3 * w);
         toneMapRun(in.colorTa->at(0, sy), tone.data() + 3 * w, 3 * w);
-        for (int xx = 0; xx < wp; ++xx) {
-            const int sx = std::min(xx, w - 1);
-            const float* a = in.color1->at(sx, sy);
-            const float* b = in.colorTa->at(sx, sy);
-            const float* ta = tone.data() + 3 * sx;
-            const float* tb = tone.data() + 3 * (w + sx);
-            float* o = x.at(xx, y - origin);
-            float* c1 = color1.at(xx, y - origin);
-            float* cta = colorTa.at(xx, y - origin);
+        const float* ta = tone.data();
+        const float* tb = tone.data() + 3 * w;
+        const float* al = in.albedo->at(0, sy);
+        const float* nm = in.normal01->at(0, sy);
+        const float* dp = in.depth01->at(0, sy);
+        const float* hist = m_history ? in.history01->at(0, sy) : nullptr;
+        float* o = x.at(0, row);
+        for (int xx = 0; xx < w; ++xx, o += nc) {
             for (int c = 0; c < 3; ++c) {
-                o[c] = ta[c];
-                o[3 + c] = tb[c];
-                o[6 + c] = in.albedo->at(sx, sy)[c];
-                o[9 + c] = in.normal01->at(sx, sy)[c];
-                c1[c] = a[c];
-                cta[c] = b[c];
+                o[c] = ta[3 * xx + c];
+                o[3 + c] = tb[3 * xx + c];
+                o[6 + c] = al[3 * xx + c];
+                o[9 + c] = nm[3 * xx + c];
             }
-            o[12] = in.depth01->at(sx, sy)[0];
-            if (m_history)
-                o[13] = in.history01->at(sx, sy)[0];
+            o[12] = dp[xx];
+            if (hist)
+                o[13] = hist[xx];
         }
+        std::copy(in.color1->at(0, sy), in.color1->at(0, sy) + 3 * w, color1.at(0, row));
+        std::copy(in.colorTa->at(0, sy), in.colorTa->at(0, sy) + 3 * w, colorTa.at(0, row));
+        for (Image* img : { &x, &color1, &colorTa })
+            replicate(*img, row);
     }
 }
 

@@ -39,6 +39,35 @@ struct IsaGuard {
 
 } // namespace
 
+TEST(AfnEngine, InputIsToneMappedColoursThenGuidesWithEdgesReplicated)
+{
+    // 37x21 pads to 40x24: three columns and three rows repeat the last ones.
+    Frame f(37, 21);
+    Network net;
+    net.load(afn::afnet::randomWeights(afn::afnet::Architecture {}));
+    net.prepare(f.in);
+    const Image& x = net.input();
+    ASSERT_EQ(x.width(), 40);
+    ASSERT_EQ(x.height(), 24);
+    ASSERT_EQ(x.channels(), 13);
+    int differ = 0;
+    for (int y = 0; y < x.height(); ++y)
+        for (int xx = 0; xx < x.width(); ++xx) {
+            const int sx = std::min(xx, 36), sy = std::min(y, 20);
+            float want[13];
+            for (int c = 0; c < 3; ++c) {
+                want[c] = afn::afnet::toneMap(f.c1(sx, sy, c));
+                want[3 + c] = afn::afnet::toneMap(f.cta(sx, sy, c));
+                want[6 + c] = f.albedo(sx, sy, c);
+                want[9 + c] = f.normal(sx, sy, c);
+            }
+            want[12] = f.depth(sx, sy, 0);
+            for (int c = 0; c < 13; ++c)
+                differ += x(xx, y, c) != want[c];
+        }
+    EXPECT_EQ(differ, 0);
+}
+
 TEST(AfnEngine, StripRefinementEqualsWholeFramePass)
 {
     // 150 rows (padded 152): three strips of 64 rows, halos across both inner edges.
