@@ -46,21 +46,28 @@ AFN_CPU_AVX512_BF16 void toBf16Hardware(std::uint16_t* d, const float* s, std::s
     }
 }
 
-/// The same rounding (to nearest even, NaN kept quiet) with AVX-512F integer operations.
+/// 16 floats (as bits) rounded to bf16 (to nearest even, NaN kept quiet) with AVX-512F.
+AFN_CPU_AVX512_INLINE __m256i roundToBf16(__m512i u)
+{
+    const __m512i expMask = _mm512_set1_epi32(0x7F800000), manMask = _mm512_set1_epi32(0x007FFFFF);
+    const __mmask16 nan = _mm512_cmpeq_epi32_mask(_mm512_and_si512(u, expMask), expMask)
+        & _mm512_cmpneq_epi32_mask(_mm512_and_si512(u, manMask), _mm512_setzero_si512());
+    const __m512i lsb = _mm512_and_si512(_mm512_srli_epi32(u, 16), _mm512_set1_epi32(1));
+    const __m512i rounded = _mm512_add_epi32(u, _mm512_add_epi32(_mm512_set1_epi32(0x7FFF), lsb));
+    u = _mm512_mask_mov_epi32(rounded, nan, _mm512_or_si512(u, _mm512_set1_epi32(0x00400000)));
+    return _mm512_cvtepi32_epi16(_mm512_srli_epi32(u, 16));
+}
+
+/// The same rounding as toBf16Hardware with AVX-512F integer operations, 32 floats loaded before
+/// their 64 bytes are stored, as the hardware conversion does (the in-place conversion's rule,
+/// convRowsAvx512Bf16).
 AFN_CPU_AVX512 void toBf16Emulated(std::uint16_t* d, const float* s, std::size_t n)
 {
-    const __m512i one = _mm512_set1_epi32(1), bias = _mm512_set1_epi32(0x7FFF);
-    const __m512i expMask = _mm512_set1_epi32(0x7F800000), manMask = _mm512_set1_epi32(0x007FFFFF);
-    const __m512i quiet = _mm512_set1_epi32(0x00400000);
-    for (std::size_t k = 0; k < n; k += 16) {
-        __m512i u = _mm512_castps_si512(_mm512_loadu_ps(s + k));
-        const __mmask16 nan = _mm512_cmpeq_epi32_mask(_mm512_and_si512(u, expMask), expMask)
-            & _mm512_cmpneq_epi32_mask(_mm512_and_si512(u, manMask), _mm512_setzero_si512());
-        const __m512i lsb = _mm512_and_si512(_mm512_srli_epi32(u, 16), one);
-        const __m512i rounded = _mm512_add_epi32(u, _mm512_add_epi32(bias, lsb));
-        u = _mm512_mask_mov_epi32(rounded, nan, _mm512_or_si512(u, quiet));
-        _mm256_storeu_si256(
-            reinterpret_cast<__m256i*>(d + k), _mm512_cvtepi32_epi16(_mm512_srli_epi32(u, 16)));
+    for (std::size_t k = 0; k < n; k += 32) {
+        const __m256i a = roundToBf16(_mm512_castps_si512(_mm512_loadu_ps(s + k)));
+        const __m256i b = roundToBf16(_mm512_castps_si512(_mm512_loadu_ps(s + k + 16)));
+        _mm256_storeu_si256(reinterpret_cast<__m256i*>(d + k), a);
+        _mm256_storeu_si256(reinterpret_cast<__m256i*>(d + k + 16), b);
     }
 }
 
@@ -241,7 +248,13 @@ void bandRowsBf16(const ConvArgs& a, int y0, int y1)
     const std::size_t used
         = static_cast<std::size_t>(y1 - y0 + 2 * (a.k / 2)) * (w + 2 * (a.k / 2)) * c;
     const std::size_t n = (used + 31) / 32 * 32;
-    auto* band16 = reinterpret_cast<std::uint16_t*>(band.data());
+    // The bf16 band starts on a 64-byte boundary, 0-48 bytes into the buffer (malloc aligns to
+    // 16): step k of the conversion loads floats k .. k + 31 (bytes 4 k .. 4 k + 127) before it
+    // stores their 64 bytes at offset + 2 k, which stays below 4 k + 128, the next step's floats.
+    // A tile row of 32 channels is then one cache line, not two.
+    const std::uintptr_t base = reinterpret_cast<std::uintptr_t>(band.data());
+    auto* band16 = reinterpret_cast<std::uint16_t*>(band.data())
+        + ((64 - base % 64) % 64) / sizeof(std::uint16_t);
     if (hardware)
         toBf16Hardware(band16, band.data(), n);
     else
