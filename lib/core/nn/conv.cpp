@@ -83,10 +83,13 @@ void Conv::load(const WeightsArchive& a, const std::string& name, int expectedIn
             // input channels rounded up to 16, so that every chunk of the band is a whole tile.
             const std::size_t rowPairs = static_cast<std::size_t>(m_outPadded16) * 2;
             const int padded = (in + 15) / 16 * 8;
-            m_wamx.assign(static_cast<std::size_t>(k) * k * padded * rowPairs, 0);
+            m_wamx.assign(static_cast<std::size_t>(k) * k * padded * rowPairs + 32, 0);
+            const auto base = reinterpret_cast<std::uintptr_t>(m_wamx.data());
+            m_wamxOffset = ((64 - base % 64) % 64) / sizeof(std::uint16_t);
             for (int t = 0; t < k * k; ++t)
                 std::copy_n(&m_wbf16[static_cast<std::size_t>(t) * pairs * rowPairs],
-                    pairs * rowPairs, &m_wamx[static_cast<std::size_t>(t) * padded * rowPairs]);
+                    pairs * rowPairs,
+                    &m_wamx[m_wamxOffset + static_cast<std::size_t>(t) * padded * rowPairs]);
         }
     }
     if (out <= cpu::kFewOutputs) {
@@ -115,7 +118,7 @@ cpu::ConvArgs Conv::args(const Image* up, const Image& same, bool relu) const
     if (precision() == Precision::Bf16)
         a.wbf16 = m_wbf16.data();
     if (precision() == Precision::Bf16 && !m_wamx.empty())
-        a.wamx = m_wamx.data();
+        a.wamx = m_wamx.data() + m_wamxOffset;
     return a;
 }
 

@@ -82,6 +82,9 @@ private:
     std::vector<std::uint16_t> m_wbf16;
     /// m_wbf16 with each tap's pairs padded to (in rounded up to 16) / 2, where the CPU runs AMX
     std::vector<std::uint16_t> m_wamx;
+    /// Elements of m_wamx before its first weight: 0-31, so that the weights start on a 64-byte
+    /// boundary of this allocation (a tile row in one cache line; a copied layer stays correct).
+    std::size_t m_wamxOffset = 0;
     Precision m_precision = Precision::Fp32;
 };
 
