@@ -27,6 +27,13 @@ constexpr const char* kPredictionWhy
     = "includes its input preparation (tone map; 13-channel input over the stripe windows; "
       "pooling) which does no FLOP: see pred-convs";
 
+/// The report's "kernels": amx (the bf16 convolutions on AMX tiles, the rest AVX-512), avx512 or
+/// portable.
+const char* kernelsName(const EnginePoint& p)
+{
+    return p.amx ? "amx" : p.avx512 ? "avx512" : "portable";
+}
+
 /// The note of engine.csv for a stage (empty where the stage needs none).
 const char* stageNote(const std::string& stage)
 {
@@ -44,7 +51,7 @@ const char* stageNote(const std::string& stage)
 EnginePoint EngineCollector::finish(int width, int height) const
 {
     EnginePoint p;
-    p.width = width, p.height = height, p.avx512 = m_avx512;
+    p.width = width, p.height = height, p.avx512 = m_avx512, p.amx = m_amx;
     p.precisionBits = m_precisionBits;
     static const char* names[] = { "prediction", "filtering", "refinement" };
     EngineStage total { "network" };
@@ -117,8 +124,8 @@ void printEngineReport(const EngineYardstick& y, const std::vector<EnginePoint>&
             if (y.available && ideal > 0.0)
                 std::snprintf(pctIdeal, sizeof pctIdeal, "%.0f %%", 100.0 * s.gflops() / ideal);
             std::printf("%-11s %5dx%-5d %-8s %-4s %11.2f %10.2f %9.1f %13s %13s\n", s.name.c_str(),
-                p.width, p.height, p.avx512 ? "avx512" : "portable", bf16 ? "bf16" : "fp32",
-                s.gflop, s.ms, s.gflops(), pct, pctIdeal);
+                p.width, p.height, kernelsName(p), bf16 ? "bf16" : "fp32", s.gflop, s.ms,
+                s.gflops(), pct, pctIdeal);
         }
     std::printf(
         "(afn stage times: median wall-clock ms of the timed frames, from the filter's "
@@ -148,7 +155,7 @@ void writeEngineJson(
     j.key("points").beginArray();
     for (const EnginePoint& p : points) {
         j.beginObject().field("width", p.width).field("height", p.height);
-        j.field("kernels", p.avx512 ? "avx512" : "portable");
+        j.field("kernels", kernelsName(p));
         j.field("precision", p.precisionBits == 16 ? "bf16" : "fp32");
         j.key("stages").beginArray();
         for (const EngineStage& s : p.stages) {
@@ -175,7 +182,7 @@ std::string engineCsv(const EngineYardstick& y, const std::vector<EnginePoint>& 
             char line[896];
             std::snprintf(line, sizeof line,
                 "%s,%d,%d,%s,%s,%.4f,%.3f,%.2f,%d,%.2f,%.2f,%.4f,%.2f,%.2f,%.4f,\"%s\"\n",
-                s.name.c_str(), p.width, p.height, p.avx512 ? "avx512" : "portable",
+                s.name.c_str(), p.width, p.height, kernelsName(p),
                 p.precisionBits == 16 ? "bf16" : "fp32", s.gflop, s.ms, s.gflops(), y.threads,
                 y.peakN, y.peak1, y.peakN > 0.0 ? s.gflops() / y.peakN : 0.0, y.bf16PeakN,
                 y.bf16Peak1, peak > 0.0 ? s.gflops() / peak : 0.0, stageNote(s.name));

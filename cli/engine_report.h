@@ -27,6 +27,7 @@ struct EngineStage {
 struct EnginePoint {
     int width = 0, height = 0;
     bool avx512 = false; ///< the AVX-512 kernels ran (else the portable ones)
+    bool amx = false; ///< the bf16 convolutions ran on AMX tiles
     int precisionBits = 32; ///< what the convolutions ran in: 32 (fp32) or 16 (bf16)
     std::vector<EngineStage> stages;
 };
@@ -63,6 +64,7 @@ public:
         }
         m_inputMs.push_back(stat("stats.afn.prediction.inputMs"));
         m_avx512 = stat("stats.afn.avx512") != 0.0;
+        m_amx = stat("stats.afn.bf16Amx") != 0.0;
         m_precisionBits = stat("stats.afn.precision") == 16.0 ? 16 : 32;
     }
     EnginePoint finish(int width, int height) const;
@@ -72,6 +74,7 @@ private:
     std::vector<double> m_inputMs; ///< of the prediction's ms, the input preparation's
     double m_gflop[3] = {};
     bool m_avx512 = false;
+    bool m_amx = false;
     int m_precisionBits = 32;
 };
 

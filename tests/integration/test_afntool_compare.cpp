@@ -191,6 +191,12 @@ TEST(AfntoolCompare, SizeBenchmarkReportsEngineAndHeap)
     // Each point says what its convolutions ran in; their share is of that precision's GEMM.
     const bool bf16 = r.out.find("\"precision\": \"bf16\"") != std::string::npos;
     EXPECT_TRUE(bf16 || r.out.find("\"precision\": \"fp32\"") != std::string::npos) << r.out;
+    // The kernels: amx (bf16 convolutions on AMX tiles), avx512 or portable.
+    const bool amx = r.out.find("\"kernels\": \"amx\"") != std::string::npos;
+    EXPECT_TRUE(amx || r.out.find("\"kernels\": \"avx512\"") != std::string::npos
+        || r.out.find("\"kernels\": \"portable\"") != std::string::npos)
+        << r.out;
+    EXPECT_TRUE(!amx || bf16) << r.out;
 #ifdef AFN_HAS_DNNL
     for (double v : jsonNumbers(r.out, "peakGflops"))
         EXPECT_GT(v, 0.0);
