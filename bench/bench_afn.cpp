@@ -2,7 +2,8 @@
 // AFN inference speed per 1280x720 frame (paper Table 10 stages): kernel prediction (padding, tone
 // map, encoder-decoder), filtering + fusion (heads, softmax, 7x7 filters, Eq. 3), refinement (the
 // whole-frame stages), the whole forward pass (the stripe path, Network::run), and the whole pass
-// with 60 % of the frame masked out by a work mask, and the 1-spp post-filter. Random weights of
+// with 60 % of the frame masked out by a work mask, the 1-spp post-filter, and single conv layers
+// in fp32 and bf16 (nn.conv). Random weights of
 // the shipped architecture: timings do not depend on the values. Each case reports GFLOP/s (counter
 // "GFLOPs": Network::stageFlop over real time); the yardstick, oneDNN's dnnl_sgemm on 1024^3 at the
 // same thread counts, runs in the same program (sgemm.1024, built with oneDNN). Run:

@@ -22,7 +22,6 @@
 #include "cpu/avx512.h"
 
 #include <algorithm>
-#include <cstring>
 
 namespace afn::cpu {
 

@@ -275,7 +275,7 @@ namespace {
 void bandRowsFp32(const ConvArgs& a, int y0, int y1)
 {
 #ifdef AFN_CPU_HAVE_AVX512
-    const int c = (a.in + 15) / 16 * 16;
+    const int c = bandChannels(a.in);
     std::vector<float>& band = convBandBuffer();
     fillConvBandAvx512(a, y0, y1, c, band);
     const int w = columnEnd(a) - a.x0; // output columns

@@ -233,7 +233,7 @@ namespace {
 void bandRowsBf16(const ConvArgs& a, int y0, int y1)
 {
 #ifdef AFN_CPU_HAVE_AVX512
-    const int c = (a.in + 15) / 16 * 16; // even: channel pairs never straddle two pixels
+    const int c = bandChannels(a.in);
     std::vector<float>& band = convBandBuffer();
     fillConvBandAvx512(a, y0, y1, c, band);
     const Bf16Mode mode = activeBf16Mode();

@@ -43,6 +43,13 @@ struct ConvArgs {
     const std::uint16_t* wamx = nullptr;
 };
 
+/// Channels of a band pixel: the layer's input channels rounded up to 16 (one AVX-512 vector; even,
+/// so bf16 channel pairs never straddle two pixels).
+inline int bandChannels(int in)
+{
+    return (in + 15) / 16 * 16;
+}
+
 /// The end of ConvArgs' output columns (x1, or the input's width where x1 < 0).
 inline int columnEnd(const ConvArgs& a)
 {
@@ -80,8 +87,7 @@ inline int bandRowGroup(const ConvArgs& a)
 {
     constexpr long kBandBytes = 512 * 1024;
     const int r = a.k / 2;
-    const long rowBytes
-        = static_cast<long>(columnEnd(a) - a.x0 + 2 * r) * ((a.in + 15) / 16 * 16) * 4;
+    const long rowBytes = static_cast<long>(columnEnd(a) - a.x0 + 2 * r) * bandChannels(a.in) * 4;
     const long group = kBandBytes / rowBytes - 2 * r;
     return group < 1 ? 1 : static_cast<int>(group);
 }

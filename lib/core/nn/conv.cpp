@@ -82,7 +82,7 @@ void Conv::load(const WeightsArchive& a, const std::string& name, int expectedIn
             // cpu/conv_amx_bf16.h: each tap's pairs padded with zero pairs to c / 2, c = the
             // input channels rounded up to 16, so that every chunk of the band is a whole tile.
             const std::size_t rowPairs = static_cast<std::size_t>(m_outPadded16) * 2;
-            const int padded = (in + 15) / 16 * 8;
+            const int padded = cpu::bandChannels(in) / 2;
             m_wamx.assign(static_cast<std::size_t>(k) * k * padded * rowPairs + 32, 0);
             const auto base = reinterpret_cast<std::uintptr_t>(m_wamx.data());
             m_wamxOffset = ((64 - base % 64) % 64) / sizeof(std::uint16_t);
@@ -93,7 +93,7 @@ void Conv::load(const WeightsArchive& a, const std::string& name, int expectedIn
         }
     }
     if (out <= cpu::kFewOutputs) {
-        const int inPadded = (in + 15) / 16 * 16;
+        const int inPadded = cpu::bandChannels(in);
         m_wt16.assign(static_cast<std::size_t>(k) * k * out * inPadded, 0.0f);
         for (int t = 0; t < k * k; ++t)
             for (int co = 0; co < out; ++co)

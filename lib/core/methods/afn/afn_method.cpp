@@ -34,9 +34,8 @@
 // kPostFilterRadius more.
 //
 // precision=auto|fp32|bf16 (settings.h; auto: bf16 where the CPU has AVX512_BF16, on AMX tiles
-// where it has AMX-BF16 too) sets the
-// arithmetic of the network's convolutions for each frame (Network::setPrecision); reported as
-// AFN_STAT_AFN_PRECISION.
+// where it has AMX-BF16 too) sets the arithmetic of the network's convolutions for each frame
+// (Network::setPrecision); reported as AFN_STAT_AFN_PRECISION.
 //
 // On a CUDA device (builds with AFN_HAS_CUDA) the whole filter, shared stages included, runs on
 // the GPU instead (cuda/afn_cuda_filter.h). It has no aux prefilter yet: it refuses aux=noisy and

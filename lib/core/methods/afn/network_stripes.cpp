@@ -161,7 +161,7 @@ void Network::runStripe(const Inputs& in, int y0, int y1, StripeWorkspace& ws, I
     // frame: reshape (no zeroing pass). Every row a step reads is written by an earlier step of
     // this stripe (each layer's rows are the next one's plus its halo; rows past the window are
     // the kernels' zero padding, not stored rows), so no value of an earlier stripe is read
-    // (FilterStripes tests: stripes against the whole-frame path, bit for bit).
+    // (test_afn_stripes.cpp: stripes against the whole-frame path, bit for bit).
     // Kernel prediction. The input rows this workspace filled for the previous stripe of the same
     // run (the window moved down, same height) are moved, not computed again: the tone map and
     // the input over the halo rows the two windows share (the same values: fillInput is per row).

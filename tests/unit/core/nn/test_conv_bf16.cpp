@@ -1,8 +1,10 @@
 // SPDX-License-Identifier: Apache-2.0
-// nn::Conv in bfloat16 (cpu/conv_avx512_bf16.cpp): against a double reference of the same
-// bf16-rounded operands (the kernel's only error is then fp32 summation), within bf16's rounding
-// of fp32's result, the hardware instruction and its AVX-512F emulation bit for bit (where the CPU
-// has AVX512_BF16), whole rows and column chunks the same bits, and few-output layers unchanged.
+// nn::Conv in bfloat16 (cpu/conv_avx512_bf16.cpp, cpu/conv_amx_bf16.cpp): each kernel (AMX tiles
+// where the CPU has them, VDPBF16PS, its emulation) against a double reference of the same
+// bf16-rounded operands (the kernel's only error is then fp32 summation) and within bf16's
+// rounding of fp32's result, the hardware instruction and its AVX-512F emulation bit for bit
+// (where the CPU has AVX512_BF16), whole rows and column chunks the same bits, and few-output
+// layers unchanged.
 #include "afn_test_util.h"
 #include "cpu/bf16.h"
 #include "cpu/isa.h"
