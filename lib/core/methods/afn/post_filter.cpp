@@ -32,11 +32,6 @@ constexpr float kSpline[5] = { 1.0f / 16.0f, 1.0f / 4.0f, 3.0f / 8.0f, 1.0f / 4.
 constexpr float kAlbedoScale = 1.0f / 0.1f; ///< da = sum |dA| / 0.1
 constexpr float kDepthRelative = 0.02f; ///< dz's scale: 2 % of the depth per step
 
-inline float finiteOr(float v, float fallback)
-{
-    return std::fabs(v) <= FLT_MAX ? v : fallback;
-}
-
 // 16 pixels of a row at a time (GCC/Clang vector extensions: one AVX-512 register in the
 // x86-64-v4 clone, two AVX or four SSE registers in the others).
 
@@ -130,10 +125,15 @@ struct PassOutput {
     Image* interleaved = nullptr;
 };
 
+/// The outer taps of a half-pass (j = -2, -1, 1, 2).
+constexpr int kTaps = 4;
+
 /// Output pixels x0 .. x0 + n - 1 (n <= 16) of row y: the taps weighted and summed in their order,
-/// normalised, written to `out`.
-AFN_CPU_KERNEL_CLONES void filterRun(const float* const* src, const PostFilterGuidePlanes& g, int w,
-    int h, int y, int x0, int n, const Tap* taps, int tapCount, int step, const PassOutput& out)
+/// normalised, written to `out`. `Interior`: n is 16 and every tap's 16 columns lie inside the
+/// row (contiguous loads); otherwise the clamped columns are read one by one.
+template <bool Interior>
+AFN_PF_INLINE void filterRun(const float* const* src, const PostFilterGuidePlanes& g, int w, int h,
+    int y, int x0, int n, const Tap* taps, int step, const PassOutput& out)
 {
     const std::size_t i0 = static_cast<std::size_t>(y) * w + x0;
     Centre p;
@@ -155,11 +155,11 @@ AFN_CPU_KERNEL_CLONES void filterRun(const float* const* src, const PostFilterGu
     // depth; a unit normal's cosine with itself is 1 to float rounding, whose 64th power is kept
     // out of the sum).
     V ar = kSpline[2] * r, ag = kSpline[2] * gr, ab = kSpline[2] * b, aw = AFN_PF_SPLAT(kSpline[2]);
-    for (int k = 0; k < tapCount; ++k) {
+    for (int k = 0; k < kTaps; ++k) {
         const Tap& tap = taps[k];
         const std::size_t qrow = static_cast<std::size_t>(std::clamp(y + tap.dy, 0, h - 1)) * w;
         const int dx = tap.dx;
-        const bool interior = n == kLanes && x0 + dx >= 0 && x0 + dx + kLanes <= w;
+        constexpr bool interior = Interior;
         V q0, q1, q2, t0, t1, t2, tz, tv;
         loadTap(q0, src[0] + qrow, x0, dx, w, interior);
         loadTap(q1, src[1] + qrow, x0, dx, w, interior);
@@ -213,66 +213,43 @@ AFN_CPU_KERNEL_CLONES void filterRun(const float* const* src, const PostFilterGu
     std::memcpy(out.planes[2] + i0, &ab, bytes);
 }
 
-/// The guides as planes (PostFilterGuidePlanes, post_filter.h).
-void buildGuidePlanes(const PostFilterGuides& g, int w, int h, const PostFilterGuidePlanes& p)
-{
-    auto usable = [&](const Image* im, int channels) {
-        return im && im->width() == w && im->height() == h && im->channels() == channels;
-    };
-    const bool albedo = usable(g.albedo, 3), normal = usable(g.normal, 3),
-               depth = usable(g.depth, 1);
-    parallelRows(h, [&](int y0, int y1) {
-        const std::size_t i0 = static_cast<std::size_t>(y0) * w;
-        const std::size_t i1 = static_cast<std::size_t>(y1) * w;
-        for (std::size_t i = i0; i < i1; ++i) {
-            const float* a = albedo ? g.albedo->data() + 3 * i : nullptr;
-            p.a0[i] = a ? finiteOr(a[0], 0.0f) : 0.0f;
-            p.a1[i] = a ? finiteOr(a[1], 0.0f) : 0.0f;
-            p.a2[i] = a ? finiteOr(a[2], 0.0f) : 0.0f;
-        }
-        for (std::size_t i = i0; i < i1; ++i) {
-            p.n0[i] = p.n1[i] = p.n2[i] = p.nv[i] = 0.0f;
-            if (!normal)
-                continue;
-            const float* m = g.normal->data() + 3 * i;
-            const float len2 = m[0] * m[0] + m[1] * m[1] + m[2] * m[2];
-            if (!(len2 > 0.5f && len2 <= FLT_MAX)) // ~0, NaN or infinite: no normal term
-                continue;
-            const float inv = 1.0f / std::sqrt(len2);
-            p.n0[i] = m[0] * inv;
-            p.n1[i] = m[1] * inv;
-            p.n2[i] = m[2] * inv;
-            p.nv[i] = 1.0f;
-        }
-        for (std::size_t i = i0; i < i1; ++i)
-            p.z[i] = depth ? finiteOr(g.depth->data()[i], 1e30f) : 1.0f;
-    });
-}
-
 /// The 4 outer taps of one 1-D half of the a-trous pass of `step`: along x (horizontal) or y.
-int passTaps(bool horizontal, int step, Tap* taps)
+void passTaps(bool horizontal, int step, Tap (&taps)[kTaps])
 {
     int count = 0;
     for (int j = -2; j <= 2; ++j)
         if (j != 0) // the centre tap is filterRun's own
             taps[count++] = { horizontal ? j * step : 0, horizontal ? 0 : j * step, kSpline[j + 2],
                 std::abs(j) };
-    return count;
+}
+
+/// Rows [y0, y1) of one half-pass: the runs whose taps all lie inside the row take the
+/// contiguous loads, the others (at most two per side and the last, partial run) the clamped ones.
+/// One function per instruction-set clone, the runs inlined into it.
+AFN_CPU_KERNEL_CLONES void filterRows(const float* const* src, const PostFilterGuidePlanes& g,
+    int w, int h, int y0, int y1, const Tap* taps, int step, const PassOutput& out)
+{
+    int reach = 0; // the taps' largest |dx|
+    for (int k = 0; k < kTaps; ++k)
+        reach = std::max(reach, std::abs(taps[k].dx));
+    for (int y = y0; y < y1; ++y)
+        for (int x = 0; x < w; x += kLanes) {
+            const int n = std::min(kLanes, w - x);
+            if (n == kLanes && x - reach >= 0 && x + reach + kLanes <= w)
+                filterRun<true>(src, g, w, h, y, x, n, taps, step, out);
+            else
+                filterRun<false>(src, g, w, h, y, x, n, taps, step, out);
+        }
 }
 
 /// One pass from the planes `src` into `out`.
 void filterPass(const float* const* src, const PostFilterGuidePlanes& g, int w, int h,
     bool horizontal, int step, const PassOutput& out)
 {
-    Tap taps[4];
-    const int count = passTaps(horizontal, step, taps);
+    Tap taps[kTaps];
+    passTaps(horizontal, step, taps);
     parallelRows(
-        h,
-        [&](int y0, int y1) {
-            for (int y = y0; y < y1; ++y)
-                for (int x = 0; x < w; x += kLanes)
-                    filterRun(src, g, w, h, y, x, std::min(kLanes, w - x), taps, count, step, out);
-        },
+        h, [&](int y0, int y1) { filterRows(src, g, w, h, y0, y1, taps, step, out); },
         4);
 }
 
@@ -291,7 +268,7 @@ void edgeAwarePostFilter(const Image& radiance, const PostFilterGuides& guides,
         planes[k] = workspace.storage.data() + static_cast<std::size_t>(k) * pitch;
     const PostFilterGuidePlanes g { planes[0], planes[1], planes[2], planes[3], planes[4],
         planes[5], planes[6], planes[7], planes[8] };
-    buildGuidePlanes(guides, w, h, g);
+    buildPostFilterGuidePlanes(guides, w, h, g);
     // The colour planes are free until the first pass writes them: the noise scale's scratch.
     postFilterLuminanceScale(
         guides.noise, w, h, kPostFilterSigmaLuminance, planes[9], planes[10], g.ls);

@@ -67,6 +67,11 @@ struct PostFilterGuidePlanes {
           *nv = nullptr, *z = nullptr, *ls = nullptr;
 };
 
+/// Fills `planes` (w * h floats each) from `guides` as PostFilterGuidePlanes describes, except
+/// `ls` (post_filter_noise.h). post_filter_guides.cpp.
+void buildPostFilterGuidePlanes(
+    const PostFilterGuides& guides, int w, int h, const PostFilterGuidePlanes& planes);
+
 /// The planes the filter works on (the 9 guide planes and 3 colour planes: 48 bytes a pixel, in
 /// one allocation), kept by the caller from frame to frame so that a sequence allocates them
 /// once. Their contents between calls mean nothing.
