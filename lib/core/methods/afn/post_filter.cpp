@@ -249,8 +249,7 @@ void filterPass(const float* const* src, const PostFilterGuidePlanes& g, int w, 
     Tap taps[kTaps];
     passTaps(horizontal, step, taps);
     parallelRows(
-        h, [&](int y0, int y1) { filterRows(src, g, w, h, y0, y1, taps, step, out); },
-        4);
+        h, [&](int y0, int y1) { filterRows(src, g, w, h, y0, y1, taps, step, out); }, 4);
 }
 
 } // namespace
