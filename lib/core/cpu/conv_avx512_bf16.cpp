@@ -25,6 +25,7 @@
 #include "cpu/isa.h"
 
 #include <algorithm>
+#include <cstdint>
 #include <cstring>
 #include <vector>
 
@@ -235,11 +236,11 @@ void bandRowsBf16(const ConvArgs& a, int y0, int y1)
 #ifdef AFN_CPU_HAVE_AVX512
     const int c = bandChannels(a.in);
     std::vector<float>& band = convBandBuffer();
-    fillConvBandAvx512(a, y0, y1, c, band);
     const Bf16Mode mode = activeBf16Mode();
     const bool hardware = mode != Bf16Mode::Emulated; // AMX implies AVX512_BF16 (cpu/isa.h)
     const int w = columnEnd(a) - a.x0;
-    // The band is rounded to bf16 in place, front to back: value k's 2 bytes land at byte 2k,
+    // Without AVX512_BF16 (or for bands too wide to compose) the fp32 band is filled and then
+    // rounded to bf16 in place, front to back: value k's 2 bytes land at byte 2k,
     // below the floats not read yet (each step loads its floats before it stores), so no second
     // buffer is needed. This call's band is `used` values, whole steps of 32: the slack after it
     // (over 32 floats: c >= 16, 18 pixels) covers the rounding up. The bf16 slack after the
@@ -248,18 +249,30 @@ void bandRowsBf16(const ConvArgs& a, int y0, int y1)
     const std::size_t used
         = static_cast<std::size_t>(y1 - y0 + 2 * (a.k / 2)) * (w + 2 * (a.k / 2)) * c;
     const std::size_t n = (used + 31) / 32 * 32;
+    // With AVX512_BF16 the band is written in bf16 directly (fillConvBandBf16Avx512,
+    // cpu/conv_band_bf16.cpp); the buffer then needs half the floats of the fp32 band, and 16 more
+    // for the alignment below.
+    if (hardware && band.size() < (n + slack) / 2 + 16)
+        band.resize((n + slack) / 2 + 16);
     // The bf16 band starts on a 64-byte boundary, 0-48 bytes into the buffer (malloc aligns to
     // 16): step k of the conversion loads floats k .. k + 31 (bytes 4 k .. 4 k + 127) before it
     // stores their 64 bytes at offset + 2 k, which stays below 4 k + 128, the next step's floats.
     // A tile row of 32 channels is then one cache line, not two.
-    const std::uintptr_t base = reinterpret_cast<std::uintptr_t>(band.data());
-    auto* band16 = reinterpret_cast<std::uint16_t*>(band.data())
-        + ((64 - base % 64) % 64) / sizeof(std::uint16_t);
-    if (hardware)
-        toBf16Hardware(band16, band.data(), n);
-    else
-        toBf16Emulated(band16, band.data(), n);
-    std::memset(band16 + n, 0, sizeof(std::uint16_t) * slack);
+    auto alignedBand16 = [&band] {
+        const std::uintptr_t base = reinterpret_cast<std::uintptr_t>(band.data());
+        return reinterpret_cast<std::uint16_t*>(band.data())
+            + ((64 - base % 64) % 64) / sizeof(std::uint16_t);
+    };
+    std::uint16_t* band16 = alignedBand16();
+    if (!hardware || !fillConvBandBf16Avx512(a, y0, y1, c, band16, slack)) {
+        fillConvBandAvx512(a, y0, y1, c, band);
+        band16 = alignedBand16(); // the fill may have grown the buffer
+        if (hardware)
+            toBf16Hardware(band16, band.data(), n);
+        else
+            toBf16Emulated(band16, band.data(), n);
+        std::memset(band16 + n, 0, sizeof(std::uint16_t) * slack);
+    }
     if (mode == Bf16Mode::Amx && a.wamx) {
         const AmxConvPass p { band16, static_cast<long>(w + 2 * (a.k / 2)) * c, c, a.wamx, a.bp16,
             a.k, a.cp16, a.outC, w, a.dstPix, a.relu, a.dst + (y0 - a.dstY0) * a.dstRow, a.dstRow };

@@ -72,6 +72,13 @@ void convRowsAvx512Bf16(const ConvArgs& a, int y0, int y1);
 /// image, then (kConvBandSlackPixels + 2) x c zero floats (cpu/conv_avx512.cpp).
 void fillConvBandAvx512(const ConvArgs& a, int y0, int y1, int c, std::vector<float>& band);
 
+/// The same band in bf16 (rounded to nearest even by the hardware, value by value), written
+/// directly where the CPU has AVX512_BF16 (cpu/conv_band_bf16.cpp): at `d`, the band's values
+/// (rows x pixels x c), zeros up to the next multiple of 32 values, then `slack` zeros. Returns
+/// false, writing nothing, for band pixels wider than 256 channels.
+bool fillConvBandBf16Avx512(
+    const ConvArgs& a, int y0, int y1, int c, std::uint16_t* d, std::size_t slack);
+
 /// The calling thread's band buffer, shared by the fp32 and bf16 kernels (each call refills it;
 /// the bf16 kernel rounds it in place): one buffer per thread, the size of the largest band.
 std::vector<float>& convBandBuffer();

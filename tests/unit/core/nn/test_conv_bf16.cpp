@@ -16,6 +16,9 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <string>
+#include <utility>
+#include <vector>
 
 using afn::Image;
 using afn::cpu::fromBf16;
@@ -171,21 +174,38 @@ TEST_F(ConvBf16, HardwareAndEmulationGiveTheSameBits)
 {
     if (!afn::cpu::cpuHasAvx512Bf16())
         GTEST_SKIP() << "this CPU has no AVX512_BF16";
-    Layer l = makeLayer(37, 50, 3, 7);
-    l.conv.setPrecision(Precision::Bf16);
-    const Image same = randomImage(41, 11, 37, 8);
-    Image a, b;
-    {
-        const Bf16Scope s(afn::cpu::Bf16Mode::Hardware);
-        l.conv.run(nullptr, same, a, true);
+    // With AVX512_BF16 the band is written in bf16 directly, composed per 16-channel chunk from
+    // the upsampled and the same input; the emulation fills the fp32 band and rounds it: every
+    // composition (chunks of one source, of both, partly zero; 1 to 6 chunks; column windows
+    // that start inside the image) must give the same bits.
+    struct Shape {
+        int cu, cs, co, k, w, h;
+    };
+    for (const Shape& sh : { Shape { 0, 37, 50, 3, 41, 11 }, Shape { 24, 14, 50, 1, 37, 6 },
+             Shape { 32, 16, 24, 3, 23, 9 }, Shape { 64, 32, 32, 3, 19, 7 },
+             Shape { 0, 10, 16, 3, 35, 8 }, Shape { 0, 32, 32, 3, 21, 5 },
+             Shape { 8, 5, 16, 3, 17, 6 } }) {
+        SCOPED_TRACE("up " + std::to_string(sh.cu) + " same " + std::to_string(sh.cs) + " k "
+            + std::to_string(sh.k));
+        Layer l = makeLayer(sh.cu + sh.cs, sh.co, sh.k, 7u + static_cast<unsigned>(sh.cs));
+        l.conv.setPrecision(Precision::Bf16);
+        const Image up = randomImage((sh.w + 1) / 2, (sh.h + 1) / 2, std::max(sh.cu, 1), 9);
+        const Image same = randomImage(sh.w, sh.h, sh.cs, 8);
+        const Image* u = sh.cu ? &up : nullptr;
+        const int mid = sh.w / 3 + 1;
+        std::vector<float> a(static_cast<std::size_t>(sh.w) * sh.h * sh.co);
+        std::vector<float> b(a.size());
+        for (auto [mode, out] : { std::pair { afn::cpu::Bf16Mode::Hardware, &a },
+                 std::pair { afn::cpu::Bf16Mode::Emulated, &b } }) {
+            const Bf16Scope s(mode);
+            const long row = static_cast<long>(sh.w) * sh.co;
+            l.conv.runRows(u, same, 0, sh.h, out->data(), row, sh.co, true, 0, mid);
+            l.conv.runRows(u, same, 0, sh.h, out->data() + static_cast<std::size_t>(mid) * sh.co,
+                row, sh.co, true, mid, sh.w);
+        }
+        for (std::size_t i = 0; i < a.size(); ++i)
+            ASSERT_EQ(a[i], b[i]) << "at " << i;
     }
-    {
-        const Bf16Scope s(afn::cpu::Bf16Mode::Emulated);
-        l.conv.run(nullptr, same, b, true);
-    }
-    ASSERT_EQ(a.size(), b.size());
-    for (std::size_t i = 0; i < a.size(); ++i)
-        ASSERT_EQ(a.data()[i], b.data()[i]) << "at " << i;
 }
 
 TEST_F(ConvBf16, FewOutputLayersAndFp32StayAsTheyWere)
