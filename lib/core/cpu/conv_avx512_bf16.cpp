@@ -105,11 +105,14 @@ AFN_CPU_AVX512_INLINE void storeBlock(const RowPass& r, __m512 (&acc)[P][NV], fl
     }
 }
 
-/// P output pixels x NV x 16 output channels, VDPBF16PS.
-template <int NV, int P>
+/// P output pixels x NV x 16 output channels, VDPBF16PS. C2: the pairs per band pixel as a
+/// compile-time constant (0: r.c2 at run time), so that pixel p's pair q is a constant
+/// displacement from one register instead of an index register per pixel.
+template <int NV, int P, int C2>
 AFN_CPU_AVX512_BF16_INLINE void blockHardware(
     const RowPass& r, const std::int32_t* src, float* dst, int np)
 {
+    const int c2 = C2 ? C2 : r.c2;
     __m512 acc[P][NV];
     for (int j = 0; j < NV; ++j) {
         const __m512 b = _mm512_loadu_ps(r.bias + 16 * j);
@@ -119,7 +122,7 @@ AFN_CPU_AVX512_BF16_INLINE void blockHardware(
     const std::int32_t* wt = r.w;
     for (int ky = 0; ky < r.k; ++ky)
         for (int kx = 0; kx < r.k; ++kx) {
-            const std::int32_t* s = src + ky * r.bandRow + kx * r.c2;
+            const std::int32_t* s = src + ky * r.bandRow + kx * c2;
             for (int q = 0; q < r.pairs; ++q, wt += r.cp16) {
                 __m512bh wv[NV];
                 for (int j = 0; j < NV; ++j) {
@@ -128,7 +131,7 @@ AFN_CPU_AVX512_BF16_INLINE void blockHardware(
                 }
                 for (int p = 0; p < P; ++p) {
                     std::int32_t pair;
-                    std::memcpy(&pair, s + p * r.c2 + q, sizeof(pair));
+                    std::memcpy(&pair, s + p * c2 + q, sizeof(pair));
                     const __m512i xi = _mm512_set1_epi32(pair);
                     const __m512bh x = reinterpret_cast<const __m512bh&>(xi);
                     for (int j = 0; j < NV; ++j)
@@ -179,18 +182,38 @@ AFN_CPU_AVX512_INLINE void blockEmulated(
     storeBlock<NV, P>(r, acc, dst, np);
 }
 
-template <int NV, int P> AFN_CPU_AVX512_BF16 void rowsHardware(const RowPass& r, int nRows)
+template <int NV, int P, int C2> AFN_CPU_AVX512_BF16 void rowsHardware(const RowPass& r, int nRows)
 {
     for (int i = 0; i < nRows; ++i) {
         const std::int32_t* src = r.band + i * r.bandRow;
         float* dst = r.dst + i * r.dstRow;
         int x = 0;
         for (; x + P <= r.width; x += P)
-            blockHardware<NV, P>(
+            blockHardware<NV, P, C2>(
                 r, src + static_cast<long>(x) * r.c2, dst + static_cast<long>(x) * r.pixStride, P);
         if (x < r.width)
-            blockHardware<NV, P>(r, src + static_cast<long>(x) * r.c2,
+            blockHardware<NV, P, C2>(r, src + static_cast<long>(x) * r.c2,
                 dst + static_cast<long>(x) * r.pixStride, r.width - x);
+    }
+}
+
+/// rowsHardware with the band's pair stride as a constant for afn's band widths (16, 32, 48, 64
+/// and 96 channels).
+template <int NV, int P> void rowsHardwareFor(const RowPass& r, int nRows)
+{
+    switch (r.c2) {
+    case 8:
+        return rowsHardware<NV, P, 8>(r, nRows);
+    case 16:
+        return rowsHardware<NV, P, 16>(r, nRows);
+    case 24:
+        return rowsHardware<NV, P, 24>(r, nRows);
+    case 32:
+        return rowsHardware<NV, P, 32>(r, nRows);
+    case 48:
+        return rowsHardware<NV, P, 48>(r, nRows);
+    default:
+        return rowsHardware<NV, P, 0>(r, nRows);
     }
 }
 
@@ -220,7 +243,7 @@ template <int NV> void rowsFor(const RowPass& r, int nRows, bool hardware)
     constexpr int P = pixelsFor<NV>();
     static_assert(P <= kConvBandSlackPixels);
     if (hardware)
-        rowsHardware<NV, P>(r, nRows);
+        rowsHardwareFor<NV, P>(r, nRows);
     else
         rowsEmulated<NV, P>(r, nRows);
 }
