@@ -14,7 +14,6 @@
 #include "cpu/target.h"
 
 #include <algorithm>
-#include <cfloat>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
