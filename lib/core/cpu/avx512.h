@@ -14,6 +14,10 @@
 #define AFN_CPU_HAVE_AVX512 1
 #define AFN_CPU_AVX512 __attribute__((target("avx512f,avx2,fma")))
 #define AFN_CPU_AVX512_INLINE AFN_CPU_AVX512 inline __attribute__((always_inline))
+// The bf16 kernels' target (AVX512_BF16 with the AVX-512 they use), for code run only where
+// cpu::activeBf16Mode() is not Emulated.
+#define AFN_CPU_AVX512_BF16 __attribute__((target("avx512f,avx512bw,avx512vl,avx512bf16,avx2,fma")))
+#define AFN_CPU_AVX512_BF16_INLINE AFN_CPU_AVX512_BF16 inline __attribute__((always_inline))
 #if defined(__GNUC__) && !defined(__clang__)
 // GCC 12's AVX-512 min/max/reduce/roundscale/scalef intrinsics start from _mm512_undefined_ps
 // (false positive).

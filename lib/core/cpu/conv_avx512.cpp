@@ -63,12 +63,7 @@ AFN_CPU_AVX512 void fillPixels(
 #ifdef AFN_CPU_HAVE_AVX512
 void fillConvBandAvx512(const ConvArgs& a, int y0, int y1, int c, std::vector<float>& band)
 {
-    const int w = a.same->width(), h = a.same->height(), r = a.k / 2;
-    const int x0 = a.x0, x1 = columnEnd(a), bw = x1 - x0 + 2 * r;
-    // Input columns present in the band, and the zero pixels before and after them.
-    const int xa = std::max(0, x0 - r), xb = std::min(w, x1 + r);
-    const int lead = xa - (x0 - r), trail = x1 + r - xb;
-    const int rows = y1 - y0 + 2 * r;
+    const auto [h, r, bw, xa, xb, lead, trail, rows] = convBandGeometry(a, y0, y1);
     const std::size_t rowFloats = static_cast<std::size_t>(bw) * c;
     const std::size_t slack = static_cast<std::size_t>(kMaxPixels + 2) * c;
     if (band.size() < rows * rowFloats + slack)

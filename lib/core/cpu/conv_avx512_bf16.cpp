@@ -35,9 +35,6 @@ namespace {
 
 #ifdef AFN_CPU_HAVE_AVX512
 
-#define AFN_CPU_AVX512_BF16 __attribute__((target("avx512f,avx512bw,avx512vl,avx512bf16,avx2,fma")))
-#define AFN_CPU_AVX512_BF16_INLINE AFN_CPU_AVX512_BF16 inline __attribute__((always_inline))
-
 /// The fp32 band converted to bf16 pairs: `n` floats (a multiple of 32) from s to d.
 AFN_CPU_AVX512_BF16 void toBf16Hardware(std::uint16_t* d, const float* s, std::size_t n)
 {

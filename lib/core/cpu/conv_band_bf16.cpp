@@ -16,9 +16,6 @@ namespace afn::cpu {
 
 #ifdef AFN_CPU_HAVE_AVX512
 
-#define AFN_CPU_AVX512_BF16 __attribute__((target("avx512f,avx512bw,avx512vl,avx512bf16,avx2,fma")))
-#define AFN_CPU_AVX512_BF16_INLINE AFN_CPU_AVX512_BF16 inline __attribute__((always_inline))
-
 namespace {
 
 /// Band pixels of at most this many 16-channel chunks are composed in registers
@@ -97,11 +94,7 @@ AFN_CPU_AVX512_BF16 bool fillConvBandBf16Avx512(
     const int chunks = c / 16;
     if (chunks > kMaxComposedChunks)
         return false;
-    const int w = a.same->width(), h = a.same->height(), r = a.k / 2;
-    const int x0 = a.x0, x1 = columnEnd(a), bw = x1 - x0 + 2 * r;
-    const int xa = std::max(0, x0 - r), xb = std::min(w, x1 + r);
-    const int lead = xa - (x0 - r), trail = x1 + r - xb;
-    const int rows = y1 - y0 + 2 * r;
+    const auto [h, r, bw, xa, xb, lead, trail, rows] = convBandGeometry(a, y0, y1);
     const std::size_t rowValues = static_cast<std::size_t>(bw) * c;
     __mmask16 fromUp[kMaxComposedChunks], fromSame[kMaxComposedChunks];
     for (int k = 0; k < chunks; ++k) {

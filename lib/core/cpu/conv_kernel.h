@@ -56,6 +56,22 @@ inline int columnEnd(const ConvArgs& a)
     return a.x1 < 0 ? a.same->width() : a.x1;
 }
 
+/// Where a band's rows [y0 - k/2, y1 + k/2) take their pixels from (fillConvBandAvx512 and its
+/// bf16 twin): `bw` pixels a row, of which input columns [xa, xb) after `lead` zero pixels and
+/// before `trail` more; input rows outside [0, h) are zero rows.
+struct ConvBandGeometry {
+    int h, r, bw, xa, xb, lead, trail, rows;
+};
+
+inline ConvBandGeometry convBandGeometry(const ConvArgs& a, int y0, int y1)
+{
+    const int w = a.same->width(), r = a.k / 2;
+    const int x0 = a.x0, x1 = columnEnd(a);
+    const int xa = x0 - r < 0 ? 0 : x0 - r, xb = x1 + r > w ? w : x1 + r;
+    return { a.same->height(), r, x1 - x0 + 2 * r, xa, xb, xa - (x0 - r), x1 + r - xb,
+        y1 - y0 + 2 * r };
+}
+
 /// Output rows [y0, y1) with the portable kernel.
 void convRows(const ConvArgs& a, int y0, int y1);
 
