@@ -325,9 +325,12 @@ void SequenceDenoiser::logFrame(const LoadedFrame& frame, Progress* progress)
                     : grain ? "clean, albedo grain limited"
                             : "clean")
             + " (aux=" + mode + sppText;
-        speckle = "speckle: albedo " + shareText(m_filter.get<float>(AFN_STAT_ALBEDO_SPECKLE))
-            + ", normal " + shareText(m_filter.get<float>(AFN_STAT_NORMAL_SPECKLE)) + ", depth "
-            + shareText(m_filter.get<float>(AFN_STAT_DEPTH_SPECKLE));
+        // Asked for only where printed (the first frame, or every frame with -v): the library
+        // measures a clean history's shares when asked, not on every frame.
+        if (m_opts.verbose || !m_factsLogged)
+            speckle = "speckle: albedo " + shareText(m_filter.get<float>(AFN_STAT_ALBEDO_SPECKLE))
+                + ", normal " + shareText(m_filter.get<float>(AFN_STAT_NORMAL_SPECKLE)) + ", depth "
+                + shareText(m_filter.get<float>(AFN_STAT_DEPTH_SPECKLE));
     }
     const float skipped = m_filter.get<float>(AFN_STAT_SKIPPED);
     if (skipped > 0.0f)

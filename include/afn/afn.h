@@ -164,7 +164,9 @@ typedef enum AFNDeviceType {
 /// grain is limited over time (within 10 % of each given value), else 0.
 #define AFN_STAT_AUX_GRAIN_LIMITED "stats.auxGrainLimited"
 /// Share in [0, 1] of speckle pixels (afnEstimateAuxNoise) of the last frame's albedo, normal and
-/// depth inputs as given; -1 when the input is absent (afnGetFilterFloat).
+/// depth inputs as given; -1 when the input is absent (afnGetFilterFloat). A history decided clean
+/// measures them when first asked for after a frame (a pass over the three inputs), not on every
+/// frame.
 #define AFN_STAT_ALBEDO_SPECKLE "stats.albedoSpeckle"
 #define AFN_STAT_NORMAL_SPECKLE "stats.normalSpeckle"
 #define AFN_STAT_DEPTH_SPECKLE "stats.depthSpeckle"

@@ -342,9 +342,9 @@ static double filterNumber(AFNFilterImpl* f, const std::string& name)
     if (name == AFN_STAT_HISTORY_CUT)
         return flt.lastHistoryCutShare();
     if (name == AFN_STAT_AUX_NOISY)
-        return flt.auxReport().noisy ? 1.0 : 0.0;
+        return flt.auxNoisy() ? 1.0 : 0.0;
     if (name == AFN_STAT_AUX_GRAIN_LIMITED)
-        return flt.auxReport().grainLimited ? 1.0 : 0.0;
+        return flt.auxGrainLimited() ? 1.0 : 0.0;
     if (name == AFN_STAT_ALBEDO_SPECKLE)
         return flt.auxReport().albedoSpeckle;
     if (name == AFN_STAT_NORMAL_SPECKLE)

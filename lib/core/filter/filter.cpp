@@ -277,6 +277,19 @@ void Filter::runStages()
     }
 }
 
+const AuxReport& Filter::auxReport() const
+{
+    if (m_aux.sharesPending()) {
+        // The last frame's inputs as given (a clean history rewrites none): the albedo is still
+        // the frame's; its normal and depth became the reprojection's history (takeGeometry).
+        const bool kept = m_stages.reproject != StageNeeds::Reproject::None;
+        const Image& normal = kept ? m_reprojector.previousNormal() : m_frame.normal;
+        const Image& depth = kept ? m_reprojector.previousDepth() : m_frame.depth;
+        m_aux.measureShares(m_frame.albedo.view(), normal.view(), depth.view());
+    }
+    return m_aux.report();
+}
+
 void Filter::reportProgress(double fraction) const
 {
     if (m_progress && !m_progress(std::clamp(fraction, 0.0, 1.0)))

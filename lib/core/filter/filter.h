@@ -100,7 +100,12 @@ public:
     /// Share of the last frame's pixels that needed no denoising (filter/work_mask.h).
     double lastSkippedShare() const { return m_skipped; }
     /// What the aux prefilter measured and decided on the last frame (methods that demodulate).
-    const AuxReport& auxReport() const { return m_aux.report(); }
+    /// A clean history's speckle shares are measured here, when first asked for.
+    const AuxReport& auxReport() const;
+    /// The aux prefilter's decisions for the last frame (auxReport()'s flags, without measuring
+    /// pending shares).
+    bool auxNoisy() const { return m_aux.report().noisy; }
+    bool auxGrainLimited() const { return m_aux.report().grainLimited; }
     int width() const { return m_frame.width; }
     int height() const { return m_frame.height; }
     /// The history trust of the last frame (stages/history_trust.h): the accumulation stage's,

@@ -121,12 +121,22 @@ public:
     void finish(Frame& frame, const Reprojector* taps);
 
     const AuxReport& report() const { return m_report; }
+    /// True when the last frame's speckle shares are not measured yet: a history decided clean
+    /// (neither prefiltered nor grain-limited) reads no flags, so its shares, which are only
+    /// reported, are measured when asked for (measureShares), not on every frame.
+    bool sharesPending() const { return m_sharesPending; }
+    /// Measure the pending shares on the last frame's albedo, normal and depth as given (empty
+    /// views for absent inputs); the same counts prepare() would have made. No effect when none
+    /// is pending.
+    void measureShares(
+        const ImageView& albedo, const ImageView& normal, const ImageView& depth) const;
 
 private:
     void limitGrain(Frame& frame, const Reprojector* taps);
 
     AuxSettings m_settings;
-    AuxReport m_report;
+    mutable AuxReport m_report; ///< shares measured late by measureShares()
+    mutable bool m_sharesPending = false;
     bool m_decided = false;
     bool m_hasHistory = false;
     Image m_albedoFlags, m_normalFlags, m_depthFlags; ///< speckle flags (kept in noisy mode)

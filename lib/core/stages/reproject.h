@@ -125,6 +125,9 @@ public:
     std::uint32_t ownPixelsAccepted16(int x, int y) const;
     int width() const { return m_width; }
     int height() const { return m_height; }
+    /// The geometry taken from the last frame (takeGeometry; empty where it had none).
+    const Image& previousNormal() const { return m_prevNormal; }
+    const Image& previousDepth() const { return m_prevDepth; }
 
 private:
     /// Per pixel: accepted-tap mask (bits 0-3 bilinear, 0-8 box), box flag, on-screen flag.

@@ -278,6 +278,65 @@ TEST(AuxPrefilter, BadAlbedoCountedAndReplacedInNoisyMode)
     }
 }
 
+// A history decided clean measures its speckle shares only when asked for (after the frame, on
+// the inputs as given, of which the normal and depth have become the reprojection's history);
+// aux=noisy measures them on every frame before it prefilters. Both must report the same shares
+// for every frame, for every method that demodulates: albedo, normals and depth with speckle
+// that differs from frame to frame (a share read from the previous frame's buffers fails).
+TEST(AuxPrefilter, ACleanHistoryReportsEachFramesSpeckleShares)
+{
+    const Sequence s = makeSequence();
+    std::vector<Image> normals, depths;
+    methods_test::Lcg rng { 777u };
+    for (int k = 0; k < kFrames; ++k) {
+        const float share = 0.02f * static_cast<float>(k + 1); // a different count per frame
+        normals.push_back(
+            makeImage(kW, kH, 3, [](int, int, int c) { return c == 2 ? 1.0f : 0.0f; }));
+        depths.push_back(makeImage(kW, kH, 1, [](int, int, int) { return 3.0f; }));
+        for (int y = 0; y < kH; ++y)
+            for (int x = 0; x < kW; ++x) {
+                if (0.5f + 0.5f * rng.next() < share) { // a unit normal of another direction
+                    normals[k](x, y, 0) = 0.6f;
+                    normals[k](x, y, 2) = 0.8f;
+                }
+                if (0.5f + 0.5f * rng.next() < share)
+                    depths[k](x, y, 0) = 6.0f;
+            }
+    }
+    int checked = 0;
+    for (const afn::FilterType& t : afn::filterTypes()) {
+        if (!t.ready || !t.stages.demodulate)
+            continue;
+        auto lazy = afn::createFilter(t.name), eager = afn::createFilter(t.name);
+        lazy->params().setString("aux", "clean");
+        eager->params().setString("aux", "noisy");
+        Buffers a, b;
+        for (int k = 0; k < kFrames; ++k) {
+            for (Buffers* x : { &a, &b }) {
+                x->color = s.color[k];
+                x->albedo = s.noisyAlbedo[k];
+                x->normal = normals[k];
+                x->depth = depths[k];
+            }
+            runFrame(*lazy, a);
+            runFrame(*eager, b);
+            const afn::AuxReport& r = lazy->auxReport();
+            const afn::AuxReport& e = eager->auxReport();
+            EXPECT_FALSE(r.noisy) << t.name;
+            EXPECT_TRUE(e.noisy) << t.name;
+            EXPECT_GT(r.albedoSpeckle, 0.2) << t.name << " frame " << k;
+            EXPECT_GT(r.normalSpeckle, 0.0) << t.name << " frame " << k;
+            EXPECT_GT(r.depthSpeckle, 0.0) << t.name << " frame " << k;
+            EXPECT_EQ(r.albedoSpeckle, e.albedoSpeckle) << t.name << " frame " << k;
+            EXPECT_EQ(r.normalSpeckle, e.normalSpeckle) << t.name << " frame " << k;
+            EXPECT_EQ(r.depthSpeckle, e.depthSpeckle) << t.name << " frame " << k;
+            EXPECT_EQ(lazy->auxReport().normalSpeckle, r.normalSpeckle) << "asked twice";
+        }
+        ++checked;
+    }
+    EXPECT_GE(checked, 3);
+}
+
 TEST(AuxNoise, FlagsAreTheFullMinimumOverTheNeighbours)
 {
     // speckleFlags stops at the first neighbour within the threshold; the flags must be those of
