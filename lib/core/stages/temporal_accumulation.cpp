@@ -53,6 +53,20 @@ constexpr float kNoHistory = -1.0f;
 
 } // namespace
 
+void TemporalAccumulator::blendOwnPixel(
+    const float* c, const float* prev, float prevSpp, float trust, float* acc, float* spp) const
+{
+    float sppS = prevSpp;
+    float alpha = std::max(1.0f / (sppS + 1.0f), m_alphaMin);
+    if (trust < 1.0f) { // history trust (stages/history_trust.h)
+        alpha += (1.0f - alpha) * (1.0f - trust);
+        sppS *= trust;
+    }
+    for (int k = 0; k < 3; ++k)
+        acc[k] = blendHistory(prev[k], c[k], alpha);
+    *spp = alpha < 1.0f ? std::min(sppS + 1.0f, kMaxHistoryLength) : 1.0f;
+}
+
 void TemporalAccumulator::gatherRows(const Reprojector& taps, const Image& irr, int y0, int y1)
 {
     if (!m_history) {
@@ -71,9 +85,12 @@ void TemporalAccumulator::gatherRows(const Reprojector& taps, const Image& irr, 
         HistoryTrust::RowAdder trust(measure ? m_trust.rowSums(y) : nullptr);
         auto pixel = [&](int x) {
             if (identity && taps.ownPixelAccepted(x, y)) {
-                // A static camera's row, own pixel accepted: blendRows() reads it in place.
+                // A static camera's row, own pixel accepted: blended here with trust 1 while
+                // its history is in cache; blendRows() blends it again where the trust is lower.
+                const float* prev = m_prevColor.at(x, y);
                 if (measure)
-                    trust.add(x, c + 3 * x, m_prevColor.at(x, y));
+                    trust.add(x, c + 3 * x, prev);
+                blendOwnPixel(c + 3 * x, prev, m_prevSpp(x, y, 0), 1.0f, acc + 3 * x, spp + x);
                 return;
             }
             const PixelTaps& t = taps.taps(x, y);
@@ -88,15 +105,21 @@ void TemporalAccumulator::gatherRows(const Reprojector& taps, const Image& irr, 
                 trust.add(x, c + 3 * x, prev);
         };
         int x = 0;
-        if (identity && measure && avx512)
-            // Two whole trust blocks at a time where all 16 pixels took their own previous pixel
-            // (the same sums, stages/temporal_accumulation_avx512.h); any other run per pixel.
+        if (identity && avx512)
+            // 16 pixels at a time where all 16 took their own previous pixel: two whole trust
+            // blocks and the blend with trust 1 (the same sums and values,
+            // stages/temporal_accumulation_avx512.h); any other run per pixel.
             for (; x + 16 <= w; x += 16) {
-                if (taps.ownPixelsAccepted16(x, y) == 0xFFFFu)
-                    addOwnHistoryTrust16(c + 3 * x, m_prevColor.at(x, y), trust.wholeBlocks16(x));
-                else
+                if (taps.ownPixelsAccepted16(x, y) == 0xFFFFu) {
+                    const float* prev = m_prevColor.at(x, y);
+                    if (measure)
+                        addOwnHistoryTrust16(c + 3 * x, prev, trust.wholeBlocks16(x));
+                    blendOwnHistory16(c + 3 * x, prev, &m_prevSpp(x, y, 0), m_alphaMin, nullptr,
+                        acc + 3 * x, spp + x);
+                } else {
                     for (int i = x; i < x + 16; ++i)
                         pixel(i);
+                }
             }
         for (; x < w; ++x)
             pixel(x);
@@ -116,44 +139,38 @@ void TemporalAccumulator::blendRows(const Reprojector& taps, const Image& irr, i
         float* acc = m_color.at(0, y);
         float* spp = m_spp.at(0, y);
         auto pixel = [&](int x) {
-            float prev[3], sppS;
             float* a = acc + 3 * x;
             const float* cx = c + 3 * x;
+            const float t = partial ? trustRow[x] : 1.0f;
             if (identity && taps.ownPixelAccepted(x, y)) {
-                const float* p = m_prevColor.at(x, y);
-                for (int k = 0; k < 3; ++k)
-                    prev[k] = p[k];
-                sppS = m_prevSpp(x, y, 0);
-            } else if (spp[x] != kNoHistory) {
-                for (int k = 0; k < 3; ++k)
-                    prev[k] = a[k];
-                sppS = spp[x];
-            } else {
+                // Blended by gatherRows() with trust 1; again from the history where it is lower.
+                if (t < 1.0f)
+                    blendOwnPixel(cx, m_prevColor.at(x, y), m_prevSpp(x, y, 0), t, a, spp + x);
+                return;
+            }
+            if (spp[x] == kNoHistory) {
                 for (int k = 0; k < 3; ++k)
                     a[k] = cx[k];
                 spp[x] = 1.0f;
                 return;
             }
-            float alpha = std::max(1.0f / (sppS + 1.0f), m_alphaMin);
-            if (partial && trustRow[x] < 1.0f) { // history trust (stages/history_trust.h)
-                alpha += (1.0f - alpha) * (1.0f - trustRow[x]);
-                sppS *= trustRow[x];
-            }
-            for (int k = 0; k < 3; ++k)
-                a[k] = blendHistory(prev[k], cx[k], alpha);
-            spp[x] = alpha < 1.0f ? std::min(sppS + 1.0f, kMaxHistoryLength) : 1.0f;
+            const float prev[3] = { a[0], a[1], a[2] };
+            blendOwnPixel(cx, prev, spp[x], t, a, spp + x);
         };
         int x = 0;
         if (identity && avx512)
-            // 16 pixels at a time where all 16 took their own previous pixel (the same
-            // operations, stages/temporal_accumulation_avx512.h); any other block per pixel.
+            // 16 pixels at a time where all 16 took their own previous pixel: nothing left to do
+            // at trust 1, else blended again with the row's trust (the same operations,
+            // stages/temporal_accumulation_avx512.h); any other block per pixel.
             for (; x + 16 <= w; x += 16) {
-                if (taps.ownPixelsAccepted16(x, y) == 0xFFFFu)
-                    blendOwnHistory16(c + 3 * x, m_prevColor.at(x, y), &m_prevSpp(x, y, 0),
-                        m_alphaMin, partial ? trustRow + x : nullptr, acc + 3 * x, spp + x);
-                else
+                if (taps.ownPixelsAccepted16(x, y) == 0xFFFFu) {
+                    if (partial)
+                        blendOwnHistory16(c + 3 * x, m_prevColor.at(x, y), &m_prevSpp(x, y, 0),
+                            m_alphaMin, trustRow + x, acc + 3 * x, spp + x);
+                } else {
                     for (int i = x; i < x + 16; ++i)
                         pixel(i);
+                }
             }
         for (; x < w; ++x)
             pixel(x);

@@ -10,10 +10,13 @@
 // finite and non-negative (stages/demodulate.h), so the history never holds NaN/Inf.
 //
 // History trust (stages/history_trust.h): the accumulation runs in two passes over the rows.
-// gatherRows() reprojects the history of each pixel (into the output buffers, or nothing on a
-// static camera's own-pixel rows) and adds it to the trust's block statistics; after
-// HistoryTrust::finish(), blendRows() blends with alpha' = alpha + (1 - alpha) * (1 - t) and
-// history length s * t + 1 (t = 1: the arithmetic above, bit for bit).
+// gatherRows() reprojects the history of each pixel into the output buffers and adds it to the
+// trust's block statistics; a static camera's pixel that took its own previous pixel (most
+// pixels of most shots) is blended there at once with trust 1, while its history is in cache.
+// After HistoryTrust::finish(), blendRows() blends the reprojected pixels with
+// alpha' = alpha + (1 - alpha) * (1 - t) and history length s * t + 1, and blends the own-pixel
+// ones again from the history where t < 1 (t = 1: the arithmetic above, bit for bit; the
+// previous frame's buffers are intact until the next frame).
 #pragma once
 
 #include "stages/history_trust.h"
@@ -73,6 +76,11 @@ public:
     Image& scratch() { return m_prevColor; }
 
 private:
+    /// The blend of one pixel with history colour `prev` and length `prevSpp` at trust `trust`
+    /// (the file comment's arithmetic) into acc (3 floats) and *spp.
+    void blendOwnPixel(const float* c, const float* prev, float prevSpp, float trust, float* acc,
+        float* spp) const;
+
     float m_alphaMin = 0.2f;
     bool m_hasHistory = false;
     bool m_history = false; ///< this frame blends with a history (set by begin())
