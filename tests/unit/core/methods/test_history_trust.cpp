@@ -209,4 +209,55 @@ TEST(HistoryTrust, FeatureMapShowsWhereTheHistoryWasCut)
     }
 }
 
+/// Trust map of a 64 x 64 frame: current colour cur(x, y) (grey), history 1 everywhere.
+template <typename Cur> Image trustMap(Cur cur)
+{
+    constexpr int kSize = 64;
+    afn::HistoryTrust t;
+    t.setSettings({ 1.0f });
+    t.begin(kSize, kSize, true);
+    const std::array<float, 3> h = grey(1.0f);
+    for (int y = 0; y < kSize; ++y) {
+        afn::HistoryTrust::RowAdder row(t.rowSums(y));
+        for (int x = 0; x < kSize; ++x)
+            row.add(x, grey(cur(x, y)).data(), h.data());
+    }
+    t.finish();
+    Image map;
+    t.map(map);
+    return map;
+}
+
+// 1-spp noise is heavy-tailed: a tenth of the samples carry most of the light (fireflies). An
+// 8 x 8 block that drew few of them has a low mean and a low variance of its own, which alone
+// would call it a change; the noise pooled over its 32 x 32 group keeps the history. Unchanged
+// light over 20 frames of such noise: every pixel keeps trust 1.
+TEST(HistoryTrust, FirefliesOfAStaticLightKeepTheHistory)
+{
+    methods_test::Lcg rng { 4242u };
+    int lowered = 0;
+    for (int frame = 0; frame < 20; ++frame) {
+        const Image map = trustMap([&](int, int) {
+            const float u = 0.5f + 0.5f * rng.next();
+            return u > 0.9f ? 9.5f : 0.06f; // mean 0.9 * 0.06 + 0.1 * 9.5 = 1.004
+        });
+        for (std::size_t i = 0; i < map.size(); ++i)
+            lowered += map.data()[i] < 1.0f ? 1 : 0;
+    }
+    EXPECT_EQ(lowered, 0) << "pixels whose history was shortened on a static light";
+}
+
+// The pooled noise is relative to each block's level and only a floor: a light that goes off in
+// one block of a noisy group is still found there, and nowhere far from it.
+TEST(HistoryTrust, ALightOffInOneBlockOfANoisyGroupIsCut)
+{
+    methods_test::Lcg rng { 99u };
+    const Image map = trustMap([&](int x, int y) {
+        const float noise = 1.0f + 0.9f * rng.next();
+        return x / 8 == 2 && y / 8 == 2 ? 0.08f * noise : noise;
+    });
+    EXPECT_LT(map(20, 20, 0), 0.5f) << "the block whose light went off";
+    EXPECT_EQ(map(60, 60, 0), 1.0f) << "far from it";
+}
+
 } // namespace
