@@ -17,4 +17,12 @@ namespace afn::svgf {
 void integrateOwnHistory16(const float* c, const float* const* prev, float alpha,
     float momentsAlpha, const float* trust, float* const* out);
 
+/// The history trust's sums (stages/history_trust.h) of 16 consecutive pixels whose own previous
+/// pixel was accepted, two whole blocks, as temporal.cpp's addToTrust adds them pixel by pixel
+/// (the same bits): the history colour scaled by s = m1 / luminance (1 where the luminance is not
+/// above 0), then stages/temporal_accumulation_avx512.h's addOwnHistoryTrust16. `c` is 48 packed
+/// floats (RGB); `prev` the previous frame's colour and moment 1 (4 pointers to 16 floats);
+/// nothing is written where `sums` is nullptr. AVX-512F only (cpu::activeIsa() == Avx512).
+void addOwnTrust16(const float* c, const float* const* prev, float* sums);
+
 } // namespace afn::svgf

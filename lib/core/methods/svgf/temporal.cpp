@@ -152,30 +152,48 @@ void Denoiser::gatherRows(const Image& irr, const Reprojector& taps, int y0, int
             v[k] = prevPlanes.row(kHistoryPlanes[k], y)[x];
     };
     const bool measure = m_trust.enabled();
+    const bool avx512 = cpu::activeIsa() == cpu::Isa::Avx512;
     for (int y = y0; y < y1; ++y) {
         const bool identity = taps.identityRow(y);
         float* planes[kHistoryChannels];
         for (int k = 0; k < kHistoryChannels; ++k)
             planes[k] = m_integrated.row(kHistoryPlanes[k], y);
         HistoryTrust::RowAdder trust(measure ? m_trust.rowSums(y) : nullptr);
-        for (int x = 0; x < w; ++x) {
+        auto pixel = [&](int x) {
             float prev[kHistoryChannels];
             if (identity && taps.ownPixelAccepted(x, y)) {
                 if (measure) {
                     load(x, y, prev);
                     addToTrust(trust, x, irr.at(x, y), prev);
                 }
-                continue;
+                return;
             }
             if (!(gatherHistoryWith<kHistoryChannels>(taps.taps(x, y), load, prev) > 0.0f)) {
                 planes[5][x] = kNoHistory;
-                continue;
+                return;
             }
             for (int k = 0; k < kHistoryChannels; ++k)
                 planes[k][x] = prev[k];
             if (measure)
                 addToTrust(trust, x, irr.at(x, y), prev);
-        }
+        };
+        int x = 0;
+        if (identity && measure && avx512)
+            // Two whole trust blocks at a time where all 16 pixels took their own previous pixel
+            // (the same sums, methods/svgf/integrate_avx512.h); any other run per pixel.
+            for (; x + 16 <= w; x += 16) {
+                if (taps.ownPixelsAccepted16(x, y) != 0xFFFFu) {
+                    for (int i = x; i < x + 16; ++i)
+                        pixel(i);
+                    continue;
+                }
+                const float* prev16[4];
+                for (int k = 0; k < 4; ++k)
+                    prev16[k] = prevPlanes.row(kHistoryPlanes[k], y) + x;
+                addOwnTrust16(irr.at(x, y), prev16, trust.wholeBlocks16(x));
+            }
+        for (; x < w; ++x)
+            pixel(x);
     }
 }
 

@@ -9,7 +9,9 @@
 // trust cutting some blocks.
 #include "isa_scope.h"
 #include "methods/svgf/denoiser.h"
+#include "methods/svgf/integrate_avx512.h"
 #include "methods/svgf/kernels.h"
+#include "stages/history_trust.h"
 #include "stages/reproject.h"
 #include "test_methods_util.h"
 
@@ -18,6 +20,7 @@
 #include <cmath>
 #include <cstring>
 #include <iostream>
+#include <vector>
 
 namespace {
 
@@ -105,6 +108,53 @@ TEST(SvgfIntegrate, StaticRowsWithHistoryCutsMatchThePerPixelPath)
         taps.takeGeometry(f);
     }
     EXPECT_GE(cutFrames, 5) << "the brightness jumps did not lower the trust";
+}
+
+// The history trust's sums of two whole blocks from the AVX-512 kernel (the history colour
+// scaled to its first moment's luminance) against the rule added pixel by pixel with
+// HistoryTrust::RowAdder, bit for bit: random values over six orders of magnitude, some black
+// or NaN luminances (scale 1).
+TEST(SvgfIntegrate, TrustSumsOfTwoBlocksMatchTheRowAdder)
+{
+    if (!isa_test::haveAvx512()) {
+        std::cout << "[ NOTE ] no AVX-512F: nothing to compare\n";
+        return;
+    }
+    constexpr int kSums = afn::HistoryTrust::kSums;
+    methods_test::Lcg rng { 5150u };
+    auto u = [&rng] { return 0.5f * (rng.next() + 1.0f); }; // [0, 1)
+    for (int round = 0; round < 50; ++round) {
+        std::vector<float> c(48), planes[4];
+        for (float& v : c)
+            v = u() * std::pow(10.0f, u() * 6.0f - 3.0f);
+        for (auto& p : planes) {
+            p.resize(16);
+            for (float& v : p)
+                v = u() * std::pow(10.0f, u() * 6.0f - 3.0f);
+        }
+        planes[0][3] = planes[1][3] = planes[2][3] = 0.0f; // black: scale 1
+        planes[1][7] = std::nanf(""); // NaN luminance: scale 1
+        std::vector<float> want(4 * kSums, 0.0f), got(4 * kSums, 0.0f);
+        {
+            afn::HistoryTrust::RowAdder row(want.data());
+            for (int i = 0; i < 16; ++i) {
+                const float l
+                    = 0.2126f * planes[0][i] + 0.7152f * planes[1][i] + 0.0722f * planes[2][i];
+                const float s = l > 0.0f ? planes[3][i] / l : 1.0f;
+                const float h[3] = { planes[0][i] * s, planes[1][i] * s, planes[2][i] * s };
+                row.add(16 + i, c.data() + 3 * i, h);
+            }
+        }
+        const float* prev[4]
+            = { planes[0].data(), planes[1].data(), planes[2].data(), planes[3].data() };
+        {
+            IsaScope s(Isa::Avx512);
+            afn::svgf::addOwnTrust16(c.data(), prev, got.data() + 2 * kSums);
+        }
+        for (int k = 0; k < 4 * kSums; ++k)
+            ASSERT_EQ(std::memcmp(&want[k], &got[k], sizeof(float)), 0)
+                << "sum " << k << " round " << round << ": " << want[k] << " vs " << got[k];
+    }
 }
 
 } // namespace
