@@ -74,22 +74,8 @@ void HistoryTrust::begin(int width, int height, bool measure)
 
 namespace {
 
-/// Relative noise of a block's channel k: the variance of c - h about the block's own mean
-/// difference over max(mc, mh)^2 (HistoryTrust's kSums layout; 0 for an empty or black block).
-double relativeNoise(const double* s, int k)
-{
-    const double n = s[0];
-    const double mc = s[1 + k] / n, mh = s[4 + k] / n, md = mc - mh;
-    const double level = std::max(mc, mh);
-    if (!(n > 0.0) || !(level > 0.0))
-        return 0.0;
-    return std::max(0.0, s[7 + k] / n - md * md) / (level * level);
-}
-
-/// Trust of one block (or group of blocks) from its sums (HistoryTrust's kSums layout); the
-/// variance of c - h per channel is at least `relativeFloor[k]` max(mc, mh)^2 (nullptr: no
-/// floor).
-double trustOf(const double* s, double antilag, const double* relativeFloor = nullptr)
+/// Trust of one block (or group of blocks) from its sums (HistoryTrust's kSums layout).
+double trustOf(const double* s, double antilag)
 {
     if (s[0] < kMinPixels)
         return 1.0;
@@ -97,11 +83,7 @@ double trustOf(const double* s, double antilag, const double* relativeFloor = nu
     double change = 0.0;
     for (int k = 0; k < 3; ++k) {
         const double mc = s[1 + k] / n, mh = s[4 + k] / n, md = mc - mh;
-        double var = std::max(0.0, s[7 + k] / n - md * md); // of the difference c - h
-        if (relativeFloor) {
-            const double level = std::max(mc, mh);
-            var = std::max(var, relativeFloor[k] * level * level);
-        }
+        const double var = std::max(0.0, s[7 + k] / n - md * md); // of the difference c - h
         const double excess = std::fabs(md) - kNoiseSigmas * std::sqrt(var / n);
         change = std::max(change, excess / std::max({ mc, mh, 1e-12 }));
     }
@@ -147,23 +129,10 @@ void HistoryTrust::finish()
                     for (int k = 0; k < kSums; ++k)
                         g[k] += sums[(static_cast<std::size_t>(r) * m_bw + bx) * kSums + k];
             const double coarse = trustOf(g, m_antilag);
-            // The group's relative noise, pooled over its blocks (pixel-weighted mean of
-            // relativeNoise): the floor of each block's own estimate (see the header).
-            double pooled[3] = {};
             for (int r = 0; r < rows; ++r)
                 for (int bx = gx; bx < gx + cols; ++bx) {
-                    const double* s
-                        = sums.data() + (static_cast<std::size_t>(r) * m_bw + bx) * kSums;
-                    for (int k = 0; k < 3; ++k)
-                        pooled[k] += s[0] * relativeNoise(s, k);
-                }
-            for (int k = 0; k < 3; ++k)
-                pooled[k] = g[0] > 0.0 ? pooled[k] / g[0] : 0.0;
-            for (int r = 0; r < rows; ++r)
-                for (int bx = gx; bx < gx + cols; ++bx) {
-                    const double fine
-                        = trustOf(sums.data() + (static_cast<std::size_t>(r) * m_bw + bx) * kSums,
-                            m_antilag, pooled);
+                    const double fine = trustOf(
+                        sums.data() + (static_cast<std::size_t>(r) * m_bw + bx) * kSums, m_antilag);
                     m_raw[static_cast<std::size_t>(gy + r) * m_bw + bx]
                         = static_cast<float>(std::min(coarse, fine));
                 }

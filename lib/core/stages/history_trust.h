@@ -19,14 +19,6 @@
 // same on groups of 4x4 blocks (32x32 pixels: 16 times the samples, a quarter of the
 // noise, for the large changes that 1-spp noise hides in one block); a block takes the lower
 // trust of its own test and its group's.
-// A block's own variance is floored by its group's: 1-spp noise is heavy-tailed (a tenth of the
-// samples carry most of the light), and a block that drew few fireflies has a low mean and a low
-// variance of its own, which alone would call it a change (on a static light about one block in
-// thirty per frame, each shortening its neighbours' history too: blotches that flicker). So
-// var_k >= v_k max(mc_k, mh_k)^2, v_k = the group's relative noise: the pixel-weighted mean over
-// its blocks of (variance of c_k - h_k about the block's own mean difference) / max(mc_k, mh_k)^2.
-// About the block's own mean, a change confined to some blocks does not raise it; relative, a
-// dark block is not held to a bright neighbour's noise.
 // Per channel, so a light that changes colour at the same brightness counts. With antilag = 1 a
 // block whose lighting changed by 55 % or more beyond the noise drops its history, a 15 % change
 // keeps 80 % of it. The noise term makes the test as sharp as the samples allow: at 16-64 spp the
