@@ -324,6 +324,15 @@ AFN_API void afnSetFilterData(AFNFilter f, const char* name, const void* data, s
     AFN_CATCH(deviceOf(f))
 }
 
+/// The aux report of the last frame; a clean history's speckle shares are measured when first
+/// asked for (Filter::auxReport), in the device's thread arena as an execute is.
+static const afn::AuxReport& auxReportOf(AFNFilterImpl* f)
+{
+    const afn::AuxReport* report = nullptr;
+    f->device->device.run([&] { report = &f->filter->auxReport(); });
+    return *report;
+}
+
 static double filterNumber(AFNFilterImpl* f, const std::string& name)
 {
     afn::Filter& flt = *f->filter;
@@ -346,11 +355,11 @@ static double filterNumber(AFNFilterImpl* f, const std::string& name)
     if (name == AFN_STAT_AUX_GRAIN_LIMITED)
         return flt.auxGrainLimited() ? 1.0 : 0.0;
     if (name == AFN_STAT_ALBEDO_SPECKLE)
-        return flt.auxReport().albedoSpeckle;
+        return auxReportOf(f).albedoSpeckle;
     if (name == AFN_STAT_NORMAL_SPECKLE)
-        return flt.auxReport().normalSpeckle;
+        return auxReportOf(f).normalSpeckle;
     if (name == AFN_STAT_DEPTH_SPECKLE)
-        return flt.auxReport().depthSpeckle;
+        return auxReportOf(f).depthSpeckle;
     double value = 0.0;
     if (flt.statistic(name, value))
         return value;

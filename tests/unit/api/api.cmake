@@ -9,3 +9,4 @@ afn_add_gtest(test_api_memory SOURCES unit/api/test_api_memory.cpp
     ${PROJECT_SOURCE_DIR}/cli/heap_counter.cpp LIBS afn)
 target_include_directories(test_api_memory PRIVATE ${PROJECT_SOURCE_DIR}/cli)
 afn_add_gtest(test_api_passes SOURCES unit/api/test_api_passes.cpp LIBS afn)
+afn_add_gtest(test_api_aux_stats SOURCES unit/api/test_api_aux_stats.cpp LIBS afn)
