@@ -53,7 +53,7 @@ constexpr float kNoHistory = -1.0f;
 
 } // namespace
 
-void TemporalAccumulator::blendOwnPixel(
+void TemporalAccumulator::blendPixel(
     const float* c, const float* prev, float prevSpp, float trust, float* acc, float* spp) const
 {
     float sppS = prevSpp;
@@ -90,7 +90,7 @@ void TemporalAccumulator::gatherRows(const Reprojector& taps, const Image& irr, 
                 const float* prev = m_prevColor.at(x, y);
                 if (measure)
                     trust.add(x, c + 3 * x, prev);
-                blendOwnPixel(c + 3 * x, prev, m_prevSpp(x, y, 0), 1.0f, acc + 3 * x, spp + x);
+                blendPixel(c + 3 * x, prev, m_prevSpp(x, y, 0), 1.0f, acc + 3 * x, spp + x);
                 return;
             }
             const PixelTaps& t = taps.taps(x, y);
@@ -145,7 +145,7 @@ void TemporalAccumulator::blendRows(const Reprojector& taps, const Image& irr, i
             if (identity && taps.ownPixelAccepted(x, y)) {
                 // Blended by gatherRows() with trust 1; again from the history where it is lower.
                 if (t < 1.0f)
-                    blendOwnPixel(cx, m_prevColor.at(x, y), m_prevSpp(x, y, 0), t, a, spp + x);
+                    blendPixel(cx, m_prevColor.at(x, y), m_prevSpp(x, y, 0), t, a, spp + x);
                 return;
             }
             if (spp[x] == kNoHistory) {
@@ -155,7 +155,7 @@ void TemporalAccumulator::blendRows(const Reprojector& taps, const Image& irr, i
                 return;
             }
             const float prev[3] = { a[0], a[1], a[2] };
-            blendOwnPixel(cx, prev, spp[x], t, a, spp + x);
+            blendPixel(cx, prev, spp[x], t, a, spp + x);
         };
         int x = 0;
         if (identity && avx512)

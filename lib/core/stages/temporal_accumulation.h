@@ -78,7 +78,7 @@ public:
 private:
     /// The blend of one pixel with history colour `prev` and length `prevSpp` at trust `trust`
     /// (the file comment's arithmetic) into acc (3 floats) and *spp.
-    void blendOwnPixel(const float* c, const float* prev, float prevSpp, float trust, float* acc,
+    void blendPixel(const float* c, const float* prev, float prevSpp, float trust, float* acc,
         float* spp) const;
 
     float m_alphaMin = 0.2f;

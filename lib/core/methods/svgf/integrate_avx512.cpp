@@ -80,27 +80,6 @@ AFN_CPU_AVX512 void integrateOwnHistory16(const float* c, const float* const* pr
     _mm512_storeu_ps(out[6], luminance16(o[0], o[1], o[2]));
 }
 
-namespace {
-
-/// The 48 floats of 16 RGB pixels, packed, from the planes r, g, b.
-AFN_CPU_AVX512_INLINE void storePacked(float* out, __m512 r, __m512 g, __m512 b)
-{
-    // Lane j of output vector k holds global index i = 16 k + j: pixel i / 3, channel i % 3. Red
-    // and green first (index bit 4 picks green), then blue into the remaining lanes.
-    for (int k = 0; k < 3; ++k) {
-        alignas(64) int first[16], second[16];
-        for (int j = 0; j < 16; ++j) {
-            const int i = 16 * k + j, pixel = i / 3, channel = i % 3;
-            first[j] = channel == 1 ? 16 + pixel : pixel;
-            second[j] = channel == 2 ? 16 + pixel : j;
-        }
-        const __m512 rg = _mm512_permutex2var_ps(r, _mm512_load_si512(first), g);
-        _mm512_storeu_ps(out + 16 * k, _mm512_permutex2var_ps(rg, _mm512_load_si512(second), b));
-    }
-}
-
-} // namespace
-
 AFN_CPU_AVX512 void addOwnTrust16(const float* c, const float* const* prev, float* sums)
 {
     if (!sums)
@@ -111,8 +90,11 @@ AFN_CPU_AVX512 void addOwnTrust16(const float* c, const float* const* prev, floa
     // l > 0 ? m1 / l : 1 (a NaN luminance fails the test, as in the scalar code).
     const __m512 s = _mm512_mask_div_ps(_mm512_set1_ps(1.0f),
         _mm512_cmp_ps_mask(l, _mm512_setzero_ps(), _CMP_GT_OQ), _mm512_loadu_ps(prev[3]), l);
+    const __m512 hr = _mm512_mul_ps(p[0], s), hg = _mm512_mul_ps(p[1], s),
+                 hb = _mm512_mul_ps(p[2], s);
     alignas(64) float h[48];
-    storePacked(h, _mm512_mul_ps(p[0], s), _mm512_mul_ps(p[1], s), _mm512_mul_ps(p[2], s));
+    for (int k = 0; k < 3; ++k)
+        _mm512_store_ps(h + 16 * k, cpu::packedVector(hr, hg, hb, k));
     addOwnHistoryTrust16(c, h, sums);
 }
 

@@ -178,9 +178,12 @@ void Denoiser::gatherRows(const Image& irr, const Reprojector& taps, int y0, int
                 addToTrust(trust, x, irr.at(x, y), prev);
         };
         int x = 0;
-        if (identity && measure && avx512)
+        if (identity && measure && avx512) {
             // Two whole trust blocks at a time where all 16 pixels took their own previous pixel
             // (the same sums, methods/svgf/integrate_avx512.h); any other run per pixel.
+            const float* prevRow[4]; // colour and moment 1
+            for (int k = 0; k < 4; ++k)
+                prevRow[k] = prevPlanes.row(kHistoryPlanes[k], y);
             for (; x + 16 <= w; x += 16) {
                 if (taps.ownPixelsAccepted16(x, y) != 0xFFFFu) {
                     for (int i = x; i < x + 16; ++i)
@@ -189,9 +192,10 @@ void Denoiser::gatherRows(const Image& irr, const Reprojector& taps, int y0, int
                 }
                 const float* prev16[4];
                 for (int k = 0; k < 4; ++k)
-                    prev16[k] = prevPlanes.row(kHistoryPlanes[k], y) + x;
+                    prev16[k] = prevRow[k] + x;
                 addOwnTrust16(irr.at(x, y), prev16, trust.wholeBlocks16(x));
             }
+        }
         for (; x < w; ++x)
             pixel(x);
     }
