@@ -220,9 +220,9 @@ void BM_AfnPostFilter(benchmark::State& state)
     g.noise.irradiance = &s.c1;
     g.noise.historyLength = &history;
     afn::afnet::PostFilterWorkspace workspace;
-    afn::Image scratch, out;
+    afn::Image out;
     for (auto _ : state)
-        afn::afnet::edgeAwarePostFilter(s.cta, g, workspace, scratch, out);
+        afn::afnet::edgeAwarePostFilter(s.cta, g, workspace, out);
 }
 BENCHMARK(BM_AfnPostFilter)->Name("afn.post_filter.1280x720")->Apply(configure);
 

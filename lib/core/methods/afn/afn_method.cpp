@@ -188,7 +188,7 @@ private:
         if (m_taaOn)
             out = m_taa.apply(reprojector(), out, m_settings.taaAlpha, m_taaSpare, historyTrust());
         if (m_postOn) {
-            edgeAwarePostFilter(out, guidesOf(in), m_postWorkspace, m_postScratch, result);
+            edgeAwarePostFilter(out, guidesOf(in), m_postWorkspace, result);
             out = result;
         }
     }
@@ -208,13 +208,13 @@ private:
             return &result;
         }
         // The post-filter reads the TAA's output (its next history, kept as it is) and writes
-        // the result; with TAA the spare the TAA handed back is free until the next frame.
+        // the result; without TAA it writes the TAA's spare image, then the two swap.
         if (m_taaOn) {
             const Image& aa = m_taa.apply(
                 reprojector(), result, m_settings.taaAlpha, m_taaSpare, historyTrust());
-            edgeAwarePostFilter(aa, guidesOf(in), m_postWorkspace, m_taaSpare, result);
+            edgeAwarePostFilter(aa, guidesOf(in), m_postWorkspace, result);
         } else {
-            edgeAwarePostFilter(result, guidesOf(in), m_postWorkspace, m_postScratch, m_taaSpare);
+            edgeAwarePostFilter(result, guidesOf(in), m_postWorkspace, m_taaSpare);
             std::swap(result, m_taaSpare);
         }
         return &result;
@@ -319,7 +319,6 @@ private:
     TemporalAntialiasing m_taa;
     Image m_taaSpare; ///< the TAA's output buffer (stages/taa.h TemporalAntialiasing::apply)
     bool m_postOn = false; ///< this frame's output is post-filtered (Settings::postFilter)
-    Image m_postScratch; ///< the post-filter's pass buffer
     PostFilterWorkspace m_postWorkspace; ///< the post-filter's planes, kept from frame to frame
     Image m_workGrown; ///< the work mask's rows grown by the TAA's and post-filter's margins
     TierRunner m_tiers;

@@ -1,301 +1,199 @@
 // SPDX-License-Identifier: Apache-2.0
-// afn's edge-aware post-filter (post_filter.h). Each half-pass works on runs of 16 pixels of a
-// row: the pixels' own guide values are loaded once, then the 4 outer taps are weighted and summed
-// in registers, in the formula's order, and the run is normalised. Taps inside the image are
-// contiguous loads; runs whose taps cross the left or right border read the clamped columns one
-// by one. The depth term multiplies by the pixel's reciprocal of its scale (two per half-pass:
-// rings 1 and 2) instead of dividing per tap. The colour moves between two sets of planes (the
-// workspace's and the caller's scratch image, used as three planes); the last half-pass writes
-// the output interleaved.
+// afn's edge-aware post-filter (post_filter.h): the guide planes and noise scale once per frame,
+// then the six half-passes row by row through small rings of rows (BandPasses), one band of the
+// frame per task, each row filtered by the row kernel (post_filter_row.h). So the colour between
+// half-passes stays in the processor's cache: a frame's colour planes do not fit there, and
+// half-passes that each cross the whole frame are bound by memory traffic (docs/performance.md).
+// The last half-pass writes the output interleaved.
 #include "methods/afn/post_filter.h"
 
 #include "base/parallel.h"
 #include "cpu/rgb_rows.h"
-#include "cpu/target.h"
+#include "methods/afn/post_filter_row.h"
+
+#include <tbb/task_arena.h>
 
 #include <algorithm>
-#include <cmath>
-#include <cstdint>
-#include <cstring>
-#include <vector>
-
-// The vector helpers are always inlined into the one kernel (one target per clone): the vector
-// ABI note does not apply.
-#pragma GCC diagnostic ignored "-Wpsabi"
+#include <cstddef>
 
 namespace afn::afnet {
 
 namespace {
 
-constexpr float kSpline[5] = { 1.0f / 16.0f, 1.0f / 4.0f, 3.0f / 8.0f, 1.0f / 4.0f, 1.0f / 16.0f };
-constexpr float kAlbedoScale = 1.0f / 0.1f; ///< da = sum |dA| / 0.1
-constexpr float kDepthRelative = 0.02f; ///< dz's scale: 2 % of the depth per step
-
-// 16 pixels of a row at a time (GCC/Clang vector extensions: one AVX-512 register in the
-// x86-64-v4 clone, two AVX or four SSE registers in the others).
-
-constexpr int kLanes = 16;
-typedef float V __attribute__((vector_size(64)));
-typedef float Vu __attribute__((vector_size(64), aligned(4))); ///< unaligned access
-typedef std::int32_t I __attribute__((vector_size(64)));
-
-#define AFN_PF_INLINE inline __attribute__((always_inline))
-
-// No helper takes or returns a vector by value: the clones without AVX-512 would pass 64-byte
-// vectors in another way than the AVX-512 one (Clang refuses such calls), so helpers write through
-// references and the element-wise steps are written out.
-#define AFN_PF_SPLAT(v) (V {} + (v))
-#define AFN_PF_ABS(v) ((v) < 0.0f ? -(v) : (v))
-
-AFN_PF_INLINE void loadV(V& out, const float* p)
+/// Rows of the horizontal half of iteration `it` that a band's first output row needs before
+/// it: the reach of the vertical halves from `it` on, 2 (1 << it) + ... + 2 (1 << last).
+constexpr int bandHalo(int it)
 {
-    std::memcpy(&out, p, sizeof(V));
+    return it == kPostFilterIterations ? 0 : 2 * (1 << it) + bandHalo(it + 1);
 }
 
-/// Below this exponent a tap's weight is 0: e^-40 is 3e-17 of the centre tap's weight, and the
-/// products of smaller weights with dark colours are denormal floats, which cost the processor
-/// about a hundred times a normal multiply (frames with sky or depth edges are full of them).
-constexpr float kMinExponent = -40.0f;
-/// Below this cosine the normal term is 0 (0.3^64 = 3e-34; smaller powers turn denormal).
-constexpr float kMinNormalCosine = 0.3f;
-
-/// e^x for x <= 0, 0 for x < kMinExponent and NaN: 2^(x log2 e) split into an integer power,
-/// built in the exponent bits, and a degree-4 polynomial of 2^f, f in [0, 1) (least squares on
-/// Chebyshev nodes; relative error < 3e-6). Per lane of a vector.
-AFN_PF_INLINE void expNonPositiveV(V& inOut)
+/// Rows of a band's storage: a ring per iteration for its horizontal half's output, holding the
+/// 4 step + 1 rows its vertical half reads, and one row for a vertical half's output (or the
+/// radiance's row), read at once by the next horizontal half.
+constexpr int bandRingRows(int it)
 {
-    const V xIn = inOut;
-    const auto kept = xIn >= kMinExponent; // false for NaN
-    const V x = kept ? xIn : AFN_PF_SPLAT(kMinExponent);
-    const V t = x * 1.44269504f;
-    const I whole = __builtin_convertvector(t, I) + (t < 0.0f); // (t < 0) is -1 where true
-    const V f = t - __builtin_convertvector(whole, V);
-    V p = AFN_PF_SPLAT(1.352060e-2f);
-    p = p * f + 5.203743e-2f;
-    p = p * f + 2.414275e-1f;
-    p = p * f + 6.930066e-1f;
-    p = p * f + 1.0000025f;
-    const I bits = (whole + 127) << 23;
-    V scale;
-    std::memcpy(&scale, &bits, sizeof(scale));
-    inOut = kept ? p * scale : AFN_PF_SPLAT(0.0f);
+    return 4 * (1 << it) + 1;
+}
+constexpr int bandRows()
+{
+    int rows = 1;
+    for (int it = 0; it < kPostFilterIterations; ++it)
+        rows += bandRingRows(it);
+    return rows;
 }
 
-/// One plane's 16 values of row `row` at columns x0 + dx .. x0 + dx + 15, each clamped to
-/// [0, w - 1] (taps beyond the border read the border column).
-AFN_PF_INLINE void loadTap(V& out, const float* row, int x0, int dx, int w, bool interior)
+/// Floats of a band's row of one plane: the width and a cache line, so that the rows' planes
+/// start at different offsets within a page.
+std::size_t bandPitch(int w)
 {
-    if (interior) {
-        loadV(out, row + x0 + dx);
-        return;
-    }
-    for (int k = 0; k < kLanes; ++k)
-        out[k] = row[std::clamp(x0 + k + dx, 0, w - 1)];
+    return static_cast<std::size_t>(w) + kPostFilterPlaneStagger;
 }
 
-/// The pixel's own guide values (loaded once for its taps).
-struct Centre {
-    V l, a0, a1, a2, n0, n1, n2, nv, ls;
-    V z;
-    V invDepth[2]; ///< 1 / (0.02 step ring max(z, 1e-3) + 1e-6) for rings 1 and 2
-};
-
-AFN_PF_INLINE void centrePlane(V& out, const float* v, std::size_t i, int n)
-{
-    if (n == kLanes) {
-        loadV(out, v + i);
-        return;
-    }
-    out = AFN_PF_SPLAT(0.0f);
-    for (int k = 0; k < n; ++k)
-        out[k] = v[i + static_cast<std::size_t>(k)];
-}
-
-/// One tap of a pass: its offset, spline weight and ring (the depth term's distance in steps).
-struct Tap {
-    int dx, dy;
-    float h;
-    int ring; ///< 1 or 2
-};
-
-/// Where a pass writes: three planes, or interleaved RGB (the last pass).
-struct PassOutput {
-    float* planes[3] = { nullptr, nullptr, nullptr };
-    Image* interleaved = nullptr;
-};
-
-/// The outer taps of a half-pass (j = -2, -1, 1, 2).
-constexpr int kTaps = 4;
-
-/// Output pixels x0 .. x0 + n - 1 (n <= 16) of row y: the taps weighted and summed in their order,
-/// normalised, written to `out`. `Interior`: n is 16 and every tap's 16 columns lie inside the
-/// row (contiguous loads); otherwise the clamped columns are read one by one.
-template <bool Interior>
-AFN_PF_INLINE void filterRun(const float* const* src, const PostFilterGuidePlanes& g, int w, int h,
-    int y, int x0, int n, const Tap* taps, int step, const PassOutput& out)
-{
-    const std::size_t i0 = static_cast<std::size_t>(y) * w + x0;
-    Centre p;
-    V r, gr, b;
-    centrePlane(r, src[0], i0, n), centrePlane(gr, src[1], i0, n), centrePlane(b, src[2], i0, n);
-    p.l = 0.2126f * r + 0.7152f * gr + 0.0722f * b;
-    centrePlane(p.a0, g.a0, i0, n), centrePlane(p.a1, g.a1, i0, n);
-    centrePlane(p.a2, g.a2, i0, n);
-    centrePlane(p.n0, g.n0, i0, n), centrePlane(p.n1, g.n1, i0, n);
-    centrePlane(p.n2, g.n2, i0, n);
-    centrePlane(p.nv, g.nv, i0, n);
-    centrePlane(p.ls, g.ls, i0, n);
-    centrePlane(p.z, g.z, i0, n);
-    const V zmax = p.z > 1e-3f ? p.z : AFN_PF_SPLAT(1e-3f);
-    for (int ring = 1; ring <= 2; ++ring)
-        p.invDepth[ring - 1] = 1.0f
-            / (kDepthRelative * static_cast<float>(step) * static_cast<float>(ring) * zmax + 1e-6f);
-    // The centre tap first: its weight is h_2 exactly (no difference in luminance, albedo or
-    // depth; a unit normal's cosine with itself is 1 to float rounding, whose 64th power is kept
-    // out of the sum).
-    V ar = kSpline[2] * r, ag = kSpline[2] * gr, ab = kSpline[2] * b, aw = AFN_PF_SPLAT(kSpline[2]);
-    for (int k = 0; k < kTaps; ++k) {
-        const Tap& tap = taps[k];
-        const std::size_t qrow = static_cast<std::size_t>(std::clamp(y + tap.dy, 0, h - 1)) * w;
-        const int dx = tap.dx;
-        constexpr bool interior = Interior;
-        V q0, q1, q2, t0, t1, t2, tz, tv;
-        loadTap(q0, src[0] + qrow, x0, dx, w, interior);
-        loadTap(q1, src[1] + qrow, x0, dx, w, interior);
-        loadTap(q2, src[2] + qrow, x0, dx, w, interior);
-        const V lq = 0.2126f * q0 + 0.7152f * q1 + 0.0722f * q2;
-        const V sum = p.l + lq, diff = p.l - lq;
-        V e = AFN_PF_ABS(diff) / (p.ls * (sum > 0.0f ? sum : AFN_PF_SPLAT(0.0f)) + 1e-3f);
-        loadTap(t0, g.a0 + qrow, x0, dx, w, interior);
-        loadTap(t1, g.a1 + qrow, x0, dx, w, interior);
-        loadTap(t2, g.a2 + qrow, x0, dx, w, interior);
-        t0 = p.a0 - t0, t1 = p.a1 - t1, t2 = p.a2 - t2;
-        e += (AFN_PF_ABS(t0) + AFN_PF_ABS(t1) + AFN_PF_ABS(t2)) * kAlbedoScale;
-        loadTap(tz, g.z + qrow, x0, dx, w, interior);
-        tz = p.z - tz;
-        e += AFN_PF_ABS(tz) * p.invDepth[tap.ring - 1];
-        loadTap(t0, g.n0 + qrow, x0, dx, w, interior);
-        loadTap(t1, g.n1 + qrow, x0, dx, w, interior);
-        loadTap(t2, g.n2 + qrow, x0, dx, w, interior);
-        V d = p.n0 * t0 + p.n1 * t1 + p.n2 * t2;
-        d = d > kMinNormalCosine ? d : AFN_PF_SPLAT(0.0f);
-        d *= d; // ^2
-        d *= d; // ^4
-        d *= d; // ^8
-        d *= d; // ^16
-        d *= d; // ^32
-        d *= d; // ^64
-        loadTap(tv, g.nv + qrow, x0, dx, w, interior);
-        const V both = p.nv * tv; // 1 where both normals are valid, else 0
-        V ex = -e;
-        expNonPositiveV(ex);
-        const V wt = tap.h * ex * (1.0f + both * (d - 1.0f));
-        ar += wt * q0;
-        ag += wt * q1;
-        ab += wt * q2;
-        aw += wt;
-    }
-    const V inv = 1.0f / aw; // >= the centre tap's weight h e^0 > 0
-    ar *= inv, ag *= inv, ab *= inv;
-    if (out.interleaved) {
-        float* o = out.interleaved->at(x0, y);
-        for (int k = 0; k < n; ++k) {
-            o[3 * k] = ar[k];
-            o[3 * k + 1] = ag[k];
-            o[3 * k + 2] = ab[k];
+/// The passes of the rows of one band of the frame, row by row: every half-pass row is computed
+/// when the next half-pass first reads it, into a small ring of rows, so the colour stays in the
+/// processor's cache between the six half-passes instead of crossing memory six times. A band
+/// computes the rows of the earlier half-passes its first rows read before them (bandHalo), as
+/// the band above computes them too: the same values, as each row is the same computation.
+class BandPasses {
+public:
+    BandPasses(const Image& radiance, const PostFilterGuidePlanes& g, float* storage, Image& out)
+        : m_radiance(radiance)
+        , m_g(g)
+        , m_w(radiance.width())
+        , m_h(radiance.height())
+        , m_out(out)
+    {
+        const std::size_t pitch = bandPitch(m_w);
+        float* next = storage;
+        for (int c = 0; c < 3; ++c, next += pitch)
+            m_row[c] = next;
+        for (int it = 0; it < kPostFilterIterations; ++it) {
+            m_ringBase[it] = next;
+            next += 3 * static_cast<std::size_t>(bandRingRows(it)) * pitch;
+            postFilterTaps(true, 1 << it, m_horizontal[it]);
+            postFilterTaps(false, 1 << it, m_vertical[it]);
         }
-        return;
     }
-    const std::size_t bytes = sizeof(float) * static_cast<std::size_t>(n);
-    std::memcpy(out.planes[0] + i0, &ar, bytes);
-    std::memcpy(out.planes[1] + i0, &ag, bytes);
-    std::memcpy(out.planes[2] + i0, &ab, bytes);
-}
 
-/// The 4 outer taps of one 1-D half of the a-trous pass of `step`: along x (horizontal) or y.
-void passTaps(bool horizontal, int step, Tap (&taps)[kTaps])
-{
-    int count = 0;
-    for (int j = -2; j <= 2; ++j)
-        if (j != 0) // the centre tap is filterRun's own
-            taps[count++] = { horizontal ? j * step : 0, horizontal ? 0 : j * step, kSpline[j + 2],
-                std::abs(j) };
-}
+    /// Output rows [y0, y1).
+    void run(int y0, int y1)
+    {
+        for (int it = 0; it < kPostFilterIterations; ++it)
+            m_next[it] = std::max(0, y0 - bandHalo(it));
+        for (int y = y0; y < y1; ++y)
+            verticalRow(kPostFilterIterations - 1, y);
+    }
 
-/// Rows [y0, y1) of one half-pass: the runs whose taps all lie inside the row take the
-/// contiguous loads, the others (at most two per side and the last, partial run) the clamped ones.
-/// One function per instruction-set clone, the runs inlined into it.
-AFN_CPU_KERNEL_CLONES void filterRows(const float* const* src, const PostFilterGuidePlanes& g,
-    int w, int h, int y0, int y1, const Tap* taps, int step, const PassOutput& out)
-{
-    int reach = 0; // the taps' largest |dx|
-    for (int k = 0; k < kTaps; ++k)
-        reach = std::max(reach, std::abs(taps[k].dx));
-    for (int y = y0; y < y1; ++y)
-        for (int x = 0; x < w; x += kLanes) {
-            const int n = std::min(kLanes, w - x);
-            if (n == kLanes && x - reach >= 0 && x + reach + kLanes <= w)
-                filterRun<true>(src, g, w, h, y, x, n, taps, step, out);
-            else
-                filterRun<false>(src, g, w, h, y, x, n, taps, step, out);
+private:
+    /// Plane c of row y of iteration it's ring.
+    float* ringRow(int it, int y, int c) const
+    {
+        const std::size_t pitch = bandPitch(m_w);
+        const std::size_t slot = static_cast<std::size_t>(y % bandRingRows(it));
+        return m_ringBase[it] + (3 * slot + static_cast<std::size_t>(c)) * pitch;
+    }
+
+    /// Computes iteration it's horizontal-half rows up to `last`.
+    void needHorizontal(int it, int last)
+    {
+        for (; m_next[it] <= last; ++m_next[it])
+            horizontalRow(it, m_next[it]);
+    }
+
+    /// Row y of iteration it's horizontal half, from the previous iteration's vertical half (or
+    /// the radiance) written into the band's row first.
+    void horizontalRow(int it, int y)
+    {
+        if (it == 0)
+            cpu::deinterleaveRgbRow(m_radiance.at(0, y), m_row[0], m_row[1], m_row[2], m_w);
+        else
+            verticalRow(it - 1, y);
+        PostFilterRow row {};
+        const std::size_t guides = static_cast<std::size_t>(y) * m_w;
+        row.guideCentre = guides;
+        for (int c = 0; c < 3; ++c) {
+            row.centre[c] = m_row[c];
+            for (int k = 0; k < kPostFilterTaps; ++k)
+                row.tap[k][c] = m_row[c];
+            row.out[c] = ringRow(it, y, c);
         }
-}
+        for (int k = 0; k < kPostFilterTaps; ++k)
+            row.guideTap[k] = guides;
+        filterPostFilterRow(row, m_g, m_w, m_horizontal[it], 1 << it);
+    }
 
-/// One pass from the planes `src` into `out`.
-void filterPass(const float* const* src, const PostFilterGuidePlanes& g, int w, int h,
-    bool horizontal, int step, const PassOutput& out)
-{
-    Tap taps[kTaps];
-    passTaps(horizontal, step, taps);
-    parallelRows(
-        h, [&](int y0, int y1) { filterRows(src, g, w, h, y0, y1, taps, step, out); }, 4);
-}
+    /// Row y of iteration it's vertical half into the band's row (the last iteration: the
+    /// output's row, interleaved).
+    void verticalRow(int it, int y)
+    {
+        const int step = 1 << it;
+        needHorizontal(it, std::min(y + 2 * step, m_h - 1));
+        PostFilterRow row {};
+        row.guideCentre = static_cast<std::size_t>(y) * m_w;
+        for (int k = 0; k < kPostFilterTaps; ++k) {
+            const int q = std::clamp(y + m_vertical[it][k].dy, 0, m_h - 1);
+            row.guideTap[k] = static_cast<std::size_t>(q) * m_w;
+            for (int c = 0; c < 3; ++c)
+                row.tap[k][c] = ringRow(it, q, c);
+        }
+        for (int c = 0; c < 3; ++c)
+            row.centre[c] = ringRow(it, y, c);
+        if (it + 1 == kPostFilterIterations)
+            row.interleaved = m_out.at(0, y);
+        else
+            for (int c = 0; c < 3; ++c)
+                row.out[c] = m_row[c];
+        filterPostFilterRow(row, m_g, m_w, m_vertical[it], step);
+    }
+
+    const Image& m_radiance;
+    const PostFilterGuidePlanes& m_g;
+    int m_w, m_h;
+    Image& m_out;
+    float* m_row[3];
+    float* m_ringBase[kPostFilterIterations];
+    int m_next[kPostFilterIterations];
+    PostFilterTap m_horizontal[kPostFilterIterations][kPostFilterTaps];
+    PostFilterTap m_vertical[kPostFilterIterations][kPostFilterTaps];
+};
+
+/// One band per thread, none shorter than kMinBandRows rows: each band also computes the halo
+/// rows of the earlier half-passes (bandHalo: 14 + 12 + 8 rows), about 10 % more work for bands
+/// of 180 rows. Two bands per thread (to even out threads the system runs unevenly) measured
+/// slower at 720p on 2 threads (docs/performance.md).
+constexpr int kMinBandRows = 64;
 
 } // namespace
 
 void edgeAwarePostFilter(const Image& radiance, const PostFilterGuides& guides,
-    PostFilterWorkspace& workspace, Image& scratch, Image& out)
+    PostFilterWorkspace& workspace, Image& out)
 {
     const int w = radiance.width(), h = radiance.height();
+    out.resize(w, h, 3);
+    if (w == 0 || h == 0)
+        return;
     const std::size_t n = static_cast<std::size_t>(w) * h;
-    // The workspace's 12 planes: the guides, then one set of colour planes.
+    const int threads = std::max(1, tbb::this_task_arena::max_concurrency());
+    const int bands = std::clamp(h / kMinBandRows, 1, threads);
+    // The workspace: the 9 guide planes, then the bands' rows; the noise scale's two scratch
+    // planes are free once it is done, so the bands' rows reuse them.
     const std::size_t pitch = n + kPostFilterPlaneStagger;
-    workspace.storage.resize(12 * pitch);
-    float* planes[12];
-    for (int k = 0; k < 12; ++k)
+    const std::size_t bandFloats = 3 * static_cast<std::size_t>(bandRows()) * bandPitch(w);
+    workspace.storage.resize(9 * pitch + std::max(2 * pitch, bands * bandFloats));
+    float* planes[9];
+    for (int k = 0; k < 9; ++k)
         planes[k] = workspace.storage.data() + static_cast<std::size_t>(k) * pitch;
+    float* const rest = workspace.storage.data() + 9 * pitch;
     const PostFilterGuidePlanes g { planes[0], planes[1], planes[2], planes[3], planes[4],
         planes[5], planes[6], planes[7], planes[8] };
     buildPostFilterGuidePlanes(guides, w, h, g);
-    // The colour planes are free until the first pass writes them: the noise scale's scratch.
     postFilterLuminanceScale(
-        guides.noise, w, h, kPostFilterSigmaLuminance, planes[9], planes[10], g.ls);
-    // The radiance split into `scratch`'s planes (B); the horizontal halves read B and write the
-    // workspace's (A), the vertical ones read A (staggered: the halves whose taps span rows) and
-    // write B, the last one `out` interleaved.
-    scratch.resize(w, h, 3);
-    float* const planesA[3] = { planes[9], planes[10], planes[11] };
-    float* const planesB[3] = { scratch.data(), scratch.data() + n, scratch.data() + 2 * n };
-    parallelRows(h, [&](int y0, int y1) {
-        for (int y = y0; y < y1; ++y) {
-            const std::size_t i = static_cast<std::size_t>(y) * w;
-            cpu::deinterleaveRgbRow(
-                radiance.at(0, y), planesB[0] + i, planesB[1] + i, planesB[2] + i, w);
-        }
+        guides.noise, w, h, kPostFilterSigmaLuminance, rest, rest + pitch, g.ls);
+    parallelFor(bands, [&](int band) {
+        BandPasses passes(radiance, g, rest + static_cast<std::size_t>(band) * bandFloats, out);
+        passes.run(static_cast<int>(static_cast<long>(h) * band / bands),
+            static_cast<int>(static_cast<long>(h) * (band + 1) / bands));
     });
-    out.resize(w, h, 3);
-    const float* const* src = planesB;
-    for (int k = 0; k < 2 * kPostFilterIterations; ++k) {
-        const bool horizontal = k % 2 == 0;
-        PassOutput dst;
-        if (k + 1 == 2 * kPostFilterIterations)
-            dst.interleaved = &out;
-        else
-            for (int c = 0; c < 3; ++c)
-                dst.planes[c] = (horizontal ? planesA : planesB)[c];
-        filterPass(src, g, w, h, horizontal, 1 << (k / 2), dst);
-        src = horizontal ? planesA : planesB;
-    }
 }
 
 } // namespace afn::afnet

@@ -72,26 +72,26 @@ struct PostFilterGuidePlanes {
 void buildPostFilterGuidePlanes(
     const PostFilterGuides& guides, int w, int h, const PostFilterGuidePlanes& planes);
 
-/// The planes the filter works on (the 9 guide planes and 3 colour planes: 48 bytes a pixel, in
-/// one allocation), kept by the caller from frame to frame so that a sequence allocates them
-/// once. Their contents between calls mean nothing.
+/// The planes the filter works on (the 9 guide planes, the noise scale's two scratch planes and
+/// the rows each band of the frame filters through: about 44 bytes a pixel at 720p, in one
+/// allocation), kept by the caller from frame to frame so that a sequence allocates them once.
+/// Their contents between calls mean nothing.
 struct PostFilterWorkspace {
-    /// Plane k starts k * (w h + kPostFilterPlaneStagger) floats in: planes of a frame whose
-    /// size is a multiple of 4 KiB would otherwise start at the same offset within a page and
-    /// share the processor's L1 cache sets, which the 5 rows of a vertical pass's taps (x 12
-    /// planes) overflow.
+    /// Plane k starts k * (w h + kPostFilterPlaneStagger) floats in, and a band's rows are
+    /// w + kPostFilterPlaneStagger floats apart: planes or rows whose size is a multiple of 4 KiB
+    /// would otherwise start at the same offset within a page and share the processor's L1 cache
+    /// sets, which the 5 rows of a vertical pass's taps (x 12 planes) overflow.
     std::vector<float> storage;
 };
 
-/// Floats between one plane's end and the next one's start (one 64-byte cache line).
+/// Floats between one plane's (or band row's) end and the next one's start (one cache line).
 constexpr int kPostFilterPlaneStagger = 16;
 
-/// The edge-aware post-filter of `radiance` (3 ch) into `out` (resized), with `scratch` (resized
-/// to the radiance's shape and used as three colour planes) and `workspace`'s planes. `out` and
-/// `scratch` may not alias `radiance` or each other. Non-finite guide values count as absent
-/// (normal), far (depth) or 0 (albedo). The radiance is taken as finite (afn's inputs are sanitised
-/// before the network, gather.cpp); negative radiance counts as luminance 0 in dl.
+/// The edge-aware post-filter of `radiance` (3 ch) into `out` (resized) with `workspace`'s
+/// planes. `out` may not alias `radiance`. Non-finite guide values count as absent (normal), far
+/// (depth) or 0 (albedo). The radiance is taken as finite (afn's inputs are sanitised before the
+/// network, gather.cpp); negative radiance counts as luminance 0 in dl.
 void edgeAwarePostFilter(const Image& radiance, const PostFilterGuides& guides,
-    PostFilterWorkspace& workspace, Image& scratch, Image& out);
+    PostFilterWorkspace& workspace, Image& out);
 
 } // namespace afn::afnet

@@ -3,14 +3,16 @@
 // stays constant; albedo and depth edges are kept; noise on a flat surface is smoothed;
 // non-finite guides do not spread; absent guides leave their terms out; each result is a convex
 // combination of the input, negative radiance included; a workspace reused across frames and
-// sizes gives what a fresh one gives; the formula in double on every run kind) and, in the afn
-// filter, postFilter=auto following the sample count of the model that runs.
+// sizes gives what a fresh one gives; the formula in double on every run kind and in every band
+// of rows, the same bits whatever the thread count) and, in the afn filter, postFilter=auto
+// following the sample count of the model that runs.
 #include "afn_synthetic_sequence.h"
 #include "afn_test_util.h"
 #include "filter/registry.h"
 #include "methods/afn/post_filter.h"
 
 #include <gtest/gtest.h>
+#include <tbb/task_arena.h>
 
 #include <algorithm>
 #include <cmath>
@@ -52,8 +54,8 @@ struct FlatGuides {
 Image filter(const Image& radiance, const PostFilterGuides& g)
 {
     PostFilterWorkspace workspace;
-    Image scratch, out;
-    edgeAwarePostFilter(radiance, g, workspace, scratch, out);
+    Image out;
+    edgeAwarePostFilter(radiance, g, workspace, out);
     return out;
 }
 
@@ -179,8 +181,8 @@ TEST(AfnPostFilter, AbsentOrMismatchedGuidesAreLeftOut)
 TEST(AfnPostFilter, EmptyImage)
 {
     PostFilterWorkspace workspace;
-    Image scratch, out(3, 3, 3);
-    edgeAwarePostFilter(Image(0, 0, 3), PostFilterGuides {}, workspace, scratch, out);
+    Image out(3, 3, 3);
+    edgeAwarePostFilter(Image(0, 0, 3), PostFilterGuides {}, workspace, out);
     EXPECT_EQ(out.size(), 0u);
 }
 
@@ -217,11 +219,11 @@ TEST(AfnPostFilter, AReusedWorkspaceGivesWhatAFreshOneGives)
     const Image a = noisyFlat(1), b = noisyFlat(2);
     const Image small(kW / 2, kH / 2, 3, 0.25f);
     PostFilterWorkspace ws;
-    Image scratch, out;
+    Image out;
     for (const Image* radiance : { &a, &small, &b }) {
         const bool full = radiance->width() == kW;
         const PostFilterGuides guides = full ? g.guides() : PostFilterGuides {};
-        edgeAwarePostFilter(*radiance, guides, ws, scratch, out);
+        edgeAwarePostFilter(*radiance, guides, ws, out);
         const Image fresh = filter(*radiance, guides);
         ASSERT_EQ(out.size(), fresh.size());
         for (std::size_t i = 0; i < out.size(); ++i)
@@ -318,38 +320,81 @@ std::vector<double> referencePostFilter(const Image& radiance, const Image& albe
     return cur;
 }
 
-} // namespace
-
-// Random radiance and guides (some normals invalid, depth and albedo edges everywhere) on a frame
-// whose width is not a multiple of the 16-pixel runs: every run kind (interior, border, short
-// tail) against the formula in double. The filter's exp is a polynomial (relative error < 3e-6)
-// and it sums in float: 5e-5 relative.
-TEST(AfnPostFilter, MatchesTheFormulaOnEveryRunKind)
-{
-    const int w = 53, h = 19;
-    std::mt19937 rng(5);
-    std::uniform_real_distribution<float> u(0.0f, 1.0f);
-    Image radiance(w, h, 3), albedo(w, h, 3), normal(w, h, 3), depth(w, h, 1);
-    for (int y = 0; y < h; ++y)
-        for (int x = 0; x < w; ++x) {
-            for (int c = 0; c < 3; ++c) {
-                radiance(x, y, c) = u(rng) * 2.0f;
-                albedo(x, y, c) = 0.4f + 0.1f * u(rng); // small steps: taps keep some weight
-                normal(x, y, c) = c == 2 ? 1.0f : 0.3f * (u(rng) - 0.5f);
+/// Random radiance and guides (some normals invalid, depth and albedo edges everywhere).
+struct RandomFrame {
+    Image radiance, albedo, normal, depth;
+    RandomFrame(int w, int h, unsigned seed)
+        : radiance(w, h, 3)
+        , albedo(w, h, 3)
+        , normal(w, h, 3)
+        , depth(w, h, 1)
+    {
+        std::mt19937 rng(seed);
+        std::uniform_real_distribution<float> u(0.0f, 1.0f);
+        for (int y = 0; y < h; ++y)
+            for (int x = 0; x < w; ++x) {
+                for (int c = 0; c < 3; ++c) {
+                    radiance(x, y, c) = u(rng) * 2.0f;
+                    albedo(x, y, c) = 0.4f + 0.1f * u(rng); // small steps: taps keep some weight
+                    normal(x, y, c) = c == 2 ? 1.0f : 0.3f * (u(rng) - 0.5f);
+                }
+                if (u(rng) < 0.1f)
+                    normal(x, y, 0) = normal(x, y, 1) = normal(x, y, 2) = 0.0f; // no normal here
+                depth(x, y, 0) = 2.0f + 0.02f * u(rng) + (x > w / 2 ? 1.0f : 0.0f);
             }
-            if (u(rng) < 0.1f)
-                normal(x, y, 0) = normal(x, y, 1) = normal(x, y, 2) = 0.0f; // no normal here
-            depth(x, y, 0) = 2.0f + 0.02f * u(rng) + (x > w / 2 ? 1.0f : 0.0f);
-        }
-    PostFilterGuides g { &albedo, &normal, &depth };
-    PostFilterWorkspace workspace;
-    Image scratch, out;
-    edgeAwarePostFilter(radiance, g, workspace, scratch, out);
-    const auto want = referencePostFilter(radiance, albedo, normal, depth,
+    }
+    PostFilterGuides guides() const { return { &albedo, &normal, &depth }; }
+};
+
+/// The post-filter run by `threads` threads (the frame is split into one band per thread).
+Image filterWithThreads(const RandomFrame& f, int threads)
+{
+    tbb::task_arena arena(threads);
+    Image out;
+    arena.execute([&] {
+        PostFilterWorkspace workspace;
+        edgeAwarePostFilter(f.radiance, f.guides(), workspace, out);
+    });
+    return out;
+}
+
+/// The largest relative difference between the filter's output and the formula in double.
+double worstAgainstTheFormula(const RandomFrame& f, const Image& out)
+{
+    const auto want = referencePostFilter(f.radiance, f.albedo, f.normal, f.depth,
         afn::afnet::kPostFilterSigmaLuminance / 2); // no noise guide
     double worst = 0;
     for (std::size_t k = 0; k < want.size(); ++k)
         worst = std::max(worst, std::fabs(out.data()[k] - want[k]) / std::max(want[k], 1e-3));
+    return worst;
+}
+
+} // namespace
+
+// A frame whose width is not a multiple of the 16-pixel runs: every run kind (interior, border,
+// short tail) against the formula in double. The filter's exp is a polynomial (relative error
+// < 3e-6) and it sums in float: 5e-5 relative.
+TEST(AfnPostFilter, MatchesTheFormulaOnEveryRunKind)
+{
+    const RandomFrame f(53, 19, 5);
+    const double worst = worstAgainstTheFormula(f, filterWithThreads(f, 1));
     EXPECT_LT(worst, 5e-5);
     std::printf("post-filter against the formula: max relative error %.3g\n", worst);
+}
+
+// A frame tall enough for several bands (one per thread, each computing the rows of the earlier
+// half-passes its first rows read): every row against the formula, the rows next to the bands'
+// edges included, and the same bits whatever the thread count.
+TEST(AfnPostFilter, BandsOfRowsGiveTheFormulaAndTheSameBitsWhateverTheThreadCount)
+{
+    const RandomFrame f(37, 5 * 64 + 11, 9);
+    const Image one = filterWithThreads(f, 1);
+    EXPECT_LT(worstAgainstTheFormula(f, one), 5e-5);
+    for (int threads : { 2, 3, 5, 16 }) {
+        const Image many = filterWithThreads(f, threads);
+        ASSERT_EQ(many.size(), one.size());
+        EXPECT_LT(worstAgainstTheFormula(f, many), 5e-5) << threads << " threads";
+        for (std::size_t i = 0; i < one.size(); ++i)
+            ASSERT_EQ(many.data()[i], one.data()[i]) << threads << " threads, value " << i;
+    }
 }

@@ -151,8 +151,8 @@ TEST(AfnPostFilterNoise, ANoisierIrradianceSmoothsTheSameRadianceMore)
         afn::afnet::PostFilterGuides g;
         g.noise.irradiance = k == 0 ? &flat : &noisy;
         afn::afnet::PostFilterWorkspace ws;
-        Image scratch, out;
-        afn::afnet::edgeAwarePostFilter(radiance, g, ws, scratch, out);
+        Image out;
+        afn::afnet::edgeAwarePostFilter(radiance, g, ws, out);
         double s = 0.0;
         for (std::size_t i = 0; i < out.size(); ++i)
             s += (out.data()[i] - 0.5) * (out.data()[i] - 0.5);
