@@ -29,9 +29,9 @@ constexpr double kPlaneRow = (32.0 + kWidth + 32.0) / kWidth;
 /// 5 and block trusts 0.19 (stages/history_trust.h), accumulation 32 (ta, bmfr,
 /// afn); svgf's guide 6 planes, integration 2 x 7 planes, colour/variance 5 planes; bmfr's
 /// three images of its own; afn's normal01, depth01 and history01 (the shipped full-input models
-/// take the history input), its TAA's history and spare, and its
-/// post-filter's 9 guide planes (8 + its luminance scale) and 3 colour planes (the 1-spp model
-/// runs with taa=auto and postFilter=auto = on, methods/afn/settings.h, post_filter.h).
+/// take the history input) and its TAA's history and spare (the 1-spp model runs with taa=auto
+/// and postFilter=auto = on, methods/afn/settings.h; the post-filter keeps rings of rows of the
+/// width only, post_filter.h, none of the frame's size).
 double accountedBytesPerPixel(const std::string& method)
 {
     const double trust = 10.0 * 4 / kTrustBlock + 3.0 * 4 / (kTrustBlock * kTrustBlock);
@@ -42,7 +42,7 @@ double accountedBytesPerPixel(const std::string& method)
         return shared + (6 + 2 * 7 + 5) * 4 * kPlaneRow;
     if (method == "bmfr")
         return shared + 32 + 3 * 12;
-    return shared + 32 + 20 + 2 * 12 + 12 * 4; // afn
+    return shared + 32 + 20 + 2 * 12; // afn
 }
 
 /// Peak live heap bytes while a new `method` filter runs three frames of kWidth x height.

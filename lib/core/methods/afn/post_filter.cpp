@@ -1,10 +1,11 @@
 // SPDX-License-Identifier: Apache-2.0
-// afn's edge-aware post-filter (post_filter.h): the guide planes and noise scale once per frame,
-// then the six half-passes row by row through small rings of rows (BandPasses), one band of the
-// frame per task, each row filtered by the row kernel (post_filter_row.h). So the colour between
-// half-passes stays in the processor's cache: a frame's colour planes do not fit there, and
-// half-passes that each cross the whole frame are bound by memory traffic (docs/performance.md).
-// The last half-pass writes the output interleaved.
+// afn's edge-aware post-filter (post_filter.h): the six half-passes row by row through small rings
+// of rows (BandPasses), one band of the frame's rows per task, each row filtered by the row kernel
+// (post_filter_row.h); the guides and the noise scale are made row by row into a ring as the
+// passes first read them. So nothing of the frame's size is written between the input and the
+// output, and the colour between half-passes stays in the processor's cache: half-passes that
+// each crossed the whole frame were bound by memory traffic (docs/performance.md). The last
+// half-pass writes the output interleaved.
 #include "methods/afn/post_filter.h"
 
 #include "base/parallel.h"
@@ -42,6 +43,12 @@ constexpr int bandRows()
     return rows;
 }
 
+/// Rows of a band's guide ring: the last vertical half at row y reads the guides of rows
+/// y - 2 (1 << last) .. y + 2 (1 << last) while the first horizontal half is bandHalo(0) rows
+/// ahead of y.
+constexpr int kGuideRingRows = 2 * (1 << (kPostFilterIterations - 1)) + bandHalo(0) + 1;
+constexpr int kGuidePlanes = 9;
+
 /// Floats of a band's row of one plane: the width and a cache line, so that the rows' planes
 /// start at different offsets within a page.
 std::size_t bandPitch(int w)
@@ -49,19 +56,35 @@ std::size_t bandPitch(int w)
     return static_cast<std::size_t>(w) + kPostFilterPlaneStagger;
 }
 
+/// Floats between one guide plane's ring and the next one's.
+std::size_t guidePlanePitch(int w)
+{
+    return kGuideRingRows * bandPitch(w) + kPostFilterPlaneStagger;
+}
+
+/// Floats of one band's storage: its colour rows, its guide rings and the noise scale's rows.
+std::size_t bandFloats(int w)
+{
+    return 3 * static_cast<std::size_t>(bandRows()) * bandPitch(w)
+        + kGuidePlanes * guidePlanePitch(w) + PostFilterNoiseRows::storageFloats(w);
+}
+
 /// The passes of the rows of one band of the frame, row by row: every half-pass row is computed
 /// when the next half-pass first reads it, into a small ring of rows, so the colour stays in the
-/// processor's cache between the six half-passes instead of crossing memory six times. A band
-/// computes the rows of the earlier half-passes its first rows read before them (bandHalo), as
-/// the band above computes them too: the same values, as each row is the same computation.
+/// processor's cache between the six half-passes instead of crossing memory six times; the
+/// guides likewise. A band computes the rows of the earlier half-passes its first rows read
+/// before them (bandHalo), as the band above computes them too: the same values, as each row is
+/// the same computation.
 class BandPasses {
 public:
-    BandPasses(const Image& radiance, const PostFilterGuidePlanes& g, float* storage, Image& out)
+    BandPasses(const Image& radiance, const PostFilterGuides& guides, float* storage, Image& out)
         : m_radiance(radiance)
-        , m_g(g)
+        , m_guides(guides)
         , m_w(radiance.width())
         , m_h(radiance.height())
         , m_out(out)
+        , m_noise(guides.noise, m_w, m_h, kPostFilterSigmaLuminance,
+              storage + bandFloats(m_w) - PostFilterNoiseRows::storageFloats(m_w))
     {
         const std::size_t pitch = bandPitch(m_w);
         float* next = storage;
@@ -73,6 +96,13 @@ public:
             postFilterTaps(true, 1 << it, m_horizontal[it]);
             postFilterTaps(false, 1 << it, m_vertical[it]);
         }
+        float* planes[kGuidePlanes];
+        for (float*& plane : planes) {
+            plane = next;
+            next += guidePlanePitch(m_w);
+        }
+        m_g = { planes[0], planes[1], planes[2], planes[3], planes[4], planes[5], planes[6],
+            planes[7], planes[8] };
     }
 
     /// Output rows [y0, y1).
@@ -80,6 +110,7 @@ public:
     {
         for (int it = 0; it < kPostFilterIterations; ++it)
             m_next[it] = std::max(0, y0 - bandHalo(it));
+        m_nextGuide = m_next[0];
         for (int y = y0; y < y1; ++y)
             verticalRow(kPostFilterIterations - 1, y);
     }
@@ -93,6 +124,22 @@ private:
         return m_ringBase[it] + (3 * slot + static_cast<std::size_t>(c)) * pitch;
     }
 
+    /// Where row y's guides start in each guide plane.
+    std::size_t guideRow(int y) const
+    {
+        return static_cast<std::size_t>(y % kGuideRingRows) * bandPitch(m_w);
+    }
+
+    /// Makes the guide rows up to `last`.
+    void needGuides(int last)
+    {
+        for (; m_nextGuide <= last; ++m_nextGuide) {
+            const std::size_t o = guideRow(m_nextGuide);
+            buildPostFilterGuideRow(m_guides, m_w, m_h, m_nextGuide, m_g, o);
+            m_noise.row(m_nextGuide, m_g.ls + o);
+        }
+    }
+
     /// Computes iteration it's horizontal-half rows up to `last`.
     void needHorizontal(int it, int last)
     {
@@ -104,12 +151,14 @@ private:
     /// the radiance) written into the band's row first.
     void horizontalRow(int it, int y)
     {
-        if (it == 0)
+        if (it == 0) {
+            needGuides(y);
             cpu::deinterleaveRgbRow(m_radiance.at(0, y), m_row[0], m_row[1], m_row[2], m_w);
-        else
+        } else {
             verticalRow(it - 1, y);
+        }
         PostFilterRow row {};
-        const std::size_t guides = static_cast<std::size_t>(y) * m_w;
+        const std::size_t guides = guideRow(y);
         row.guideCentre = guides;
         for (int c = 0; c < 3; ++c) {
             row.centre[c] = m_row[c];
@@ -129,10 +178,10 @@ private:
         const int step = 1 << it;
         needHorizontal(it, std::min(y + 2 * step, m_h - 1));
         PostFilterRow row {};
-        row.guideCentre = static_cast<std::size_t>(y) * m_w;
+        row.guideCentre = guideRow(y);
         for (int k = 0; k < kPostFilterTaps; ++k) {
             const int q = std::clamp(y + m_vertical[it][k].dy, 0, m_h - 1);
-            row.guideTap[k] = static_cast<std::size_t>(q) * m_w;
+            row.guideTap[k] = guideRow(q);
             for (int c = 0; c < 3; ++c)
                 row.tap[k][c] = ringRow(it, q, c);
         }
@@ -147,9 +196,12 @@ private:
     }
 
     const Image& m_radiance;
-    const PostFilterGuidePlanes& m_g;
+    const PostFilterGuides& m_guides;
     int m_w, m_h;
     Image& m_out;
+    PostFilterNoiseRows m_noise;
+    PostFilterGuidePlanes m_g; ///< the guide rings
+    int m_nextGuide = 0;
     float* m_row[3];
     float* m_ringBase[kPostFilterIterations];
     int m_next[kPostFilterIterations];
@@ -172,25 +224,13 @@ void edgeAwarePostFilter(const Image& radiance, const PostFilterGuides& guides,
     out.resize(w, h, 3);
     if (w == 0 || h == 0)
         return;
-    const std::size_t n = static_cast<std::size_t>(w) * h;
     const int threads = std::max(1, tbb::this_task_arena::max_concurrency());
     const int bands = std::clamp(h / kMinBandRows, 1, threads);
-    // The workspace: the 9 guide planes, then the bands' rows; the noise scale's two scratch
-    // planes are free once it is done, so the bands' rows reuse them.
-    const std::size_t pitch = n + kPostFilterPlaneStagger;
-    const std::size_t bandFloats = 3 * static_cast<std::size_t>(bandRows()) * bandPitch(w);
-    workspace.storage.resize(9 * pitch + std::max(2 * pitch, bands * bandFloats));
-    float* planes[9];
-    for (int k = 0; k < 9; ++k)
-        planes[k] = workspace.storage.data() + static_cast<std::size_t>(k) * pitch;
-    float* const rest = workspace.storage.data() + 9 * pitch;
-    const PostFilterGuidePlanes g { planes[0], planes[1], planes[2], planes[3], planes[4],
-        planes[5], planes[6], planes[7], planes[8] };
-    buildPostFilterGuidePlanes(guides, w, h, g);
-    postFilterLuminanceScale(
-        guides.noise, w, h, kPostFilterSigmaLuminance, rest, rest + pitch, g.ls);
+    const std::size_t perBand = bandFloats(w);
+    workspace.storage.resize(static_cast<std::size_t>(bands) * perBand);
     parallelFor(bands, [&](int band) {
-        BandPasses passes(radiance, g, rest + static_cast<std::size_t>(band) * bandFloats, out);
+        BandPasses passes(radiance, guides,
+            workspace.storage.data() + static_cast<std::size_t>(band) * perBand, out);
         passes.run(static_cast<int>(static_cast<long>(h) * band / bands),
             static_cast<int>(static_cast<long>(h) * (band + 1) / bands));
     });

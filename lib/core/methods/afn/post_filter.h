@@ -57,38 +57,37 @@ struct PostFilterGuides {
     PostFilterNoiseInputs noise;
 };
 
-/// The guides as planes, sanitised once per frame: albedo (non-finite -> 0; absent: 0), unit
-/// normals and their validity (1 where the normal is finite and |n|^2 > 0.5; absent: 0), depth
-/// (non-finite -> 1e30, a far background; absent: 1). Absent guides so give their terms 0. `ls`
-/// is the luminance term's scale per pixel (post_filter_noise.h). Planes of the workspace's
-/// storage.
+/// The guides as planes, sanitised: albedo (non-finite -> 0; absent: 0), unit normals and their
+/// validity (1 where the normal is finite and |n|^2 > 0.5; absent: 0), depth (non-finite -> 1e30,
+/// a far background; absent: 1). Absent guides so give their terms 0. `ls` is the luminance
+/// term's scale per pixel (post_filter_noise.h). Rows of a band's rings (post_filter.cpp): a
+/// row's values start at the same offset in every plane.
 struct PostFilterGuidePlanes {
     float *a0 = nullptr, *a1 = nullptr, *a2 = nullptr, *n0 = nullptr, *n1 = nullptr, *n2 = nullptr,
           *nv = nullptr, *z = nullptr, *ls = nullptr;
 };
 
-/// Fills `planes` (w * h floats each) from `guides` as PostFilterGuidePlanes describes, except
-/// `ls` (post_filter_noise.h). post_filter_guides.cpp.
-void buildPostFilterGuidePlanes(
-    const PostFilterGuides& guides, int w, int h, const PostFilterGuidePlanes& planes);
+/// Row y of the guides (a w x h frame) written `offset` floats into each of `planes` as
+/// PostFilterGuidePlanes describes, except `ls` (post_filter_noise.h). post_filter_guides.cpp.
+void buildPostFilterGuideRow(const PostFilterGuides& guides, int w, int h, int y,
+    const PostFilterGuidePlanes& planes, std::size_t offset);
 
-/// The planes the filter works on (the 9 guide planes, the noise scale's two scratch planes and
-/// the rows each band of the frame filters through: about 44 bytes a pixel at 720p, in one
-/// allocation), kept by the caller from frame to frame so that a sequence allocates them once.
-/// Their contents between calls mean nothing.
+/// The filter's storage: each band of the frame's rows (one per thread) keeps rings of the rows
+/// its passes and guides are at (a few dozen rows of the width each), kept by the caller from
+/// frame to frame so that a sequence allocates them once. Their contents between calls mean
+/// nothing.
 struct PostFilterWorkspace {
-    /// Plane k starts k * (w h + kPostFilterPlaneStagger) floats in, and a band's rows are
-    /// w + kPostFilterPlaneStagger floats apart: planes or rows whose size is a multiple of 4 KiB
-    /// would otherwise start at the same offset within a page and share the processor's L1 cache
-    /// sets, which the 5 rows of a vertical pass's taps (x 12 planes) overflow.
+    /// A band's rows are w + kPostFilterPlaneStagger floats apart: rows whose size is a multiple
+    /// of 4 KiB would otherwise start at the same offset within a page and share the processor's
+    /// L1 cache sets, which the 5 rows of a vertical pass's taps (x 12 planes) overflow.
     std::vector<float> storage;
 };
 
-/// Floats between one plane's (or band row's) end and the next one's start (one cache line).
+/// Floats between one row's end and the next one's start in a band's rings (one cache line).
 constexpr int kPostFilterPlaneStagger = 16;
 
 /// The edge-aware post-filter of `radiance` (3 ch) into `out` (resized) with `workspace`'s
-/// planes. `out` may not alias `radiance`. Non-finite guide values count as absent (normal), far
+/// rows. `out` may not alias `radiance`. Non-finite guide values count as absent (normal), far
 /// (depth) or 0 (albedo). The radiance is taken as finite (afn's inputs are sanitised before the
 /// network, gather.cpp); negative radiance counts as luminance 0 in dl.
 void edgeAwarePostFilter(const Image& radiance, const PostFilterGuides& guides,

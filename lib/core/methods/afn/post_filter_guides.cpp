@@ -1,11 +1,10 @@
 // SPDX-License-Identifier: Apache-2.0
-// The post-filter's guide planes (post_filter.h, PostFilterGuidePlanes): the frame's interleaved
-// albedo, normal and depth split into planes and sanitised, a row at a time in kernels cloned per
+// The post-filter's guide rows (post_filter.h, PostFilterGuidePlanes): a row of the frame's
+// interleaved albedo, normal and depth split into planes and sanitised, in kernels cloned per
 // instruction set. Compiled without FMA contraction (CMakeLists.txt): every clone gives the bits
 // of the scalar formula (|n|^2 as three products summed in order, then one division by its root).
 #include "methods/afn/post_filter.h"
 
-#include "base/parallel.h"
 #include "cpu/rgb_rows.h"
 #include "cpu/target.h"
 
@@ -55,33 +54,27 @@ AFN_CPU_KERNEL_CLONES void depthRow(const float* row, int w, float* __restrict z
 
 } // namespace
 
-void buildPostFilterGuidePlanes(
-    const PostFilterGuides& g, int w, int h, const PostFilterGuidePlanes& p)
+void buildPostFilterGuideRow(const PostFilterGuides& g, int w, int h, int y,
+    const PostFilterGuidePlanes& p, std::size_t offset)
 {
     auto usable = [&](const Image* im, int channels) {
         return im && im->width() == w && im->height() == h && im->channels() == channels;
     };
-    const bool albedo = usable(g.albedo, 3), normal = usable(g.normal, 3),
-               depth = usable(g.depth, 1);
-    parallelRows(h, [&](int y0, int y1) {
-        for (int y = y0; y < y1; ++y) {
-            const std::size_t i = static_cast<std::size_t>(y) * w;
-            if (albedo)
-                albedoRow(g.albedo->at(0, y), w, p.a0 + i, p.a1 + i, p.a2 + i);
-            else
-                for (float* plane : { p.a0, p.a1, p.a2 })
-                    std::fill(plane + i, plane + i + w, 0.0f);
-            if (normal)
-                normalRow(g.normal->at(0, y), w, p.n0 + i, p.n1 + i, p.n2 + i, p.nv + i);
-            else
-                for (float* plane : { p.n0, p.n1, p.n2, p.nv })
-                    std::fill(plane + i, plane + i + w, 0.0f);
-            if (depth)
-                depthRow(g.depth->at(0, y), w, p.z + i);
-            else
-                std::fill(p.z + i, p.z + i + w, 1.0f);
-        }
-    });
+    const std::size_t i = offset;
+    if (usable(g.albedo, 3))
+        albedoRow(g.albedo->at(0, y), w, p.a0 + i, p.a1 + i, p.a2 + i);
+    else
+        for (float* plane : { p.a0, p.a1, p.a2 })
+            std::fill(plane + i, plane + i + w, 0.0f);
+    if (usable(g.normal, 3))
+        normalRow(g.normal->at(0, y), w, p.n0 + i, p.n1 + i, p.n2 + i, p.nv + i);
+    else
+        for (float* plane : { p.n0, p.n1, p.n2, p.nv })
+            std::fill(plane + i, plane + i + w, 0.0f);
+    if (usable(g.depth, 1))
+        depthRow(g.depth->at(0, y), w, p.z + i);
+    else
+        std::fill(p.z + i, p.z + i + w, 1.0f);
 }
 
 } // namespace afn::afnet

@@ -1,11 +1,10 @@
 // SPDX-License-Identifier: Apache-2.0
 // The post-filter's per-pixel luminance scale (post_filter_noise.h): a separable 5x5 box over the
-// luminance and its square, rows first (into the two scratch planes), then columns, each row in a
-// kernel cloned per instruction set. Compiled without FMA contraction (CMakeLists.txt): every
-// clone gives the bits of the scalar formula.
+// luminance and its square, along rows first (into a ring of 5 rows), then along columns, each
+// row in a kernel cloned per instruction set. Compiled without FMA contraction (CMakeLists.txt):
+// every clone gives the bits of the scalar formula.
 #include "methods/afn/post_filter_noise.h"
 
-#include "base/parallel.h"
 #include "cpu/rgb_rows.h"
 #include "cpu/target.h"
 
@@ -97,43 +96,58 @@ AFN_CPU_KERNEL_CLONES void scaleRow(
 
 } // namespace
 
-void postFilterLuminanceScale(const PostFilterNoiseInputs& in, int w, int h, float sigmaLuminance,
-    float* meanPlane, float* squarePlane, float* scale)
+std::size_t PostFilterNoiseRows::storageFloats(int w)
 {
-    const std::size_t n = static_cast<std::size_t>(w) * h;
-    const float base = 0.5f * sigmaLuminance;
-    if (n == 0 || !usable(in.irradiance, w, h, 3)) {
-        std::fill(scale, scale + n, base);
+    // The ring's 2 r + 1 rows of means and of squares, then boxRowX's scratch.
+    return static_cast<std::size_t>(w) * (2 * (2 * kRadius + 1) + 4) + 2 * kRadius;
+}
+
+PostFilterNoiseRows::PostFilterNoiseRows(
+    const PostFilterNoiseInputs& in, int w, int h, float sigmaLuminance, float* storage)
+    : m_irradiance(usable(in.irradiance, w, h, 3) ? in.irradiance : nullptr)
+    , m_history(usable(in.historyLength, w, h, 1) ? in.historyLength : nullptr)
+    , m_w(w)
+    , m_h(h)
+    , m_maxSamples(std::max(in.maxSamples, 1.0f))
+    , m_base(0.5f * sigmaLuminance)
+    , m_storage(storage)
+{
+}
+
+float* PostFilterNoiseRows::boxMean(int y) const
+{
+    return m_storage + static_cast<std::size_t>(y % (2 * kRadius + 1)) * m_w;
+}
+
+float* PostFilterNoiseRows::boxSquare(int y) const
+{
+    return boxMean(y) + static_cast<std::size_t>(2 * kRadius + 1) * m_w;
+}
+
+void PostFilterNoiseRows::row(int y, float* scale)
+{
+    if (!m_irradiance) {
+        std::fill(scale, scale + m_w, m_base);
         return;
     }
-    const bool history = usable(in.historyLength, w, h, 1);
-    // Rows: the box means of l and l^2 along x.
-    parallelRows(h, [&](int y0, int y1) {
-        thread_local std::vector<float> scratch; // kept by each worker from frame to frame
-        scratch.resize(static_cast<std::size_t>(4 * w + 2 * kRadius));
-        for (int y = y0; y < y1; ++y) {
-            const std::size_t o = static_cast<std::size_t>(y) * w;
-            boxRowX(in.irradiance->at(0, y), w, scratch.data(), scratch.data() + 3 * w,
-                meanPlane + o, squarePlane + o);
-        }
-    });
+    // Rows: the box means of l and l^2 along x, of the rows y - r .. y + r not yet in the ring.
+    if (m_nextBox < 0 || m_nextBox < y - kRadius) // the first row, or one past the ring's rows
+        m_nextBox = std::max(0, y - kRadius);
+    float* scratch = m_storage + static_cast<std::size_t>(2 * (2 * kRadius + 1)) * m_w;
+    for (; m_nextBox <= std::min(y + kRadius, m_h - 1); ++m_nextBox)
+        boxRowX(m_irradiance->at(0, m_nextBox), m_w, scratch, scratch + 3 * m_w, boxMean(m_nextBox),
+            boxSquare(m_nextBox));
     // Columns: the 5x5 means, the relative noise of the accumulated estimate and the scale.
-    ScaleTerms t { nullptr, std::max(in.maxSamples, 1.0f), base / kPostFilterNoiseReference,
-        base / kPostFilterNoiseClamp, base * kPostFilterNoiseClamp };
-    parallelRows(h, [&](int y0, int y1) {
-        ScaleTerms rowTerms = t;
-        for (int y = y0; y < y1; ++y) {
-            const float* rows[2 * kRadius + 1][2];
-            for (int dy = -kRadius; dy <= kRadius; ++dy) {
-                const std::size_t o = static_cast<std::size_t>(std::clamp(y + dy, 0, h - 1)) * w;
-                rows[dy + kRadius][0] = meanPlane + o;
-                rows[dy + kRadius][1] = squarePlane + o;
-            }
-            const std::size_t o = static_cast<std::size_t>(y) * w;
-            rowTerms.history = history ? in.historyLength->data() + o : nullptr;
-            scaleRow(rows, w, rowTerms, scale + o);
-        }
-    });
+    const ScaleTerms t { m_history ? m_history->at(0, y) : nullptr, m_maxSamples,
+        m_base / kPostFilterNoiseReference, m_base / kPostFilterNoiseClamp,
+        m_base * kPostFilterNoiseClamp };
+    const float* rows[2 * kRadius + 1][2];
+    for (int dy = -kRadius; dy <= kRadius; ++dy) {
+        const int q = std::clamp(y + dy, 0, m_h - 1);
+        rows[dy + kRadius][0] = boxMean(q);
+        rows[dy + kRadius][1] = boxSquare(q);
+    }
+    scaleRow(rows, m_w, t, scale);
 }
 
 } // namespace afn::afnet

@@ -26,7 +26,7 @@
 
 #include "base/image.h"
 
-#include <vector>
+#include <cstddef>
 
 namespace afn::afnet {
 
@@ -44,9 +44,33 @@ struct PostFilterNoiseInputs {
     float maxSamples = 9.0f; ///< (2 - alphaMin) / alphaMin of the accumulation
 };
 
-/// `scale` = scale_p above for every pixel of a w x h frame, `sigmaLuminance` being the filter's
-/// sigma_l; `meanPlane` and `squarePlane` are scratch. Each of the three holds w * h floats.
-void postFilterLuminanceScale(const PostFilterNoiseInputs& in, int w, int h, float sigmaLuminance,
-    float* meanPlane, float* squarePlane, float* scale);
+/// scale_p above, row by row: a band of the post-filter's rows asks for its rows in increasing
+/// order from any first row; the box means along x of the 2 r + 1 rows around the last one are
+/// kept in a ring. post_filter_noise.cpp.
+class PostFilterNoiseRows {
+public:
+    /// Floats of storage the rows of a frame of width w need.
+    static std::size_t storageFloats(int w);
+
+    /// For a w x h frame, `sigmaLuminance` being the filter's sigma_l; `storage` holds
+    /// storageFloats(w) floats, used until the last row.
+    PostFilterNoiseRows(
+        const PostFilterNoiseInputs& in, int w, int h, float sigmaLuminance, float* storage);
+
+    /// Row y's scale into `scale` (w floats); y at least the previous call's.
+    void row(int y, float* scale);
+
+private:
+    /// Box row y's means of l and l^2 (its slot of the ring).
+    float* boxMean(int y) const;
+    float* boxSquare(int y) const;
+
+    const Image* m_irradiance;
+    const Image* m_history;
+    int m_w, m_h;
+    float m_maxSamples, m_base;
+    float* m_storage;
+    int m_nextBox = -1; ///< the next box row to compute (-1: none yet)
+};
 
 } // namespace afn::afnet

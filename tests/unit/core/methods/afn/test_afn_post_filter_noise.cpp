@@ -2,7 +2,8 @@
 // The post-filter's per-pixel luminance scale (methods/afn/post_filter_noise.h): exact small cases
 // (no irradiance: the constant of before; a flat irradiance: the low end; a checkerboard: the
 // formula; history divides the variance, up to the accumulation's limit; non-finite values stay
-// in range) and, through the post-filter, a noisier irradiance smoothing the same radiance more.
+// in range; rows from any first row give the whole frame's bits) and, through the post-filter, a
+// noisier irradiance smoothing the same radiance more.
 #include "methods/afn/post_filter.h"
 #include "methods/afn/post_filter_noise.h"
 
@@ -24,11 +25,13 @@ using afn::afnet::PostFilterNoiseInputs;
 constexpr int kW = 20, kH = 12;
 constexpr float kBase = 0.5f * kPostFilterSigmaLuminance;
 
-std::vector<float> scaleOf(const PostFilterNoiseInputs& in)
+/// The scale of the rows from `first` to the last (those above `first` left 0).
+std::vector<float> scaleOf(const PostFilterNoiseInputs& in, int first = 0)
 {
-    std::vector<float> mean(kW * kH), square(kW * kH), scale(kW * kH);
-    afn::afnet::postFilterLuminanceScale(
-        in, kW, kH, kPostFilterSigmaLuminance, mean.data(), square.data(), scale.data());
+    std::vector<float> storage(afn::afnet::PostFilterNoiseRows::storageFloats(kW)), scale(kW * kH);
+    afn::afnet::PostFilterNoiseRows rows(in, kW, kH, kPostFilterSigmaLuminance, storage.data());
+    for (int y = first; y < kH; ++y)
+        rows.row(y, scale.data() + y * kW);
     return scale;
 }
 
@@ -133,6 +136,26 @@ TEST(AfnPostFilterNoise, NonFiniteInputsStayInRange)
         ASSERT_TRUE(std::isfinite(v));
         ASSERT_GE(v, kBase / kPostFilterNoiseClamp);
         ASSERT_LE(v, kBase * kPostFilterNoiseClamp);
+    }
+}
+
+// A band of the post-filter's rows asks for the scale from its own first row on: every row from
+// there has the bits of the whole frame's run, at the top, in the middle and near the bottom.
+TEST(AfnPostFilterNoise, RowsFromAnyFirstRowGiveTheWholeFramesBits)
+{
+    Image irradiance(kW, kH, 3), history(kW, kH, 1);
+    std::mt19937 rng(4);
+    std::uniform_real_distribution<float> u(0.0f, 1.0f);
+    for (std::size_t i = 0; i < irradiance.size(); ++i)
+        irradiance.data()[i] = u(rng);
+    for (std::size_t i = 0; i < history.size(); ++i)
+        history.data()[i] = 1.0f + 10.0f * u(rng);
+    const PostFilterNoiseInputs in { &irradiance, &history, 9.0f };
+    const std::vector<float> whole = scaleOf(in);
+    for (int first : { 1, 2, 3, kH / 2, kH - 3, kH - 1 }) {
+        const std::vector<float> part = scaleOf(in, first);
+        for (int i = first * kW; i < kW * kH; ++i)
+            ASSERT_EQ(part[i], whole[i]) << "first row " << first << ", value " << i;
     }
 }
 
