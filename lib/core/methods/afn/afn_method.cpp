@@ -319,7 +319,7 @@ private:
     TemporalAntialiasing m_taa;
     Image m_taaSpare; ///< the TAA's output buffer (stages/taa.h TemporalAntialiasing::apply)
     bool m_postOn = false; ///< this frame's output is post-filtered (Settings::postFilter)
-    PostFilterWorkspace m_postWorkspace; ///< the post-filter's planes, kept from frame to frame
+    PostFilterWorkspace m_postWorkspace; ///< the post-filter's rows, kept from frame to frame
     Image m_workGrown; ///< the work mask's rows grown by the TAA's and post-filter's margins
     TierRunner m_tiers;
     ModelSet m_models;
