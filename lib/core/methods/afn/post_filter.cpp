@@ -210,9 +210,10 @@ private:
 };
 
 /// One band per thread, none shorter than kMinBandRows rows: each band also computes the halo
-/// rows of the earlier half-passes (bandHalo: 14 + 12 + 8 rows), about 10 % more work for bands
-/// of 180 rows. Two bands per thread (to even out threads the system runs unevenly) measured
-/// slower at 720p on 2 threads (docs/performance.md).
+/// rows of the earlier half-passes (bandHalo: 14 + 12 + 8 rows above and below it), 2.5 % more
+/// half-pass rows for two bands of 360 rows, 7.5 % for four of 180. Two bands per thread (to
+/// even out threads the system runs unevenly) measured slower at 720p on 2 threads
+/// (docs/experiments.md).
 constexpr int kMinBandRows = 64;
 
 } // namespace
