@@ -192,11 +192,9 @@ void AuxPrefilter::prepare(Frame& f)
     // counted, not stored.
     const bool keepFlags = m_decided ? m_report.noisy : m_settings.aux != AuxSettings::Mode::Clean;
     auto share = [&](const Image& img, AuxKind kind, Image& flags) {
-        if (img.empty())
-            return -1.0;
-        const std::int64_t n
-            = keepFlags ? speckleFlags(img.view(), kind, flags) : speckleCount(img.view(), kind);
-        return static_cast<double>(n) / pixels;
+        if (!keepFlags || img.empty())
+            return measuredShare(img.view(), kind);
+        return static_cast<double>(speckleFlags(img.view(), kind, flags)) / pixels;
     };
     m_report.albedoSpeckle = share(f.albedo, AuxKind::Albedo, m_albedoFlags);
     m_report.normalSpeckle = share(f.normal, AuxKind::Normal, m_normalFlags);
