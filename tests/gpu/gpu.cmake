@@ -11,5 +11,6 @@ target_include_directories(test_afn_cuda PRIVATE ${CMAKE_CURRENT_SOURCE_DIR}/uni
 include(AfnEmbed)
 afn_embed_file(test_afn_cuda ${AFN_TEST_DATA}/afn_parity/weights_full.afnw afnTestWeightsFull)
 afn_embed_file(test_afn_cuda ${AFN_TEST_DATA}/afn_parity/weights_fusion.afnw afnTestWeightsFusion)
+afn_embed_file(test_afn_cuda ${AFN_TEST_DATA}/afn_parity/weights_trust.afnw afnTestWeightsTrust)
 afn_embed_file(test_afn_cuda ${AFN_TEST_DATA}/afn_parity/weights_quarter.afnw afnTestWeightsQuarter)
 gtest_discover_tests(test_afn_cuda DISCOVERY_TIMEOUT 60 PROPERTIES LABELS gpu TIMEOUT 600)

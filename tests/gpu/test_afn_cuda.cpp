@@ -14,9 +14,9 @@
 #include "cuda/afn_cuda_filter.h"
 #include "cuda/gpu.h"
 #include "filter/registry.h"
+#include "methods/afn/network_inputs.h"
 #include "methods/afn/weights_source.h"
 #include "stages/demodulate.h"
-#include "stages/feature_scaling.h"
 
 #include "afn/afn.h"
 
@@ -32,6 +32,8 @@ extern "C" const unsigned char afnTestWeightsFull[];
 extern "C" const unsigned long long afnTestWeightsFull_size;
 extern "C" const unsigned char afnTestWeightsFusion[];
 extern "C" const unsigned long long afnTestWeightsFusion_size;
+extern "C" const unsigned char afnTestWeightsTrust[];
+extern "C" const unsigned long long afnTestWeightsTrust_size;
 extern "C" const unsigned char afnTestWeightsQuarter[];
 extern "C" const unsigned long long afnTestWeightsQuarter_size;
 
@@ -50,15 +52,16 @@ std::vector<char> weightsBytes(const std::string& which)
         return { afnTestWeightsFull, afnTestWeightsFull + afnTestWeightsFull_size };
     if (which == "fusion")
         return { afnTestWeightsFusion, afnTestWeightsFusion + afnTestWeightsFusion_size };
+    if (which == "trust")
+        return { afnTestWeightsTrust, afnTestWeightsTrust + afnTestWeightsTrust_size };
     return {};
 }
 
-/// Built-in weights the CUDA filter runs: present, and without the history input or the learned
-/// albedo trust, which it refuses until they are ported (docs/gpu.md).
+/// Whether this build has built-in weights.
 bool hasShippedWeights()
 {
     afn::afnet::Network net;
-    return afn::afnet::loadEmbeddedNetwork(net) && !net.hasHistoryInput() && !net.hasAlbedoTrust();
+    return afn::afnet::loadEmbeddedNetwork(net);
 }
 
 afn::cuda::AfnCudaFilter& cudaFilter(afn::Filter& f)
@@ -105,9 +108,7 @@ void runParityCase(const ParityCase& c)
     SCOPED_TRACE(c.name());
     const std::vector<char> weights = weightsBytes(c.weights);
     auto cpu = afn::createFilter("afn");
-    cpu->params().setString(AFN_PARAM_AUX, "clean"); // the GPU has no aux prefilter yet
-    cpu->params().setString("taa", "off"); // nor the output TAA (taa=auto runs as off there)
-    cpu->params().setString("postFilter", "off"); // nor the post-filter (likewise)
+    afntest::configureAsOnTheGpu(*cpu);
     auto gpu = afn::createFilter("afn", *g_cuda);
     afn::cuda::AfnCudaFilter& cuda = cudaFilter(*gpu);
     cuda.setPoison(true);
@@ -124,7 +125,8 @@ void runParityCase(const ParityCase& c)
     afntest::FrameGatherer gatherer;
     afn::Reprojector reprojector;
     afn::TemporalAccumulator accumulator;
-    afn::Image irradiance, albedo, normal01, depth01, gpuIrr, gpuAcc, gpuX;
+    afn::afnet::NetworkInputs inputs;
+    afn::Image irradiance, gpuIrr, gpuAcc, gpuX;
 
     const afntest::SyntheticSequence seq(c.width, c.height, 11);
     afn::Image cpuOut(c.width, c.height, 3), gpuOut(c.width, c.height, 3);
@@ -141,10 +143,10 @@ void runParityCase(const ParityCase& c)
         reprojector.compute(f);
         accumulator.accumulate(reprojector, irradiance);
         reprojector.storeGeometry(f);
-        albedo = f.hasAlbedo() ? f.albedo : afn::Image(f.width, f.height, 3, 1.0f);
-        afn::normalToUnitRange(f.normal, f.width, f.height, normal01);
-        afn::depthToUnitRange(f.depth, f.width, f.height, depth01);
-        net.prepare({ &irradiance, &accumulator.color(), &albedo, &normal01, &depth01 });
+        // The full model's inputs (cpuRunsTheFullModel), history01 where the weights read it.
+        inputs.prepare(f, afn::afnet::InputSet::full(), irradiance, accumulator.color(),
+            net.hasHistoryInput() ? &accumulator.historyLength() : nullptr);
+        net.prepare(inputs.inputs());
         cuda.pipeline().downloadIntermediate(
             afn::cuda::AfnPipeline::Intermediate::Irradiance, gpuIrr);
         cuda.pipeline().downloadIntermediate(
@@ -240,9 +242,12 @@ TEST_F(CudaAfn, ThroughTheCApi)
     afn::Image out[2] = { afn::Image(w, h, 4), afn::Image(w, h, 4) };
     for (AFNFilter f : filters)
         afnSetFilterData(f, AFN_DATA_WEIGHTS, weights.data(), weights.size());
-    afnSetFilterString(filters[0], AFN_PARAM_AUX, "clean"); // the GPU has no aux prefilter yet
-    afnSetFilterString(filters[0], "taa", "off"); // nor the output TAA (auto runs as off there)
-    afnSetFilterString(filters[0], "postFilter", "off"); // nor the post-filter
+    // As afntest::configureAsOnTheGpu, through the C API.
+    afnSetFilterString(filters[0], AFN_PARAM_AUX, "clean");
+    afnSetFilterString(filters[0], "taa", "off");
+    afnSetFilterString(filters[0], "postFilter", "off");
+    afnSetFilterString(filters[0], "precision", "fp32");
+    afnSetFilterBool(filters[0], "skip", false);
     for (int k = 0; k < 3; ++k) {
         afntest::SequenceFrame in = seq.frame(k, SequenceInputs {});
         for (int i = 0; i < 2; ++i) {
@@ -291,9 +296,7 @@ TEST_F(CudaAfn, ThroughTheCApi)
 TEST_F(CudaAfn, ResetAndNewWeightsMidSequence)
 {
     auto cpu = afn::createFilter("afn");
-    cpu->params().setString(AFN_PARAM_AUX, "clean"); // the GPU has no aux prefilter yet
-    cpu->params().setString("taa", "off"); // nor the output TAA (taa=auto runs as off there)
-    cpu->params().setString("postFilter", "off"); // nor the post-filter (likewise)
+    afntest::configureAsOnTheGpu(*cpu);
     auto gpu = afn::createFilter("afn", *g_cuda);
     cudaFilter(*gpu).setPoison(true);
     const std::vector<char> full = weightsBytes("full"), fusion = weightsBytes("fusion");

@@ -43,14 +43,6 @@ void AfnCudaFilter::configure()
         throw Exception(AFN_ERROR_UNSUPPORTED,
             "afn on a CUDA device has no quarter-resolution scale yet: weights with quarter=1 "
             "run on the CPU device (afntool: --device cpu)");
-    if (m_net.hasHistoryInput()) // no 14-channel input on the GPU yet
-        throw Exception(AFN_ERROR_UNSUPPORTED,
-            "afn on a CUDA device has no history input yet: weights with history=1 run on the "
-            "CPU device (afntool: --device cpu)");
-    if (m_net.hasAlbedoTrust()) // no albedo trust head on the GPU yet
-        throw Exception(AFN_ERROR_UNSUPPORTED,
-            "afn on a CUDA device has no learned albedo trust yet: weights with albedoTrust=1 run "
-            "on the CPU device (afntool: --device cpu)");
     // No aux prefilter on the GPU yet (stages/aux_prefilter.h): aux=auto runs as clean here.
     if (auxBinding().read(params()).aux == AuxSettings::Mode::Noisy)
         throw Exception(AFN_ERROR_UNSUPPORTED,
@@ -72,11 +64,10 @@ void AfnCudaFilter::configure()
         throw Exception(AFN_ERROR_UNSUPPORTED,
             "afn on a CUDA device has no post-filter yet: postFilter=on runs on the CPU device "
             "only (afntool: --device cpu)");
-    // No history trust on the GPU yet (stages/history_trust.h): antilag runs as 0 here (the
-    // history kept wherever the geometry matches; stats.historyCut 0, historyTrust all 1).
     // The same parameters as the CPU filter's stages (filter/filter.cpp commit()).
     m_reproject = reprojectBinding().read(params());
     m_accumulation = accumulationBinding().read(params());
+    m_trust = historyTrustBinding().read(params());
     if (m_networkChanged) {
         m_pipeline.setNetwork(m_net);
         m_networkChanged = false;
@@ -86,7 +77,7 @@ void AfnCudaFilter::configure()
 void AfnCudaFilter::denoise(const Frame& in, Image& out)
 {
     reportProgress(0.1);
-    m_pipeline.run(in, frameConstants(in, m_reproject, m_accumulation), out);
+    m_pipeline.run(in, frameConstants(in, m_reproject, m_accumulation, m_trust), out);
     reportProgress(0.95);
 }
 

@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: Apache-2.0
 // The "afn" filter on a CUDA device. It derives from Filter with no CPU stages: the Filter base
 // gathers and sanitises the inputs on the CPU, then the whole method (demodulation, reprojection,
-// temporal accumulation, features, network, remodulation) runs on the GPU (afn_pipeline.h). It has
+// history trust, temporal accumulation, features, network, remodulation) runs on the GPU
+// (afn_pipeline.h). It has
 // the CPU filter's parameters, weights and errors; its results match the CPU's within the
 // half-precision tolerance of docs/gpu.md.
 #pragma once
@@ -9,6 +10,7 @@
 #include "base/device.h"
 #include "cuda/afn_pipeline.h"
 #include "filter/registry.h"
+#include "stages/history_trust.h"
 #include "stages/temporal_accumulation.h"
 
 #include <memory>
@@ -24,6 +26,8 @@ public:
     void setPoison(bool poison) { m_pipeline.setPoison(poison); }
     /// The GPU pipeline (tests read intermediates from it).
     AfnPipeline& pipeline() { return m_pipeline; }
+    /// The history trust's cut share of the last frame, measured on the GPU.
+    double lastHistoryCutShare() const override { return m_pipeline.lastCutShare(); }
 
 private:
     void configure() override;
@@ -33,6 +37,7 @@ private:
     bool m_networkChanged = false;
     ReprojectSettings m_reproject;
     AccumulationSettings m_accumulation;
+    HistoryTrustSettings m_trust;
     AfnPipeline m_pipeline;
 };
 

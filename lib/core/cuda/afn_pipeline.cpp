@@ -91,6 +91,8 @@ void AfnPipeline::setNetwork(const afnet::Network& network)
     useGpu(m_gpu);
     m_variant = network.variant();
     m_refine = m_variant == afnet::Variant::Full;
+    m_historyInput = network.hasHistoryInput();
+    m_albedoTrust = network.hasAlbedoTrust();
     for (int i = 0; i < static_cast<int>(m_layers.size()); ++i) {
         const auto which = static_cast<NetLayer>(i);
         Layer& layer = m_layers[i];
@@ -112,6 +114,15 @@ void AfnPipeline::setNetwork(const afnet::Network& network)
             layer.weights.bytes(), cudaMemcpyHostToDevice, m_stream.get()));
         AFN_CUDA_CHECK(cudaMemcpyAsync(layer.bias.data(), layer.packed.bias.data(),
             layer.bias.bytes(), cudaMemcpyHostToDevice, m_stream.get()));
+    }
+    std::vector<float> head; // the albedo trust's head, alive until the copy is done
+    if (m_albedoTrust) {
+        head = packTrustHead(network.albedoTrustHead());
+        m_trustHead.resize(head.size());
+        AFN_CUDA_CHECK(cudaMemcpyAsync(m_trustHead.data(), head.data(), m_trustHead.bytes(),
+            cudaMemcpyHostToDevice, m_stream.get()));
+    } else {
+        m_trustHead.release();
     }
     AFN_CUDA_CHECK(cudaStreamSynchronize(m_stream.get()));
     m_hasNetwork = true;
@@ -138,14 +149,22 @@ void AfnPipeline::allocate(const FrameLayout& layout)
         allocateBuffer(m_history[s], n, p, st);
     }
     allocateBuffer(m_depthRange, 2, p, st);
+    const std::size_t blocksX = (w + kTrustBlockDevice - 1) / kTrustBlockDevice;
+    const std::size_t blocks = blocksX * ((h + kTrustBlockDevice - 1) / kTrustBlockDevice);
+    allocateBuffer(m_trustRowSums, static_cast<std::size_t>(h) * blocksX * kTrustSums, p, st);
+    allocateBuffer(m_trustRaw, blocks, p, st);
+    allocateBuffer(m_trustCount, blocks, p, st);
+    allocateBuffer(m_trustBlock, blocks, p, st);
+    allocateBuffer(m_cutPixels, 1, p, st);
     allocateBuffer(m_constants, 1, p, st);
 
     const auto channels = [&](NetLayer l) { return m_layers[layerIndex(l)].packed.outChannels; };
     m_paddedWidth = paddedSize(w);
     m_paddedHeight = paddedSize(h);
     const int wp = m_paddedWidth, hp = m_paddedHeight;
-    m_x.allocate(wp, hp, kInputChannels, p, st);
-    m_xHalf.allocate(wp / 2, hp / 2, kInputChannels, p, st);
+    const int inputs = m_historyInput ? kHistoryInputChannels : kInputChannels;
+    m_x.allocate(wp, hp, inputs, p, st);
+    m_xHalf.allocate(wp / 2, hp / 2, inputs, p, st);
     m_e1.allocate(wp / 2, hp / 2, channels(NetLayer::Enc1), p, st);
     m_e1Pool.allocate(wp / 4, hp / 4, channels(NetLayer::Enc1), p, st);
     m_e2.allocate(wp / 4, hp / 4, channels(NetLayer::Enc2), p, st);
@@ -154,6 +173,8 @@ void AfnPipeline::allocate(const FrameLayout& layout)
     m_d2.allocate(wp / 4, hp / 4, channels(NetLayer::Dec2), p, st);
     m_d1.allocate(wp / 2, hp / 2, channels(NetLayer::Dec1), p, st);
     allocateBuffer(m_color1Half, 3 * pixels(wp / 2, hp / 2), p, st);
+    allocateBuffer(m_trust, m_albedoTrust ? pixels(wp / 2, hp / 2) : 0, p, st);
+    allocateBuffer(m_colorTaScaled, m_albedoTrust ? 3 * pixels(wp, hp) : 0, p, st);
     if (m_refine) {
         allocateBuffer(m_fused, 3 * pixels(wp, hp), p, st);
         m_refineInput.allocate(wp, hp, kRefineInputChannels, p, st);
@@ -188,7 +209,7 @@ void AfnPipeline::captureGraphs()
     for (int slot = 0; slot < 2; ++slot)
         m_graphs[slot].reset(captureGraph(m_stream.get(), [&](cudaStream_t s) {
             enqueueTemporalFeatures(slot, s);
-            enqueueKernelPrediction(s);
+            enqueueKernelPrediction(slot, s);
             enqueueFilteringFusion(slot, s);
             enqueueRefinement(s);
         }));
@@ -201,7 +222,7 @@ void AfnPipeline::enqueue(Stage stage, cudaStream_t stream) const
     case Stage::TemporalFeatures:
         return enqueueTemporalFeatures(m_slot, stream);
     case Stage::KernelPrediction:
-        return enqueueKernelPrediction(stream);
+        return enqueueKernelPrediction(m_slot, stream);
     case Stage::FilteringFusion:
         return enqueueFilteringFusion(m_slot, stream);
     case Stage::Refinement:
@@ -223,7 +244,7 @@ void AfnPipeline::enqueueTemporalFeatures(int slot, cudaStream_t stream) const
 {
     const FrameLayout& l = m_layout;
     const int prev = slot ^ 1;
-    launchResetDepthRange(m_depthRange.data(), stream);
+    launchResetFrameCounters(m_depthRange.data(), m_cutPixels.data(), stream);
     TemporalBuffers b;
     b.width = l.width;
     b.height = l.height;
@@ -241,7 +262,17 @@ void AfnPipeline::enqueueTemporalFeatures(int slot, cudaStream_t stream) const
     b.irradiance = m_irradiance.data();
     b.accumulated = m_accumulated[slot].data();
     b.historyLength = m_history[slot].data();
-    launchTemporal(b, m_constants.data(), m_depthRange.data(), stream);
+    TrustBuffers t;
+    t.width = l.width;
+    t.height = l.height;
+    t.blocksX = (l.width + kTrustBlockDevice - 1) / kTrustBlockDevice;
+    t.blocksY = (l.height + kTrustBlockDevice - 1) / kTrustBlockDevice;
+    t.rowSums = m_trustRowSums.data();
+    t.raw = m_trustRaw.data();
+    t.count = m_trustCount.data();
+    t.block = m_trustBlock.data();
+    t.cutPixels = m_cutPixels.data();
+    launchTemporal(b, t, m_constants.data(), m_depthRange.data(), stream);
 
     PrepareBuffers p;
     p.width = l.width;
@@ -254,6 +285,7 @@ void AfnPipeline::enqueueTemporalFeatures(int slot, cudaStream_t stream) const
     p.normal = b.normal;
     p.depth = b.depth;
     p.depthRange = m_depthRange.data();
+    p.historyLength = m_historyInput ? m_history[slot].data() : nullptr;
     p.x = m_x.data.data();
     p.xHalf = m_xHalf.data.data();
     p.color1Half = m_color1Half.data();
@@ -285,7 +317,7 @@ ConvOperands AfnPipeline::operands(const Layer& layer, const Tensor* up, const T
     return op;
 }
 
-void AfnPipeline::enqueueKernelPrediction(cudaStream_t stream) const
+void AfnPipeline::enqueueKernelPrediction(int slot, cudaStream_t stream) const
 {
     auto conv = [&](NetLayer l, const Tensor* up, const Tensor& same, const Tensor& out) {
         launchConvRelu(operands(m_layers[layerIndex(l)], up, same),
@@ -295,6 +327,24 @@ void AfnPipeline::enqueueKernelPrediction(cudaStream_t stream) const
         launchPool(in.data.data(), in.width, in.height, in.stride, out.data.data(), stream);
     };
     conv(NetLayer::Enc1, nullptr, m_xHalf, m_e1);
+    if (m_albedoTrust) {
+        AlbedoTrustBuffers t;
+        t.width = m_layout.width;
+        t.height = m_layout.height;
+        t.halfWidth = m_e1.width;
+        t.halfHeight = m_e1.height;
+        t.e1 = m_e1.data.data();
+        t.e1Stride = m_e1.stride;
+        t.e1Channels = m_layers[layerIndex(NetLayer::Enc1)].packed.outChannels;
+        t.head = m_trustHead.data();
+        t.albedo = m_layout.albedo ? m_albedo.data() : nullptr;
+        t.color1 = color1Source(slot);
+        t.colorTa = colorTaSource(slot);
+        t.trust = m_trust.data();
+        t.colorTaScaled = m_colorTaScaled.data();
+        t.color1Half = m_color1Half.data();
+        launchAlbedoTrust(t, stream);
+    }
     pool(m_e1, m_e1Pool);
     conv(NetLayer::Enc2, nullptr, m_e1Pool, m_e2);
     pool(m_e2, m_e2Pool);
@@ -309,6 +359,8 @@ FinalOutput AfnPipeline::finalOutput() const
     o.fused = m_fused.data();
     o.albedo = m_layout.albedo ? m_albedo.data() : nullptr;
     o.plainAlbedo = m_layout.colorDemodulated ? 1 : 0;
+    o.trust = m_albedoTrust ? m_trust.data() : nullptr;
+    o.trustWidth = m_paddedWidth / 2;
     o.data = m_output.data();
     o.width = m_layout.width;
     o.height = m_layout.height;
@@ -321,9 +373,10 @@ void AfnPipeline::enqueueFilteringFusion(int slot, cudaStream_t stream) const
     a.head1 = operands(m_layers[layerIndex(NetLayer::Head1)], nullptr, m_d1);
     a.headTa = operands(m_layers[layerIndex(NetLayer::HeadTa)], &m_d1, m_x);
     a.x = m_x.data.data();
-    a.colorTa.data = colorTaSource(slot);
-    a.colorTa.width = m_layout.width;
-    a.colorTa.height = m_layout.height;
+    // With the albedo trust the TA colour times s, stored at the padded size.
+    a.colorTa.data = m_albedoTrust ? m_colorTaScaled.data() : colorTaSource(slot);
+    a.colorTa.width = m_albedoTrust ? m_paddedWidth : m_layout.width;
+    a.colorTa.height = m_albedoTrust ? m_paddedHeight : m_layout.height;
     a.colorTa.paddedWidth = m_paddedWidth;
     a.colorTa.paddedHeight = m_paddedHeight;
     a.color1Half.data = m_color1Half.data();
@@ -388,7 +441,10 @@ void AfnPipeline::download(Image& out)
     out.resize(m_layout.width, m_layout.height, 3);
     AFN_CUDA_CHECK(cudaMemcpyAsync(
         out.data(), m_output.data(), m_output.bytes(), cudaMemcpyDeviceToHost, m_stream.get()));
+    AFN_CUDA_CHECK(cudaMemcpyAsync(&m_lastCutPixels, m_cutPixels.data(), m_cutPixels.bytes(),
+        cudaMemcpyDeviceToHost, m_stream.get()));
     AFN_CUDA_CHECK(cudaStreamSynchronize(m_stream.get()));
+    m_lastCutShare = m_lastCutPixels / (static_cast<double>(m_layout.width) * m_layout.height);
 }
 
 void AfnPipeline::run(const Frame& frame, const FrameConstants& constants, Image& out)
@@ -411,7 +467,7 @@ std::size_t AfnPipeline::uploadBytes() const
 
 std::size_t AfnPipeline::downloadBytes() const
 {
-    return m_output.bytes();
+    return m_output.bytes() + m_cutPixels.bytes();
 }
 
 void AfnPipeline::downloadIntermediate(Intermediate which, Image& out)
@@ -443,11 +499,13 @@ void AfnPipeline::downloadIntermediate(Intermediate which, Image& out)
     case Intermediate::Accumulated:
         return floats(m_accumulated[m_lastSlot], w, h, 3);
     case Intermediate::NetworkInput:
-        return halves(m_x, kInputChannels);
+        return halves(m_x, m_historyInput ? kHistoryInputChannels : kInputChannels);
     case Intermediate::DecoderOutput:
         return halves(m_d1, m_layers[layerIndex(NetLayer::Dec1)].packed.outChannels);
     case Intermediate::Fused:
         return floats(m_fused, m_paddedWidth, m_paddedHeight, 3);
+    case Intermediate::AlbedoTrust:
+        return floats(m_trust, m_paddedWidth / 2, m_paddedHeight / 2, 1);
     }
 }
 

@@ -8,8 +8,10 @@
 // frames and are captured again only when the frame size, the set of inputs, the colour convention
 // or the network changes.
 //
-// Stages (kernels.h): TemporalFeatures (TA + network input), KernelPrediction (encoder-decoder),
-// FilteringFusion (heads, softmax, filtering, Eq. 3), Refinement (variant "full").
+// Stages (kernels.h): TemporalFeatures (TA + network input, with history01 for weights with the
+// history input), KernelPrediction (encoder-decoder; the albedo trust after its first level for
+// weights with albedoTrust=1), FilteringFusion (heads, softmax, filtering, Eq. 3), Refinement
+// (variant "full"; the output divided by the albedo trust's scale, remodulated).
 #pragma once
 
 #include "base/image.h"
@@ -41,7 +43,14 @@ struct FrameLayout {
 class AfnPipeline {
 public:
     enum class Stage { TemporalFeatures, KernelPrediction, FilteringFusion, Refinement };
-    enum class Intermediate { Irradiance, Accumulated, NetworkInput, DecoderOutput, Fused };
+    enum class Intermediate {
+        Irradiance,
+        Accumulated,
+        NetworkInput,
+        DecoderOutput,
+        Fused,
+        AlbedoTrust
+    };
 
     explicit AfnPipeline(int gpu);
     AfnPipeline(const AfnPipeline&) = delete;
@@ -71,13 +80,17 @@ public:
     /// Enqueue one stage for the current slot (also inside a graph capture).
     void enqueue(Stage stage, cudaStream_t stream) const;
     cudaStream_t stream() const { return m_stream.get(); }
+    /// Share of the last downloaded frame's pixels whose history the trust cut
+    /// (HistoryTrust::cutShare()).
+    double lastCutShare() const { return m_lastCutShare; }
     /// Bytes uploaded and downloaded per frame with the configured layout.
     std::size_t uploadBytes() const;
     std::size_t downloadBytes() const;
 
     /// An intermediate of the last frame, as floats (tests). Irradiance, Accumulated: frame size,
-    /// 3 ch; NetworkInput: padded size, 13 ch; DecoderOutput: half the padded size; Fused: padded
-    /// size, 3 ch (variant "full" only). Call after run().
+    /// 3 ch; NetworkInput: padded size, 13 ch (14 with the history input); DecoderOutput: half
+    /// the padded size; Fused: padded size, 3 ch (variant "full" only); AlbedoTrust: half the
+    /// padded size, 1 ch (weights with the albedo trust only). Call after run().
     void downloadIntermediate(Intermediate which, Image& out);
 
 private:
@@ -96,7 +109,7 @@ private:
     ConvOperands operands(const Layer& layer, const Tensor* up, const Tensor& same) const;
     FinalOutput finalOutput() const;
     void enqueueTemporalFeatures(int slot, cudaStream_t stream) const;
-    void enqueueKernelPrediction(cudaStream_t stream) const;
+    void enqueueKernelPrediction(int slot, cudaStream_t stream) const;
     void enqueueFilteringFusion(int slot, cudaStream_t stream) const;
     void enqueueRefinement(cudaStream_t stream) const;
     /// The colours the network filters (the variants "1spp" and "ta" use one for both).
@@ -108,8 +121,11 @@ private:
     bool m_poison = false;
     bool m_hasNetwork = false;
     bool m_refine = false;
+    bool m_historyInput = false; ///< the network reads history01 (Network::hasHistoryInput)
+    bool m_albedoTrust = false; ///< Network::hasAlbedoTrust
     afnet::Variant m_variant = afnet::Variant::Full;
     std::array<Layer, 10> m_layers; ///< in Network::Layer order
+    DeviceBuffer<float> m_trustHead; ///< packTrustHead() of headG (albedo trust only)
     FrameLayout m_layout; ///< of the allocated buffers and captured graphs
     bool m_graphsValid = false;
     int m_slot = 0; ///< slot of the current frame; the previous frame's is 1 - m_slot
@@ -120,12 +136,20 @@ private:
     DeviceBuffer<float> m_color, m_albedo, m_motion, m_irradiance, m_output;
     std::array<DeviceBuffer<float>, 2> m_position, m_normal, m_depth, m_accumulated, m_history;
     DeviceBuffer<std::uint32_t> m_depthRange;
+    // The history trust (history_trust_block.h): per row block sums, per block raw trust, count
+    // and trust, the cut pixels (one word, copied back with the output).
+    DeviceBuffer<float> m_trustRowSums, m_trustRaw, m_trustCount, m_trustBlock;
+    DeviceBuffer<unsigned> m_cutPixels;
+    unsigned m_lastCutPixels = 0;
+    double m_lastCutShare = 0.0;
     DeviceBuffer<FrameConstants> m_constants;
     // Network tensors (padded frame and its levels).
     int m_paddedWidth = 0, m_paddedHeight = 0;
     Tensor m_x, m_xHalf, m_e1, m_e1Pool, m_e2, m_e2Pool, m_e3, m_d2, m_d1, m_refineInput, m_r1,
         m_r2;
     DeviceBuffer<float> m_color1Half, m_fused;
+    // The albedo trust's t (half the padded frame) and the TA colour times s (padded frame).
+    DeviceBuffer<float> m_trust, m_colorTaScaled;
 };
 
 } // namespace afn::cuda

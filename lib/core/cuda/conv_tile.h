@@ -9,6 +9,7 @@
 // filtering kernel needs for its 2 x 2 pooling blocks.
 #pragma once
 
+#include "cuda/albedo_trust_block.h"
 #include "cuda/fragment.h"
 
 namespace afn::cuda {
@@ -118,23 +119,33 @@ AFN_HD void storeZeroPadding(const ConvOperands& op, const ReluOutput& out, int 
     }
 }
 
-/// Output of the last refinement layer: o = fused + conv (3 channels), remodulated by the albedo
-/// and cropped to the frame (methods/afn/network.cpp refine() and crop(), demodulate.h).
+/// Output of the last refinement layer: o = fused + conv (3 channels), back from the albedo
+/// trust's space, remodulated by the albedo and cropped to the frame (methods/afn/network.cpp
+/// refine() and crop(), albedo_trust.h, demodulate.h).
 struct FinalOutput {
     const float* fused = nullptr; ///< padded frame, 3 floats per pixel
     const float* albedo = nullptr; ///< frame size, 3 floats per pixel; null: factor 1
     int plainAlbedo = 0; ///< 1: colour came demodulated (multiply by the plain albedo)
+    /// The albedo trust's t (albedo_trust_block.h), half the padded frame, `trustWidth` floats per
+    /// row; null: weights without the albedo trust
+    const float* trust = nullptr;
+    int trustWidth = 0;
     float* data = nullptr; ///< frame size, 3 floats per pixel
     int width = 0; ///< the frame (unpadded)
     int height = 0;
 };
 
-/// The output value of one channel: o remodulated (stages/demodulate.cpp remodulate()).
-AFN_HD float remodulated(const FinalOutput& out, std::size_t pixel, int c, float o)
+/// The output value of channel c at frame pixel (x, y) from the network's o: divided by the
+/// albedo trust's s (methods/afn/albedo_trust.cpp undoAlbedoTrustRows(); a = the albedo of x, 1
+/// without albedo), then remodulated (stages/demodulate.cpp remodulate()).
+AFN_HD float outputValue(const FinalOutput& out, int x, int y, int c, float o)
 {
-    const float a = out.albedo
-        ? albedoFactor(loadFloat(out.albedo + 3 * pixel + c), out.plainAlbedo != 0)
-        : 1.0f;
+    const std::size_t pixel = static_cast<std::size_t>(y) * out.width + x;
+    const float albedo = out.albedo ? loadFloat(out.albedo + 3 * pixel + c) : 1.0f;
+    if (out.trust)
+        o /= trustScale(albedo,
+            loadFloat(out.trust + static_cast<std::size_t>(y / 2) * out.trustWidth + x / 2));
+    const float a = out.albedo ? albedoFactor(albedo, out.plainAlbedo != 0) : 1.0f;
     return clampIrradiance(o) * a;
 }
 
@@ -151,8 +162,8 @@ AFN_HD void storeFinal(
         const float r = c[i] + loadFloat(op.bias + ch);
         const float o
             = loadFloat(out.fused + (static_cast<std::size_t>(y) * op.width + px) * 3 + ch) + r;
-        const std::size_t pixel = static_cast<std::size_t>(y) * out.width + px;
-        out.data[3 * pixel + ch] = remodulated(out, pixel, ch, o);
+        out.data[3 * static_cast<std::size_t>(y) * out.width + 3 * px + ch]
+            = outputValue(out, px, y, ch, o);
     }
 }
 

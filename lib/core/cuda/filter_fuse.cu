@@ -139,7 +139,8 @@ __global__ void __launch_bounds__(kWarpsPerBlock * 32) filterFuseKernel(FilterFu
                     = make_uint2(w[0], w[1]);
             } else if (t < 3 && x < a.output.width && y < a.output.height) {
                 const std::size_t p = static_cast<std::size_t>(y) * a.output.width + x;
-                a.output.data[3 * p + t] = remodulated(a.output, p, t, component(fused[half], t));
+                a.output.data[3 * p + t]
+                    = outputValue(a.output, x, y, t, component(fused[half], t));
             }
         }
     }

@@ -5,6 +5,7 @@
 
 #include "cuda/temporal_pixel.h"
 #include "filter/frame.h"
+#include "stages/history_trust.h"
 #include "stages/reproject.h"
 #include "stages/temporal_accumulation.h"
 
@@ -12,8 +13,8 @@
 
 namespace afn::cuda {
 
-inline FrameConstants frameConstants(
-    const Frame& in, const ReprojectSettings& reproject, const AccumulationSettings& accumulation)
+inline FrameConstants frameConstants(const Frame& in, const ReprojectSettings& reproject,
+    const AccumulationSettings& accumulation, const HistoryTrustSettings& trust)
 {
     FrameConstants c;
     c.hasHistory = in.frameIndex > 0 ? 1 : 0;
@@ -27,6 +28,7 @@ inline FrameConstants frameConstants(
     c.normalLimitSquared = reproject.normalLimitSquared;
     c.depthLimit = reproject.depthLimit;
     c.alphaMin = accumulation.alphaMin;
+    c.antilag = trust.antilag;
     c.colorDemodulated = in.colorDemodulated ? 1 : 0;
     return c;
 }

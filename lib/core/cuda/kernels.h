@@ -4,13 +4,17 @@
 // throws afn::Exception when the launch is refused.
 //
 // Per frame, in stream order (afn_pipeline.cpp):
-//   resetDepthRange, temporal          TA: demodulate, reproject, accumulate; depth range
+//   resetFrameCounters, temporal       TA: demodulate, reproject, history trust, accumulate;
+//                                      depth range
 //   prepare                            network input x, its 2 x 2 average, D(1-spp colour)
 //   conv / pool                        encoder-decoder at 1/2 .. 1/8 resolution (tensor cores)
+//   albedoTrust                        after the first encoder level: t, the colours times s
+//                                      (weights with albedoTrust=1)
 //   filterFuse                         heads, softmax, 7 x 7 filtering, Eq. 3
 //   conv x 3 (the last: convFinal)     refinement, residual, remodulation, crop
 #pragma once
 
+#include "cuda/albedo_trust_block.h"
 #include "cuda/conv_tile.h"
 #include "cuda/filter_fuse_lane.h"
 #include "cuda/prepare_block.h"
@@ -20,11 +24,12 @@
 
 namespace afn::cuda {
 
-/// Set the depth-range keys (2 words: min, max) to the empty range.
-void launchResetDepthRange(std::uint32_t* depthRange, cudaStream_t stream);
+/// Set the depth-range keys (2 words: min, max) to the empty range and the cut pixel count to 0.
+void launchResetFrameCounters(std::uint32_t* depthRange, unsigned* cutPixels, cudaStream_t stream);
 
-/// First stage over the frame; also folds valid depths into `depthRange` (when there is depth).
-void launchTemporal(const TemporalBuffers& b, const FrameConstants* frame,
+/// First stage over the frame (gather, history trust, blend); also folds valid depths into
+/// `depthRange` (when there is depth) and adds the trust's cut pixels to t.cutPixels.
+void launchTemporal(const TemporalBuffers& b, const TrustBuffers& t, const FrameConstants* frame,
     std::uint32_t* depthRange, cudaStream_t stream);
 
 /// Network input over the half-resolution grid of the padded frame.
@@ -34,6 +39,9 @@ void launchPrepare(const PrepareBuffers& b, cudaStream_t stream);
 /// `out` of half the size and the same stride.
 void launchPool(const std::uint16_t* in, int width, int height, int stride, std::uint16_t* out,
     cudaStream_t stream);
+
+/// The albedo trust over the half-resolution grid of the padded frame.
+void launchAlbedoTrust(const AlbedoTrustBuffers& b, cudaStream_t stream);
 
 /// A hidden convolution layer (bias, ReLU, half-precision output).
 void launchConvRelu(const ConvOperands& op, const ReluOutput& out, cudaStream_t stream);

@@ -2,7 +2,8 @@
 // The network input of one 2 x 2 block of the padded frame (methods/afn/network.cpp prepare() and
 // the first pooling of predict(), stages/feature_scaling.cpp): for each of the four pixels, read
 // with edge replication from the frame, x = [T(c1), T(cTA), albedo, normal01, depth01] (13
-// channels, stored as halves with 3 zero channels); the block's 2 x 2 average of x (the encoder's
+// channels), with history01 as a 14th for weights with the history input (methods/afn/network.h),
+// stored as halves with zero channels up to 16; the block's 2 x 2 average of x (the encoder's
 // input) and of the 1-spp colour (filtered at half resolution), both averaged in float before any
 // rounding, as the CPU does.
 #pragma once
@@ -12,7 +13,9 @@
 namespace afn::cuda {
 
 constexpr int kInputChannels = 13; ///< channels of the network input x
-constexpr int kInputStride = 16; ///< channelStride(kInputChannels)
+constexpr int kHistoryInputChannels = 14; ///< with history01 (weights with history=1)
+constexpr int kInputStride = 16; ///< channelStride(kInputChannels), as of kHistoryInputChannels
+constexpr float kMaxHistoryLengthDevice = 255.0f; ///< stages/temporal_accumulation.h
 
 /// Order-preserving unsigned key of a float: a < b exactly when key(a) < key(b) (for atomic
 /// min/max of floats).
@@ -65,6 +68,13 @@ AFN_HD float normalToUnit(float n)
     return isFiniteFloat(n) ? minOf(maxOf(n * 0.5f + 0.5f, 0.0f), 1.0f) : 0.5f;
 }
 
+/// history01 of a pixel whose history holds n frames (methods/afn/network_inputs.cpp
+/// makeHistory01): 1 / n, at least 1 / kMaxHistoryLength; 1 for n <= 1 or NaN (no history).
+AFN_HD float historyToUnit(float n)
+{
+    return n > 1.0f ? maxOf(1.0f / n, 1.0f / kMaxHistoryLengthDevice) : 1.0f;
+}
+
 /// Buffers of the input preparation.
 struct PrepareBuffers {
     int width = 0; ///< the frame
@@ -77,6 +87,9 @@ struct PrepareBuffers {
     const float* normal = nullptr; ///< 3 ch or null (normal01 = 0.5)
     const float* depth = nullptr; ///< 1 ch or null (depth01 = 0)
     const std::uint32_t* depthRange = nullptr; ///< ordered keys of the valid depths' min, max
+    /// 1 ch, the frames the TA colour holds: history01 becomes x's 14th channel; null: 13
+    /// channels (weights without the history input)
+    const float* historyLength = nullptr;
     std::uint16_t* x = nullptr; ///< padded frame, kInputStride halves per pixel
     std::uint16_t* xHalf = nullptr; ///< half of the padded frame, kInputStride halves per pixel
     float* color1Half = nullptr; ///< half of the padded frame, 3 floats per pixel
@@ -85,13 +98,14 @@ struct PrepareBuffers {
 /// Prepare block (xh, yh) of the half-resolution grid.
 AFN_HD void prepareBlock(const PrepareBuffers& b, const DepthScale& ds, int xh, int yh)
 {
-    float sum[kInputChannels] = {};
+    const int channels = b.historyLength ? kHistoryInputChannels : kInputChannels;
+    float sum[kHistoryInputChannels] = {};
     float sum1[3] = { 0.0f, 0.0f, 0.0f };
     for (int q = 0; q < 4; ++q) {
         const int px = 2 * xh + (q & 1), py = 2 * yh + (q >> 1);
         const int sx = minOf(px, b.width - 1), sy = minOf(py, b.height - 1);
         const std::size_t s = static_cast<std::size_t>(sy) * b.width + sx;
-        float v[kInputChannels];
+        float v[kHistoryInputChannels];
         for (int c = 0; c < 3; ++c) {
             const float c1 = b.color1[3 * s + c];
             v[c] = toneMap(c1);
@@ -101,25 +115,25 @@ AFN_HD void prepareBlock(const PrepareBuffers& b, const DepthScale& ds, int xh, 
             sum1[c] += c1;
         }
         v[12] = b.depth ? depthToUnit(b.depth[s], ds) : 0.0f;
+        v[13] = b.historyLength ? historyToUnit(b.historyLength[s]) : 0.0f;
         std::uint32_t words[kInputStride / 2];
         for (int w = 0; w < kInputStride / 2; ++w) {
             const int c = 2 * w;
-            words[w] = packHalves(
-                c < kInputChannels ? v[c] : 0.0f, c + 1 < kInputChannels ? v[c + 1] : 0.0f);
+            words[w] = packHalves(c < channels ? v[c] : 0.0f, c + 1 < channels ? v[c + 1] : 0.0f);
         }
         std::uint32_t* dst = reinterpret_cast<std::uint32_t*>(
             b.x + (static_cast<std::size_t>(py) * b.paddedWidth + px) * kInputStride);
         for (int w = 0; w < kInputStride / 2; ++w)
             dst[w] = words[w];
-        for (int c = 0; c < kInputChannels; ++c)
+        for (int c = 0; c < channels; ++c)
             sum[c] += v[c];
     }
     const std::size_t h = static_cast<std::size_t>(yh) * (b.paddedWidth / 2) + xh;
     std::uint32_t* dst = reinterpret_cast<std::uint32_t*>(b.xHalf + h * kInputStride);
     for (int w = 0; w < kInputStride / 2; ++w) {
         const int c = 2 * w;
-        dst[w] = packHalves(c < kInputChannels ? sum[c] / 4.0f : 0.0f,
-            c + 1 < kInputChannels ? sum[c + 1] / 4.0f : 0.0f);
+        dst[w] = packHalves(
+            c < channels ? sum[c] / 4.0f : 0.0f, c + 1 < channels ? sum[c + 1] / 4.0f : 0.0f);
     }
     for (int c = 0; c < 3; ++c)
         b.color1Half[3 * h + c] = sum1[c] / 4.0f;

@@ -2,12 +2,14 @@
 // One pixel of the CUDA engine's first stage: demodulation (stages/demodulate.cpp), reprojection
 // with BMFR's per-tap acceptance (stages/reproject.cpp, bilinear taps, no box fallback) and
 // temporal accumulation (stages/temporal_accumulation.cpp), written operation for operation as the
-// CPU stages. Compiled without contracting multiply-adds (temporal.cu: --fmad=false), it gives
-// the CPU's results bit for bit (tests/unit/core/cuda/test_cuda_emulated.cpp checks this on
-// the CPU).
+// CPU stages, in two passes as the CPU's: temporalGather() (demodulate, reproject) and, once the
+// history trust (history_trust_block.h) is known, temporalBlend(). Compiled without contracting
+// multiply-adds (temporal.cu: --fmad=false), it gives the CPU's results bit for bit
+// (tests/unit/core/cuda/test_cuda_emulated.cpp checks this on the CPU).
 #pragma once
 
 #include "cuda/device_math.h"
+#include "cuda/history_trust_block.h"
 
 namespace afn::cuda {
 
@@ -24,6 +26,7 @@ struct FrameConstants {
     float normalLimitSquared = 0.25f;
     float depthLimit = 0.1f;
     float alphaMin = 0.2f;
+    float antilag = 1.0f; ///< stages/history_trust.h HistoryTrustSettings (0: no trust measured)
     int colorDemodulated = 0; ///< the colour input is already irradiance
 };
 
@@ -43,8 +46,10 @@ struct TemporalBuffers {
     const float* prevAccumulated = nullptr; ///< 3 ch, the previous frame's output
     const float* prevHistoryLength = nullptr; ///< 1 ch
     float* irradiance = nullptr; ///< 3 ch out: demodulated colour
-    float* accumulated = nullptr; ///< 3 ch out
-    float* historyLength = nullptr; ///< 1 ch out
+    /// 3 ch out; between temporalGather() and temporalBlend() the reprojected history
+    float* accumulated = nullptr;
+    /// 1 ch out; between the two the history's length, or kNoHistoryDevice where it has none
+    float* historyLength = nullptr;
 };
 
 namespace temporal {
@@ -146,20 +151,19 @@ AFN_HD bool accept(
 
 } // namespace temporal
 
-/// Demodulate, reproject and accumulate pixel (x, y); writes irradiance, accumulated and
-/// historyLength at the pixel.
-AFN_HD void temporalPixel(const TemporalBuffers& b, const FrameConstants& f, int x, int y)
+/// Demodulate and reproject pixel (x, y): writes its irradiance, and its reprojected history and
+/// that history's length into `accumulated` and `historyLength` (kNoHistoryDevice where none
+/// was accepted: TemporalAccumulator::gatherRows()).
+AFN_HD void temporalGather(const TemporalBuffers& b, const FrameConstants& f, int x, int y)
 {
     using namespace temporal;
     const std::size_t i = static_cast<std::size_t>(y) * b.width + x;
     // Demodulation.
     const bool divide = b.albedo && !f.colorDemodulated;
-    float c[3];
     for (int k = 0; k < 3; ++k) {
         const float d = divide ? b.color[3 * i + k] / albedoFactor(b.albedo[3 * i + k], false)
                                : b.color[3 * i + k];
-        c[k] = clampIrradiance(d);
-        b.irradiance[3 * i + k] = c[k];
+        b.irradiance[3 * i + k] = clampIrradiance(d);
     }
     // Reprojection: accepted bilinear taps, then their renormalised history.
     float prev[3] = { 0.0f, 0.0f, 0.0f };
@@ -194,18 +198,46 @@ AFN_HD void temporalPixel(const TemporalBuffers& b, const FrameConstants& f, int
         if (sppW > 0.0f)
             sppS /= sppW;
     }
-    // Accumulation.
+    if (!(ws > 0.0f)) {
+        b.historyLength[i] = kNoHistoryDevice;
+        return;
+    }
+    for (int k = 0; k < 3; ++k)
+        b.accumulated[3 * i + k] = prev[k];
+    b.historyLength[i] = sppS;
+}
+
+/// prev + alpha * (cur - prev), below FLT_MIN in magnitude flushed to 0 (stages/reproject.h
+/// blendHistory()).
+AFN_HD float blendHistoryDevice(float prev, float cur, float alpha)
+{
+    const float v = prev + alpha * (cur - prev);
+    return fabsf(v) < 1.17549435e-38f ? 0.0f : v;
+}
+
+/// Accumulate pixel (x, y) after temporalGather() with history trust `trust` (1: none measured):
+/// TemporalAccumulator::blendPixel() and blendRows().
+AFN_HD void temporalBlend(
+    const TemporalBuffers& b, const FrameConstants& f, float trust, int x, int y)
+{
+    const std::size_t i = static_cast<std::size_t>(y) * b.width + x;
+    const float* c = b.irradiance + 3 * i;
     float* acc = b.accumulated + 3 * i;
-    if (ws > 0.0f) {
-        const float alpha = maxOf(1.0f / (sppS + 1.0f), f.alphaMin);
-        for (int k = 0; k < 3; ++k)
-            acc[k] = prev[k] + alpha * (c[k] - prev[k]);
-        b.historyLength[i] = alpha < 1.0f ? minOf(sppS + 1.0f, 255.0f) : 1.0f;
-    } else {
+    float sppS = b.historyLength[i];
+    if (sppS == kNoHistoryDevice) {
         for (int k = 0; k < 3; ++k)
             acc[k] = c[k];
         b.historyLength[i] = 1.0f;
+        return;
     }
+    float alpha = maxOf(1.0f / (sppS + 1.0f), f.alphaMin);
+    if (trust < 1.0f) {
+        alpha += (1.0f - alpha) * (1.0f - trust);
+        sppS *= trust;
+    }
+    for (int k = 0; k < 3; ++k)
+        acc[k] = blendHistoryDevice(acc[k], c[k], alpha);
+    b.historyLength[i] = alpha < 1.0f ? minOf(sppS + 1.0f, 255.0f) : 1.0f;
 }
 
 } // namespace afn::cuda

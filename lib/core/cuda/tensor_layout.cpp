@@ -111,4 +111,19 @@ PackedConv packConv(const nn::Conv& conv, int upChannels)
     return p;
 }
 
+std::vector<float> packTrustHead(const nn::Conv& conv)
+{
+    if (!conv.loaded() || conv.kernelSize() != 3 || conv.outChannels() != 1)
+        throwInvalidOperation("CUDA AFN: the albedo trust's head is not a 3x3 layer with 1 output");
+    const int in = conv.inChannels(), cp = conv.paddedOutChannels();
+    const float* wp = conv.paddedWeights(); // [tap][ci][co padded to 8]
+    std::vector<float> packed(static_cast<std::size_t>(9) * in + 1);
+    for (int tap = 0; tap < 9; ++tap)
+        for (int ci = 0; ci < in; ++ci)
+            packed[static_cast<std::size_t>(tap) * in + ci]
+                = wp[(static_cast<std::size_t>(tap) * in + ci) * cp];
+    packed.back() = conv.paddedBias()[0];
+    return packed;
+}
+
 } // namespace afn::cuda

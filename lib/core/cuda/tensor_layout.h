@@ -82,4 +82,8 @@ struct PackedConv {
 /// coming from `up` (0 for a plain convolution).
 PackedConv packConv(const nn::Conv& conv, int upChannels);
 
+/// The albedo trust's head (3x3, 1 output) as albedo_trust_block.h reads it, in float: for each
+/// tap (ky * 3 + kx) its input channels' weights, then the bias.
+std::vector<float> packTrustHead(const nn::Conv& conv);
+
 } // namespace afn::cuda

@@ -115,8 +115,8 @@ public:
         return m_stages.accumulate ? &m_accumulator.trust() : nullptr;
     }
     /// Share of the last frame's pixels whose history was cut (HistoryTrust::cutShare(); 0
-    /// without a history trust).
-    double lastHistoryCutShare() const
+    /// without a history trust). A filter whose trust runs elsewhere (a GPU) gives its own.
+    virtual double lastHistoryCutShare() const
     {
         const HistoryTrust* t = historyTrust();
         return t ? t->cutShare() : 0.0;

@@ -5,14 +5,31 @@
 #pragma once
 
 #include "afn_synthetic_sequence.h"
+#include "filter/filter.h"
 
 #include <string>
 #include <vector>
 
 namespace afntest {
 
+/// Set a CPU afn filter to what the CUDA filter runs (docs/gpu.md): no aux prefilter, output TAA,
+/// post-filter or work skipping on the GPU yet (their auto settings run as off there; the CPU's
+/// skipping sends 8-row blocks of background to the cheap path, the GPU filters them), and the
+/// convolutions in fp32 on every CPU (auto runs bf16 where the CPU has it): the reference the
+/// CUDA engine's half precision is measured against.
+inline void configureAsOnTheGpu(afn::Filter& cpu)
+{
+    cpu.params().setString(AFN_PARAM_AUX, "clean");
+    cpu.params().setString("taa", "off");
+    cpu.params().setString("postFilter", "off");
+    cpu.params().setString("precision", "fp32");
+    cpu.params().setNumber("skip", 0.0, AFN_PARAM_BOOL);
+}
+
 struct ParityCase {
-    std::string weights; ///< "full", "fusion" (tests/data/afn_parity) or "shipped" (weights/)
+    /// "full", "fusion", "trust" (tests/data/afn_parity: weights_trust has the history input and
+    /// the albedo trust) or "shipped" (weights/)
+    std::string weights;
     int width = 0;
     int height = 0;
     SequenceInputs inputs;
@@ -51,7 +68,8 @@ inline bool cpuRunsTheFullModel(const SequenceInputs& in)
 }
 
 /// The GPU parity cases: sizes from 1 x 1 to 1280 x 720 (odd ones included), each input set,
-/// both committed test archives (variants "full" and "fusion") and the shipped model.
+/// the committed test archives (variants "full" and "fusion"; "full" with the history input and
+/// the albedo trust) and the shipped model.
 inline std::vector<ParityCase> gpuParityCases()
 {
     std::vector<ParityCase> cases;
@@ -63,6 +81,9 @@ inline std::vector<ParityCase> gpuParityCases()
         cases.push_back({ "full", 97, 61, in, 3 });
     cases.push_back({ "fusion", 45, 27, all, 3 });
     cases.push_back({ "fusion", 200, 120, all, 3 });
+    for (const auto& [w, h] :
+        std::vector<std::pair<int, int>> { { 1, 1 }, { 37, 21 }, { 129, 67 } })
+        cases.push_back({ "trust", w, h, all, 3 });
     for (const SequenceInputs& in : parityInputSets())
         cases.push_back({ "shipped", 161, 91, in, 3 });
     cases.push_back({ "shipped", 333, 187, all, 4 });

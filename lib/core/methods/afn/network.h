@@ -132,6 +132,8 @@ public:
     /// The layers, for engines that pack them in their own layout (lib/core/cuda).
     enum class Layer { Enc1, Enc2, Enc3, Dec2, Dec1, Head1, HeadTa, Ref1, Ref2, Ref3 };
     const nn::Conv& layer(Layer which) const;
+    /// The albedo trust's head headG (hasAlbedoTrust() only; else not loaded).
+    const nn::Conv& albedoTrustHead() const { return m_headG; }
 
     /// Intermediates at the padded size (tests) of the last runWholeFrame() or stage calls:
     /// network input x, fused i, d_TA, alpha; the decoder output d1 and d_1spp at half size.

@@ -124,11 +124,12 @@ void emulateMma(const std::uint32_t (&a)[32][4], const std::uint32_t (&b)[32][2]
     }
 }
 
-void emulateTemporal(const TemporalBuffers& b, const FrameConstants& f, std::uint32_t* depthRange)
+void emulateTemporal(const TemporalBuffers& b, const TrustBuffers& t, const FrameConstants& f,
+    std::uint32_t* depthRange)
 {
     for (int y = 0; y < b.height; ++y)
         for (int x = 0; x < b.width; ++x) {
-            temporalPixel(b, f, x, y);
+            temporalGather(b, f, x, y);
             if (b.depth) {
                 const float z = b.depth[static_cast<std::size_t>(y) * b.width + x];
                 if (isValidDepth(z)) {
@@ -137,6 +138,21 @@ void emulateTemporal(const TemporalBuffers& b, const FrameConstants& f, std::uin
                 }
             }
         }
+    const bool measured = trustMeasured(f.hasHistory, f.antilag);
+    if (measured) {
+        for (int y = 0; y < t.height; ++y)
+            for (int bx = 0; bx < t.blocksX; ++bx)
+                trustRowSums(t, b.irradiance, b.accumulated, b.historyLength, y, bx);
+        for (int gy = 0; gy * kTrustCoarse < t.blocksY; ++gy)
+            for (int gx = 0; gx * kTrustCoarse < t.blocksX; ++gx)
+                trustGroup(t, f.antilag, gx, gy);
+        for (int by = 0; by < t.blocksY; ++by)
+            for (int bx = 0; bx < t.blocksX; ++bx)
+                *t.cutPixels += trustSoftMin(t, bx, by);
+    }
+    for (int y = 0; y < b.height; ++y)
+        for (int x = 0; x < b.width; ++x)
+            temporalBlend(b, f, measured ? pixelTrust(t, x, y) : 1.0f, x, y);
 }
 
 void emulatePrepare(const PrepareBuffers& b)
@@ -145,6 +161,13 @@ void emulatePrepare(const PrepareBuffers& b)
     for (int yh = 0; yh < b.paddedHeight / 2; ++yh)
         for (int xh = 0; xh < b.paddedWidth / 2; ++xh)
             prepareBlock(b, ds, xh, yh);
+}
+
+void emulateAlbedoTrust(const AlbedoTrustBuffers& b)
+{
+    for (int yh = 0; yh < b.halfHeight; ++yh)
+        for (int xh = 0; xh < b.halfWidth; ++xh)
+            albedoTrustBlock(b, xh, yh);
 }
 
 void emulatePool(const std::uint16_t* in, int width, int height, int stride, std::uint16_t* out)
@@ -294,7 +317,7 @@ void emulateFilterFuse(const FilterFuseArgs& a)
                         } else if (t < 3 && x < a.output.width && y < a.output.height) {
                             const std::size_t p = static_cast<std::size_t>(y) * a.output.width + x;
                             a.output.data[3 * p + t]
-                                = remodulated(a.output, p, t, component(fused[half], t));
+                                = outputValue(a.output, x, y, t, component(fused[half], t));
                         }
                     }
                 }

@@ -7,6 +7,7 @@
 // CPU engine to check the kernels' index math and to measure the half-precision error.
 #pragma once
 
+#include "cuda/albedo_trust_block.h"
 #include "cuda/conv_tile.h"
 #include "cuda/filter_fuse_lane.h"
 #include "cuda/prepare_block.h"
@@ -22,9 +23,12 @@ void emulateMma(
     const std::uint32_t (&a)[32][4], const std::uint32_t (&b)[32][2], float (&c)[32][4]);
 
 /// The kernels of kernels.h on the CPU (same arguments, host pointers).
-void emulateTemporal(const afn::cuda::TemporalBuffers& b, const afn::cuda::FrameConstants& f,
-    std::uint32_t* depthRange);
+/// temporal.cu's kernels in their order: gather (and depth range), the history trust's row sums,
+/// groups and soft minimum (adding to *t.cutPixels), blend.
+void emulateTemporal(const afn::cuda::TemporalBuffers& b, const afn::cuda::TrustBuffers& t,
+    const afn::cuda::FrameConstants& f, std::uint32_t* depthRange);
 void emulatePrepare(const afn::cuda::PrepareBuffers& b);
+void emulateAlbedoTrust(const afn::cuda::AlbedoTrustBuffers& b);
 void emulatePool(const std::uint16_t* in, int width, int height, int stride, std::uint16_t* out);
 void emulateConvRelu(const afn::cuda::ConvOperands& op, const afn::cuda::ReluOutput& out);
 void emulateConvFinal(const afn::cuda::ConvOperands& op, const afn::cuda::FinalOutput& out);

@@ -33,7 +33,11 @@ afn::Image EmulatedAfnPipeline::Tensor::toImage(int channels) const
 EmulatedAfnPipeline::EmulatedAfnPipeline(const afn::afnet::Network& net)
     : m_variant(net.variant())
     , m_refine(net.variant() == afn::afnet::Variant::Full)
+    , m_historyInput(net.hasHistoryInput())
+    , m_albedoTrust(net.hasAlbedoTrust())
 {
+    if (m_albedoTrust)
+        m_trustHead = packTrustHead(net.albedoTrustHead());
     using L = afn::afnet::Network::Layer;
     for (int i = 0; i < 10; ++i) {
         const auto which = static_cast<L>(i);
@@ -91,10 +95,17 @@ void EmulatedAfnPipeline::allocate(const afn::Frame& f)
         m_accumulated[s].assign(3 * n, nan);
         m_history[s].assign(n, nan);
     }
+    const std::size_t blocksX = (m_width + kTrustBlockDevice - 1) / kTrustBlockDevice;
+    const std::size_t blocks = blocksX * ((m_height + kTrustBlockDevice - 1) / kTrustBlockDevice);
+    m_trustRowSums.assign(static_cast<std::size_t>(m_height) * blocksX * kTrustSums, nan);
+    m_trustRaw.assign(blocks, nan);
+    m_trustCount.assign(blocks, nan);
+    m_trustBlock.assign(blocks, nan);
     auto ch = [&](L l) { return m_layers[static_cast<int>(l)].packed.outChannels; };
     const int wp = m_paddedWidth, hp = m_paddedHeight;
-    m_x.allocate(wp, hp, kInputChannels);
-    m_xHalf.allocate(wp / 2, hp / 2, kInputChannels);
+    const int inputs = m_historyInput ? kHistoryInputChannels : kInputChannels;
+    m_x.allocate(wp, hp, inputs);
+    m_xHalf.allocate(wp / 2, hp / 2, inputs);
     m_e1.allocate(wp / 2, hp / 2, ch(L::Enc1));
     m_e1Pool.allocate(wp / 4, hp / 4, ch(L::Enc1));
     m_e2.allocate(wp / 4, hp / 4, ch(L::Enc2));
@@ -103,6 +114,10 @@ void EmulatedAfnPipeline::allocate(const afn::Frame& f)
     m_d2.allocate(wp / 4, hp / 4, ch(L::Dec2));
     m_d1.allocate(wp / 2, hp / 2, ch(L::Dec1));
     m_color1Half.assign(3 * static_cast<std::size_t>(wp / 2) * (hp / 2), nan);
+    if (m_albedoTrust) {
+        m_trust.assign(static_cast<std::size_t>(wp / 2) * (hp / 2), nan);
+        m_colorTaScaled.assign(3 * static_cast<std::size_t>(wp) * hp, nan);
+    }
     if (m_refine) {
         m_fused.assign(3 * static_cast<std::size_t>(wp) * hp, nan);
         m_refineInput.allocate(wp, hp, kRefineInputChannels);
@@ -144,7 +159,19 @@ void EmulatedAfnPipeline::run(const afn::Frame& f, const FrameConstants& c, afn:
     b.irradiance = m_irradiance.data();
     b.accumulated = m_accumulated[s].data();
     b.historyLength = m_history[s].data();
-    emulateTemporal(b, c, range);
+    TrustBuffers t;
+    t.width = m_width;
+    t.height = m_height;
+    t.blocksX = (m_width + kTrustBlockDevice - 1) / kTrustBlockDevice;
+    t.blocksY = (m_height + kTrustBlockDevice - 1) / kTrustBlockDevice;
+    t.rowSums = m_trustRowSums.data();
+    t.raw = m_trustRaw.data();
+    t.count = m_trustCount.data();
+    t.block = m_trustBlock.data();
+    unsigned cutPixels = 0;
+    t.cutPixels = &cutPixels;
+    emulateTemporal(b, t, c, range);
+    m_cutShare = cutPixels / (static_cast<double>(m_width) * m_height);
     const bool oneSpp = m_variant == afn::afnet::Variant::OneSpp;
     const bool ta = m_variant == afn::afnet::Variant::Ta;
     float* colorTa = oneSpp ? m_irradiance.data() : m_accumulated[s].data();
@@ -159,6 +186,7 @@ void EmulatedAfnPipeline::run(const afn::Frame& f, const FrameConstants& c, afn:
     pb.normal = b.normal;
     pb.depth = b.depth;
     pb.depthRange = range;
+    pb.historyLength = m_historyInput ? m_history[s].data() : nullptr;
     pb.x = m_x.data.data();
     pb.xHalf = m_xHalf.data.data();
     pb.color1Half = m_color1Half.data();
@@ -173,6 +201,24 @@ void EmulatedAfnPipeline::run(const afn::Frame& f, const FrameConstants& c, afn:
         emulatePool(in.data.data(), in.width, in.height, in.stride, o.data.data());
     };
     conv(L::Enc1, nullptr, m_xHalf, m_e1);
+    if (m_albedoTrust) {
+        AlbedoTrustBuffers t;
+        t.width = m_width;
+        t.height = m_height;
+        t.halfWidth = m_e1.width;
+        t.halfHeight = m_e1.height;
+        t.e1 = m_e1.data.data();
+        t.e1Stride = m_e1.stride;
+        t.e1Channels = layer(L::Enc1).packed.outChannels;
+        t.head = m_trustHead.data();
+        t.albedo = b.albedo;
+        t.color1 = pb.color1;
+        t.colorTa = colorTa;
+        t.trust = m_trust.data();
+        t.colorTaScaled = m_colorTaScaled.data();
+        t.color1Half = m_color1Half.data();
+        emulateAlbedoTrust(t);
+    }
     pool(m_e1, m_e1Pool);
     conv(L::Enc2, nullptr, m_e1Pool, m_e2);
     pool(m_e2, m_e2Pool);
@@ -185,6 +231,8 @@ void EmulatedAfnPipeline::run(const afn::Frame& f, const FrameConstants& c, afn:
     fo.fused = m_refine ? m_fused.data() : nullptr;
     fo.albedo = b.albedo;
     fo.plainAlbedo = c.colorDemodulated;
+    fo.trust = m_albedoTrust ? m_trust.data() : nullptr;
+    fo.trustWidth = m_paddedWidth / 2;
     fo.data = m_output.data();
     fo.width = m_width;
     fo.height = m_height;
@@ -192,7 +240,10 @@ void EmulatedAfnPipeline::run(const afn::Frame& f, const FrameConstants& c, afn:
     a.head1 = operands(layer(L::Head1), nullptr, m_d1);
     a.headTa = operands(layer(L::HeadTa), &m_d1, m_x);
     a.x = m_x.data.data();
-    a.colorTa = PaddedColor { colorTa, m_width, m_height, m_paddedWidth, m_paddedHeight };
+    a.colorTa = m_albedoTrust
+        ? PaddedColor { m_colorTaScaled.data(), m_paddedWidth, m_paddedHeight, m_paddedWidth,
+              m_paddedHeight }
+        : PaddedColor { colorTa, m_width, m_height, m_paddedWidth, m_paddedHeight };
     a.color1Half = PlainColor { m_color1Half.data(), m_paddedWidth / 2, m_paddedHeight / 2 };
     if (m_refine) {
         a.fused = m_fused.data();
@@ -215,12 +266,21 @@ void EmulatedAfnPipeline::run(const afn::Frame& f, const FrameConstants& c, afn:
     std::copy(m_irradiance.begin(), m_irradiance.end(), m_irradianceImage.data());
     m_accumulatedImage = afn::Image(m_width, m_height, 3);
     std::copy(m_accumulated[s].begin(), m_accumulated[s].end(), m_accumulatedImage.data());
+    m_historyLengthImage = afn::Image(m_width, m_height, 1);
+    std::copy(m_history[s].begin(), m_history[s].end(), m_historyLengthImage.data());
     m_slot ^= 1;
 }
 
 afn::Image EmulatedAfnPipeline::networkInput() const
 {
-    return m_x.toImage(kInputChannels);
+    return m_x.toImage(m_historyInput ? kHistoryInputChannels : kInputChannels);
+}
+
+afn::Image EmulatedAfnPipeline::albedoTrust() const
+{
+    afn::Image t(m_paddedWidth / 2, m_paddedHeight / 2, 1);
+    std::copy(m_trust.begin(), m_trust.end(), t.data());
+    return t;
 }
 
 afn::Image EmulatedAfnPipeline::decoderOutput() const

@@ -27,8 +27,13 @@ public:
     // Intermediates of the last frame, as floats.
     const afn::Image& irradiance() const { return m_irradianceImage; }
     const afn::Image& accumulated() const { return m_accumulatedImage; }
-    afn::Image networkInput() const; ///< padded size, 13 ch
+    const afn::Image& historyLength() const { return m_historyLengthImage; }
+    /// The history trust's cut share (HistoryTrust::cutShare()).
+    double cutShare() const { return m_cutShare; }
+    afn::Image networkInput() const; ///< padded size, 13 ch (14 with the history input)
     afn::Image decoderOutput() const; ///< half the padded size
+    /// The albedo trust's t, half the padded size, 1 ch (weights with the albedo trust only).
+    afn::Image albedoTrust() const;
 
 private:
     struct Tensor {
@@ -46,14 +51,20 @@ private:
 
     afn::afnet::Variant m_variant;
     bool m_refine;
+    bool m_historyInput;
+    bool m_albedoTrust;
+    std::vector<float> m_trustHead; ///< packTrustHead() (albedo trust only)
     std::array<Layer, 10> m_layers;
     int m_width = 0, m_height = 0, m_paddedWidth = 0, m_paddedHeight = 0;
     int m_slot = 0;
     std::vector<float> m_color, m_albedo, m_motion, m_irradiance, m_output, m_color1Half, m_fused;
+    std::vector<float> m_trust, m_colorTaScaled;
     std::array<std::vector<float>, 2> m_position, m_normal, m_depth, m_accumulated, m_history;
     Tensor m_x, m_xHalf, m_e1, m_e1Pool, m_e2, m_e2Pool, m_e3, m_d2, m_d1, m_refineInput, m_r1,
         m_r2;
-    afn::Image m_irradianceImage, m_accumulatedImage;
+    std::vector<float> m_trustRowSums, m_trustRaw, m_trustCount, m_trustBlock;
+    double m_cutShare = 0.0;
+    afn::Image m_irradianceImage, m_accumulatedImage, m_historyLengthImage;
 };
 
 } // namespace afntest

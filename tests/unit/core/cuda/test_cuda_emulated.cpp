@@ -9,9 +9,9 @@
 #include "cuda/frame_constants.h"
 #include "emulated_pipeline.h"
 #include "filter/registry.h"
+#include "methods/afn/network_inputs.h"
 #include "methods/afn/weights_source.h"
 #include "stages/demodulate.h"
-#include "stages/feature_scaling.h"
 
 #include <gtest/gtest.h>
 
@@ -37,86 +37,130 @@ std::vector<char> shippedWeights()
 
 const afn::ReprojectSettings kReproject {};
 const afn::AccumulationSettings kAccumulation {};
+const afn::HistoryTrustSettings kTrust {}; ///< the default, antilag 1
 
 } // namespace
 
+// Demodulation, reprojection, history trust and accumulation bit for bit, on every input set,
+// with the trust off, at its default and stronger, on a sequence whose left half brightens 3x
+// from frame 3 on (a light switched on): the trust cuts history there, and the cut share is the
+// CPU's.
 TEST(CudaEmulated, FirstStageIsTheCpuStagesBitForBit)
 {
     const afn::afnet::Network net = [] {
         const auto w = testWeights("weights_full.afnw");
         return afn::afnet::networkFromData(w.data(), w.size());
     }();
-    for (const SequenceInputs& inputs : afntest::parityInputSets()) {
-        const afntest::SyntheticSequence seq(37, 23, 5);
-        afntest::EmulatedAfnPipeline emulated(net);
+    for (const float antilag : { 0.0f, 1.0f, 2.5f })
+        for (const SequenceInputs& inputs : afntest::parityInputSets()) {
+            SCOPED_TRACE(inputs.name() + ", antilag " + std::to_string(antilag));
+            const afntest::SyntheticSequence seq(75, 43, 5);
+            afntest::EmulatedAfnPipeline emulated(net);
+            afntest::FrameGatherer gatherer;
+            afn::Reprojector reprojector;
+            reprojector.setSettings(kReproject);
+            afn::TemporalAccumulator accumulator;
+            accumulator.setSettings(kAccumulation);
+            accumulator.setTrustSettings({ antilag });
+            afn::Image irradiance, out;
+            double largestCut = 0.0;
+            for (int k = 0; k < 6; ++k) {
+                afntest::SequenceFrame in = seq.frame(k, inputs);
+                if (k >= 3)
+                    for (int y = 0; y < in.color.height(); ++y)
+                        for (int x = 0; x < in.color.width() / 2; ++x)
+                            for (int c = 0; c < 3; ++c)
+                                in.color(x, y, c) *= 3.0f;
+                const afn::Frame& f = gatherer.gather(in);
+                if (k == 0) {
+                    reprojector.reset();
+                    accumulator.reset();
+                }
+                afn::demodulate(f, irradiance);
+                reprojector.compute(f);
+                accumulator.accumulate(reprojector, irradiance);
+                reprojector.storeGeometry(f);
+                emulated.run(
+                    f, afn::cuda::frameConstants(f, kReproject, kAccumulation, { antilag }), out);
+                ASSERT_EQ(0,
+                    std::memcmp(
+                        irradiance.data(), emulated.irradiance().data(), 4 * irradiance.size()))
+                    << "frame " << k;
+                ASSERT_EQ(0,
+                    std::memcmp(accumulator.color().data(), emulated.accumulated().data(),
+                        4 * irradiance.size()))
+                    << "frame " << k << ": max |diff| "
+                    << afntest::maxAbsDifference(accumulator.color(), emulated.accumulated());
+                ASSERT_EQ(0,
+                    std::memcmp(accumulator.historyLength().data(), emulated.historyLength().data(),
+                        4 * emulated.historyLength().size()))
+                    << "frame " << k;
+                EXPECT_EQ(accumulator.trust().cutShare(), emulated.cutShare()) << "frame " << k;
+                largestCut = std::max(largestCut, emulated.cutShare());
+            }
+            if (antilag > 0.0f && afntest::cpuRunsTheFullModel(inputs))
+                EXPECT_GT(largestCut, 0.1) << "the switch cut no history";
+            if (antilag == 0.0f)
+                EXPECT_EQ(largestCut, 0.0);
+        }
+}
+
+// The network input (with history01 where the weights read it), the decoder output and the albedo
+// trust's t against the CPU network's own, given the CPU's inputs (NetworkInputs, as afn_method).
+TEST(CudaEmulated, NetworkInputIsTheCpuInputInHalfPrecision)
+{
+    for (const char* name : { "weights_full.afnw", "weights_trust.afnw" }) {
+        SCOPED_TRACE(name);
+        const auto w = testWeights(name);
+        const afn::afnet::Network loaded = afn::afnet::networkFromData(w.data(), w.size());
+        afn::afnet::Network cpu = loaded;
+        const afntest::SyntheticSequence seq(29, 19, 2);
+        afntest::EmulatedAfnPipeline emulated(loaded);
         afntest::FrameGatherer gatherer;
         afn::Reprojector reprojector;
-        reprojector.setSettings(kReproject);
         afn::TemporalAccumulator accumulator;
-        accumulator.setSettings(kAccumulation);
-        accumulator.setTrustSettings({ 0.0f }); // the GPU has no history trust yet
-        afn::Image irradiance, out;
-        for (int k = 0; k < 4; ++k) {
-            afntest::SequenceFrame in = seq.frame(k, inputs);
+        afn::afnet::NetworkInputs inputs;
+        afn::Image irradiance, result, out;
+        for (int k = 0; k < 3; ++k) {
+            afntest::SequenceFrame in = seq.frame(k, SequenceInputs {});
             const afn::Frame& f = gatherer.gather(in);
-            if (k == 0) {
-                reprojector.reset();
-                accumulator.reset();
-            }
             afn::demodulate(f, irradiance);
             reprojector.compute(f);
             accumulator.accumulate(reprojector, irradiance);
             reprojector.storeGeometry(f);
-            emulated.run(f, afn::cuda::frameConstants(f, kReproject, kAccumulation), out);
-            ASSERT_EQ(0,
-                std::memcmp(irradiance.data(), emulated.irradiance().data(), 4 * irradiance.size()))
-                << inputs.name() << " frame " << k;
-            ASSERT_EQ(0,
-                std::memcmp(accumulator.color().data(), emulated.accumulated().data(),
-                    4 * irradiance.size()))
-                << inputs.name() << " frame " << k << ": max |diff| "
-                << afntest::maxAbsDifference(accumulator.color(), emulated.accumulated());
+            inputs.prepare(f, afn::afnet::InputSet::full(), irradiance, accumulator.color(),
+                loaded.hasHistoryInput() ? &accumulator.historyLength() : nullptr);
+            cpu.runWholeFrame(inputs.inputs(), result);
+            emulated.run(f, afn::cuda::frameConstants(f, kReproject, kAccumulation, kTrust), out);
+            const afn::Image x = emulated.networkInput();
+            ASSERT_EQ(x.width(), cpu.input().width());
+            ASSERT_EQ(x.channels(), cpu.input().channels());
+            // Values in [0, 1] rounded to halves: within half a unit in the last place (2^-12).
+            EXPECT_LE(afntest::maxAbsDifference(x, cpu.input()), 2.5e-4) << "frame " << k;
+            if (loaded.hasHistoryInput() && k > 0) { // history01 is not 1 everywhere
+                double smallest = 1.0;
+                for (std::size_t p = 13; p < x.size(); p += 14)
+                    smallest = std::min(smallest, double(x.data()[p]));
+                EXPECT_LT(smallest, 0.75) << "frame " << k;
+            }
+            const afn::Image d1 = emulated.decoderOutput();
+            double scale = 0.0;
+            for (std::size_t i = 0; i < cpu.decoderOutput().size(); ++i)
+                scale = std::max(scale, double(std::fabs(cpu.decoderOutput().data()[i])));
+            const double err = afntest::maxAbsDifference(d1, cpu.decoderOutput());
+            std::cout << "[ emulated ] " << name << " frame " << k << ": decoder output max |diff| "
+                      << err << " (largest value " << scale << ")\n";
+            EXPECT_LE(err, 0.02 * scale + 1e-3) << "frame " << k;
+            if (loaded.hasAlbedoTrust()) {
+                // t = sigmoid(headG(e1)) from e1 in halves: the sigmoid's slope is at most 1/4.
+                const afn::Image t = emulated.albedoTrust();
+                ASSERT_EQ(t.width(), cpu.albedoTrust().width());
+                const double tErr = afntest::maxAbsDifference(t, cpu.albedoTrust());
+                std::cout << "[ emulated ] " << name << " frame " << k
+                          << ": albedo trust max |diff| " << tErr << "\n";
+                EXPECT_LE(tErr, 5e-3) << "frame " << k;
+            }
         }
-    }
-}
-
-TEST(CudaEmulated, NetworkInputIsTheCpuInputInHalfPrecision)
-{
-    const auto w = testWeights("weights_full.afnw");
-    const afn::afnet::Network loaded = afn::afnet::networkFromData(w.data(), w.size());
-    afn::afnet::Network cpu = loaded;
-    const afntest::SyntheticSequence seq(29, 19, 2);
-    afntest::EmulatedAfnPipeline emulated(loaded);
-    afntest::FrameGatherer gatherer;
-    afn::Reprojector reprojector;
-    afn::TemporalAccumulator accumulator;
-    accumulator.setTrustSettings({ 0.0f }); // the GPU has no history trust yet
-    afn::Image irradiance, albedo, normal01, depth01, result, out;
-    for (int k = 0; k < 2; ++k) {
-        afntest::SequenceFrame in = seq.frame(k, SequenceInputs {});
-        const afn::Frame& f = gatherer.gather(in);
-        afn::demodulate(f, irradiance);
-        reprojector.compute(f);
-        accumulator.accumulate(reprojector, irradiance);
-        reprojector.storeGeometry(f);
-        albedo = f.albedo;
-        afn::normalToUnitRange(f.normal, f.width, f.height, normal01);
-        afn::depthToUnitRange(f.depth, f.width, f.height, depth01);
-        cpu.runWholeFrame(
-            { &irradiance, &accumulator.color(), &albedo, &normal01, &depth01 }, result);
-        emulated.run(f, afn::cuda::frameConstants(f, kReproject, kAccumulation), out);
-        const afn::Image x = emulated.networkInput();
-        ASSERT_EQ(x.width(), cpu.input().width());
-        // Values in [0, 1] rounded to halves: within half a unit in the last place (2^-12).
-        EXPECT_LE(afntest::maxAbsDifference(x, cpu.input()), 2.5e-4) << "frame " << k;
-        const afn::Image d1 = emulated.decoderOutput();
-        double scale = 0.0;
-        for (std::size_t i = 0; i < cpu.decoderOutput().size(); ++i)
-            scale = std::max(scale, double(std::fabs(cpu.decoderOutput().data()[i])));
-        const double err = afntest::maxAbsDifference(d1, cpu.decoderOutput());
-        std::cout << "[ emulated ] frame " << k << ": decoder output max |diff| " << err
-                  << " (largest value " << scale << ")\n";
-        EXPECT_LE(err, 0.02 * scale + 1e-3) << "frame " << k;
     }
 }
 
@@ -127,10 +171,7 @@ void expectFilterParity(const std::vector<char>& weights, int width, int height,
     const SequenceInputs& inputs, int frames)
 {
     auto cpu = afn::createFilter("afn");
-    cpu->params().setString(AFN_PARAM_AUX, "clean"); // the GPU has no aux prefilter yet
-    cpu->params().setString("taa", "off"); // nor the output TAA (taa=auto runs as off there)
-    cpu->params().setString("postFilter", "off"); // nor the post-filter (likewise)
-    cpu->params().setNumber("antilag", 0.0, AFN_PARAM_FLOAT); // nor the history trust (likewise)
+    afntest::configureAsOnTheGpu(*cpu);
     cpu->setData(AFN_DATA_WEIGHTS, weights.data(), weights.size());
     afntest::EmulatedAfnPipeline emulated(
         afn::afnet::networkFromData(weights.data(), weights.size()));
@@ -142,7 +183,7 @@ void expectFilterParity(const std::vector<char>& weights, int width, int height,
         afntest::SequenceFrame in = seq.frame(k, inputs);
         afntest::runFrame(*cpu, in, cpuOut);
         const afn::Frame& f = gatherer.gather(in);
-        emulated.run(f, afn::cuda::frameConstants(f, kReproject, kAccumulation), emuOut);
+        emulated.run(f, afn::cuda::frameConstants(f, kReproject, kAccumulation, kTrust), emuOut);
         const afntest::OutputDifference d = afntest::compareOutputs(emuOut, cpuOut);
         std::cout << "[ emulated ] " << width << "x" << height << " " << inputs.name() << " frame "
                   << k << ": " << d.text() << "\n";
@@ -168,16 +209,24 @@ TEST(CudaEmulated, FilterMatchesCpuWithoutRefinement)
     expectFilterParity(testWeights("weights_fusion.afnw"), 45, 27, SequenceInputs {}, 3);
 }
 
+// Weights with the history input (x's 14th channel), and with the learned albedo trust as well
+// (t after the first encoder level, both colours times s, the output divided by s).
+TEST(CudaEmulated, FilterMatchesCpuWithHistoryInputAndAlbedoTrust)
+{
+    expectFilterParity(testWeights("weights_history.afnw"), 37, 21, SequenceInputs {}, 3);
+    const auto trust = testWeights("weights_trust.afnw");
+    for (const SequenceInputs& inputs : afntest::parityInputSets())
+        if (afntest::cpuRunsTheFullModel(inputs))
+            expectFilterParity(trust, 37, 21, inputs, 3);
+    expectFilterParity(trust, 8, 8, SequenceInputs {}, 2);
+    expectFilterParity(trust, 1, 1, SequenceInputs {}, 2);
+}
+
 TEST(CudaEmulated, FilterMatchesCpuWithShippedWeights)
 {
     const auto shipped = shippedWeights();
     if (shipped.empty())
         GTEST_SKIP() << "weights/afn.afnw is not in this checkout";
-    afn::afnet::Network net;
-    net.load(afn::nn::WeightsArchive::parse(shipped.data(), shipped.size(), "weights/afn.afnw"));
-    if (net.hasHistoryInput() || net.hasAlbedoTrust()) // the CUDA filter refuses them (gpu.md)
-        GTEST_SKIP() << "weights/afn.afnw has the history input or the learned albedo trust, "
-                        "which the CUDA engine does not run yet (docs/gpu.md)";
     expectFilterParity(shipped, 64, 40, SequenceInputs {}, 3);
     SequenceInputs camera;
     camera.motion = false;
@@ -191,10 +240,10 @@ TEST(CudaEmulated, FilterMatchesCpuWithShippedWeights)
 TEST(CudaEmulated, DISABLED_CalibrationOnTheGpuParityCases)
 {
     for (const afntest::ParityCase& c : afntest::gpuParityCases()) {
-        std::vector<char> weights = c.weights == "shipped" ? shippedWeights()
-            : c.weights == "full"                          ? testWeights("weights_full.afnw")
-                                                           : testWeights("weights_fusion.afnw");
-        if (weights.empty())
+        std::vector<char> weights = c.weights == "shipped"
+            ? shippedWeights()
+            : testWeights(("weights_" + c.weights + ".afnw").c_str());
+        if (weights.empty() || !afntest::cpuRunsTheFullModel(c.inputs)) // as tests/gpu
             continue;
         expectFilterParity(weights, c.width, c.height, c.inputs, c.frames);
     }
