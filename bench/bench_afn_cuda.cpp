@@ -123,14 +123,15 @@ void benchmarkSize(const afn::Device& device, const afn::afnet::Network& net,
     const afn::ReprojectSettings reproject {};
     const afn::AccumulationSettings accumulation {};
     const afn::HistoryTrustSettings trust {}; // the default, antilag 1
+    const afn::AuxSettings aux {}; // the default, auto
     afn::Image out;
     for (int k = 0; k < 2; ++k) {
         const afn::Frame& f = gatherer.gather(in[k]);
-        pipe.run(f, afn::cuda::frameConstants(f, reproject, accumulation, trust), out);
+        pipe.run(f, afn::cuda::frameConstants(f, reproject, accumulation, trust, aux), out);
     }
     const afn::Frame& frame = gatherer.frame; // the second frame, as gathered
     const afn::cuda::FrameConstants constants
-        = afn::cuda::frameConstants(frame, reproject, accumulation, trust);
+        = afn::cuda::frameConstants(frame, reproject, accumulation, trust, aux);
     pipe.configure(frame);
     pipe.upload(frame, constants);
     const cudaStream_t stream = pipe.stream();

@@ -123,10 +123,9 @@ void runParityCase(const ParityCase& c)
     else
         net = afn::afnet::networkFromData(weights.data(), weights.size());
     afntest::FrameGatherer gatherer;
-    afn::Reprojector reprojector;
-    afn::TemporalAccumulator accumulator;
+    afntest::CpuFirstStage stages(afn::AuxSettings {}, afn::HistoryTrustSettings {});
     afn::afnet::NetworkInputs inputs;
-    afn::Image irradiance, gpuIrr, gpuAcc, gpuX;
+    afn::Image gpuIrr, gpuAcc, gpuX;
 
     const afntest::SyntheticSequence seq(c.width, c.height, 11);
     afn::Image cpuOut(c.width, c.height, 3), gpuOut(c.width, c.height, 3);
@@ -138,11 +137,10 @@ void runParityCase(const ParityCase& c)
         afntest::runFrame(*cpu, in, cpuOut);
         afntest::runFrame(*gpu, in, gpuOut);
 
-        const afn::Frame& f = gatherer.gather(in);
-        afn::demodulate(f, irradiance);
-        reprojector.compute(f);
-        accumulator.accumulate(reprojector, irradiance);
-        reprojector.storeGeometry(f);
+        stages.run(gatherer.gather(in));
+        const afn::Frame& f = stages.frame;
+        const afn::Image& irradiance = stages.irradiance;
+        const afn::TemporalAccumulator& accumulator = stages.accumulator;
         // The full model's inputs (cpuRunsTheFullModel), history01 where the weights read it.
         inputs.prepare(f, afn::afnet::InputSet::full(), irradiance, accumulator.color(),
             net.hasHistoryInput() ? &accumulator.historyLength() : nullptr);
@@ -243,7 +241,6 @@ TEST_F(CudaAfn, ThroughTheCApi)
     for (AFNFilter f : filters)
         afnSetFilterData(f, AFN_DATA_WEIGHTS, weights.data(), weights.size());
     // As afntest::configureAsOnTheGpu, through the C API.
-    afnSetFilterString(filters[0], AFN_PARAM_AUX, "clean");
     afnSetFilterString(filters[0], "taa", "off");
     afnSetFilterString(filters[0], "postFilter", "off");
     afnSetFilterString(filters[0], "precision", "fp32");

@@ -43,18 +43,13 @@ void AfnCudaFilter::configure()
         throw Exception(AFN_ERROR_UNSUPPORTED,
             "afn on a CUDA device has no quarter-resolution scale yet: weights with quarter=1 "
             "run on the CPU device (afntool: --device cpu)");
-    // No aux prefilter on the GPU yet (stages/aux_prefilter.h): aux=auto runs as clean here.
-    if (auxBinding().read(params()).aux == AuxSettings::Mode::Noisy)
-        throw Exception(AFN_ERROR_UNSUPPORTED,
-            "afn on a CUDA device has no aux prefilter yet: aux=noisy runs on the CPU device only "
-            "(afntool: --device cpu)");
     // Quality tiers (methods/afn/quality_tiers.h) run on the CPU device only for now.
     if (qualityBinding().read(params()).quality != QualitySettings::Tier::Balanced)
         throw Exception(AFN_ERROR_UNSUPPORTED,
             "afn on a CUDA device runs quality=balanced only: quality=fast and high run on the "
             "CPU device (afntool: --device cpu)");
     // The output TAA (methods/afn/settings.h) runs on the CPU device only for now.
-    // auto runs as off here, as aux=auto runs as clean.
+    // auto runs as off here.
     if (afnet::settingsBinding().read(params()).taa == afnet::Settings::Taa::On)
         throw Exception(AFN_ERROR_UNSUPPORTED,
             "afn on a CUDA device has no output TAA yet: taa=on runs on the CPU device only "
@@ -68,6 +63,7 @@ void AfnCudaFilter::configure()
     m_reproject = reprojectBinding().read(params());
     m_accumulation = accumulationBinding().read(params());
     m_trust = historyTrustBinding().read(params());
+    m_aux = auxBinding().read(params());
     if (m_networkChanged) {
         m_pipeline.setNetwork(m_net);
         m_networkChanged = false;
@@ -77,7 +73,7 @@ void AfnCudaFilter::configure()
 void AfnCudaFilter::denoise(const Frame& in, Image& out)
 {
     reportProgress(0.1);
-    m_pipeline.run(in, frameConstants(in, m_reproject, m_accumulation, m_trust), out);
+    m_pipeline.run(in, frameConstants(in, m_reproject, m_accumulation, m_trust, m_aux), out);
     reportProgress(0.95);
 }
 

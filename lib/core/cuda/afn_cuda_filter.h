@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: Apache-2.0
 // The "afn" filter on a CUDA device. It derives from Filter with no CPU stages: the Filter base
-// gathers and sanitises the inputs on the CPU, then the whole method (demodulation, reprojection,
-// history trust, temporal accumulation, features, network, remodulation) runs on the GPU
-// (afn_pipeline.h). It has
+// gathers and sanitises the inputs on the CPU, then the whole method (aux prefilter, demodulation,
+// reprojection, history trust, temporal accumulation, features, network, remodulation) runs on
+// the GPU (afn_pipeline.h). It has
 // the CPU filter's parameters, weights and errors; its results match the CPU's within the
 // half-precision tolerance of docs/gpu.md.
 #pragma once
@@ -10,6 +10,7 @@
 #include "base/device.h"
 #include "cuda/afn_pipeline.h"
 #include "filter/registry.h"
+#include "stages/aux_prefilter.h"
 #include "stages/history_trust.h"
 #include "stages/temporal_accumulation.h"
 
@@ -28,6 +29,10 @@ public:
     AfnPipeline& pipeline() { return m_pipeline; }
     /// The history trust's cut share of the last frame, measured on the GPU.
     double lastHistoryCutShare() const override { return m_pipeline.lastCutShare(); }
+    /// The aux prefilter's report of the last frame, measured on the GPU.
+    const AuxReport& auxReport() const override { return m_pipeline.lastAuxReport(); }
+    bool auxNoisy() const override { return m_pipeline.lastAuxReport().noisy; }
+    bool auxGrainLimited() const override { return m_pipeline.lastAuxReport().grainLimited; }
 
 private:
     void configure() override;
@@ -38,6 +43,7 @@ private:
     ReprojectSettings m_reproject;
     AccumulationSettings m_accumulation;
     HistoryTrustSettings m_trust;
+    AuxSettings m_aux;
     AfnPipeline m_pipeline;
 };
 

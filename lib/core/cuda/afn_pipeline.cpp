@@ -4,6 +4,7 @@
 
 #include "base/exception.h"
 #include "cuda/gpu.h"
+#include "stages/temporal_accumulation.h"
 
 namespace afn::cuda {
 
@@ -42,6 +43,33 @@ void uploadImage(DeviceBuffer<T>& dst, const Image& src, std::size_t expected, c
     AFN_CUDA_CHECK(
         cudaMemcpyAsync(dst.data(), src.data(), dst.bytes(), cudaMemcpyHostToDevice, stream));
 }
+
+/// The aux prefilter's report from its device state (AuxPrefilter::report()).
+AuxReport auxReport(const AuxState& s, const FrameLayout& l, double pixels)
+{
+    AuxReport r;
+    r.noisy = s.noisy != 0;
+    r.grainLimited = s.grainLimited != 0;
+    r.albedoSpeckle = l.albedo ? s.counts[0] / pixels : -1.0;
+    r.normalSpeckle = l.normal ? s.counts[1] / pixels : -1.0;
+    r.depthSpeckle = l.depth ? s.counts[2] / pixels : -1.0;
+    return r;
+}
+
+// The device's copies of the aux prefilter's constants.
+static_assert(kAuxAlbedoThresholdDevice == AuxNoiseThresholds::albedo);
+static_assert(kAuxNormalThresholdDevice == AuxNoiseThresholds::normal);
+static_assert(kAuxDepthThresholdDevice == AuxNoiseThresholds::depth);
+static_assert(kAuxAlbedoLevelFloorDevice == kAuxAlbedoLevelFloor);
+static_assert(kAuxDepthSkyDevice == kAuxDepthSky);
+static_assert(kAuxNoisyShareDevice == kAuxNoisyShare);
+static_assert(kAuxTrustedSppDevice == kAuxTrustedSpp);
+static_assert(kAuxUnreliableShareDevice == kAuxUnreliableShare);
+static_assert(kAuxDenseLowDevice == kAuxDenseLow && kAuxDenseHighDevice == kAuxDenseHigh);
+static_assert(kAuxAlbedoAlphaMinDevice == kAuxAlbedoAlphaMin);
+static_assert(kAuxNoisyAlbedoFloorDevice == kAuxNoisyAlbedoFloor);
+static_assert(kAuxGrainLimitDevice == kAuxGrainLimit);
+static_assert(kMaxHistoryLengthDevice == kMaxHistoryLength);
 
 } // namespace
 
@@ -156,6 +184,17 @@ void AfnPipeline::allocate(const FrameLayout& layout)
     allocateBuffer(m_trustCount, blocks, p, st);
     allocateBuffer(m_trustBlock, blocks, p, st);
     allocateBuffer(m_cutPixels, 1, p, st);
+    allocateBuffer(m_albedoRaw, layout.albedo ? 3 * n : 0, p, st);
+    allocateBuffer(m_normalRaw, layout.normal ? 3 * n : 0, p, st);
+    allocateBuffer(m_depthRaw, layout.depth ? n : 0, p, st);
+    const bool present[3] = { layout.albedo, layout.normal, layout.depth };
+    for (int k = 0; k < 3; ++k)
+        allocateBuffer(m_auxFlags[k], present[k] ? n : 0, p, st);
+    for (int k = 0; k < 2; ++k) {
+        allocateBuffer(m_auxEdges[k], present[k] ? n : 0, p, st);
+        allocateBuffer(m_auxHistory[k], layout.albedo ? kAuxHistoryStride * n : 0, p, st);
+    }
+    allocateBuffer(m_auxState, 1, p, st);
     allocateBuffer(m_constants, 1, p, st);
 
     const auto channels = [&](NetLayer l) { return m_layers[layerIndex(l)].packed.outChannels; };
@@ -244,7 +283,6 @@ void AfnPipeline::enqueueTemporalFeatures(int slot, cudaStream_t stream) const
 {
     const FrameLayout& l = m_layout;
     const int prev = slot ^ 1;
-    launchResetFrameCounters(m_depthRange.data(), m_cutPixels.data(), stream);
     TemporalBuffers b;
     b.width = l.width;
     b.height = l.height;
@@ -262,6 +300,24 @@ void AfnPipeline::enqueueTemporalFeatures(int slot, cudaStream_t stream) const
     b.irradiance = m_irradiance.data();
     b.accumulated = m_accumulated[slot].data();
     b.historyLength = m_history[slot].data();
+    AuxBuffers a;
+    a.width = l.width;
+    a.height = l.height;
+    a.albedo = l.albedo ? m_albedoRaw.data() : nullptr;
+    a.normal = l.normal ? m_normalRaw.data() : nullptr;
+    a.depth = l.depth ? m_depthRaw.data() : nullptr;
+    for (int k = 0; k < 3; ++k)
+        a.flags[k] = m_auxFlags[k].data();
+    for (int k = 0; k < 2; ++k)
+        a.edges[k] = m_auxEdges[k].data();
+    a.albedoOut = l.albedo ? m_albedo.data() : nullptr;
+    a.normalOut = l.normal ? m_normal[slot].data() : nullptr;
+    a.depthOut = l.depth ? m_depth[slot].data() : nullptr;
+    a.prevHistory = m_auxHistory[prev].data();
+    a.history = m_auxHistory[slot].data();
+    a.state = m_auxState.data();
+    launchAuxPrefilter(a, b, m_constants.data(), stream);
+    launchResetFrameCounters(m_depthRange.data(), m_cutPixels.data(), stream);
     TrustBuffers t;
     t.width = l.width;
     t.height = l.height;
@@ -414,15 +470,15 @@ void AfnPipeline::upload(const Frame& f, const FrameConstants& constants)
     const std::size_t n = pixels(f.width, f.height);
     uploadImage(m_color, f.color, 3 * n, s);
     if (m_layout.albedo)
-        uploadImage(m_albedo, f.albedo, 3 * n, s);
+        uploadImage(m_albedoRaw, f.albedo, 3 * n, s);
     if (m_layout.motion)
         uploadImage(m_motion, f.motion, 2 * n, s);
     if (m_layout.position)
         uploadImage(m_position[m_slot], f.position, 3 * n, s);
     if (m_layout.normal)
-        uploadImage(m_normal[m_slot], f.normal, 3 * n, s);
+        uploadImage(m_normalRaw, f.normal, 3 * n, s);
     if (m_layout.depth)
-        uploadImage(m_depth[m_slot], f.depth, n, s);
+        uploadImage(m_depthRaw, f.depth, n, s);
     AFN_CUDA_CHECK(cudaMemcpyAsync(
         m_constants.data(), &constants, sizeof(FrameConstants), cudaMemcpyHostToDevice, s));
     if (m_poison)
@@ -443,8 +499,12 @@ void AfnPipeline::download(Image& out)
         out.data(), m_output.data(), m_output.bytes(), cudaMemcpyDeviceToHost, m_stream.get()));
     AFN_CUDA_CHECK(cudaMemcpyAsync(&m_lastCutPixels, m_cutPixels.data(), m_cutPixels.bytes(),
         cudaMemcpyDeviceToHost, m_stream.get()));
+    AFN_CUDA_CHECK(cudaMemcpyAsync(&m_lastAuxState, m_auxState.data(), m_auxState.bytes(),
+        cudaMemcpyDeviceToHost, m_stream.get()));
     AFN_CUDA_CHECK(cudaStreamSynchronize(m_stream.get()));
-    m_lastCutShare = m_lastCutPixels / (static_cast<double>(m_layout.width) * m_layout.height);
+    const double pixels = static_cast<double>(m_layout.width) * m_layout.height;
+    m_lastCutShare = m_lastCutPixels / pixels;
+    m_lastAux = auxReport(m_lastAuxState, m_layout, pixels);
 }
 
 void AfnPipeline::run(const Frame& frame, const FrameConstants& constants, Image& out)
@@ -467,7 +527,7 @@ std::size_t AfnPipeline::uploadBytes() const
 
 std::size_t AfnPipeline::downloadBytes() const
 {
-    return m_output.bytes() + m_cutPixels.bytes();
+    return m_output.bytes() + m_cutPixels.bytes() + m_auxState.bytes();
 }
 
 void AfnPipeline::downloadIntermediate(Intermediate which, Image& out)

@@ -19,6 +19,7 @@
 #include "cuda/kernels.h"
 #include "filter/frame.h"
 #include "methods/afn/network.h"
+#include "stages/aux_prefilter.h"
 
 #include <array>
 #include <cstdint>
@@ -83,6 +84,8 @@ public:
     /// Share of the last downloaded frame's pixels whose history the trust cut
     /// (HistoryTrust::cutShare()).
     double lastCutShare() const { return m_lastCutShare; }
+    /// What the aux prefilter measured and decided for the last downloaded frame.
+    const AuxReport& lastAuxReport() const { return m_lastAux; }
     /// Bytes uploaded and downloaded per frame with the configured layout.
     std::size_t uploadBytes() const;
     std::size_t downloadBytes() const;
@@ -140,6 +143,16 @@ private:
     // and trust, the cut pixels (one word, copied back with the output).
     DeviceBuffer<float> m_trustRowSums, m_trustRaw, m_trustCount, m_trustBlock;
     DeviceBuffer<unsigned> m_cutPixels;
+    // The aux prefilter (aux_prefilter_pixel.h): the albedo, normal and depth as uploaded (the
+    // frame-size m_albedo, m_normal and m_depth hold them after the prefilter), the speckle flags
+    // and discontinuity shares, the aux history per slot and the state (copied back with the
+    // output for the report).
+    DeviceBuffer<float> m_albedoRaw, m_normalRaw, m_depthRaw;
+    std::array<DeviceBuffer<float>, 3> m_auxFlags;
+    std::array<DeviceBuffer<float>, 2> m_auxEdges, m_auxHistory;
+    DeviceBuffer<AuxState> m_auxState;
+    AuxState m_lastAuxState {};
+    AuxReport m_lastAux;
     unsigned m_lastCutPixels = 0;
     double m_lastCutShare = 0.0;
     DeviceBuffer<FrameConstants> m_constants;

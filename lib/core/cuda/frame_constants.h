@@ -5,6 +5,7 @@
 
 #include "cuda/temporal_pixel.h"
 #include "filter/frame.h"
+#include "stages/aux_prefilter.h"
 #include "stages/history_trust.h"
 #include "stages/reproject.h"
 #include "stages/temporal_accumulation.h"
@@ -14,7 +15,8 @@
 namespace afn::cuda {
 
 inline FrameConstants frameConstants(const Frame& in, const ReprojectSettings& reproject,
-    const AccumulationSettings& accumulation, const HistoryTrustSettings& trust)
+    const AccumulationSettings& accumulation, const HistoryTrustSettings& trust,
+    const AuxSettings& aux)
 {
     FrameConstants c;
     c.hasHistory = in.frameIndex > 0 ? 1 : 0;
@@ -29,6 +31,10 @@ inline FrameConstants frameConstants(const Frame& in, const ReprojectSettings& r
     c.depthLimit = reproject.depthLimit;
     c.alphaMin = accumulation.alphaMin;
     c.antilag = trust.antilag;
+    c.auxMode = aux.aux == AuxSettings::Mode::Clean ? 1
+        : aux.aux == AuxSettings::Mode::Noisy       ? 2
+                                                    : 0;
+    c.spp = aux.spp;
     c.colorDemodulated = in.colorDemodulated ? 1 : 0;
     return c;
 }

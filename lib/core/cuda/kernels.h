@@ -4,6 +4,7 @@
 // throws afn::Exception when the launch is refused.
 //
 // Per frame, in stream order (afn_pipeline.cpp):
+//   auxPrefilter                       flags, decision, prefiltered normal, depth and albedo
 //   resetFrameCounters, temporal       TA: demodulate, reproject, history trust, accumulate;
 //                                      depth range
 //   prepare                            network input x, its 2 x 2 average, D(1-spp colour)
@@ -15,6 +16,7 @@
 #pragma once
 
 #include "cuda/albedo_trust_block.h"
+#include "cuda/aux_prefilter_pixel.h"
 #include "cuda/conv_tile.h"
 #include "cuda/filter_fuse_lane.h"
 #include "cuda/prepare_block.h"
@@ -23,6 +25,11 @@
 #include <cuda_runtime_api.h>
 
 namespace afn::cuda {
+
+/// The aux prefilter over the frame (aux_prefilter_pixel.h): `t` the frame's temporal buffers,
+/// whose normal and depth are b.normalOut and b.depthOut.
+void launchAuxPrefilter(const AuxBuffers& b, const TemporalBuffers& t, const FrameConstants* frame,
+    cudaStream_t stream);
 
 /// Set the depth-range keys (2 words: min, max) to the empty range and the cut pixel count to 0.
 void launchResetFrameCounters(std::uint32_t* depthRange, unsigned* cutPixels, cudaStream_t stream);

@@ -27,6 +27,8 @@ struct FrameConstants {
     float depthLimit = 0.1f;
     float alphaMin = 0.2f;
     float antilag = 1.0f; ///< stages/history_trust.h HistoryTrustSettings (0: no trust measured)
+    int auxMode = 0; ///< stages/aux_prefilter.h AuxSettings::Mode: 0 auto, 1 clean, 2 noisy
+    int spp = 0; ///< AuxSettings::spp (0: unknown)
     int colorDemodulated = 0; ///< the colour input is already irradiance
 };
 
@@ -151,6 +153,36 @@ AFN_HD bool accept(
 
 } // namespace temporal
 
+/// The bilinear history taps of pixel (x, y) into the previous frame, each of weight 0 unless
+/// accepted (Reprojector's taps, no box fallback); false without a previous position.
+struct HistoryTaps {
+    int x0 = 0, y0 = 0; ///< tap k at (x0 + (k & 1), y0 + (k >> 1))
+    float w[4] = { 0.0f, 0.0f, 0.0f, 0.0f };
+    AFN_HD std::size_t index(int width, int k) const
+    {
+        return static_cast<std::size_t>(y0 + (k >> 1)) * width + x0 + (k & 1);
+    }
+};
+
+AFN_HD bool historyTaps(
+    const TemporalBuffers& b, const FrameConstants& f, int x, int y, HistoryTaps& t)
+{
+    using namespace temporal;
+    float px = 0.0f, py = 0.0f;
+    if (!f.hasHistory || !previousPosition(b, f, x, y, px, py))
+        return false;
+    const float fx0 = floorf(px), fy0 = floorf(py);
+    t.x0 = static_cast<int>(fx0);
+    t.y0 = static_cast<int>(fy0);
+    const float fx = px - fx0, fy = py - fy0;
+    const bool usePosition = b.position && !(f.positionLimitSquared > 0.0f);
+    const float fp = usePosition ? footprint(b, x, y) : 0.0f;
+    const float bw[4] = { (1.0f - fx) * (1.0f - fy), fx * (1.0f - fy), (1.0f - fx) * fy, fx * fy };
+    for (int k = 0; k < 4; ++k)
+        t.w[k] = accept(b, f, x, y, t.x0 + (k & 1), t.y0 + (k >> 1), fp) ? bw[k] : 0.0f;
+    return true;
+}
+
 /// Demodulate and reproject pixel (x, y): writes its irradiance, and its reprojected history and
 /// that history's length into `accumulated` and `historyLength` (kNoHistoryDevice where none
 /// was accepted: TemporalAccumulator::gatherRows()).
@@ -168,29 +200,19 @@ AFN_HD void temporalGather(const TemporalBuffers& b, const FrameConstants& f, in
     // Reprojection: accepted bilinear taps, then their renormalised history.
     float prev[3] = { 0.0f, 0.0f, 0.0f };
     float sppS = 0.0f, ws = 0.0f;
-    float px = 0.0f, py = 0.0f;
-    if (f.hasHistory && previousPosition(b, f, x, y, px, py)) {
-        const float fx0 = floorf(px), fy0 = floorf(py);
-        const int x0 = static_cast<int>(fx0), y0 = static_cast<int>(fy0);
-        const float fx = px - fx0, fy = py - fy0;
-        const bool usePosition = b.position && !(f.positionLimitSquared > 0.0f);
-        const float fp = usePosition ? footprint(b, x, y) : 0.0f;
-        const float bw[4]
-            = { (1.0f - fx) * (1.0f - fy), fx * (1.0f - fy), (1.0f - fx) * fy, fx * fy };
-        float w[4];
-        for (int k = 0; k < 4; ++k)
-            w[k] = accept(b, f, x, y, x0 + (k & 1), y0 + (k >> 1), fp) ? bw[k] : 0.0f;
+    HistoryTaps taps;
+    if (historyTaps(b, f, x, y, taps)) {
         // gatherHistory<3> and gatherHistory<1> over the same taps.
         float sppW = 0.0f;
         for (int k = 0; k < 4; ++k) {
-            if (!(w[k] > 0.0f))
+            if (!(taps.w[k] > 0.0f))
                 continue;
-            const std::size_t t = static_cast<std::size_t>(y0 + (k >> 1)) * b.width + x0 + (k & 1);
+            const std::size_t t = taps.index(b.width, k);
             for (int ch = 0; ch < 3; ++ch)
-                prev[ch] += w[k] * b.prevAccumulated[3 * t + ch];
-            ws += w[k];
-            sppS += w[k] * b.prevHistoryLength[t];
-            sppW += w[k];
+                prev[ch] += taps.w[k] * b.prevAccumulated[3 * t + ch];
+            ws += taps.w[k];
+            sppS += taps.w[k] * b.prevHistoryLength[t];
+            sppW += taps.w[k];
         }
         if (ws > 0.0f)
             for (int ch = 0; ch < 3; ++ch)

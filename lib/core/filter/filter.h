@@ -100,12 +100,13 @@ public:
     /// Share of the last frame's pixels that needed no denoising (filter/work_mask.h).
     double lastSkippedShare() const { return m_skipped; }
     /// What the aux prefilter measured and decided on the last frame (methods that demodulate).
-    /// A clean history's speckle shares are measured here, when first asked for.
-    const AuxReport& auxReport() const;
+    /// A clean history's speckle shares are measured here, when first asked for. A filter whose
+    /// prefilter runs elsewhere (a GPU) gives its own.
+    virtual const AuxReport& auxReport() const;
     /// The aux prefilter's decisions for the last frame (auxReport()'s flags, without measuring
     /// pending shares).
-    bool auxNoisy() const { return m_aux.report().noisy; }
-    bool auxGrainLimited() const { return m_aux.report().grainLimited; }
+    virtual bool auxNoisy() const { return m_aux.report().noisy; }
+    virtual bool auxGrainLimited() const { return m_aux.report().grainLimited; }
     int width() const { return m_frame.width; }
     int height() const { return m_frame.height; }
     /// The history trust of the last frame (stages/history_trust.h): the accumulation stage's,

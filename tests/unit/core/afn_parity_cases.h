@@ -6,25 +6,61 @@
 
 #include "afn_synthetic_sequence.h"
 #include "filter/filter.h"
+#include "stages/aux_prefilter.h"
+#include "stages/demodulate.h"
+#include "stages/reproject.h"
+#include "stages/temporal_accumulation.h"
 
 #include <string>
 #include <vector>
 
 namespace afntest {
 
-/// Set a CPU afn filter to what the CUDA filter runs (docs/gpu.md): no aux prefilter, output TAA,
-/// post-filter or work skipping on the GPU yet (their auto settings run as off there; the CPU's
-/// skipping sends 8-row blocks of background to the cheap path, the GPU filters them), and the
-/// convolutions in fp32 on every CPU (auto runs bf16 where the CPU has it): the reference the
-/// CUDA engine's half precision is measured against.
+/// Set a CPU afn filter to what the CUDA filter runs (docs/gpu.md): no output TAA, post-filter or
+/// work skipping on the GPU yet (their auto settings run as off there; the CPU's skipping sends
+/// 8-row blocks of background to the cheap path, the GPU filters them), and the convolutions in
+/// fp32 on every CPU (auto runs bf16 where the CPU has it): the reference the CUDA engine's half
+/// precision is measured against.
 inline void configureAsOnTheGpu(afn::Filter& cpu)
 {
-    cpu.params().setString(AFN_PARAM_AUX, "clean");
     cpu.params().setString("taa", "off");
     cpu.params().setString("postFilter", "off");
     cpu.params().setString("precision", "fp32");
     cpu.params().setNumber("skip", 0.0, AFN_PARAM_BOOL);
 }
+
+/// The CPU's stages before the afn network, in Filter::runStages()'s order and default
+/// reprojection and accumulation settings: the aux prefilter's prepare, the reprojection, its
+/// finish, demodulation, accumulation (with the history trust); the reference of the CUDA
+/// engine's first stage.
+struct CpuFirstStage {
+    afn::Reprojector reprojector;
+    afn::TemporalAccumulator accumulator;
+    afn::AuxPrefilter aux;
+    afn::Frame frame; ///< the last frame after the prefilter
+    afn::Image irradiance;
+
+    CpuFirstStage(const afn::AuxSettings& auxSettings, const afn::HistoryTrustSettings& trust)
+    {
+        accumulator.setTrustSettings(trust);
+        aux.setSettings(auxSettings);
+    }
+    void run(const afn::Frame& given)
+    {
+        frame = given;
+        if (frame.frameIndex == 0) {
+            reprojector.reset();
+            accumulator.reset();
+            aux.reset();
+        }
+        aux.prepare(frame);
+        reprojector.compute(frame);
+        aux.finish(frame, &reprojector);
+        afn::demodulate(frame, irradiance);
+        accumulator.accumulate(reprojector, irradiance);
+        reprojector.storeGeometry(frame);
+    }
+};
 
 struct ParityCase {
     /// "full", "fusion", "trust" (tests/data/afn_parity: weights_trust has the history input and

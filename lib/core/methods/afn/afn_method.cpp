@@ -38,8 +38,7 @@
 // (Network::setPrecision); reported as AFN_STAT_AFN_PRECISION.
 //
 // On a CUDA device (builds with AFN_HAS_CUDA) the whole filter, shared stages included, runs on
-// the GPU instead (cuda/afn_cuda_filter.h). It has no aux prefilter yet: it refuses aux=noisy and
-// runs aux=auto as clean (docs/gpu.md).
+// the GPU instead (cuda/afn_cuda_filter.h); what it does not run yet is listed in docs/gpu.md.
 #include "base/exception.h"
 #include "cpu/isa.h"
 #include "filter/registry.h"

@@ -124,6 +124,32 @@ void emulateMma(const std::uint32_t (&a)[32][4], const std::uint32_t (&b)[32][2]
     }
 }
 
+void emulateAuxPrefilter(const AuxBuffers& b, const TemporalBuffers& t, const FrameConstants& f)
+{
+    AuxState& s = *b.state;
+    for (unsigned& c : s.counts)
+        c = 0u;
+    if (!f.hasHistory) {
+        s.decided = 0;
+        s.hasHistory = 0;
+    }
+    for (int y = 0; y < b.height; ++y)
+        for (int x = 0; x < b.width; ++x) {
+            const unsigned speckled = auxFlagsPixel(b, x, y);
+            for (int kind = 0; kind < 3; ++kind)
+                s.counts[kind] += (speckled >> kind) & 1u;
+        }
+    auxDecide(b, f);
+    if (b.normal || b.depth)
+        for (int y = 0; y < b.height; ++y)
+            for (int x = 0; x < b.width; ++x)
+                auxGeometryPixel(b, x, y);
+    if (b.albedo)
+        for (int y = 0; y < b.height; ++y)
+            for (int x = 0; x < b.width; ++x)
+                auxAlbedoPixel(b, t, f, x, y);
+}
+
 void emulateTemporal(const TemporalBuffers& b, const TrustBuffers& t, const FrameConstants& f,
     std::uint32_t* depthRange)
 {

@@ -8,6 +8,7 @@
 #pragma once
 
 #include "cuda/albedo_trust_block.h"
+#include "cuda/aux_prefilter_pixel.h"
 #include "cuda/conv_tile.h"
 #include "cuda/filter_fuse_lane.h"
 #include "cuda/prepare_block.h"
@@ -23,6 +24,9 @@ void emulateMma(
     const std::uint32_t (&a)[32][4], const std::uint32_t (&b)[32][2], float (&c)[32][4]);
 
 /// The kernels of kernels.h on the CPU (same arguments, host pointers).
+/// aux_prefilter.cu's kernels in their order (the counts added without atomics).
+void emulateAuxPrefilter(const afn::cuda::AuxBuffers& b, const afn::cuda::TemporalBuffers& t,
+    const afn::cuda::FrameConstants& f);
 /// temporal.cu's kernels in their order: gather (and depth range), the history trust's row sums,
 /// groups and soft minimum (adding to *t.cutPixels), blend.
 void emulateTemporal(const afn::cuda::TemporalBuffers& b, const afn::cuda::TrustBuffers& t,

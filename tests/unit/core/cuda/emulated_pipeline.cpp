@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 
 namespace afntest {
 
@@ -101,6 +102,13 @@ void EmulatedAfnPipeline::allocate(const afn::Frame& f)
     m_trustRaw.assign(blocks, nan);
     m_trustCount.assign(blocks, nan);
     m_trustBlock.assign(blocks, nan);
+    for (auto& v : m_auxFlags)
+        v.assign(n, nan);
+    for (auto& v : m_auxEdges)
+        v.assign(n, nan);
+    for (auto& v : m_auxHistory)
+        v.assign(kAuxHistoryStride * n, nan);
+    std::memset(&m_auxState, 0xff, sizeof(m_auxState)); // as poisoned device memory
     auto ch = [&](L l) { return m_layers[static_cast<int>(l)].packed.outChannels; };
     const int wp = m_paddedWidth, hp = m_paddedHeight;
     const int inputs = m_historyInput ? kHistoryInputChannels : kInputChannels;
@@ -133,11 +141,15 @@ void EmulatedAfnPipeline::run(const afn::Frame& f, const FrameConstants& c, afn:
     const int s = m_slot, p = s ^ 1;
     // Upload.
     m_color.assign(f.color.data(), f.color.data() + f.color.size());
-    m_albedo.assign(f.albedo.data(), f.albedo.data() + f.albedo.size());
+    m_albedoRaw.assign(f.albedo.data(), f.albedo.data() + f.albedo.size());
     m_motion.assign(f.motion.data(), f.motion.data() + f.motion.size());
     m_position[s].assign(f.position.data(), f.position.data() + f.position.size());
-    m_normal[s].assign(f.normal.data(), f.normal.data() + f.normal.size());
-    m_depth[s].assign(f.depth.data(), f.depth.data() + f.depth.size());
+    m_normalRaw.assign(f.normal.data(), f.normal.data() + f.normal.size());
+    m_depthRaw.assign(f.depth.data(), f.depth.data() + f.depth.size());
+    // The prefilter's outputs (written for every pixel).
+    m_albedo.assign(f.albedo.size(), std::nanf(""));
+    m_normal[s].assign(f.normal.size(), std::nanf(""));
+    m_depth[s].assign(f.depth.size(), std::nanf(""));
     auto ptr = [](std::vector<float>& v) { return v.empty() ? nullptr : v.data(); };
 
     // TemporalFeatures.
@@ -159,6 +171,31 @@ void EmulatedAfnPipeline::run(const afn::Frame& f, const FrameConstants& c, afn:
     b.irradiance = m_irradiance.data();
     b.accumulated = m_accumulated[s].data();
     b.historyLength = m_history[s].data();
+    AuxBuffers ab;
+    ab.width = m_width;
+    ab.height = m_height;
+    ab.albedo = ptr(m_albedoRaw);
+    ab.normal = ptr(m_normalRaw);
+    ab.depth = ptr(m_depthRaw);
+    for (int k = 0; k < 3; ++k)
+        ab.flags[k] = m_auxFlags[k].data();
+    for (int k = 0; k < 2; ++k)
+        ab.edges[k] = m_auxEdges[k].data();
+    ab.albedoOut = ptr(m_albedo);
+    ab.normalOut = ptr(m_normal[s]);
+    ab.depthOut = ptr(m_depth[s]);
+    ab.prevHistory = m_auxHistory[p].data();
+    ab.history = m_auxHistory[s].data();
+    ab.state = &m_auxState;
+    emulateAuxPrefilter(ab, b, c);
+    m_albedoImage = afn::Image(m_albedo.empty() ? 0 : m_width, m_albedo.empty() ? 0 : m_height, 3);
+    std::copy(m_albedo.begin(), m_albedo.end(), m_albedoImage.data());
+    m_normalImage
+        = afn::Image(m_normal[s].empty() ? 0 : m_width, m_normal[s].empty() ? 0 : m_height, 3);
+    std::copy(m_normal[s].begin(), m_normal[s].end(), m_normalImage.data());
+    m_depthImage
+        = afn::Image(m_depth[s].empty() ? 0 : m_width, m_depth[s].empty() ? 0 : m_height, 1);
+    std::copy(m_depth[s].begin(), m_depth[s].end(), m_depthImage.data());
     TrustBuffers t;
     t.width = m_width;
     t.height = m_height;

@@ -30,6 +30,11 @@ public:
     const afn::Image& historyLength() const { return m_historyLengthImage; }
     /// The history trust's cut share (HistoryTrust::cutShare()).
     double cutShare() const { return m_cutShare; }
+    /// The albedo, normal and depth after the aux prefilter (frame size; empty where absent).
+    const afn::Image& albedo() const { return m_albedoImage; }
+    const afn::Image& normal() const { return m_normalImage; }
+    const afn::Image& depth() const { return m_depthImage; }
+    const afn::cuda::AuxState& auxState() const { return m_auxState; }
     afn::Image networkInput() const; ///< padded size, 13 ch (14 with the history input)
     afn::Image decoderOutput() const; ///< half the padded size
     /// The albedo trust's t, half the padded size, 1 ch (weights with the albedo trust only).
@@ -63,6 +68,11 @@ private:
     Tensor m_x, m_xHalf, m_e1, m_e1Pool, m_e2, m_e2Pool, m_e3, m_d2, m_d1, m_refineInput, m_r1,
         m_r2;
     std::vector<float> m_trustRowSums, m_trustRaw, m_trustCount, m_trustBlock;
+    std::vector<float> m_albedoRaw, m_normalRaw, m_depthRaw;
+    std::array<std::vector<float>, 3> m_auxFlags;
+    std::array<std::vector<float>, 2> m_auxEdges, m_auxHistory;
+    afn::cuda::AuxState m_auxState {};
+    afn::Image m_albedoImage, m_normalImage, m_depthImage;
     double m_cutShare = 0.0;
     afn::Image m_irradianceImage, m_accumulatedImage, m_historyLengthImage;
 };

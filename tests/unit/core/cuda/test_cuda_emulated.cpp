@@ -11,12 +11,15 @@
 #include "filter/registry.h"
 #include "methods/afn/network_inputs.h"
 #include "methods/afn/weights_source.h"
+#include "stages/aux_prefilter.h"
 #include "stages/demodulate.h"
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstring>
 #include <iostream>
+#include <random>
 
 namespace {
 
@@ -38,13 +41,14 @@ std::vector<char> shippedWeights()
 const afn::ReprojectSettings kReproject {};
 const afn::AccumulationSettings kAccumulation {};
 const afn::HistoryTrustSettings kTrust {}; ///< the default, antilag 1
+const afn::AuxSettings kAux {}; ///< the default, auto at an unknown sample count
 
 } // namespace
 
-// Demodulation, reprojection, history trust and accumulation bit for bit, on every input set,
-// with the trust off, at its default and stronger, on a sequence whose left half brightens 3x
-// from frame 3 on (a light switched on): the trust cuts history there, and the cut share is the
-// CPU's.
+// Aux prefilter, demodulation, reprojection, history trust and accumulation bit for bit, on every
+// input set, with the trust off, at its default and stronger, on a sequence whose left half
+// brightens 3x from frame 3 on (a light switched on): the trust cuts history there, and the cut
+// share is the CPU's.
 TEST(CudaEmulated, FirstStageIsTheCpuStagesBitForBit)
 {
     const afn::afnet::Network net = [] {
@@ -57,12 +61,10 @@ TEST(CudaEmulated, FirstStageIsTheCpuStagesBitForBit)
             const afntest::SyntheticSequence seq(75, 43, 5);
             afntest::EmulatedAfnPipeline emulated(net);
             afntest::FrameGatherer gatherer;
-            afn::Reprojector reprojector;
-            reprojector.setSettings(kReproject);
-            afn::TemporalAccumulator accumulator;
-            accumulator.setSettings(kAccumulation);
-            accumulator.setTrustSettings({ antilag });
-            afn::Image irradiance, out;
+            afntest::CpuFirstStage cpu(kAux, { antilag });
+            const afn::Image& irradiance = cpu.irradiance;
+            const afn::TemporalAccumulator& accumulator = cpu.accumulator;
+            afn::Image out;
             double largestCut = 0.0;
             for (int k = 0; k < 6; ++k) {
                 afntest::SequenceFrame in = seq.frame(k, inputs);
@@ -71,17 +73,11 @@ TEST(CudaEmulated, FirstStageIsTheCpuStagesBitForBit)
                         for (int x = 0; x < in.color.width() / 2; ++x)
                             for (int c = 0; c < 3; ++c)
                                 in.color(x, y, c) *= 3.0f;
-                const afn::Frame& f = gatherer.gather(in);
-                if (k == 0) {
-                    reprojector.reset();
-                    accumulator.reset();
-                }
-                afn::demodulate(f, irradiance);
-                reprojector.compute(f);
-                accumulator.accumulate(reprojector, irradiance);
-                reprojector.storeGeometry(f);
-                emulated.run(
-                    f, afn::cuda::frameConstants(f, kReproject, kAccumulation, { antilag }), out);
+                const afn::Frame& given = gatherer.gather(in);
+                cpu.run(given);
+                emulated.run(given,
+                    afn::cuda::frameConstants(given, kReproject, kAccumulation, { antilag }, kAux),
+                    out);
                 ASSERT_EQ(0,
                     std::memcmp(
                         irradiance.data(), emulated.irradiance().data(), 4 * irradiance.size()))
@@ -105,6 +101,97 @@ TEST(CudaEmulated, FirstStageIsTheCpuStagesBitForBit)
         }
 }
 
+namespace {
+
+/// Frame k of `seq` with 1-spp-like noise in its auxiliary buffers inside a rectangle (an object
+/// whose AOVs follow random specular bounces): each pixel's albedo scaled by a factor in
+/// [0.2, 1.8], its normal tilted by up to 0.6 per axis (renormalised), its depth moved by up to
+/// 10 %.
+afntest::SequenceFrame noisyAovFrame(
+    const afntest::SyntheticSequence& seq, int k, const SequenceInputs& inputs)
+{
+    afntest::SequenceFrame in = seq.frame(k, inputs);
+    std::mt19937 rng(100u + static_cast<unsigned>(k));
+    std::uniform_real_distribution<float> u(0.0f, 1.0f);
+    const int w = in.color.width(), h = in.color.height();
+    for (int y = h / 4; y < 3 * h / 4; ++y)
+        for (int x = w / 4; x < w / 2; ++x) {
+            const float scale = 0.2f + 1.6f * u(rng);
+            if (!in.albedo.empty())
+                for (int c = 0; c < 3; ++c)
+                    in.albedo(x, y, c) *= scale;
+            float n[3], len2 = 0.0f;
+            for (int c = 0; c < 3; ++c) {
+                n[c] = 0.6f * (2.0f * u(rng) - 1.0f)
+                    + (in.normal.empty() ? 0.0f : in.normal(x, y, c));
+                len2 += n[c] * n[c];
+            }
+            if (!in.normal.empty() && len2 > 0.0f)
+                for (int c = 0; c < 3; ++c)
+                    in.normal(x, y, c) = n[c] / std::sqrt(len2);
+            const float dz = 1.0f + 0.2f * (u(rng) - 0.5f);
+            if (!in.depth.empty() && in.depth(x, y, 0) < 1e9f)
+                in.depth(x, y, 0) *= dz;
+        }
+    return in;
+}
+
+bool sameBits(const afn::Image& a, const afn::Image& b)
+{
+    return a.size() == b.size()
+        && (a.size() == 0 || std::memcmp(a.data(), b.data(), 4 * a.size()) == 0);
+}
+
+} // namespace
+
+// The aux prefilter's albedo, normal and depth bit for bit against the CPU stage (its flags,
+// 5x5 means, decision, reliability and the albedo's history through the taps of the prefiltered
+// geometry), in every mode: auto at 1 spp (decided noisy), auto at 16 spp (grain limited), noisy
+// and clean, on every input set, with noisy AOVs in a rectangle; the decision and the shares are
+// the CPU's, and every mode but clean changes the albedo.
+TEST(CudaEmulated, AuxPrefilterIsTheCpuStageBitForBit)
+{
+    using M = afn::AuxSettings::Mode;
+    const afn::afnet::Network net = [] {
+        const auto w = testWeights("weights_full.afnw");
+        return afn::afnet::networkFromData(w.data(), w.size());
+    }();
+    const afn::AuxSettings modes[]
+        = { { M::Auto, 0 }, { M::Auto, 16 }, { M::Noisy, 0 }, { M::Clean, 0 } };
+    for (const afn::AuxSettings& mode : modes)
+        for (const SequenceInputs& inputs : afntest::parityInputSets()) {
+            SCOPED_TRACE(inputs.name() + ", aux mode " + std::to_string(static_cast<int>(mode.aux))
+                + ", spp " + std::to_string(mode.spp));
+            const afntest::SyntheticSequence seq(61, 37, 9);
+            afntest::EmulatedAfnPipeline emulated(net);
+            afntest::FrameGatherer gatherer;
+            afntest::CpuFirstStage cpu(mode, kTrust);
+            afn::Image out;
+            bool changed = false;
+            for (int k = 0; k < 4; ++k) {
+                afntest::SequenceFrame in = noisyAovFrame(seq, k, inputs);
+                const afn::Frame& given = gatherer.gather(in);
+                cpu.run(given);
+                emulated.run(given,
+                    afn::cuda::frameConstants(given, kReproject, kAccumulation, kTrust, mode), out);
+                const afn::Frame& f = cpu.frame;
+                EXPECT_TRUE(sameBits(emulated.albedo(), f.albedo)) << "albedo, frame " << k;
+                EXPECT_TRUE(sameBits(emulated.normal(), f.normal)) << "normal, frame " << k;
+                EXPECT_TRUE(sameBits(emulated.depth(), f.depth)) << "depth, frame " << k;
+                const afn::AuxReport& r = cpu.aux.report();
+                EXPECT_EQ(emulated.auxState().noisy != 0, r.noisy) << "frame " << k;
+                EXPECT_EQ(emulated.auxState().grainLimited != 0, r.grainLimited) << "frame " << k;
+                if (!cpu.aux.sharesPending() && f.hasAlbedo())
+                    EXPECT_EQ(emulated.auxState().counts[0] / (double(f.width) * f.height),
+                        r.albedoSpeckle)
+                        << "frame " << k;
+                changed = changed || !sameBits(f.albedo, given.albedo);
+            }
+            if (inputs.albedo)
+                EXPECT_EQ(changed, mode.aux != M::Clean);
+        }
+}
+
 // The network input (with history01 where the weights read it), the decoder output and the albedo
 // trust's t against the CPU network's own, given the CPU's inputs (NetworkInputs, as afn_method).
 TEST(CudaEmulated, NetworkInputIsTheCpuInputInHalfPrecision)
@@ -117,21 +204,20 @@ TEST(CudaEmulated, NetworkInputIsTheCpuInputInHalfPrecision)
         const afntest::SyntheticSequence seq(29, 19, 2);
         afntest::EmulatedAfnPipeline emulated(loaded);
         afntest::FrameGatherer gatherer;
-        afn::Reprojector reprojector;
-        afn::TemporalAccumulator accumulator;
+        afntest::CpuFirstStage stages(kAux, kTrust);
         afn::afnet::NetworkInputs inputs;
-        afn::Image irradiance, result, out;
+        afn::Image result, out;
         for (int k = 0; k < 3; ++k) {
             afntest::SequenceFrame in = seq.frame(k, SequenceInputs {});
-            const afn::Frame& f = gatherer.gather(in);
-            afn::demodulate(f, irradiance);
-            reprojector.compute(f);
-            accumulator.accumulate(reprojector, irradiance);
-            reprojector.storeGeometry(f);
-            inputs.prepare(f, afn::afnet::InputSet::full(), irradiance, accumulator.color(),
+            const afn::Frame& given = gatherer.gather(in);
+            stages.run(given);
+            const afn::Frame& f = stages.frame;
+            const afn::TemporalAccumulator& accumulator = stages.accumulator;
+            inputs.prepare(f, afn::afnet::InputSet::full(), stages.irradiance, accumulator.color(),
                 loaded.hasHistoryInput() ? &accumulator.historyLength() : nullptr);
             cpu.runWholeFrame(inputs.inputs(), result);
-            emulated.run(f, afn::cuda::frameConstants(f, kReproject, kAccumulation, kTrust), out);
+            emulated.run(
+                given, afn::cuda::frameConstants(f, kReproject, kAccumulation, kTrust, kAux), out);
             const afn::Image x = emulated.networkInput();
             ASSERT_EQ(x.width(), cpu.input().width());
             ASSERT_EQ(x.channels(), cpu.input().channels());
@@ -168,7 +254,7 @@ namespace {
 
 /// Run the CPU filter and the emulated CUDA engine on a sequence; every frame within tolerance.
 void expectFilterParity(const std::vector<char>& weights, int width, int height,
-    const SequenceInputs& inputs, int frames)
+    const SequenceInputs& inputs, int frames, bool noisyAovs = false)
 {
     auto cpu = afn::createFilter("afn");
     afntest::configureAsOnTheGpu(*cpu);
@@ -180,10 +266,12 @@ void expectFilterParity(const std::vector<char>& weights, int width, int height,
     afn::Image cpuOut(width, height, 3), emuOut;
     const afntest::Tolerance tolerance;
     for (int k = 0; k < frames; ++k) {
-        afntest::SequenceFrame in = seq.frame(k, inputs);
+        afntest::SequenceFrame in
+            = noisyAovs ? noisyAovFrame(seq, k, inputs) : seq.frame(k, inputs);
         afntest::runFrame(*cpu, in, cpuOut);
         const afn::Frame& f = gatherer.gather(in);
-        emulated.run(f, afn::cuda::frameConstants(f, kReproject, kAccumulation, kTrust), emuOut);
+        emulated.run(
+            f, afn::cuda::frameConstants(f, kReproject, kAccumulation, kTrust, kAux), emuOut);
         const afntest::OutputDifference d = afntest::compareOutputs(emuOut, cpuOut);
         std::cout << "[ emulated ] " << width << "x" << height << " " << inputs.name() << " frame "
                   << k << ": " << d.text() << "\n";
@@ -220,6 +308,14 @@ TEST(CudaEmulated, FilterMatchesCpuWithHistoryInputAndAlbedoTrust)
             expectFilterParity(trust, 37, 21, inputs, 3);
     expectFilterParity(trust, 8, 8, SequenceInputs {}, 2);
     expectFilterParity(trust, 1, 1, SequenceInputs {}, 2);
+}
+
+// Noisy AOVs (aux=auto decides noisy): the prefiltered buffers reach the network and the
+// remodulation as on the CPU.
+TEST(CudaEmulated, FilterMatchesCpuWithNoisyAovs)
+{
+    for (const char* name : { "weights_full.afnw", "weights_trust.afnw" })
+        expectFilterParity(testWeights(name), 61, 37, SequenceInputs {}, 4, true);
 }
 
 TEST(CudaEmulated, FilterMatchesCpuWithShippedWeights)
