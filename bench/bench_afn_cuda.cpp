@@ -18,6 +18,7 @@
 #include "cuda/gpu.h"
 #include "filter/registry.h"
 #include "methods/afn/random_weights.h"
+#include "methods/afn/settings.h"
 #include "methods/afn/weights_source.h"
 
 #include <algorithm>
@@ -119,6 +120,8 @@ void benchmarkSize(const afn::Device& device, const afn::afnet::Network& net,
     // The pipeline directly: two frames, so that the timed frame reprojects a history.
     AfnPipeline pipe(device.gpuOrdinal());
     pipe.setNetwork(net);
+    // As the filter's postFilter=auto (afn_cuda_filter.cpp).
+    pipe.setPostFilter(net.trainedSpp() < afn::afnet::kPostFilterAutoMaxSppExclusive);
     afntest::FrameGatherer gatherer;
     const afn::ReprojectSettings reproject {};
     const afn::AccumulationSettings accumulation {};
@@ -143,7 +146,8 @@ void benchmarkSize(const afn::Device& device, const afn::afnet::Network& net,
     } stages[] = { { AfnPipeline::Stage::TemporalFeatures, "TA + features" },
         { AfnPipeline::Stage::KernelPrediction, "kernel prediction" },
         { AfnPipeline::Stage::FilteringFusion, "filtering + fusion" },
-        { AfnPipeline::Stage::Refinement, "refinement" } };
+        { AfnPipeline::Stage::Refinement, "refinement" },
+        { AfnPipeline::Stage::PostFilter, "post-filter" } };
     for (const auto& s : stages) {
         afn::cuda::GraphExec exec;
         exec.reset(

@@ -199,7 +199,7 @@ TEST_F(CudaAfn, OtherMethodsAreUnsupportedOnTheCudaDevice)
     }
 }
 
-TEST_F(CudaAfn, TaaOnPostFilterOnAndTheQuarterScaleRunOnTheCpuOnly)
+TEST_F(CudaAfn, TaaOnAndTheQuarterScaleRunOnTheCpuOnly)
 {
     auto expectRefused = [](afn::Filter& f, const std::string& what) {
         try {
@@ -214,9 +214,6 @@ TEST_F(CudaAfn, TaaOnPostFilterOnAndTheQuarterScaleRunOnTheCpuOnly)
     f->params().setString("taa", "on");
     expectRefused(*f, "taa=on");
     f->params().setString("taa", "auto"); // runs as off on the GPU
-    f->params().setString("postFilter", "on");
-    expectRefused(*f, "postFilter=on");
-    f->params().setString("postFilter", "auto"); // runs as off on the GPU
     f->setData(AFN_DATA_WEIGHTS, afnTestWeightsQuarter, afnTestWeightsQuarter_size);
     expectRefused(*f, "quarter");
 }
@@ -242,7 +239,6 @@ TEST_F(CudaAfn, ThroughTheCApi)
         afnSetFilterData(f, AFN_DATA_WEIGHTS, weights.data(), weights.size());
     // As afntest::configureAsOnTheGpu, through the C API.
     afnSetFilterString(filters[0], "taa", "off");
-    afnSetFilterString(filters[0], "postFilter", "off");
     afnSetFilterString(filters[0], "precision", "fp32");
     afnSetFilterBool(filters[0], "skip", false);
     for (int k = 0; k < 3; ++k) {

@@ -54,11 +54,11 @@ void AfnCudaFilter::configure()
         throw Exception(AFN_ERROR_UNSUPPORTED,
             "afn on a CUDA device has no output TAA yet: taa=on runs on the CPU device only "
             "(afntool: --device cpu)");
-    // The same for the post-filter (methods/afn/post_filter.h).
-    if (afnet::settingsBinding().read(params()).postFilter == afnet::Settings::PostFilter::On)
-        throw Exception(AFN_ERROR_UNSUPPORTED,
-            "afn on a CUDA device has no post-filter yet: postFilter=on runs on the CPU device "
-            "only (afntool: --device cpu)");
+    // The post-filter as the CPU's (afn_method.cpp): auto is on for weights trained below 16 spp.
+    const afnet::Settings::PostFilter post = afnet::settingsBinding().read(params()).postFilter;
+    m_pipeline.setPostFilter(post == afnet::Settings::PostFilter::On
+        || (post == afnet::Settings::PostFilter::Auto
+            && m_net.trainedSpp() < afnet::kPostFilterAutoMaxSppExclusive));
     // The same parameters as the CPU filter's stages (filter/filter.cpp commit()).
     m_reproject = reprojectBinding().read(params());
     m_accumulation = accumulationBinding().read(params());

@@ -4,6 +4,7 @@
 
 #include "base/exception.h"
 #include "cuda/gpu.h"
+#include "methods/afn/post_filter.h"
 #include "stages/temporal_accumulation.h"
 
 namespace afn::cuda {
@@ -70,6 +71,10 @@ static_assert(kAuxAlbedoAlphaMinDevice == kAuxAlbedoAlphaMin);
 static_assert(kAuxNoisyAlbedoFloorDevice == kAuxNoisyAlbedoFloor);
 static_assert(kAuxGrainLimitDevice == kAuxGrainLimit);
 static_assert(kMaxHistoryLengthDevice == kMaxHistoryLength);
+static_assert(kPostFilterIterationsDevice == afnet::kPostFilterIterations);
+static_assert(kPostFilterSigmaLuminanceDevice == afnet::kPostFilterSigmaLuminance);
+static_assert(kPostFilterNoiseReferenceDevice == afnet::kPostFilterNoiseReference);
+static_assert(kPostFilterNoiseClampDevice == afnet::kPostFilterNoiseClamp);
 
 } // namespace
 
@@ -195,6 +200,9 @@ void AfnPipeline::allocate(const FrameLayout& layout)
         allocateBuffer(m_auxHistory[k], layout.albedo ? kAuxHistoryStride * n : 0, p, st);
     }
     allocateBuffer(m_auxState, 1, p, st);
+    allocateBuffer(m_postPlanes, m_postFilter ? 9 * n : 0, p, st);
+    allocateBuffer(m_postScratch0, m_postFilter ? 3 * n : 0, p, st);
+    allocateBuffer(m_postScratch1, m_postFilter ? 3 * n : 0, p, st);
     allocateBuffer(m_constants, 1, p, st);
 
     const auto channels = [&](NetLayer l) { return m_layers[layerIndex(l)].packed.outChannels; };
@@ -251,6 +259,7 @@ void AfnPipeline::captureGraphs()
             enqueueKernelPrediction(slot, s);
             enqueueFilteringFusion(slot, s);
             enqueueRefinement(s);
+            enqueuePostFilter(slot, s);
         }));
     m_graphsValid = true;
 }
@@ -266,6 +275,8 @@ void AfnPipeline::enqueue(Stage stage, cudaStream_t stream) const
         return enqueueFilteringFusion(m_slot, stream);
     case Stage::Refinement:
         return enqueueRefinement(stream);
+    case Stage::PostFilter:
+        return enqueuePostFilter(m_slot, stream);
     }
 }
 
@@ -459,6 +470,38 @@ void AfnPipeline::enqueueRefinement(cudaStream_t stream) const
     conv(NetLayer::Ref2, m_r1, m_r2);
     launchConvFinal(
         operands(m_layers[layerIndex(NetLayer::Ref3)], nullptr, m_r2), finalOutput(), stream);
+}
+
+void AfnPipeline::setPostFilter(bool on)
+{
+    if (on == m_postFilter)
+        return;
+    m_postFilter = on;
+    m_layout = FrameLayout {}; // buffers and graphs again at the next frame
+    m_graphsValid = false;
+}
+
+void AfnPipeline::enqueuePostFilter(int slot, cudaStream_t stream) const
+{
+    if (!m_postFilter)
+        return;
+    const FrameLayout& l = m_layout;
+    const std::size_t n = pixels(l.width, l.height);
+    PostFilterSources s;
+    s.width = l.width;
+    s.height = l.height;
+    s.albedo = l.albedo ? m_albedo.data() : nullptr;
+    s.normal = l.normal ? m_normal[slot].data() : nullptr;
+    s.depth = l.depth ? m_depth[slot].data() : nullptr;
+    s.irradiance = m_irradiance.data();
+    s.historyLength = m_history[slot].data();
+    float* planes = m_postPlanes.data();
+    PostFilterPlanes g;
+    float** ordered[9] = { &g.a0, &g.a1, &g.a2, &g.n0, &g.n1, &g.n2, &g.nv, &g.z, &g.ls };
+    for (int k = 0; k < 9; ++k)
+        *ordered[k] = planes + k * n;
+    launchPostFilter(s, g, m_constants.data(), m_output.data(), m_postScratch0.data(),
+        m_postScratch1.data(), stream);
 }
 
 void AfnPipeline::upload(const Frame& f, const FrameConstants& constants)

@@ -43,7 +43,13 @@ struct FrameLayout {
 
 class AfnPipeline {
 public:
-    enum class Stage { TemporalFeatures, KernelPrediction, FilteringFusion, Refinement };
+    enum class Stage {
+        TemporalFeatures,
+        KernelPrediction,
+        FilteringFusion,
+        Refinement,
+        PostFilter
+    };
     enum class Intermediate {
         Irradiance,
         Accumulated,
@@ -60,6 +66,8 @@ public:
 
     /// Pack and upload a loaded network (takes effect at the next frame).
     void setNetwork(const afnet::Network& network);
+    /// Run afn's post-filter on the output (methods/afn/post_filter.h) from the next frame on.
+    void setPostFilter(bool on);
     /// Poison every device buffer with NaN when it is allocated and the output before every
     /// frame, so that a value nothing wrote shows up (tests).
     void setPoison(bool poison) { m_poison = poison; }
@@ -115,6 +123,7 @@ private:
     void enqueueKernelPrediction(int slot, cudaStream_t stream) const;
     void enqueueFilteringFusion(int slot, cudaStream_t stream) const;
     void enqueueRefinement(cudaStream_t stream) const;
+    void enqueuePostFilter(int slot, cudaStream_t stream) const;
     /// The colours the network filters (the variants "1spp" and "ta" use one for both).
     const float* colorTaSource(int slot) const;
     const float* color1Source(int slot) const;
@@ -126,6 +135,7 @@ private:
     bool m_refine = false;
     bool m_historyInput = false; ///< the network reads history01 (Network::hasHistoryInput)
     bool m_albedoTrust = false; ///< Network::hasAlbedoTrust
+    bool m_postFilter = false; ///< setPostFilter()
     afnet::Variant m_variant = afnet::Variant::Full;
     std::array<Layer, 10> m_layers; ///< in Network::Layer order
     DeviceBuffer<float> m_trustHead; ///< packTrustHead() of headG (albedo trust only)
@@ -151,6 +161,9 @@ private:
     std::array<DeviceBuffer<float>, 3> m_auxFlags;
     std::array<DeviceBuffer<float>, 2> m_auxEdges, m_auxHistory;
     DeviceBuffer<AuxState> m_auxState;
+    // The post-filter's guide planes (a0 a1 a2 n0 n1 n2 nv z ls, frame size each) and its two
+    // colour buffers.
+    DeviceBuffer<float> m_postPlanes, m_postScratch0, m_postScratch1;
     AuxState m_lastAuxState {};
     AuxReport m_lastAux;
     unsigned m_lastCutPixels = 0;

@@ -13,12 +13,14 @@
 //                                      (weights with albedoTrust=1)
 //   filterFuse                         heads, softmax, 7 x 7 filtering, Eq. 3
 //   conv x 3 (the last: convFinal)     refinement, residual, remodulation, crop
+//   postFilter                         guides, six half-passes of the a-trous smoothing
 #pragma once
 
 #include "cuda/albedo_trust_block.h"
 #include "cuda/aux_prefilter_pixel.h"
 #include "cuda/conv_tile.h"
 #include "cuda/filter_fuse_lane.h"
+#include "cuda/post_filter_pixel.h"
 #include "cuda/prepare_block.h"
 #include "cuda/temporal_pixel.h"
 
@@ -58,5 +60,12 @@ void launchConvFinal(const ConvOperands& op, const FinalOutput& out, cudaStream_
 
 /// Heads, softmax, filtering and Eq. 3 over the padded frame.
 void launchFilterFuse(const FilterFuseArgs& a, cudaStream_t stream);
+
+/// afn's post-filter of `colour` (frame size, 3 floats per pixel) in place: the guides into `g`
+/// (s.maxSamples from frame->alphaMin), the half-passes through `scratch0` and `scratch1` (frame
+/// size, 3 floats per pixel each).
+void launchPostFilter(const PostFilterSources& s, const PostFilterPlanes& g,
+    const FrameConstants* frame, float* colour, float* scratch0, float* scratch1,
+    cudaStream_t stream);
 
 } // namespace afn::cuda

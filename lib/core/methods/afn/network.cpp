@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdlib>
 #include <vector>
 
 namespace afn::afnet {
@@ -46,6 +47,9 @@ void Network::load(const nn::WeightsArchive& a)
     m_albedoTrust = false;
     m_head4 = nn::Conv {};
     m_headG = nn::Conv {};
+    // The sample count it was trained at (validated where models are chosen: model_set.cpp).
+    const long spp = std::strtol(a.meta("spp", "1").c_str(), nullptr, 10);
+    m_trainedSpp = spp >= 1 && spp <= (1 << 20) ? static_cast<int>(spp) : 1;
     const std::string v = a.meta("variant", "full");
     if (v == "full")
         m_variant = Variant::Full;

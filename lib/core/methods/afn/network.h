@@ -77,6 +77,9 @@ public:
     bool hasHistoryInput() const { return m_history; }
     /// Whether the weights add the learned albedo trust (albedo_trust.h).
     bool hasAlbedoTrust() const { return m_albedoTrust; }
+    /// Samples per pixel of the inputs the weights were trained at (archive metadata `spp`, 1
+    /// when absent).
+    int trainedSpp() const { return m_trainedSpp; }
     /// Channels of the network input x: 13, or 14 with the history input.
     int inputChannels() const { return m_history ? 14 : 13; }
     /// Run the convolutions in `p` from now on (nn::Conv::setPrecision; Fp32 after load): every
@@ -173,6 +176,7 @@ private:
     bool m_quarter = false; ///< hasQuarterScale()
     bool m_history = false; ///< hasHistoryInput()
     bool m_albedoTrust = false; ///< hasAlbedoTrust()
+    int m_trainedSpp = 1; ///< trainedSpp()
     nn::Precision m_precision = nn::Precision::Fp32; ///< precision()
     int m_skippedRows = 0, m_stripes = 0, m_inputRowsReused = 0;
     Variant m_variant = Variant::Full;

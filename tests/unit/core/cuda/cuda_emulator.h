@@ -11,6 +11,7 @@
 #include "cuda/aux_prefilter_pixel.h"
 #include "cuda/conv_tile.h"
 #include "cuda/filter_fuse_lane.h"
+#include "cuda/post_filter_pixel.h"
 #include "cuda/prepare_block.h"
 #include "cuda/temporal_pixel.h"
 
@@ -37,5 +38,8 @@ void emulatePool(const std::uint16_t* in, int width, int height, int stride, std
 void emulateConvRelu(const afn::cuda::ConvOperands& op, const afn::cuda::ReluOutput& out);
 void emulateConvFinal(const afn::cuda::ConvOperands& op, const afn::cuda::FinalOutput& out);
 void emulateFilterFuse(const afn::cuda::FilterFuseArgs& a);
+/// post_filter.cu's kernels in their order (s.maxSamples as given).
+void emulatePostFilter(const afn::cuda::PostFilterSources& s, const afn::cuda::PostFilterPlanes& g,
+    float* colour, float* scratch0, float* scratch1);
 
 } // namespace afntest

@@ -297,6 +297,28 @@ void EmulatedAfnPipeline::run(const afn::Frame& f, const FrameConstants& c, afn:
         emulateConvFinal(operands(layer(L::Ref3), nullptr, m_r2), fo);
     }
 
+    // PostFilter.
+    if (m_postFilter) {
+        const std::size_t n = static_cast<std::size_t>(m_width) * m_height;
+        m_postPlanes.assign(9 * n, std::nanf(""));
+        m_postScratch0.assign(3 * n, std::nanf(""));
+        m_postScratch1.assign(3 * n, std::nanf(""));
+        PostFilterSources ps;
+        ps.width = m_width;
+        ps.height = m_height;
+        ps.albedo = ptr(m_albedo);
+        ps.normal = ptr(m_normal[s]);
+        ps.depth = ptr(m_depth[s]);
+        ps.irradiance = m_irradiance.data();
+        ps.historyLength = m_history[s].data();
+        ps.maxSamples = effectiveSamplesLimit(c.alphaMin);
+        PostFilterPlanes g;
+        float** ordered[9] = { &g.a0, &g.a1, &g.a2, &g.n0, &g.n1, &g.n2, &g.nv, &g.z, &g.ls };
+        for (int k = 0; k < 9; ++k)
+            *ordered[k] = m_postPlanes.data() + k * n;
+        emulatePostFilter(ps, g, m_output.data(), m_postScratch0.data(), m_postScratch1.data());
+    }
+
     out = afn::Image(m_width, m_height, 3);
     std::copy(m_output.begin(), m_output.end(), out.data());
     m_irradianceImage = afn::Image(m_width, m_height, 3);

@@ -21,6 +21,8 @@ namespace afntest {
 class EmulatedAfnPipeline {
 public:
     explicit EmulatedAfnPipeline(const afn::afnet::Network& network);
+    /// Run the post-filter on the output (AfnPipeline::setPostFilter).
+    void setPostFilter(bool on) { m_postFilter = on; }
     /// Denoise a gathered frame (as AfnCudaFilter::denoise) into `out` (3 ch, frame size).
     void run(const afn::Frame& frame, const afn::cuda::FrameConstants& constants, afn::Image& out);
 
@@ -58,6 +60,8 @@ private:
     bool m_refine;
     bool m_historyInput;
     bool m_albedoTrust;
+    bool m_postFilter = false;
+    std::vector<float> m_postPlanes, m_postScratch0, m_postScratch1;
     std::vector<float> m_trustHead; ///< packTrustHead() (albedo trust only)
     std::array<Layer, 10> m_layers;
     int m_width = 0, m_height = 0, m_paddedWidth = 0, m_paddedHeight = 0;

@@ -10,6 +10,8 @@
 #include "emulated_pipeline.h"
 #include "filter/registry.h"
 #include "methods/afn/network_inputs.h"
+#include "methods/afn/post_filter.h"
+#include "methods/afn/settings.h"
 #include "methods/afn/weights_source.h"
 #include "stages/aux_prefilter.h"
 #include "stages/demodulate.h"
@@ -192,6 +194,70 @@ TEST(CudaEmulated, AuxPrefilterIsTheCpuStageBitForBit)
         }
 }
 
+// The post-filter's guides and half-passes against the CPU filter (methods/afn/post_filter.h) on
+// the same radiance and guides: frames from 1x1 to 61x37 (taps clamped at every border, steps
+// beyond the frame), sky and invalid normals included, with and without the noise inputs. The CPU
+// contracts multiply-adds in some instruction-set clones: equal to float rounding.
+TEST(CudaEmulated, PostFilterIsTheCpuFilter)
+{
+    for (const auto& [w, h] :
+        std::vector<std::pair<int, int>> { { 1, 1 }, { 5, 3 }, { 37, 23 }, { 61, 37 } })
+        for (const bool noise : { false, true }) {
+            SCOPED_TRACE(std::to_string(w) + "x" + std::to_string(h) + (noise ? ", noise" : ""));
+            const afntest::SyntheticSequence seq(w, h, 13);
+            afntest::SequenceFrame in = noisyAovFrame(seq, 2, SequenceInputs {});
+            afntest::FrameGatherer gatherer;
+            const afn::Frame& f = gatherer.gather(in);
+            afn::Image radiance = f.color, irradiance, length(w, h, 1);
+            afn::demodulate(f, irradiance);
+            for (int y = 0; y < h; ++y)
+                for (int x = 0; x < w; ++x)
+                    length(x, y, 0) = static_cast<float>(1 + (x * 7 + y * 3) % 12);
+            afn::afnet::PostFilterGuides guides;
+            guides.albedo = &f.albedo;
+            guides.normal = &f.normal;
+            guides.depth = &f.depth;
+            if (noise) {
+                guides.noise.irradiance = &irradiance;
+                guides.noise.historyLength = &length;
+                guides.noise.maxSamples = 9.0f;
+            }
+            afn::afnet::PostFilterWorkspace workspace;
+            afn::Image cpu;
+            afn::afnet::edgeAwarePostFilter(radiance, guides, workspace, cpu);
+
+            const std::size_t n = static_cast<std::size_t>(w) * h;
+            std::vector<float> planes(9 * n), s0(3 * n), s1(3 * n);
+            std::vector<float> colour(radiance.data(), radiance.data() + 3 * n);
+            afn::cuda::PostFilterSources src;
+            src.width = w;
+            src.height = h;
+            src.albedo = f.albedo.data();
+            src.normal = f.normal.data();
+            src.depth = f.depth.data();
+            src.irradiance = noise ? irradiance.data() : nullptr;
+            src.historyLength = noise ? length.data() : nullptr;
+            src.maxSamples = 9.0f;
+            afn::cuda::PostFilterPlanes g;
+            float** ordered[9] = { &g.a0, &g.a1, &g.a2, &g.n0, &g.n1, &g.n2, &g.nv, &g.z, &g.ls };
+            for (int k = 0; k < 9; ++k)
+                *ordered[k] = planes.data() + k * n;
+            afntest::emulatePostFilter(src, g, colour.data(), s0.data(), s1.data());
+            double worst = 0.0;
+            bool changed = false;
+            for (std::size_t k = 0; k < 3 * n; ++k) {
+                const double a = colour[k], b = cpu.data()[k];
+                worst = std::max(worst, std::fabs(a - b) / (std::fabs(b) + 1e-3));
+                changed = changed || cpu.data()[k] != radiance.data()[k];
+            }
+            std::cout << "[ emulated ] post-filter " << w << "x" << h << (noise ? " noise" : "")
+                      << ": max relative difference " << worst << "\n";
+            EXPECT_LE(worst, 1e-4);
+            if (n > 1)
+                EXPECT_TRUE(changed) << "the CPU filter left the frame as it was";
+        }
+}
+
 // The network input (with history01 where the weights read it), the decoder output and the albedo
 // trust's t against the CPU network's own, given the CPU's inputs (NetworkInputs, as afn_method).
 TEST(CudaEmulated, NetworkInputIsTheCpuInputInHalfPrecision)
@@ -259,8 +325,10 @@ void expectFilterParity(const std::vector<char>& weights, int width, int height,
     auto cpu = afn::createFilter("afn");
     afntest::configureAsOnTheGpu(*cpu);
     cpu->setData(AFN_DATA_WEIGHTS, weights.data(), weights.size());
-    afntest::EmulatedAfnPipeline emulated(
-        afn::afnet::networkFromData(weights.data(), weights.size()));
+    const afn::afnet::Network net = afn::afnet::networkFromData(weights.data(), weights.size());
+    afntest::EmulatedAfnPipeline emulated(net);
+    // postFilter=auto: on for weights trained below 16 spp, as on the CPU.
+    emulated.setPostFilter(net.trainedSpp() < afn::afnet::kPostFilterAutoMaxSppExclusive);
     const afntest::SyntheticSequence seq(width, height, 11);
     afntest::FrameGatherer gatherer;
     afn::Image cpuOut(width, height, 3), emuOut;
