@@ -46,9 +46,10 @@ void applyAlbedoTrustRows(const Image& x, const Image& t, int y0, int y1, Image&
     }
 }
 
-void undoAlbedoTrustRows(const Image& x, const Image& t, int y0, int y1, float* dst, long dstRow)
+void undoAlbedoTrustRows(
+    const Image& x, const Image& t, int y0, int y1, int width, float* dst, long dstRow)
 {
-    const int w = x.width();
+    const int w = std::min(width, x.width());
     for (int y = y0; y < y1; ++y) {
         const float* tr = t.at(0, y / 2);
         float* o = dst + (y - y0) * dstRow;

@@ -28,7 +28,9 @@ void albedoTrustRows(const nn::Conv& headG, const Image& e1, int y0, int y1, Ima
 void applyAlbedoTrustRows(const Image& x, const Image& t, int y0, int y1, Image& color);
 
 /// Divide full-resolution rows [y0, y1) of an output by s: row y at dst + (y - y0) * dstRow,
-/// x.width() RGB pixels; x and t as above (rows in their own numbering).
-void undoAlbedoTrustRows(const Image& x, const Image& t, int y0, int y1, float* dst, long dstRow);
+/// its first `width` RGB pixels (at most x.width()); x and t as above (rows in their own
+/// numbering).
+void undoAlbedoTrustRows(
+    const Image& x, const Image& t, int y0, int y1, int width, float* dst, long dstRow);
 
 } // namespace afn::afnet

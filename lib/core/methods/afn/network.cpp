@@ -276,7 +276,7 @@ void Network::fusedToOutput(Image& out) const
         std::copy(m_fused.at(0, y), m_fused.at(0, y) + 3 * m_width, out.at(0, y));
     if (m_albedoTrust)
         parallelRows(m_height, [&](int y0, int y1) {
-            undoAlbedoTrustRows(m_x, m_trust, y0, y1, out.at(0, y0), 3L * m_width);
+            undoAlbedoTrustRows(m_x, m_trust, y0, y1, m_width, out.at(0, y0), 3L * m_width);
         });
 }
 

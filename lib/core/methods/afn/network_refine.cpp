@@ -90,7 +90,7 @@ void Network::refine()
                 refineRows(m_fused, m_x, y0, y1, m_out.at(0, y0), static_cast<long>(wp) * 3);
             if (m_albedoTrust) // back to the albedo-demodulated space (albedo_trust.h)
                 undoAlbedoTrustRows(
-                    m_x, m_trust, y0, y1, m_out.at(0, y0), static_cast<long>(wp) * 3);
+                    m_x, m_trust, y0, y1, wp, m_out.at(0, y0), static_cast<long>(wp) * 3);
         },
         kStrip);
 }

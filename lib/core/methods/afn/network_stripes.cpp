@@ -228,7 +228,7 @@ void Network::runStripe(const Inputs& in, int y0, int y1, StripeWorkspace& ws, I
         else
             std::copy(ws.fused.at(0, y - w0), ws.fused.at(0, e - w0), dst);
         if (m_albedoTrust) // back to the albedo-demodulated space (albedo_trust.h)
-            undoAlbedoTrustRows(ws.x, ws.trust, y - w0, e - w0, dst, row);
+            undoAlbedoTrustRows(ws.x, ws.trust, y - w0, e - w0, wp, dst, row);
     }
     for (int y = y0; y < std::min(y1, m_height); ++y) {
         const float* src = ws.out.data() + (y - y0) * row;

@@ -5,6 +5,7 @@
 // test's own flips), so it commutes with flipping the input; stage totals count every pass.
 #include "afn_test_util.h"
 #include "methods/afn/quality_tiers.h"
+#include "stages/demodulate.h"
 
 #include <gtest/gtest.h>
 
@@ -112,6 +113,35 @@ TEST(AfnQuality, FastIsTheFusedOutputWithoutRefinement)
     EXPECT_EQ(tiers.totals().flop[refinement], 0.0);
     EXPECT_EQ(tiers.totals().ms[refinement], 0.0);
     EXPECT_GT(tiers.totals().flop[0], 0.0);
+}
+
+// With the learned albedo trust the fused image is taken back to the albedo-demodulated space
+// (divided by s = max(a, eps) / max(a + (1 - a) t, eps)) over the frame's own width: the padded
+// columns are cropped, not written past the output's rows.
+TEST(AfnQuality, FastWithTheAlbedoTrustIsTheFusedOutputOutOfItsSpace)
+{
+    Network net;
+    net.load(afntest::loadFile(std::string(AFN_TEST_DATA) + "/afn_parity/weights_trust.afnw"));
+    ASSERT_TRUE(net.hasAlbedoTrust());
+    const Frame f = asymmetricFrame();
+    const Image history01(kW, kH, 1, 0.5f);
+    Inputs in = f.inputs();
+    in.history01 = &history01;
+    Image balanced, fast;
+    net.runWholeFrame(in, balanced);
+    const Image fused = net.fused(), trust = net.albedoTrust();
+    TierRunner tiers;
+    tiers.run(Tier::Fast, net, in, fast);
+    ASSERT_EQ(fast.width(), kW);
+    ASSERT_EQ(fast.height(), kH);
+    const float eps = afn::kAlbedoEpsilon;
+    for (int y = 0; y < kH; ++y)
+        for (int x = 0; x < kW; ++x)
+            for (int c = 0; c < 3; ++c) {
+                const float a = f.albedo(x, y, c), t = trust(x / 2, y / 2, 0);
+                const float s = std::max(a, eps) / std::max(a + (1.0f - a) * t, eps);
+                ASSERT_EQ(fast(x, y, c), fused(x, y, c) / s) << x << "," << y;
+            }
 }
 
 TEST(AfnQuality, HighAveragesTheFourFlipsFlippedBack)
