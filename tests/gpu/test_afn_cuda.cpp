@@ -199,7 +199,7 @@ TEST_F(CudaAfn, OtherMethodsAreUnsupportedOnTheCudaDevice)
     }
 }
 
-TEST_F(CudaAfn, TaaOnAndTheQuarterScaleRunOnTheCpuOnly)
+TEST_F(CudaAfn, TheQuarterScaleAndTheQualityTiersRunOnTheCpuOnly)
 {
     auto expectRefused = [](afn::Filter& f, const std::string& what) {
         try {
@@ -211,9 +211,9 @@ TEST_F(CudaAfn, TaaOnAndTheQuarterScaleRunOnTheCpuOnly)
         }
     };
     auto f = afn::createFilter("afn", *g_cuda);
-    f->params().setString("taa", "on");
-    expectRefused(*f, "taa=on");
-    f->params().setString("taa", "auto"); // runs as off on the GPU
+    f->params().setString("quality", "high");
+    expectRefused(*f, "quality=balanced only");
+    f->params().setString("quality", "balanced");
     f->setData(AFN_DATA_WEIGHTS, afnTestWeightsQuarter, afnTestWeightsQuarter_size);
     expectRefused(*f, "quarter");
 }
@@ -238,9 +238,7 @@ TEST_F(CudaAfn, ThroughTheCApi)
     for (AFNFilter f : filters)
         afnSetFilterData(f, AFN_DATA_WEIGHTS, weights.data(), weights.size());
     // As afntest::configureAsOnTheGpu, through the C API.
-    afnSetFilterString(filters[0], "taa", "off");
     afnSetFilterString(filters[0], "precision", "fp32");
-    afnSetFilterBool(filters[0], "skip", false);
     for (int k = 0; k < 3; ++k) {
         afntest::SequenceFrame in = seq.frame(k, SequenceInputs {});
         for (int i = 0; i < 2; ++i) {

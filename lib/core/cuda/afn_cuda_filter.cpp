@@ -12,9 +12,9 @@ namespace afn::cuda {
 
 AfnCudaFilter::AfnCudaFilter(const FilterType& type, int gpu)
     : Filter(type, StageNeeds {})
+    , m_embedded(afnet::ModelSet::embedded())
     , m_pipeline(gpu)
 {
-    m_networkChanged = afnet::loadEmbeddedNetwork(m_net);
 }
 
 void AfnCudaFilter::setData(const std::string& name, const void* data, std::size_t size)
@@ -23,6 +23,7 @@ void AfnCudaFilter::setData(const std::string& name, const void* data, std::size
         Filter::setData(name, data, size);
     m_net = afnet::networkFromData(data, size); // only valid weights replace the current ones
     m_networkChanged = true;
+    m_userWeights = true;
     markDirty();
     reset();
 }
@@ -33,6 +34,15 @@ void AfnCudaFilter::configure()
         throw Exception(AFN_ERROR_UNSUPPORTED,
             "afn on a CUDA device writes no feature outputs; create the filter on the CPU "
             "device for them (afntool: --device cpu)");
+    m_aux = auxBinding().read(params());
+    if (!m_userWeights) {
+        const afnet::Model* m = m_embedded.choose(afnet::InputSet::full(), m_aux.spp, false);
+        if (m && m != m_chosen) {
+            m_chosen = m;
+            m_net = m->net;
+            m_networkChanged = true;
+        }
+    }
     if (!m_net.loaded())
         afnet::throwNoWeights();
     if (m_net.variant() == afnet::Variant::Large) // no GPU graph for it yet
@@ -43,19 +53,22 @@ void AfnCudaFilter::configure()
         throw Exception(AFN_ERROR_UNSUPPORTED,
             "afn on a CUDA device has no quarter-resolution scale yet: weights with quarter=1 "
             "run on the CPU device (afntool: --device cpu)");
-    // Quality tiers (methods/afn/quality_tiers.h) run on the CPU device only for now.
-    if (qualityBinding().read(params()).quality != QualitySettings::Tier::Balanced)
+    // Quality tiers (methods/afn/quality_tiers.h): balanced and fast; high (four flipped network
+    // passes) runs on the CPU device only for now.
+    const QualitySettings::Tier tier = qualityBinding().read(params()).quality;
+    if (tier == QualitySettings::Tier::High)
         throw Exception(AFN_ERROR_UNSUPPORTED,
-            "afn on a CUDA device runs quality=balanced only: quality=fast and high run on the "
-            "CPU device (afntool: --device cpu)");
-    // The output TAA (methods/afn/settings.h) runs on the CPU device only for now.
-    // auto runs as off here.
-    if (afnet::settingsBinding().read(params()).taa == afnet::Settings::Taa::On)
-        throw Exception(AFN_ERROR_UNSUPPORTED,
-            "afn on a CUDA device has no output TAA yet: taa=on runs on the CPU device only "
-            "(afntool: --device cpu)");
-    // The post-filter as the CPU's (afn_method.cpp): auto is on for weights trained below 16 spp.
-    const afnet::Settings::PostFilter post = afnet::settingsBinding().read(params()).postFilter;
+            "afn on a CUDA device runs quality=fast and balanced: quality=high runs on the CPU "
+            "device (afntool: --device cpu)");
+    m_pipeline.setFastTier(tier == QualitySettings::Tier::Fast);
+    // The output TAA and the post-filter as the CPU's (afn_method.cpp): auto is on for weights
+    // trained below 16 spp.
+    const afnet::Settings settings = afnet::settingsBinding().read(params());
+    const bool lowSpp = m_net.trainedSpp() < afnet::kTaaAutoMaxSppExclusive;
+    m_pipeline.setTaa(settings.taa == afnet::Settings::Taa::On
+        || (settings.taa == afnet::Settings::Taa::Auto && lowSpp));
+    m_taaAlpha = settings.taaAlpha;
+    const afnet::Settings::PostFilter post = settings.postFilter;
     m_pipeline.setPostFilter(post == afnet::Settings::PostFilter::On
         || (post == afnet::Settings::PostFilter::Auto
             && m_net.trainedSpp() < afnet::kPostFilterAutoMaxSppExclusive));
@@ -63,7 +76,6 @@ void AfnCudaFilter::configure()
     m_reproject = reprojectBinding().read(params());
     m_accumulation = accumulationBinding().read(params());
     m_trust = historyTrustBinding().read(params());
-    m_aux = auxBinding().read(params());
     if (m_networkChanged) {
         m_pipeline.setNetwork(m_net);
         m_networkChanged = false;
@@ -73,7 +85,9 @@ void AfnCudaFilter::configure()
 void AfnCudaFilter::denoise(const Frame& in, Image& out)
 {
     reportProgress(0.1);
-    m_pipeline.run(in, frameConstants(in, m_reproject, m_accumulation, m_trust, m_aux), out);
+    FrameConstants c = frameConstants(in, m_reproject, m_accumulation, m_trust, m_aux);
+    c.taaAlpha = m_taaAlpha;
+    m_pipeline.run(in, c, out);
     reportProgress(0.95);
 }
 

@@ -10,6 +10,7 @@
 #include "base/device.h"
 #include "cuda/afn_pipeline.h"
 #include "filter/registry.h"
+#include "methods/afn/model_set.h"
 #include "stages/aux_prefilter.h"
 #include "stages/history_trust.h"
 #include "stages/temporal_accumulation.h"
@@ -40,10 +41,17 @@ private:
 
     afnet::Network m_net; ///< validated archive, packed for the GPU when it changes
     bool m_networkChanged = false;
+    /// The built-in models; without weights given (setData) the full-input one trained at the
+    /// sample count nearest the `spp` parameter's runs (as the CPU filter chooses; AFN large is
+    /// left out: no GPU graph for it).
+    afnet::ModelSet m_embedded;
+    const afnet::Model* m_chosen = nullptr;
+    bool m_userWeights = false;
     ReprojectSettings m_reproject;
     AccumulationSettings m_accumulation;
     HistoryTrustSettings m_trust;
     AuxSettings m_aux;
+    float m_taaAlpha = 0.7f; ///< afnet::Settings::taaAlpha
     AfnPipeline m_pipeline;
 };
 

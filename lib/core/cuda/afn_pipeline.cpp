@@ -5,6 +5,8 @@
 #include "base/exception.h"
 #include "cuda/gpu.h"
 #include "methods/afn/post_filter.h"
+#include "methods/afn/work_rows.h"
+#include "stages/taa.h"
 #include "stages/temporal_accumulation.h"
 
 namespace afn::cuda {
@@ -189,6 +191,7 @@ void AfnPipeline::allocate(const FrameLayout& layout)
     allocateBuffer(m_trustCount, blocks, p, st);
     allocateBuffer(m_trustBlock, blocks, p, st);
     allocateBuffer(m_cutPixels, 1, p, st);
+    allocateBuffer(m_computedRows, static_cast<std::size_t>(h), p, st);
     allocateBuffer(m_albedoRaw, layout.albedo ? 3 * n : 0, p, st);
     allocateBuffer(m_normalRaw, layout.normal ? 3 * n : 0, p, st);
     allocateBuffer(m_depthRaw, layout.depth ? n : 0, p, st);
@@ -203,6 +206,8 @@ void AfnPipeline::allocate(const FrameLayout& layout)
     allocateBuffer(m_postPlanes, m_postFilter ? 9 * n : 0, p, st);
     allocateBuffer(m_postScratch0, m_postFilter ? 3 * n : 0, p, st);
     allocateBuffer(m_postScratch1, m_postFilter ? 3 * n : 0, p, st);
+    for (auto& h : m_taaHistory)
+        allocateBuffer(h, m_taa ? 3 * n : 0, p, st);
     allocateBuffer(m_constants, 1, p, st);
 
     const auto channels = [&](NetLayer l) { return m_layers[layerIndex(l)].packed.outChannels; };
@@ -222,7 +227,7 @@ void AfnPipeline::allocate(const FrameLayout& layout)
     allocateBuffer(m_color1Half, 3 * pixels(wp / 2, hp / 2), p, st);
     allocateBuffer(m_trust, m_albedoTrust ? pixels(wp / 2, hp / 2) : 0, p, st);
     allocateBuffer(m_colorTaScaled, m_albedoTrust ? 3 * pixels(wp, hp) : 0, p, st);
-    if (m_refine) {
+    if (refines()) {
         allocateBuffer(m_fused, 3 * pixels(wp, hp), p, st);
         m_refineInput.allocate(wp, hp, kRefineInputChannels, p, st);
         m_r1.allocate(wp, hp, channels(NetLayer::Ref1), p, st);
@@ -258,7 +263,8 @@ void AfnPipeline::captureGraphs()
             enqueueTemporalFeatures(slot, s);
             enqueueKernelPrediction(slot, s);
             enqueueFilteringFusion(slot, s);
-            enqueueRefinement(s);
+            enqueueRefinement(slot, s);
+            enqueueTaa(slot, s);
             enqueuePostFilter(slot, s);
         }));
     m_graphsValid = true;
@@ -274,202 +280,30 @@ void AfnPipeline::enqueue(Stage stage, cudaStream_t stream) const
     case Stage::FilteringFusion:
         return enqueueFilteringFusion(m_slot, stream);
     case Stage::Refinement:
-        return enqueueRefinement(stream);
+        return enqueueRefinement(m_slot, stream);
+    case Stage::Taa:
+        return enqueueTaa(m_slot, stream);
     case Stage::PostFilter:
         return enqueuePostFilter(m_slot, stream);
     }
 }
 
-const float* AfnPipeline::colorTaSource(int slot) const
+void AfnPipeline::setTaa(bool on)
 {
-    return m_variant == afnet::Variant::OneSpp ? m_irradiance.data() : m_accumulated[slot].data();
-}
-
-const float* AfnPipeline::color1Source(int slot) const
-{
-    return m_variant == afnet::Variant::Ta ? m_accumulated[slot].data() : m_irradiance.data();
-}
-
-void AfnPipeline::enqueueTemporalFeatures(int slot, cudaStream_t stream) const
-{
-    const FrameLayout& l = m_layout;
-    const int prev = slot ^ 1;
-    TemporalBuffers b;
-    b.width = l.width;
-    b.height = l.height;
-    b.color = m_color.data();
-    b.albedo = l.albedo ? m_albedo.data() : nullptr;
-    b.motion = l.motion ? m_motion.data() : nullptr;
-    b.position = l.position ? m_position[slot].data() : nullptr;
-    b.prevPosition = l.position ? m_position[prev].data() : nullptr;
-    b.normal = l.normal ? m_normal[slot].data() : nullptr;
-    b.prevNormal = l.normal ? m_normal[prev].data() : nullptr;
-    b.depth = l.depth ? m_depth[slot].data() : nullptr;
-    b.prevDepth = l.depth ? m_depth[prev].data() : nullptr;
-    b.prevAccumulated = m_accumulated[prev].data();
-    b.prevHistoryLength = m_history[prev].data();
-    b.irradiance = m_irradiance.data();
-    b.accumulated = m_accumulated[slot].data();
-    b.historyLength = m_history[slot].data();
-    AuxBuffers a;
-    a.width = l.width;
-    a.height = l.height;
-    a.albedo = l.albedo ? m_albedoRaw.data() : nullptr;
-    a.normal = l.normal ? m_normalRaw.data() : nullptr;
-    a.depth = l.depth ? m_depthRaw.data() : nullptr;
-    for (int k = 0; k < 3; ++k)
-        a.flags[k] = m_auxFlags[k].data();
-    for (int k = 0; k < 2; ++k)
-        a.edges[k] = m_auxEdges[k].data();
-    a.albedoOut = l.albedo ? m_albedo.data() : nullptr;
-    a.normalOut = l.normal ? m_normal[slot].data() : nullptr;
-    a.depthOut = l.depth ? m_depth[slot].data() : nullptr;
-    a.prevHistory = m_auxHistory[prev].data();
-    a.history = m_auxHistory[slot].data();
-    a.state = m_auxState.data();
-    launchAuxPrefilter(a, b, m_constants.data(), stream);
-    launchResetFrameCounters(m_depthRange.data(), m_cutPixels.data(), stream);
-    TrustBuffers t;
-    t.width = l.width;
-    t.height = l.height;
-    t.blocksX = (l.width + kTrustBlockDevice - 1) / kTrustBlockDevice;
-    t.blocksY = (l.height + kTrustBlockDevice - 1) / kTrustBlockDevice;
-    t.rowSums = m_trustRowSums.data();
-    t.raw = m_trustRaw.data();
-    t.count = m_trustCount.data();
-    t.block = m_trustBlock.data();
-    t.cutPixels = m_cutPixels.data();
-    launchTemporal(b, t, m_constants.data(), m_depthRange.data(), stream);
-
-    PrepareBuffers p;
-    p.width = l.width;
-    p.height = l.height;
-    p.paddedWidth = m_paddedWidth;
-    p.paddedHeight = m_paddedHeight;
-    p.color1 = color1Source(slot);
-    p.colorTa = colorTaSource(slot);
-    p.albedo = b.albedo;
-    p.normal = b.normal;
-    p.depth = b.depth;
-    p.depthRange = m_depthRange.data();
-    p.historyLength = m_historyInput ? m_history[slot].data() : nullptr;
-    p.x = m_x.data.data();
-    p.xHalf = m_xHalf.data.data();
-    p.color1Half = m_color1Half.data();
-    launchPrepare(p, stream);
-}
-
-ConvOperands AfnPipeline::operands(const Layer& layer, const Tensor* up, const Tensor& same) const
-{
-    const PackedConv& pc = layer.packed;
-    const bool upOk = up ? (pc.upChunks() * kChunk == up->stride && 2 * up->width == same.width
-                          && 2 * up->height == same.height)
-                         : pc.upChunks() == 0;
-    if (!upOk || pc.sameChunks() * kChunk != same.stride || pc.tiles() == 0)
-        throwInvalidOperation("CUDA afn: a layer does not match its input tensors");
-    ConvOperands op;
-    op.up = up ? up->data.data() : nullptr;
-    op.upStride = up ? up->stride : 0;
-    op.upChunks = pc.upChunks();
-    op.upWidth = up ? up->width : 0;
-    op.same = same.data.data();
-    op.sameStride = same.stride;
-    op.sameChunks = pc.sameChunks();
-    op.width = same.width;
-    op.height = same.height;
-    op.ksize = pc.ksize;
-    op.weights = layer.weights.data();
-    op.bias = layer.bias.data();
-    op.tiles = pc.tiles();
-    return op;
-}
-
-void AfnPipeline::enqueueKernelPrediction(int slot, cudaStream_t stream) const
-{
-    auto conv = [&](NetLayer l, const Tensor* up, const Tensor& same, const Tensor& out) {
-        launchConvRelu(operands(m_layers[layerIndex(l)], up, same),
-            ReluOutput { out.data.data(), out.stride }, stream);
-    };
-    auto pool = [&](const Tensor& in, const Tensor& out) {
-        launchPool(in.data.data(), in.width, in.height, in.stride, out.data.data(), stream);
-    };
-    conv(NetLayer::Enc1, nullptr, m_xHalf, m_e1);
-    if (m_albedoTrust) {
-        AlbedoTrustBuffers t;
-        t.width = m_layout.width;
-        t.height = m_layout.height;
-        t.halfWidth = m_e1.width;
-        t.halfHeight = m_e1.height;
-        t.e1 = m_e1.data.data();
-        t.e1Stride = m_e1.stride;
-        t.e1Channels = m_layers[layerIndex(NetLayer::Enc1)].packed.outChannels;
-        t.head = m_trustHead.data();
-        t.albedo = m_layout.albedo ? m_albedo.data() : nullptr;
-        t.color1 = color1Source(slot);
-        t.colorTa = colorTaSource(slot);
-        t.trust = m_trust.data();
-        t.colorTaScaled = m_colorTaScaled.data();
-        t.color1Half = m_color1Half.data();
-        launchAlbedoTrust(t, stream);
-    }
-    pool(m_e1, m_e1Pool);
-    conv(NetLayer::Enc2, nullptr, m_e1Pool, m_e2);
-    pool(m_e2, m_e2Pool);
-    conv(NetLayer::Enc3, nullptr, m_e2Pool, m_e3);
-    conv(NetLayer::Dec2, &m_e3, m_e2, m_d2);
-    conv(NetLayer::Dec1, &m_d2, m_e1, m_d1);
-}
-
-FinalOutput AfnPipeline::finalOutput() const
-{
-    FinalOutput o;
-    o.fused = m_fused.data();
-    o.albedo = m_layout.albedo ? m_albedo.data() : nullptr;
-    o.plainAlbedo = m_layout.colorDemodulated ? 1 : 0;
-    o.trust = m_albedoTrust ? m_trust.data() : nullptr;
-    o.trustWidth = m_paddedWidth / 2;
-    o.data = m_output.data();
-    o.width = m_layout.width;
-    o.height = m_layout.height;
-    return o;
-}
-
-void AfnPipeline::enqueueFilteringFusion(int slot, cudaStream_t stream) const
-{
-    FilterFuseArgs a;
-    a.head1 = operands(m_layers[layerIndex(NetLayer::Head1)], nullptr, m_d1);
-    a.headTa = operands(m_layers[layerIndex(NetLayer::HeadTa)], &m_d1, m_x);
-    a.x = m_x.data.data();
-    // With the albedo trust the TA colour times s, stored at the padded size.
-    a.colorTa.data = m_albedoTrust ? m_colorTaScaled.data() : colorTaSource(slot);
-    a.colorTa.width = m_albedoTrust ? m_paddedWidth : m_layout.width;
-    a.colorTa.height = m_albedoTrust ? m_paddedHeight : m_layout.height;
-    a.colorTa.paddedWidth = m_paddedWidth;
-    a.colorTa.paddedHeight = m_paddedHeight;
-    a.color1Half.data = m_color1Half.data();
-    a.color1Half.width = m_paddedWidth / 2;
-    a.color1Half.height = m_paddedHeight / 2;
-    if (m_refine) {
-        a.fused = m_fused.data();
-        a.refineInput = m_refineInput.data.data();
-    } else {
-        a.output = finalOutput();
-    }
-    launchFilterFuse(a, stream);
-}
-
-void AfnPipeline::enqueueRefinement(cudaStream_t stream) const
-{
-    if (!m_refine)
+    if (on == m_taa)
         return;
-    auto conv = [&](NetLayer l, const Tensor& same, const Tensor& out) {
-        launchConvRelu(operands(m_layers[layerIndex(l)], nullptr, same),
-            ReluOutput { out.data.data(), out.stride }, stream);
-    };
-    conv(NetLayer::Ref1, m_refineInput, m_r1);
-    conv(NetLayer::Ref2, m_r1, m_r2);
-    launchConvFinal(
-        operands(m_layers[layerIndex(NetLayer::Ref3)], nullptr, m_r2), finalOutput(), stream);
+    m_taa = on;
+    m_layout = FrameLayout {}; // buffers and graphs again at the next frame
+    m_graphsValid = false;
+}
+
+void AfnPipeline::setFastTier(bool on)
+{
+    if (on == m_fast)
+        return;
+    m_fast = on;
+    m_layout = FrameLayout {}; // buffers and graphs again at the next frame
+    m_graphsValid = false;
 }
 
 void AfnPipeline::setPostFilter(bool on)
@@ -479,29 +313,6 @@ void AfnPipeline::setPostFilter(bool on)
     m_postFilter = on;
     m_layout = FrameLayout {}; // buffers and graphs again at the next frame
     m_graphsValid = false;
-}
-
-void AfnPipeline::enqueuePostFilter(int slot, cudaStream_t stream) const
-{
-    if (!m_postFilter)
-        return;
-    const FrameLayout& l = m_layout;
-    const std::size_t n = pixels(l.width, l.height);
-    PostFilterSources s;
-    s.width = l.width;
-    s.height = l.height;
-    s.albedo = l.albedo ? m_albedo.data() : nullptr;
-    s.normal = l.normal ? m_normal[slot].data() : nullptr;
-    s.depth = l.depth ? m_depth[slot].data() : nullptr;
-    s.irradiance = m_irradiance.data();
-    s.historyLength = m_history[slot].data();
-    float* planes = m_postPlanes.data();
-    PostFilterPlanes g;
-    float** ordered[9] = { &g.a0, &g.a1, &g.a2, &g.n0, &g.n1, &g.n2, &g.nv, &g.z, &g.ls };
-    for (int k = 0; k < 9; ++k)
-        *ordered[k] = planes + k * n;
-    launchPostFilter(s, g, m_constants.data(), m_output.data(), m_postScratch0.data(),
-        m_postScratch1.data(), stream);
 }
 
 void AfnPipeline::upload(const Frame& f, const FrameConstants& constants)
@@ -524,6 +335,23 @@ void AfnPipeline::upload(const Frame& f, const FrameConstants& constants)
         uploadImage(m_depthRaw, f.depth, n, s);
     AFN_CUDA_CHECK(cudaMemcpyAsync(
         m_constants.data(), &constants, sizeof(FrameConstants), cudaMemcpyHostToDevice, s));
+    // Work skipping as the CPU's (afn_method.cpp, Network::run): in the balanced tier the rows
+    // of the 8-row blocks near no work take the cheap path; the TAA's and the post-filter's
+    // margins grow the needed rows.
+    m_hostComputedRows.assign(static_cast<std::size_t>(f.height), 1);
+    if (f.hasWorkMask() && !m_fast) {
+        const int margin
+            = (m_taa ? kTaaWorkMargin : 0) + (m_postFilter ? afnet::kPostFilterRadius : 0);
+        if (margin > 0) {
+            afnet::growWorkRows(f.work, margin, m_grownWork);
+            m_hostComputedRows = afnet::computedRows(&m_grownWork, f.height);
+        } else {
+            m_hostComputedRows = afnet::computedRows(&f.work, f.height);
+        }
+    }
+    AFN_CUDA_CHECK(cudaMemcpyAsync(m_computedRows.data(), m_hostComputedRows.data(),
+        m_computedRows.bytes(), cudaMemcpyHostToDevice, s));
+    AFN_CUDA_CHECK(cudaStreamSynchronize(s)); // the host rows are rewritten next frame
     if (m_poison)
         AFN_CUDA_CHECK(cudaMemsetAsync(m_output.data(), 0xff, m_output.bytes(), s));
 }

@@ -8,10 +8,11 @@
 // frames and are captured again only when the frame size, the set of inputs, the colour convention
 // or the network changes.
 //
-// Stages (kernels.h): TemporalFeatures (TA + network input, with history01 for weights with the
-// history input), KernelPrediction (encoder-decoder; the albedo trust after its first level for
-// weights with albedoTrust=1), FilteringFusion (heads, softmax, filtering, Eq. 3), Refinement
-// (variant "full"; the output divided by the albedo trust's scale, remodulated).
+// Stages (kernels.h; afn_pipeline_stages.cpp): TemporalFeatures (aux prefilter, TA with the
+// history trust, network input with history01 for weights with the history input),
+// KernelPrediction (encoder-decoder; the albedo trust after its first level for weights with
+// albedoTrust=1), FilteringFusion (heads, softmax, filtering, Eq. 3), Refinement (variant "full";
+// the output divided by the albedo trust's scale, remodulated), Taa and PostFilter (when set).
 #pragma once
 
 #include "base/image.h"
@@ -48,6 +49,7 @@ public:
         KernelPrediction,
         FilteringFusion,
         Refinement,
+        Taa,
         PostFilter
     };
     enum class Intermediate {
@@ -66,8 +68,13 @@ public:
 
     /// Pack and upload a loaded network (takes effect at the next frame).
     void setNetwork(const afnet::Network& network);
-    /// Run afn's post-filter on the output (methods/afn/post_filter.h) from the next frame on.
+    /// Run afn's output TAA (stages/taa.h) and post-filter (methods/afn/post_filter.h) on the
+    /// output from the next frame on.
+    void setTaa(bool on);
     void setPostFilter(bool on);
+    /// The quality tier fast (methods/afn/quality_tiers.h): the fused image as the output, no
+    /// refinement (weights without one run as they are).
+    void setFastTier(bool on);
     /// Poison every device buffer with NaN when it is allocated and the output before every
     /// frame, so that a value nothing wrote shows up (tests).
     void setPoison(bool poison) { m_poison = poison; }
@@ -118,12 +125,15 @@ private:
     void allocate(const FrameLayout& layout);
     void captureGraphs();
     ConvOperands operands(const Layer& layer, const Tensor* up, const Tensor& same) const;
-    FinalOutput finalOutput() const;
+    FinalOutput finalOutput(int slot) const;
     void enqueueTemporalFeatures(int slot, cudaStream_t stream) const;
     void enqueueKernelPrediction(int slot, cudaStream_t stream) const;
     void enqueueFilteringFusion(int slot, cudaStream_t stream) const;
-    void enqueueRefinement(cudaStream_t stream) const;
+    void enqueueRefinement(int slot, cudaStream_t stream) const;
+    void enqueueTaa(int slot, cudaStream_t stream) const;
     void enqueuePostFilter(int slot, cudaStream_t stream) const;
+    TemporalBuffers temporalBuffers(int slot) const;
+    TrustBuffers trustBuffers() const;
     /// The colours the network filters (the variants "1spp" and "ta" use one for both).
     const float* colorTaSource(int slot) const;
     const float* color1Source(int slot) const;
@@ -132,9 +142,13 @@ private:
     Stream m_stream;
     bool m_poison = false;
     bool m_hasNetwork = false;
-    bool m_refine = false;
+    bool m_refine = false; ///< the weights have a refinement (variant full)
+    bool m_fast = false; ///< setFastTier()
+    /// The refinement runs this frame.
+    bool refines() const { return m_refine && !m_fast; }
     bool m_historyInput = false; ///< the network reads history01 (Network::hasHistoryInput)
     bool m_albedoTrust = false; ///< Network::hasAlbedoTrust
+    bool m_taa = false; ///< setTaa()
     bool m_postFilter = false; ///< setPostFilter()
     afnet::Variant m_variant = afnet::Variant::Full;
     std::array<Layer, 10> m_layers; ///< in Network::Layer order
@@ -152,6 +166,10 @@ private:
     // The history trust (history_trust_block.h): per row block sums, per block raw trust, count
     // and trust, the cut pixels (one word, copied back with the output).
     DeviceBuffer<float> m_trustRowSums, m_trustRaw, m_trustCount, m_trustBlock;
+    // Work skipping: per frame row, 1 where the network's output is used (work_rows.h).
+    DeviceBuffer<unsigned char> m_computedRows;
+    std::vector<char> m_hostComputedRows; ///< this frame's, uploaded
+    Image m_grownWork; ///< the work mask's rows grown by the TAA's and post-filter's margins
     DeviceBuffer<unsigned> m_cutPixels;
     // The aux prefilter (aux_prefilter_pixel.h): the albedo, normal and depth as uploaded (the
     // frame-size m_albedo, m_normal and m_depth hold them after the prefilter), the speckle flags
@@ -164,6 +182,7 @@ private:
     // The post-filter's guide planes (a0 a1 a2 n0 n1 n2 nv z ls, frame size each) and its two
     // colour buffers.
     DeviceBuffer<float> m_postPlanes, m_postScratch0, m_postScratch1;
+    std::array<DeviceBuffer<float>, 2> m_taaHistory; ///< the TAA's output per slot
     AuxState m_lastAuxState {};
     AuxReport m_lastAux;
     unsigned m_lastCutPixels = 0;

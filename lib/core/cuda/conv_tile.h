@@ -130,6 +130,11 @@ struct FinalOutput {
     /// row; null: weights without the albedo trust
     const float* trust = nullptr;
     int trustWidth = 0;
+    /// Work skipping (methods/afn/work_rows.h): per frame row, 0 where the row takes the cheap
+    /// path, `cheap` (the TA colour the network filters, frame size, 3 floats per pixel,
+    /// remodulated as the network's output) instead of the network's; null: every row computed
+    const unsigned char* computedRows = nullptr;
+    const float* cheap = nullptr;
     float* data = nullptr; ///< frame size, 3 floats per pixel
     int width = 0; ///< the frame (unpadded)
     int height = 0;
@@ -137,12 +142,15 @@ struct FinalOutput {
 
 /// The output value of channel c at frame pixel (x, y) from the network's o: divided by the
 /// albedo trust's s (methods/afn/albedo_trust.cpp undoAlbedoTrustRows(); a = the albedo of x, 1
-/// without albedo), then remodulated (stages/demodulate.cpp remodulate()).
+/// without albedo), then remodulated (stages/demodulate.cpp remodulate()); on a skipped row the
+/// cheap path's colour instead (Network::run: copied as it is, then remodulated).
 AFN_HD float outputValue(const FinalOutput& out, int x, int y, int c, float o)
 {
     const std::size_t pixel = static_cast<std::size_t>(y) * out.width + x;
     const float albedo = out.albedo ? loadFloat(out.albedo + 3 * pixel + c) : 1.0f;
-    if (out.trust)
+    if (out.computedRows && !out.computedRows[y])
+        o = loadFloat(out.cheap + 3 * pixel + c);
+    else if (out.trust)
         o /= trustScale(albedo,
             loadFloat(out.trust + static_cast<std::size_t>(y / 2) * out.trustWidth + x / 2));
     const float a = out.albedo ? albedoFactor(albedo, out.plainAlbedo != 0) : 1.0f;

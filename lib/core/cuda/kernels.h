@@ -13,6 +13,7 @@
 //                                      (weights with albedoTrust=1)
 //   filterFuse                         heads, softmax, 7 x 7 filtering, Eq. 3
 //   conv x 3 (the last: convFinal)     refinement, residual, remodulation, crop
+//   taa                                the output TAA (its output is the next frame's history)
 //   postFilter                         guides, six half-passes of the a-trous smoothing
 #pragma once
 
@@ -22,6 +23,7 @@
 #include "cuda/filter_fuse_lane.h"
 #include "cuda/post_filter_pixel.h"
 #include "cuda/prepare_block.h"
+#include "cuda/taa_pixel.h"
 #include "cuda/temporal_pixel.h"
 
 #include <cuda_runtime_api.h>
@@ -61,11 +63,16 @@ void launchConvFinal(const ConvOperands& op, const FinalOutput& out, cudaStream_
 /// Heads, softmax, filtering and Eq. 3 over the padded frame.
 void launchFilterFuse(const FilterFuseArgs& a, cudaStream_t stream);
 
-/// afn's post-filter of `colour` (frame size, 3 floats per pixel) in place: the guides into `g`
-/// (s.maxSamples from frame->alphaMin), the half-passes through `scratch0` and `scratch1` (frame
-/// size, 3 floats per pixel each).
+/// afn's output TAA over the frame; `t` the frame's temporal buffers (for the history taps),
+/// `trust` the history trust's (read where it was measured).
+void launchTaa(const TaaBuffers& a, const TemporalBuffers& t, const TrustBuffers& trust,
+    const FrameConstants* frame, cudaStream_t stream);
+
+/// afn's post-filter of `in` into `out` (frame size, 3 floats per pixel; `out` may be `in`): the
+/// guides into `g` (s.maxSamples from frame->alphaMin), the half-passes through `scratch0` and
+/// `scratch1` (frame size, 3 floats per pixel each).
 void launchPostFilter(const PostFilterSources& s, const PostFilterPlanes& g,
-    const FrameConstants* frame, float* colour, float* scratch0, float* scratch1,
+    const FrameConstants* frame, const float* in, float* out, float* scratch0, float* scratch1,
     cudaStream_t stream);
 
 } // namespace afn::cuda

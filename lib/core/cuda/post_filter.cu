@@ -34,19 +34,19 @@ __global__ void __launch_bounds__(kBlockX* kBlockY) postFilterHalfKernel(
 } // namespace
 
 void launchPostFilter(const PostFilterSources& s, const PostFilterPlanes& g,
-    const FrameConstants* frame, float* colour, float* scratch0, float* scratch1,
-    cudaStream_t stream)
+    const FrameConstants* frame, const float* input, float* output, float* scratch0,
+    float* scratch1, cudaStream_t stream)
 {
     const dim3 block(kBlockX, kBlockY);
     const dim3 grid((s.width + kBlockX - 1) / kBlockX, (s.height + kBlockY - 1) / kBlockY);
     postFilterGuideKernel<<<grid, block, 0, stream>>>(s, g, frame);
     AFN_CUDA_CHECK_LAUNCH("postFilterGuideKernel");
-    // colour -> 0 -> 1 -> 0 -> 1 -> 0 -> colour
-    const float* in = colour;
+    // input -> 0 -> 1 -> 0 -> 1 -> 0 -> output
+    const float* in = input;
     for (int pass = 0; pass < kPostFilterIterationsDevice; ++pass)
         for (int half = 0; half < 2; ++half) {
             const bool last = pass == kPostFilterIterationsDevice - 1 && half == 1;
-            float* out = last ? colour : (half == 0 ? scratch0 : scratch1);
+            float* out = last ? output : (half == 0 ? scratch0 : scratch1);
             postFilterHalfKernel<<<grid, block, 0, stream>>>(
                 g, in, out, s.width, s.height, half == 0 ? 1 : 0, 1 << pass);
             AFN_CUDA_CHECK_LAUNCH("postFilterHalfKernel");

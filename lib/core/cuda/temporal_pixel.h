@@ -27,6 +27,7 @@ struct FrameConstants {
     float depthLimit = 0.1f;
     float alphaMin = 0.2f;
     float antilag = 1.0f; ///< stages/history_trust.h HistoryTrustSettings (0: no trust measured)
+    float taaAlpha = 0.7f; ///< methods/afn/settings.h Settings::taaAlpha
     int auxMode = 0; ///< stages/aux_prefilter.h AuxSettings::Mode: 0 auto, 1 clean, 2 noisy
     int spp = 0; ///< AuxSettings::spp (0: unknown)
     int colorDemodulated = 0; ///< the colour input is already irradiance
@@ -157,7 +158,8 @@ AFN_HD bool accept(
 /// accepted (Reprojector's taps, no box fallback); false without a previous position.
 struct HistoryTaps {
     int x0 = 0, y0 = 0; ///< tap k at (x0 + (k & 1), y0 + (k >> 1))
-    float w[4] = { 0.0f, 0.0f, 0.0f, 0.0f };
+    float bilinear[4] = { 0.0f, 0.0f, 0.0f, 0.0f }; ///< the bilinear weights (TAA samples them)
+    float w[4] = { 0.0f, 0.0f, 0.0f, 0.0f }; ///< the bilinear weight where accepted, else 0
     AFN_HD std::size_t index(int width, int k) const
     {
         return static_cast<std::size_t>(y0 + (k >> 1)) * width + x0 + (k & 1);
@@ -178,8 +180,10 @@ AFN_HD bool historyTaps(
     const bool usePosition = b.position && !(f.positionLimitSquared > 0.0f);
     const float fp = usePosition ? footprint(b, x, y) : 0.0f;
     const float bw[4] = { (1.0f - fx) * (1.0f - fy), fx * (1.0f - fy), (1.0f - fx) * fy, fx * fy };
-    for (int k = 0; k < 4; ++k)
+    for (int k = 0; k < 4; ++k) {
+        t.bilinear[k] = bw[k];
         t.w[k] = accept(b, f, x, y, t.x0 + (k & 1), t.y0 + (k >> 1), fp) ? bw[k] : 0.0f;
+    }
     return true;
 }
 

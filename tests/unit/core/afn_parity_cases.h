@@ -16,16 +16,11 @@
 
 namespace afntest {
 
-/// Set a CPU afn filter to what the CUDA filter runs (docs/gpu.md): no output TAA or work skipping
-/// on the GPU yet (taa=auto runs as off there; the CPU's skipping sends 8-row blocks of
-/// background to the cheap path, the GPU filters them), and the convolutions in fp32 on every
-/// CPU (auto runs bf16 where the CPU has it): the reference the CUDA engine's half precision is
-/// measured against.
+/// Set a CPU afn filter's convolutions to fp32 on every CPU (auto runs bf16 where the CPU has it):
+/// the reference the CUDA engine's half precision is measured against (docs/gpu.md).
 inline void configureAsOnTheGpu(afn::Filter& cpu)
 {
-    cpu.params().setString("taa", "off");
     cpu.params().setString("precision", "fp32");
-    cpu.params().setNumber("skip", 0.0, AFN_PARAM_BOOL);
 }
 
 /// The CPU's stages before the afn network, in Filter::runStages()'s order and default

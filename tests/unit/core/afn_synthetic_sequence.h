@@ -11,6 +11,7 @@
 #include "base/image.h"
 #include "bind_image.h"
 #include "filter/filter.h"
+#include "filter/work_mask.h"
 
 #include <cmath>
 #include <cstdint>
@@ -210,6 +211,7 @@ inline void runFrame(afn::Filter& f, SequenceFrame& in, afn::Image& out)
 /// camera and history index), for tests that run the stages or the engines' pieces themselves.
 struct FrameGatherer {
     afn::Frame frame;
+    bool workSkipping = false; ///< build the work mask (frame.work) as skip=on does
     afn::Camera prevCamera;
     int index = 0;
     const afn::Frame& gather(SequenceFrame& in)
@@ -224,6 +226,8 @@ struct FrameGatherer {
                 images[names[i]] = bindImage(*imgs[i]);
         afn::InputStats stats;
         afn::gatherFrame(images, afn::InputConventions {}, frame, stats);
+        if (workSkipping) // the default settings' mask, as Filter::execute builds it
+            afn::buildWorkMask(images, afn::WorkSettings {}, frame);
         afn::Camera camera;
         if (!in.viewProjection.empty()) {
             camera.valid = true;

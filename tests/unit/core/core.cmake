@@ -68,6 +68,7 @@ afn_add_gtest(test_cuda_engine
   SOURCES
     unit/core/cuda/test_cuda_layout.cpp
     unit/core/cuda/test_cuda_emulated.cpp
+    unit/core/cuda/test_cuda_emulated_stages.cpp
     unit/core/cuda/cuda_emulator.cpp
     unit/core/cuda/emulated_pipeline.cpp
   LIBS afn_core)

@@ -49,6 +49,7 @@
 #include "methods/afn/quality_tiers.h"
 #include "methods/afn/settings.h"
 #include "methods/afn/weights_source.h"
+#include "methods/afn/work_rows.h"
 #include "stages/aux_prefilter.h"
 #include "stages/demodulate.h"
 #include "stages/taa.h"
@@ -64,28 +65,6 @@
 namespace afn::afnet {
 
 namespace {
-
-/// `dst` (1 ch, `work`'s size) = 1 on every row within `margin` rows of a row of `work` that holds
-/// a pixel > 0, 0 elsewhere (the network computes whole rows, so only rows matter). An empty
-/// `work` (no skipping) gives an empty `dst`.
-void growRows(const Image& work, int margin, Image& dst)
-{
-    if (work.empty()) {
-        dst = Image {};
-        return;
-    }
-    const int w = work.width(), h = work.height();
-    std::vector<char> any(static_cast<std::size_t>(h), 0);
-    for (int y = 0; y < h; ++y)
-        any[y] = std::any_of(work.at(0, y), work.at(0, y) + w, [](float v) { return v > 0.0f; });
-    dst.resize(w, h, 1);
-    for (int y = 0; y < h; ++y) {
-        bool near = false;
-        for (int k = std::max(0, y - margin); k <= std::min(h - 1, y + margin) && !near; ++k)
-            near = any[k] != 0;
-        std::fill(dst.at(0, y), dst.at(0, y) + w, near ? 1.0f : 0.0f);
-    }
-}
 
 class AfnFilter final : public Filter {
 public:
@@ -272,7 +251,7 @@ private:
         const Image* work = &in.work;
         const int margin = (m_taaOn ? kTaaWorkMargin : 0) + (m_postOn ? kPostFilterRadius : 0);
         if (margin > 0) {
-            growRows(in.work, margin, m_workGrown);
+            growWorkRows(in.work, margin, m_workGrown);
             work = &m_workGrown;
         }
         if (!m_taaOn) {

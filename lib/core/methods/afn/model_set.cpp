@@ -62,11 +62,14 @@ std::string modelName(const Model& m)
 
 } // namespace
 
-Model* ModelSet::choose(const InputSet& available, int spp)
+Model* ModelSet::choose(const InputSet& available, int spp, bool allowLarge)
 {
+    auto eligible = [&](const Model& m) {
+        return available.covers(m.inputs) && (allowLarge || m.net.variant() != Variant::Large);
+    };
     Model* best = nullptr;
     for (Model& m : m_models) {
-        if (!available.covers(m.inputs))
+        if (!eligible(m))
             continue;
         if (!best || m.inputs.count() > best->inputs.count()
             || (m.inputs.count() == best->inputs.count() && m.inputs.temporal
@@ -79,7 +82,7 @@ Model* ModelSet::choose(const InputSet& available, int spp)
     const double want = std::log2(static_cast<double>(spp > 1 ? spp : 1));
     auto distance = [&](const Model& m) { return std::fabs(std::log2(double(m.spp)) - want); };
     for (Model& m : m_models) {
-        if (!(m.inputs == best->inputs) || &m == best)
+        if (!eligible(m) || !(m.inputs == best->inputs) || &m == best)
             continue;
         const double dm = distance(m), db = distance(*best);
         if (dm < db || (dm == db && m.spp < best->spp))

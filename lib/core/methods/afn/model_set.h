@@ -46,8 +46,9 @@ public:
 
     bool empty() const { return m_models.empty(); }
     /// The model for a frame with `available` inputs and `spp` samples per pixel (0: unknown);
-    /// nullptr when no model is covered.
-    Model* choose(const InputSet& available, int spp = 0);
+    /// nullptr when no model is covered. `allowLarge` false: AFN large is left out (an engine
+    /// without its graph).
+    Model* choose(const InputSet& available, int spp = 0, bool allowLarge = true);
     /// The models, e.g. "color; color+albedo+normal; color+albedo+normal (16 spp)" ("none" when
     /// empty; the count is named where it is not 1).
     std::string listing() const;

@@ -50,6 +50,7 @@
 // without the mask. Each run pays its own halos: a sky above the subject costs one halo, not a
 // stripe's worth of rows.
 #include "methods/afn/network.h"
+#include "methods/afn/work_rows.h"
 
 #include "base/exception.h"
 #include "base/parallel.h"
@@ -281,17 +282,14 @@ void Network::run(const Inputs& given, Image& out, const Image* work)
         for (int y = y0; y < y1; y += kStripeRows)
             stripes.emplace_back(y, std::min(y1, y + kStripeRows));
     };
+    // The rows of the 8-row blocks with work (work_rows.h; a block starts below h: hp - h < 8).
+    const std::vector<char> computed = computedRows(masked ? work : nullptr, h);
     if (!masked) {
         addRun(0, hp);
     } else {
-        auto blockHasWork = [&](int y0) { // y0 < h: hp - h < 8
-            const float* m = work->at(0, y0);
-            return std::any_of(m, m + static_cast<std::size_t>(std::min(h, y0 + 8) - y0) * w,
-                [](float v) { return v != 0.0f; });
-        };
         int runStart = -1; // first row of the current run of blocks with work
         for (int y = 0; y <= hp; y += 8) {
-            const bool needed = y < hp && blockHasWork(y);
+            const bool needed = y < hp && computed[static_cast<std::size_t>(y)];
             if (needed && runStart < 0)
                 runStart = y;
             if (!needed && runStart >= 0) {
@@ -300,9 +298,6 @@ void Network::run(const Inputs& given, Image& out, const Image* work)
             }
         }
     }
-    std::vector<char> computed(static_cast<std::size_t>(h), 0);
-    for (const auto& [y0, y1] : stripes)
-        std::fill(computed.begin() + std::min(y0, h), computed.begin() + std::min(y1, h), 1);
     m_skippedRows = static_cast<int>(std::count(computed.begin(), computed.end(), 0));
     if (m_skippedRows > 0)
         parallelRows(h, [&](int y0, int y1) {

@@ -351,17 +351,25 @@ void emulateFilterFuse(const FilterFuseArgs& a)
         }
 }
 
-void emulatePostFilter(const PostFilterSources& s, const PostFilterPlanes& g, float* colour,
-    float* scratch0, float* scratch1)
+void emulateTaa(const TaaBuffers& a, const TemporalBuffers& t, const TrustBuffers* trust,
+    const FrameConstants& f)
+{
+    for (int y = 0; y < a.height; ++y)
+        for (int x = 0; x < a.width; ++x)
+            taaPixel(a, t, f, trust, x, y);
+}
+
+void emulatePostFilter(const PostFilterSources& s, const PostFilterPlanes& g, const float* input,
+    float* output, float* scratch0, float* scratch1)
 {
     for (int y = 0; y < s.height; ++y)
         for (int x = 0; x < s.width; ++x)
             postFilterGuidePixel(s, g, x, y);
-    const float* in = colour;
+    const float* in = input;
     for (int pass = 0; pass < kPostFilterIterationsDevice; ++pass)
         for (int half = 0; half < 2; ++half) {
             const bool last = pass == kPostFilterIterationsDevice - 1 && half == 1;
-            float* out = last ? colour : (half == 0 ? scratch0 : scratch1);
+            float* out = last ? output : (half == 0 ? scratch0 : scratch1);
             for (int y = 0; y < s.height; ++y)
                 for (int x = 0; x < s.width; ++x)
                     postFilterHalfPixel(g, in, out, s.width, s.height, x, y, half == 0, 1 << pass);

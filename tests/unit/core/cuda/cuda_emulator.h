@@ -13,6 +13,7 @@
 #include "cuda/filter_fuse_lane.h"
 #include "cuda/post_filter_pixel.h"
 #include "cuda/prepare_block.h"
+#include "cuda/taa_pixel.h"
 #include "cuda/temporal_pixel.h"
 
 #include <cstdint>
@@ -38,8 +39,11 @@ void emulatePool(const std::uint16_t* in, int width, int height, int stride, std
 void emulateConvRelu(const afn::cuda::ConvOperands& op, const afn::cuda::ReluOutput& out);
 void emulateConvFinal(const afn::cuda::ConvOperands& op, const afn::cuda::FinalOutput& out);
 void emulateFilterFuse(const afn::cuda::FilterFuseArgs& a);
-/// post_filter.cu's kernels in their order (s.maxSamples as given).
+/// taa.cu's kernel; `trust` null where the history trust was not measured.
+void emulateTaa(const afn::cuda::TaaBuffers& a, const afn::cuda::TemporalBuffers& t,
+    const afn::cuda::TrustBuffers* trust, const afn::cuda::FrameConstants& f);
+/// post_filter.cu's kernels in their order (s.maxSamples as given): `in` into `out`.
 void emulatePostFilter(const afn::cuda::PostFilterSources& s, const afn::cuda::PostFilterPlanes& g,
-    float* colour, float* scratch0, float* scratch1);
+    const float* in, float* out, float* scratch0, float* scratch1);
 
 } // namespace afntest

@@ -4,6 +4,9 @@
 #include "emulated_pipeline.h"
 
 #include "base/exception.h"
+#include "methods/afn/post_filter.h"
+#include "methods/afn/work_rows.h"
+#include "stages/taa.h"
 
 #include <algorithm>
 #include <cmath>
@@ -239,22 +242,22 @@ void EmulatedAfnPipeline::run(const afn::Frame& f, const FrameConstants& c, afn:
     };
     conv(L::Enc1, nullptr, m_xHalf, m_e1);
     if (m_albedoTrust) {
-        AlbedoTrustBuffers t;
-        t.width = m_width;
-        t.height = m_height;
-        t.halfWidth = m_e1.width;
-        t.halfHeight = m_e1.height;
-        t.e1 = m_e1.data.data();
-        t.e1Stride = m_e1.stride;
-        t.e1Channels = layer(L::Enc1).packed.outChannels;
-        t.head = m_trustHead.data();
-        t.albedo = b.albedo;
-        t.color1 = pb.color1;
-        t.colorTa = colorTa;
-        t.trust = m_trust.data();
-        t.colorTaScaled = m_colorTaScaled.data();
-        t.color1Half = m_color1Half.data();
-        emulateAlbedoTrust(t);
+        AlbedoTrustBuffers at;
+        at.width = m_width;
+        at.height = m_height;
+        at.halfWidth = m_e1.width;
+        at.halfHeight = m_e1.height;
+        at.e1 = m_e1.data.data();
+        at.e1Stride = m_e1.stride;
+        at.e1Channels = layer(L::Enc1).packed.outChannels;
+        at.head = m_trustHead.data();
+        at.albedo = b.albedo;
+        at.color1 = pb.color1;
+        at.colorTa = colorTa;
+        at.trust = m_trust.data();
+        at.colorTaScaled = m_colorTaScaled.data();
+        at.color1Half = m_color1Half.data();
+        emulateAlbedoTrust(at);
     }
     pool(m_e1, m_e1Pool);
     conv(L::Enc2, nullptr, m_e1Pool, m_e2);
@@ -265,11 +268,25 @@ void EmulatedAfnPipeline::run(const afn::Frame& f, const FrameConstants& c, afn:
 
     // FilteringFusion.
     FinalOutput fo;
-    fo.fused = m_refine ? m_fused.data() : nullptr;
+    const bool refines = m_refine && !m_fast;
+    fo.fused = refines ? m_fused.data() : nullptr;
     fo.albedo = b.albedo;
     fo.plainAlbedo = c.colorDemodulated;
     fo.trust = m_albedoTrust ? m_trust.data() : nullptr;
     fo.trustWidth = m_paddedWidth / 2;
+    // Work skipping (AfnPipeline::upload).
+    std::vector<char> computed(static_cast<std::size_t>(m_height), 1);
+    if (f.hasWorkMask() && !m_fast) {
+        const int margin = (m_taa ? afn::kTaaWorkMargin : 0)
+            + (m_postFilter ? afn::afnet::kPostFilterRadius : 0);
+        afn::Image grown;
+        if (margin > 0)
+            afn::afnet::growWorkRows(f.work, margin, grown);
+        computed = afn::afnet::computedRows(margin > 0 ? &grown : &f.work, m_height);
+    }
+    const std::vector<unsigned char> rows(computed.begin(), computed.end());
+    fo.computedRows = rows.data();
+    fo.cheap = colorTa;
     fo.data = m_output.data();
     fo.width = m_width;
     fo.height = m_height;
@@ -282,7 +299,7 @@ void EmulatedAfnPipeline::run(const afn::Frame& f, const FrameConstants& c, afn:
               m_paddedHeight }
         : PaddedColor { colorTa, m_width, m_height, m_paddedWidth, m_paddedHeight };
     a.color1Half = PlainColor { m_color1Half.data(), m_paddedWidth / 2, m_paddedHeight / 2 };
-    if (m_refine) {
+    if (refines) {
         a.fused = m_fused.data();
         a.refineInput = m_refineInput.data.data();
     } else {
@@ -291,15 +308,32 @@ void EmulatedAfnPipeline::run(const afn::Frame& f, const FrameConstants& c, afn:
     emulateFilterFuse(a);
 
     // Refinement.
-    if (m_refine) {
+    if (refines) {
         conv(L::Ref1, nullptr, m_refineInput, m_r1);
         conv(L::Ref2, nullptr, m_r1, m_r2);
         emulateConvFinal(operands(layer(L::Ref3), nullptr, m_r2), fo);
     }
 
+    m_radianceImage = afn::Image(m_width, m_height, 3);
+    std::copy(m_output.begin(), m_output.end(), m_radianceImage.data());
+    // Taa.
+    const std::size_t n = static_cast<std::size_t>(m_width) * m_height;
+    if (m_taa) {
+        for (auto& h : m_taaHistory)
+            if (h.size() != 3 * n)
+                h.assign(3 * n, std::nanf(""));
+        TaaBuffers ta;
+        ta.width = m_width;
+        ta.height = m_height;
+        ta.current = m_output.data();
+        ta.history = m_taaHistory[p].data();
+        ta.out = m_taaHistory[s].data();
+        emulateTaa(ta, b, trustMeasured(c.hasHistory, c.antilag) ? &t : nullptr, c);
+        if (!m_postFilter)
+            m_output = m_taaHistory[s];
+    }
     // PostFilter.
     if (m_postFilter) {
-        const std::size_t n = static_cast<std::size_t>(m_width) * m_height;
         m_postPlanes.assign(9 * n, std::nanf(""));
         m_postScratch0.assign(3 * n, std::nanf(""));
         m_postScratch1.assign(3 * n, std::nanf(""));
@@ -316,7 +350,8 @@ void EmulatedAfnPipeline::run(const afn::Frame& f, const FrameConstants& c, afn:
         float** ordered[9] = { &g.a0, &g.a1, &g.a2, &g.n0, &g.n1, &g.n2, &g.nv, &g.z, &g.ls };
         for (int k = 0; k < 9; ++k)
             *ordered[k] = m_postPlanes.data() + k * n;
-        emulatePostFilter(ps, g, m_output.data(), m_postScratch0.data(), m_postScratch1.data());
+        const float* in = m_taa ? m_taaHistory[s].data() : m_output.data();
+        emulatePostFilter(ps, g, in, m_output.data(), m_postScratch0.data(), m_postScratch1.data());
     }
 
     out = afn::Image(m_width, m_height, 3);

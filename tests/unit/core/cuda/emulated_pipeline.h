@@ -21,8 +21,11 @@ namespace afntest {
 class EmulatedAfnPipeline {
 public:
     explicit EmulatedAfnPipeline(const afn::afnet::Network& network);
-    /// Run the post-filter on the output (AfnPipeline::setPostFilter).
+    /// Run the TAA and the post-filter on the output (AfnPipeline::setTaa, setPostFilter).
+    void setTaa(bool on) { m_taa = on; }
     void setPostFilter(bool on) { m_postFilter = on; }
+    /// The quality tier fast (AfnPipeline::setFastTier): no refinement.
+    void setFastTier(bool on) { m_fast = on; }
     /// Denoise a gathered frame (as AfnCudaFilter::denoise) into `out` (3 ch, frame size).
     void run(const afn::Frame& frame, const afn::cuda::FrameConstants& constants, afn::Image& out);
 
@@ -37,6 +40,8 @@ public:
     const afn::Image& normal() const { return m_normalImage; }
     const afn::Image& depth() const { return m_depthImage; }
     const afn::cuda::AuxState& auxState() const { return m_auxState; }
+    /// The radiance before the TAA and the post-filter (frame size, 3 ch).
+    const afn::Image& radiance() const { return m_radianceImage; }
     afn::Image networkInput() const; ///< padded size, 13 ch (14 with the history input)
     afn::Image decoderOutput() const; ///< half the padded size
     /// The albedo trust's t, half the padded size, 1 ch (weights with the albedo trust only).
@@ -58,9 +63,12 @@ private:
 
     afn::afnet::Variant m_variant;
     bool m_refine;
+    bool m_fast = false;
     bool m_historyInput;
     bool m_albedoTrust;
+    bool m_taa = false;
     bool m_postFilter = false;
+    std::array<std::vector<float>, 2> m_taaHistory;
     std::vector<float> m_postPlanes, m_postScratch0, m_postScratch1;
     std::vector<float> m_trustHead; ///< packTrustHead() (albedo trust only)
     std::array<Layer, 10> m_layers;
@@ -76,7 +84,7 @@ private:
     std::array<std::vector<float>, 3> m_auxFlags;
     std::array<std::vector<float>, 2> m_auxEdges, m_auxHistory;
     afn::cuda::AuxState m_auxState {};
-    afn::Image m_albedoImage, m_normalImage, m_depthImage;
+    afn::Image m_albedoImage, m_normalImage, m_depthImage, m_radianceImage;
     double m_cutShare = 0.0;
     afn::Image m_irradianceImage, m_accumulatedImage, m_historyLengthImage;
 };

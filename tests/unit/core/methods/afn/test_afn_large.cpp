@@ -130,6 +130,13 @@ TEST(AfnLarge, ChosenForFramesNearItsSampleCount)
     }
     EXPECT_EQ(afn::afnet::describeChoice(all, *models.choose(all, 64)),
         "model color+albedo+normal+depth+temporal (64 spp, AFN large), temporal");
+    // Without AFN large (the CUDA filter: no graph for it) the nearest other model, at any count.
+    for (const int spp : { 0, 16, 64, 512 }) {
+        const afn::afnet::Model* m = models.choose(all, spp, false);
+        ASSERT_NE(m, nullptr);
+        EXPECT_EQ(m->net.variant(), afn::afnet::Variant::Full) << "frame at " << spp << " spp";
+        EXPECT_EQ(m->spp, 1);
+    }
     EXPECT_EQ(models.listing(),
         "color+albedo+normal+depth+temporal; color+albedo+normal+depth+temporal (64 spp, AFN "
         "large)");

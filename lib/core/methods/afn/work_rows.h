@@ -1,0 +1,23 @@
+// SPDX-License-Identifier: Apache-2.0
+// Which rows afn's network computes under work skipping (filter/work_mask.h): the engines
+// (Network::run, the CUDA filter) and the afn method share these rules, so that a skipped row is
+// the same everywhere.
+#pragma once
+
+#include "base/image.h"
+
+#include <vector>
+
+namespace afn::afnet {
+
+/// `dst` (1 ch, `work`'s size) = 1 on every row within `margin` rows of a row of `work` that holds
+/// a pixel > 0, 0 elsewhere (the network computes whole rows, so only rows matter). An empty
+/// `work` (no skipping) gives an empty `dst`.
+void growWorkRows(const Image& work, int margin, Image& dst);
+
+/// Per row of a frame of height h, 1 where the network computes it: the rows of each 8-row block
+/// (of the frame padded to a multiple of 8) that holds a pixel != 0 of `work`; every row without a
+/// mask (null or empty). The other rows take the cheap path (Network::run).
+std::vector<char> computedRows(const Image* work, int h);
+
+} // namespace afn::afnet
