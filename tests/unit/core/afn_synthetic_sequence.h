@@ -212,6 +212,7 @@ inline void runFrame(afn::Filter& f, SequenceFrame& in, afn::Image& out)
 struct FrameGatherer {
     afn::Frame frame;
     bool workSkipping = false; ///< build the work mask (frame.work) as skip=on does
+    afn::InputConventions conventions; ///< the inputs' (the filter's conventions parameters)
     afn::Camera prevCamera;
     int index = 0;
     const afn::Frame& gather(SequenceFrame& in)
@@ -225,7 +226,7 @@ struct FrameGatherer {
             if (!imgs[i]->empty())
                 images[names[i]] = bindImage(*imgs[i]);
         afn::InputStats stats;
-        afn::gatherFrame(images, afn::InputConventions {}, frame, stats);
+        afn::gatherFrame(images, conventions, frame, stats);
         if (workSkipping) // the default settings' mask, as Filter::execute builds it
             afn::buildWorkMask(images, afn::WorkSettings {}, frame);
         afn::Camera camera;

@@ -69,7 +69,8 @@ afn_add_gtest(test_cuda_engine
     unit/core/cuda/test_cuda_layout.cpp
     unit/core/cuda/test_cuda_emulated.cpp
     unit/core/cuda/test_cuda_emulated_stages.cpp
+    unit/core/cuda/test_cuda_emulated_blender.cpp
     unit/core/cuda/cuda_emulator.cpp
     unit/core/cuda/emulated_pipeline.cpp
-  LIBS afn_core)
+  LIBS afn_core PkgConfig::OIIO)
 target_include_directories(test_cuda_engine PRIVATE ${AFN_CORE_TESTS})

@@ -1,14 +1,14 @@
 // SPDX-License-Identifier: Apache-2.0
 // ta, svgf and bmfr on the bundled Blender sequence (examples/sequence: 8 frames, 320x180, 1 spp,
-// 2048-spp references): each must clearly beat the noisy input in PSNR. The EXRs are read here with
-// OpenImageIO directly (channels by name), independent of afn_io. PSNR as the reference notes
+// 2048-spp references): each must clearly beat the noisy input in PSNR. The EXRs are read with
+// OpenImageIO directly (blender_frames.h), independent of afn_io. PSNR as the reference notes
 // define it: tone map T(x) = clip(max(x, 0)^(1/2.2), 0, 1), 10 log10(1 / MSE).
 // Reproduce the per-frame table: test_methods --gtest_filter='*Blender*'
+#include "blender_frames.h"
 #include "test_methods_util.h"
 
 #include <map>
 
-#include <OpenImageIO/imageio.h>
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -21,36 +21,6 @@ namespace {
 using afn::Image;
 
 constexpr int kFrames = 8;
-
-/// Channels `names` of `path` (all in subimage 0) as an image; empty image if unreadable.
-Image readChannels(const std::string& path, const std::vector<std::string>& names)
-{
-    auto in = OIIO::ImageInput::open(path);
-    if (!in)
-        return Image();
-    const OIIO::ImageSpec& spec = in->spec();
-    std::vector<float> all(static_cast<std::size_t>(spec.width) * spec.height * spec.nchannels);
-    if (!in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, all.data()))
-        return Image();
-    Image img(spec.width, spec.height, static_cast<int>(names.size()));
-    for (std::size_t c = 0; c < names.size(); ++c) {
-        const int idx = spec.channelindex(names[c]);
-        if (idx < 0)
-            return Image();
-        for (int p = 0; p < spec.width * spec.height; ++p)
-            img.data()[p * names.size() + c]
-                = all[static_cast<std::size_t>(p) * spec.nchannels + idx];
-    }
-    return img;
-}
-
-std::vector<std::string> layer(const std::string& pass, const char* comps)
-{
-    std::vector<std::string> v;
-    for (const char* c = comps; *c; ++c)
-        v.push_back("ViewLayer." + pass + "." + std::string(1, *c));
-    return v;
-}
 
 double psnr(const Image& a, const Image& ref)
 {
@@ -65,25 +35,21 @@ double psnr(const Image& a, const Image& ref)
 
 TEST(MethodsBlender, EveryMethodClearlyBeatsTheNoisyInput)
 {
-    const std::string dir = std::string(AFN_EXAMPLES_DIR) + "/sequence/";
-    char name[64];
     std::vector<methods_test::Buffers> frames(kFrames);
     std::vector<Image> refs(kFrames);
     for (int k = 0; k < kFrames; ++k) {
-        std::snprintf(name, sizeof name, "frame.%04d.exr", k);
-        const std::string path = dir + name;
+        afntest::BlenderFrame f = afntest::readBlenderFrame(AFN_EXAMPLES_DIR, k);
+        if (f.color.empty())
+            GTEST_SKIP() << "cannot read frame " << k << " of " << AFN_EXAMPLES_DIR;
         methods_test::Buffers& b = frames[k];
-        b.color = readChannels(path, layer("Combined", "RGB"));
-        if (b.color.empty())
-            GTEST_SKIP() << "cannot read " << path;
-        b.albedo = readChannels(path, layer("Denoising Albedo", "RGB"));
-        b.normal = readChannels(path, layer("Normal", "XYZ")); // world space
-        b.depth = readChannels(path, layer("Depth", "Z")); // planar
-        b.position = readChannels(path, layer("Position", "XYZ")); // world, metres
-        b.motion = readChannels(path, layer("Vector", "XY")); // pixels, y up, to previous
-        std::snprintf(name, sizeof name, "reference.%04d.exr", k);
-        refs[k] = readChannels(dir + name, layer("Combined", "RGB"));
-        ASSERT_FALSE(refs[k].empty() || b.albedo.empty() || b.motion.empty()) << path;
+        b.color = f.color;
+        b.albedo = f.albedo;
+        b.normal = f.normal;
+        b.depth = f.depth;
+        b.position = f.position;
+        b.motion = f.motion;
+        refs[k] = f.reference;
+        ASSERT_FALSE(refs[k].empty() || b.albedo.empty() || b.motion.empty()) << "frame " << k;
     }
     double noisyMean = 0.0;
     for (int k = 0; k < kFrames; ++k)
