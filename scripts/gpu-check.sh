@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # The GPU check of the CUDA afn filter, for a machine with an NVIDIA GPU of compute capability 9.0
-# or newer: first the parity tests (the CUDA filter against the CPU filter in the same process;
-# limit 200 s), then the benchmark (limit 150 s); a crash in the benchmark cannot lose the parity
+# or newer: first the parity tests (the CUDA filter against the CPU filter in the same process, on
+# synthetic sequences and on the bundled Blender renders; limit 200 s), then the benchmark (limit 150 s); a crash in the benchmark cannot lose the parity
 # results, which are written first. Not yet run on a GPU: docs/gpu.md has the command to run. Logs go to $OUT when it is set, else to out/gpu-check:
 #   gpu.txt      nvidia-smi's view of the GPU and driver
 #   parity.log   every parity line (per case and frame: PSNR, mean, 99.9% and max |dT|, TA match)
@@ -31,6 +31,10 @@ if [ -z "$bin" ]; then
 fi
 bin=$(cd "$bin" && pwd)
 export LD_LIBRARY_PATH="$bin${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}"
+# The bundle's real renders for the parity test (scripts/dump-gpu-frames.py).
+if [ -d "$bin/frames" ]; then
+  export AFN_GPU_FRAMES="$bin/frames"
+fi
 
 {
   echo "date: $(date -u +%Y-%m-%dT%H:%M:%SZ)"

@@ -34,13 +34,17 @@ for bin in "$out/test_afn_cuda" "$out/bench_afn_cuda"; do
 done
 ls "$out"/libtbb.so.* >/dev/null
 
+# Real renders for the parity test (CudaAfn.ParityOnTheBlenderSequence): the bundled sequence's
+# first 4 frames as raw planes (OpenImageIO is read here, not on the GPU machine).
+/usr/bin/python3 scripts/dump-gpu-frames.py examples "$out/frames" 4
+
 {
   echo "afn GPU bundle"
   echo "commit: $(git rev-parse HEAD 2>/dev/null || echo unknown)$(git diff --quiet 2>/dev/null || echo ' (with uncommitted changes)')"
   echo "built: $(date -u +%Y-%m-%dT%H:%M:%SZ) on $(uname -m), $(ldd --version | head -n1)"
   echo "nvcc: $("$(grep -m1 '^CMAKE_CUDA_COMPILER:' "$build/CMakeCache.txt" | cut -d= -f2)" --version | tail -n1)"
   echo "run: bash scripts/gpu-check.sh --prebuilt $out"
-  (cd "$out" && sha256sum test_afn_cuda bench_afn_cuda libtbb.so.*)
+  (cd "$out" && sha256sum test_afn_cuda bench_afn_cuda libtbb.so.* frames/*)
 } >"$out/MANIFEST"
 du -sh "$out"
 echo "make-gpu-bundle: wrote $out (run there: bash scripts/gpu-check.sh --prebuilt $out)"

@@ -5,7 +5,8 @@
 // documented tolerance (afn_output_compare.h, docs/gpu.md), the first stage (demodulation,
 // reprojection, accumulation) equal to the CPU stages', the network input equal to half
 // precision. The GPU buffers are poisoned with NaN, so a value no kernel wrote fails the test.
-// Also: the C API, other methods refused, reset and new weights mid-sequence, concurrent filters.
+// Also: real renders (the bundled Blender sequence as raw frames), the C API, other methods
+// refused, reset and new weights mid-sequence, concurrent filters.
 // Without a usable GPU every test is skipped with the reason.
 #include "afn_output_compare.h"
 #include "afn_parity_cases.h"
@@ -16,6 +17,7 @@
 #include "filter/registry.h"
 #include "methods/afn/network_inputs.h"
 #include "methods/afn/weights_source.h"
+#include "raw_frames.h"
 #include "stages/demodulate.h"
 
 #include "afn/afn.h"
@@ -23,6 +25,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
 #include <iostream>
 #include <limits>
 #include <memory>
@@ -184,6 +188,39 @@ TEST_F(CudaAfn, ParityWithTheCpuEngine)
             continue;
         }
         runParityCase(c);
+    }
+}
+
+// Real renders: the bundled Blender sequence's first frames as raw planes (AFN_GPU_FRAMES, written
+// by scripts/dump-gpu-frames.py; scripts/gpu-check.sh sets it for the bundle's frames), the
+// default settings (built-in models) on both devices, the CPU's convolutions in fp32.
+TEST_F(CudaAfn, ParityOnTheBlenderSequence)
+{
+    const char* dir = std::getenv("AFN_GPU_FRAMES");
+    if (!dir)
+        GTEST_SKIP() << "AFN_GPU_FRAMES is not set (scripts/gpu-check.sh sets it)";
+    if (!hasShippedWeights())
+        GTEST_SKIP() << "this build has no built-in weights";
+    auto cpu = afn::createFilter("afn");
+    afntest::configureAsOnTheGpu(*cpu);
+    auto gpu = afn::createFilter("afn", *g_cuda);
+    cudaFilter(*gpu).setPoison(true);
+    for (auto* f : { cpu.get(), gpu.get() })
+        f->params().setNumber("motion.yUp", 1.0, AFN_PARAM_BOOL);
+    const afntest::Tolerance tolerance;
+    for (int k = 0; k < 4; ++k) {
+        char name[32];
+        std::snprintf(name, sizeof name, "/frame.%04d.afnraw", k);
+        afntest::SequenceFrame in;
+        ASSERT_TRUE(afntest::readRawFrame(std::string(dir) + name, in)) << dir << name;
+        afn::Image cpuOut(in.color.width(), in.color.height(), 3), gpuOut = cpuOut;
+        poison(cpuOut);
+        poison(gpuOut);
+        afntest::runFrame(*cpu, in, cpuOut);
+        afntest::runFrame(*gpu, in, gpuOut);
+        const afntest::OutputDifference d = afntest::compareOutputs(gpuOut, cpuOut);
+        std::cout << "[ parity ] examples/sequence frame " << k << ": " << d.text() << "\n";
+        EXPECT_TRUE(d.within(tolerance)) << "frame " << k << ": " << d.text();
     }
 }
 

@@ -333,8 +333,13 @@ void AfnPipeline::upload(const Frame& f, const FrameConstants& constants)
         uploadImage(m_normalRaw, f.normal, 3 * n, s);
     if (m_layout.depth)
         uploadImage(m_depthRaw, f.depth, n, s);
+    // The TAA's history holds the previous frame's output only when the TAA ran then (as the CPU's
+    // afn_method: a frame without TAA drops it).
+    m_frameConstants = constants;
+    m_frameConstants.taaHistory = m_taa && m_taaRan && constants.hasHistory ? 1 : 0;
+    m_taaRan = m_taa;
     AFN_CUDA_CHECK(cudaMemcpyAsync(
-        m_constants.data(), &constants, sizeof(FrameConstants), cudaMemcpyHostToDevice, s));
+        m_constants.data(), &m_frameConstants, sizeof(FrameConstants), cudaMemcpyHostToDevice, s));
     // Work skipping as the CPU's (afn_method.cpp, Network::run): in the balanced tier the rows
     // of the 8-row blocks near no work take the cheap path; the TAA's and the post-filter's
     // margins grow the needed rows.

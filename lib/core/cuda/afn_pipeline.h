@@ -169,6 +169,8 @@ private:
     // Work skipping: per frame row, 1 where the network's output is used (work_rows.h).
     DeviceBuffer<unsigned char> m_computedRows;
     std::vector<char> m_hostComputedRows; ///< this frame's, uploaded
+    FrameConstants m_frameConstants; ///< this frame's, uploaded
+    bool m_taaRan = false; ///< the last uploaded frame ran the TAA
     Image m_grownWork; ///< the work mask's rows grown by the TAA's and post-filter's margins
     DeviceBuffer<unsigned> m_cutPixels;
     // The aux prefilter (aux_prefilter_pixel.h): the albedo, normal and depth as uploaded (the

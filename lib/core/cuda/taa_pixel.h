@@ -76,7 +76,7 @@ AFN_HD float blendPositive(float h, float c, float alpha)
 } // namespace taa
 
 /// The TAA output of pixel (x, y): `taps` from the frame's reprojection (t, f), `trust` the
-/// history trust when it was measured (else null).
+/// history trust when it was measured (else null); the history is read only where f.taaHistory.
 AFN_HD void taaPixel(const TaaBuffers& a, const TemporalBuffers& t, const FrameConstants& f,
     const TrustBuffers* trust, int x, int y)
 {
@@ -89,7 +89,7 @@ AFN_HD void taaPixel(const TaaBuffers& a, const TemporalBuffers& t, const FrameC
     HistoryTaps taps;
     float hs[3] = { 0.0f, 0.0f, 0.0f };
     bool has = false;
-    if (historyTaps(t, f, x, y, taps)) {
+    if (f.taaHistory && historyTaps(t, f, x, y, taps)) {
         float ws = 0.0f;
         for (int k = 0; k < 4; ++k) {
             const int qx = taps.x0 + (k & 1), qy = taps.y0 + (k >> 1);
@@ -141,7 +141,7 @@ AFN_HD void taaPixel(const TaaBuffers& a, const TemporalBuffers& t, const FrameC
             o[ch] = blendPositive(hist[ch], c[ch], f.taaAlpha);
     }
     // The history trust pulls the output towards the current frame.
-    if (trust && f.hasHistory) {
+    if (trust && f.taaHistory) {
         const float tv = pixelTrust(*trust, x, y);
         if (tv < 1.0f)
             for (int ch = 0; ch < 3; ++ch)

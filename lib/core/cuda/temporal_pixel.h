@@ -28,6 +28,7 @@ struct FrameConstants {
     float alphaMin = 0.2f;
     float antilag = 1.0f; ///< stages/history_trust.h HistoryTrustSettings (0: no trust measured)
     float taaAlpha = 0.7f; ///< methods/afn/settings.h Settings::taaAlpha
+    int taaHistory = 0; ///< the TAA's history holds the previous frame (set by the pipeline)
     int auxMode = 0; ///< stages/aux_prefilter.h AuxSettings::Mode: 0 auto, 1 clean, 2 noisy
     int spp = 0; ///< AuxSettings::spp (0: unknown)
     int colorDemodulated = 0; ///< the colour input is already irradiance

@@ -328,10 +328,13 @@ void EmulatedAfnPipeline::run(const afn::Frame& f, const FrameConstants& c, afn:
         ta.current = m_output.data();
         ta.history = m_taaHistory[p].data();
         ta.out = m_taaHistory[s].data();
-        emulateTaa(ta, b, trustMeasured(c.hasHistory, c.antilag) ? &t : nullptr, c);
+        FrameConstants tc = c; // AfnPipeline::upload
+        tc.taaHistory = m_taaRan && c.hasHistory ? 1 : 0;
+        emulateTaa(ta, b, trustMeasured(c.hasHistory, c.antilag) ? &t : nullptr, tc);
         if (!m_postFilter)
             m_output = m_taaHistory[s];
     }
+    m_taaRan = m_taa;
     // PostFilter.
     if (m_postFilter) {
         m_postPlanes.assign(9 * n, std::nanf(""));

@@ -67,6 +67,7 @@ private:
     bool m_historyInput;
     bool m_albedoTrust;
     bool m_taa = false;
+    bool m_taaRan = false; ///< the last frame ran the TAA (AfnPipeline::upload)
     bool m_postFilter = false;
     std::array<std::vector<float>, 2> m_taaHistory;
     std::vector<float> m_postPlanes, m_postScratch0, m_postScratch1;

@@ -176,6 +176,34 @@ TEST(CudaEmulated, FilterMatchesCpuWhereRowsAreSkipped)
         expectFilterParity(testWeights(name), 45, 240, SequenceInputs {}, 3);
 }
 
+// The TAA turned off for a frame and on again (no reset): it starts again without history on both
+// engines (a frame without TAA drops it).
+TEST(CudaEmulated, FilterMatchesCpuWhenTheTaaIsToggled)
+{
+    const auto weights = testWeights("weights_full.afnw");
+    auto cpu = afn::createFilter("afn");
+    configureAsOnTheGpu(*cpu);
+    cpu->setData(AFN_DATA_WEIGHTS, weights.data(), weights.size());
+    EmulatedAfnPipeline emulated(afn::afnet::networkFromData(weights.data(), weights.size()));
+    emulated.setPostFilter(true);
+    const SyntheticSequence seq(37, 21, 5);
+    FrameGatherer gatherer;
+    gatherer.workSkipping = true;
+    afn::Image cpuOut(37, 21, 3), emuOut;
+    for (int k = 0; k < 5; ++k) {
+        const bool taa = k != 2;
+        cpu->params().setString("taa", taa ? "on" : "off");
+        emulated.setTaa(taa);
+        SequenceFrame in = seq.frame(k, SequenceInputs {});
+        runFrame(*cpu, in, cpuOut);
+        const afn::Frame& f = gatherer.gather(in);
+        emulated.run(
+            f, afn::cuda::frameConstants(f, kReproject, kAccumulation, kTrust, kAux), emuOut);
+        const OutputDifference d = compareOutputs(emuOut, cpuOut);
+        EXPECT_TRUE(d.within(Tolerance {})) << "frame " << k << ": " << d.text();
+    }
+}
+
 // Noisy AOVs (aux=auto decides noisy): the prefiltered buffers reach the network and the
 // remodulation as on the CPU.
 TEST(CudaEmulated, FilterMatchesCpuWithNoisyAovs)

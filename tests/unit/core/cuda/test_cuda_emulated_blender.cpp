@@ -12,9 +12,12 @@
 #include "filter/registry.h"
 #include "methods/afn/settings.h"
 #include "methods/afn/weights_source.h"
+#include "raw_frames.h"
 
 #include <gtest/gtest.h>
 
+#include <cstdio>
+#include <cstdlib>
 #include <iostream>
 
 using namespace afntest;
@@ -55,5 +58,28 @@ TEST(CudaEmulated, FilterMatchesCpuOnTheBlenderSequence)
         const OutputDifference d = compareOutputs(emuOut, cpuOut);
         std::cout << "[ emulated ] examples/sequence frame " << k << ": " << d.text() << "\n";
         EXPECT_TRUE(d.within(tolerance)) << "frame " << k << ": " << d.text();
+    }
+}
+
+// The GPU check's raw frames (scripts/dump-gpu-frames.py, read by tests/gpu with raw_frames.h)
+// hold the EXRs' passes exactly. Needs the frames written first: AFN_GPU_FRAMES=DIR after
+// /usr/bin/python3 scripts/dump-gpu-frames.py examples DIR (make-gpu-bundle.sh does both).
+TEST(CudaEmulated, RawFramesAreTheBlenderFrames)
+{
+    const char* dir = std::getenv("AFN_GPU_FRAMES");
+    if (!dir)
+        GTEST_SKIP() << "AFN_GPU_FRAMES is not set (scripts/dump-gpu-frames.py writes the frames)";
+    for (int k = 0; k < 4; ++k) {
+        char name[32];
+        std::snprintf(name, sizeof name, "/frame.%04d.afnraw", k);
+        SequenceFrame raw;
+        ASSERT_TRUE(readRawFrame(std::string(dir) + name, raw)) << name;
+        const BlenderFrame exr = readBlenderFrame(AFN_EXAMPLES_DIR, k);
+        const afn::Image* a[]
+            = { &raw.color, &raw.albedo, &raw.normal, &raw.depth, &raw.position, &raw.motion };
+        const afn::Image* b[]
+            = { &exr.color, &exr.albedo, &exr.normal, &exr.depth, &exr.position, &exr.motion };
+        for (int p = 0; p < 6; ++p)
+            EXPECT_TRUE(sameBits(*a[p], *b[p])) << name << " pass " << p;
     }
 }
