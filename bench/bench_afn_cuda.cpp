@@ -120,7 +120,8 @@ void benchmarkSize(const afn::Device& device, const afn::afnet::Network& net,
     // The pipeline directly: two frames, so that the timed frame reprojects a history.
     AfnPipeline pipe(device.gpuOrdinal());
     pipe.setNetwork(net);
-    // As the filter's postFilter=auto (afn_cuda_filter.cpp).
+    // As the filter's taa=auto and postFilter=auto (afn_cuda_filter.cpp).
+    pipe.setTaa(net.trainedSpp() < afn::afnet::kTaaAutoMaxSppExclusive);
     pipe.setPostFilter(net.trainedSpp() < afn::afnet::kPostFilterAutoMaxSppExclusive);
     afntest::FrameGatherer gatherer;
     const afn::ReprojectSettings reproject {};
@@ -143,10 +144,10 @@ void benchmarkSize(const afn::Device& device, const afn::afnet::Network& net,
     const struct {
         AfnPipeline::Stage stage;
         const char* name;
-    } stages[] = { { AfnPipeline::Stage::TemporalFeatures, "TA + features" },
+    } stages[] = { { AfnPipeline::Stage::TemporalFeatures, "aux + TA + features" },
         { AfnPipeline::Stage::KernelPrediction, "kernel prediction" },
         { AfnPipeline::Stage::FilteringFusion, "filtering + fusion" },
-        { AfnPipeline::Stage::Refinement, "refinement" },
+        { AfnPipeline::Stage::Refinement, "refinement" }, { AfnPipeline::Stage::Taa, "TAA" },
         { AfnPipeline::Stage::PostFilter, "post-filter" } };
     for (const auto& s : stages) {
         afn::cuda::GraphExec exec;
