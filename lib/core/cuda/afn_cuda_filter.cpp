@@ -53,14 +53,10 @@ void AfnCudaFilter::configure()
         throw Exception(AFN_ERROR_UNSUPPORTED,
             "afn on a CUDA device has no quarter-resolution scale yet: weights with quarter=1 "
             "run on the CPU device (afntool: --device cpu)");
-    // Quality tiers (methods/afn/quality_tiers.h): balanced and fast; high (four flipped network
-    // passes) runs on the CPU device only for now.
+    // Quality tiers (methods/afn/quality_tiers.h).
     const QualitySettings::Tier tier = qualityBinding().read(params()).quality;
-    if (tier == QualitySettings::Tier::High)
-        throw Exception(AFN_ERROR_UNSUPPORTED,
-            "afn on a CUDA device runs quality=fast and balanced: quality=high runs on the CPU "
-            "device (afntool: --device cpu)");
     m_pipeline.setFastTier(tier == QualitySettings::Tier::Fast);
+    m_pipeline.setHighTier(tier == QualitySettings::Tier::High);
     // The output TAA and the post-filter as the CPU's (afn_method.cpp): auto is on for weights
     // trained below 16 spp.
     const afnet::Settings settings = afnet::settingsBinding().read(params());

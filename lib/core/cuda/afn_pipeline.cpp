@@ -208,6 +208,11 @@ void AfnPipeline::allocate(const FrameLayout& layout)
     allocateBuffer(m_postScratch1, m_postFilter ? 3 * n : 0, p, st);
     for (auto& h : m_taaHistory)
         allocateBuffer(h, m_taa ? 3 * n : 0, p, st);
+    const int flippedChannels[6] = { 3, 3, 3, 3, 1, 1 };
+    for (int k = 0; k < 6; ++k)
+        allocateBuffer(m_flipped[k], m_high ? flippedChannels[k] * n : 0, p, st);
+    allocateBuffer(m_passOut, m_high ? 3 * n : 0, p, st);
+    allocateBuffer(m_passSum, m_high ? 3 * n : 0, p, st);
     allocateBuffer(m_constants, 1, p, st);
 
     const auto channels = [&](NetLayer l) { return m_layers[layerIndex(l)].packed.outChannels; };
@@ -260,10 +265,8 @@ void AfnPipeline::captureGraphs()
     m_graphsValid = false;
     for (int slot = 0; slot < 2; ++slot)
         m_graphs[slot].reset(captureGraph(m_stream.get(), [&](cudaStream_t s) {
-            enqueueTemporalFeatures(slot, s);
-            enqueueKernelPrediction(slot, s);
-            enqueueFilteringFusion(slot, s);
-            enqueueRefinement(slot, s);
+            enqueueFirstStage(slot, s);
+            enqueueNetwork(slot, s);
             enqueueTaa(slot, s);
             enqueuePostFilter(slot, s);
         }));
@@ -276,11 +279,11 @@ void AfnPipeline::enqueue(Stage stage, cudaStream_t stream) const
     case Stage::TemporalFeatures:
         return enqueueTemporalFeatures(m_slot, stream);
     case Stage::KernelPrediction:
-        return enqueueKernelPrediction(m_slot, stream);
+        return enqueueKernelPrediction(networkSources(m_slot), stream);
     case Stage::FilteringFusion:
-        return enqueueFilteringFusion(m_slot, stream);
+        return enqueueFilteringFusion(networkSources(m_slot), finalOutput(m_slot), stream);
     case Stage::Refinement:
-        return enqueueRefinement(m_slot, stream);
+        return enqueueRefinement(finalOutput(m_slot), stream);
     case Stage::Taa:
         return enqueueTaa(m_slot, stream);
     case Stage::PostFilter:
@@ -302,6 +305,15 @@ void AfnPipeline::setFastTier(bool on)
     if (on == m_fast)
         return;
     m_fast = on;
+    m_layout = FrameLayout {}; // buffers and graphs again at the next frame
+    m_graphsValid = false;
+}
+
+void AfnPipeline::setHighTier(bool on)
+{
+    if (on == m_high)
+        return;
+    m_high = on;
     m_layout = FrameLayout {}; // buffers and graphs again at the next frame
     m_graphsValid = false;
 }
@@ -344,7 +356,7 @@ void AfnPipeline::upload(const Frame& f, const FrameConstants& constants)
     // of the 8-row blocks near no work take the cheap path; the TAA's and the post-filter's
     // margins grow the needed rows.
     m_hostComputedRows.assign(static_cast<std::size_t>(f.height), 1);
-    if (f.hasWorkMask() && !m_fast) {
+    if (f.hasWorkMask() && skipsRows()) {
         const int margin
             = (m_taa ? kTaaWorkMargin : 0) + (m_postFilter ? afnet::kPostFilterRadius : 0);
         if (margin > 0) {

@@ -75,6 +75,9 @@ public:
     /// The quality tier fast (methods/afn/quality_tiers.h): the fused image as the output, no
     /// refinement (weights without one run as they are).
     void setFastTier(bool on);
+    /// The quality tier high (methods/afn/quality_tiers.h): the network on the frame and its three
+    /// mirror images, the outputs mirrored back and averaged.
+    void setHighTier(bool on);
     /// Poison every device buffer with NaN when it is allocated and the output before every
     /// frame, so that a value nothing wrote shows up (tests).
     void setPoison(bool poison) { m_poison = poison; }
@@ -126,10 +129,26 @@ private:
     void captureGraphs();
     ConvOperands operands(const Layer& layer, const Tensor* up, const Tensor& same) const;
     FinalOutput finalOutput(int slot) const;
+    /// What the network reads of a frame (frame size): the slot's buffers, or their mirror
+    /// images for a pass of the quality tier high.
+    struct NetworkSources {
+        const float* color1 = nullptr;
+        const float* colorTa = nullptr;
+        const float* albedo = nullptr;
+        const float* normal = nullptr;
+        const float* depth = nullptr;
+        const float* historyLength = nullptr;
+    };
+    NetworkSources networkSources(int slot) const;
     void enqueueTemporalFeatures(int slot, cudaStream_t stream) const;
-    void enqueueKernelPrediction(int slot, cudaStream_t stream) const;
-    void enqueueFilteringFusion(int slot, cudaStream_t stream) const;
-    void enqueueRefinement(int slot, cudaStream_t stream) const;
+    void enqueueFirstStage(int slot, cudaStream_t stream) const; ///< aux prefilter, TA
+    void enqueuePrepare(const NetworkSources& src, cudaStream_t stream) const;
+    void enqueueKernelPrediction(const NetworkSources& src, cudaStream_t stream) const;
+    void enqueueFilteringFusion(
+        const NetworkSources& src, const FinalOutput& out, cudaStream_t stream) const;
+    void enqueueRefinement(const FinalOutput& out, cudaStream_t stream) const;
+    /// The network from the input preparation to the output: once, or the high tier's passes.
+    void enqueueNetwork(int slot, cudaStream_t stream) const;
     void enqueueTaa(int slot, cudaStream_t stream) const;
     void enqueuePostFilter(int slot, cudaStream_t stream) const;
     TemporalBuffers temporalBuffers(int slot) const;
@@ -144,8 +163,12 @@ private:
     bool m_hasNetwork = false;
     bool m_refine = false; ///< the weights have a refinement (variant full)
     bool m_fast = false; ///< setFastTier()
+    bool m_high = false; ///< setHighTier()
     /// The refinement runs this frame.
     bool refines() const { return m_refine && !m_fast; }
+    /// Work skipping applies (the tiers fast, where it skips the refinement, and high compute
+    /// every pixel, as on the CPU: quality_tiers.h).
+    bool skipsRows() const { return !(m_fast && m_refine) && !m_high; }
     bool m_historyInput = false; ///< the network reads history01 (Network::hasHistoryInput)
     bool m_albedoTrust = false; ///< Network::hasAlbedoTrust
     bool m_taa = false; ///< setTaa()
@@ -185,6 +208,10 @@ private:
     // colour buffers.
     DeviceBuffer<float> m_postPlanes, m_postScratch0, m_postScratch1;
     std::array<DeviceBuffer<float>, 2> m_taaHistory; ///< the TAA's output per slot
+    // The quality tier high: the mirrored network inputs (NetworkSources' order), a pass's
+    // demodulated output and the passes' sum.
+    std::array<DeviceBuffer<float>, 6> m_flipped;
+    DeviceBuffer<float> m_passOut, m_passSum;
     AuxState m_lastAuxState {};
     AuxReport m_lastAux;
     unsigned m_lastCutPixels = 0;

@@ -34,6 +34,19 @@ const float* AfnPipeline::color1Source(int slot) const
     return m_variant == afnet::Variant::Ta ? m_accumulated[slot].data() : m_irradiance.data();
 }
 
+AfnPipeline::NetworkSources AfnPipeline::networkSources(int slot) const
+{
+    const FrameLayout& l = m_layout;
+    NetworkSources src;
+    src.color1 = color1Source(slot);
+    src.colorTa = colorTaSource(slot);
+    src.albedo = l.albedo ? m_albedo.data() : nullptr;
+    src.normal = l.normal ? m_normal[slot].data() : nullptr;
+    src.depth = l.depth ? m_depth[slot].data() : nullptr;
+    src.historyLength = m_historyInput ? m_history[slot].data() : nullptr;
+    return src;
+}
+
 TemporalBuffers AfnPipeline::temporalBuffers(int slot) const
 {
     const FrameLayout& l = m_layout;
@@ -74,7 +87,7 @@ TrustBuffers AfnPipeline::trustBuffers() const
     return t;
 }
 
-void AfnPipeline::enqueueTemporalFeatures(int slot, cudaStream_t stream) const
+void AfnPipeline::enqueueFirstStage(int slot, cudaStream_t stream) const
 {
     const FrameLayout& l = m_layout;
     const int prev = slot ^ 1;
@@ -98,19 +111,28 @@ void AfnPipeline::enqueueTemporalFeatures(int slot, cudaStream_t stream) const
     launchAuxPrefilter(a, b, m_constants.data(), stream);
     launchResetFrameCounters(m_depthRange.data(), m_cutPixels.data(), stream);
     launchTemporal(b, trustBuffers(), m_constants.data(), m_depthRange.data(), stream);
+}
 
+void AfnPipeline::enqueueTemporalFeatures(int slot, cudaStream_t stream) const
+{
+    enqueueFirstStage(slot, stream);
+    enqueuePrepare(networkSources(slot), stream);
+}
+
+void AfnPipeline::enqueuePrepare(const NetworkSources& src, cudaStream_t stream) const
+{
     PrepareBuffers p;
-    p.width = l.width;
-    p.height = l.height;
+    p.width = m_layout.width;
+    p.height = m_layout.height;
     p.paddedWidth = m_paddedWidth;
     p.paddedHeight = m_paddedHeight;
-    p.color1 = color1Source(slot);
-    p.colorTa = colorTaSource(slot);
-    p.albedo = b.albedo;
-    p.normal = b.normal;
-    p.depth = b.depth;
+    p.color1 = src.color1;
+    p.colorTa = src.colorTa;
+    p.albedo = src.albedo;
+    p.normal = src.normal;
+    p.depth = src.depth;
     p.depthRange = m_depthRange.data();
-    p.historyLength = m_historyInput ? m_history[slot].data() : nullptr;
+    p.historyLength = src.historyLength;
     p.x = m_x.data.data();
     p.xHalf = m_xHalf.data.data();
     p.color1Half = m_color1Half.data();
@@ -142,7 +164,7 @@ ConvOperands AfnPipeline::operands(const Layer& layer, const Tensor* up, const T
     return op;
 }
 
-void AfnPipeline::enqueueKernelPrediction(int slot, cudaStream_t stream) const
+void AfnPipeline::enqueueKernelPrediction(const NetworkSources& src, cudaStream_t stream) const
 {
     auto conv = [&](NetLayer l, const Tensor* up, const Tensor& same, const Tensor& out) {
         launchConvRelu(operands(m_layers[layerIndex(l)], up, same),
@@ -162,9 +184,9 @@ void AfnPipeline::enqueueKernelPrediction(int slot, cudaStream_t stream) const
         t.e1Stride = m_e1.stride;
         t.e1Channels = m_layers[layerIndex(NetLayer::Enc1)].packed.outChannels;
         t.head = m_trustHead.data();
-        t.albedo = m_layout.albedo ? m_albedo.data() : nullptr;
-        t.color1 = color1Source(slot);
-        t.colorTa = colorTaSource(slot);
+        t.albedo = src.albedo;
+        t.color1 = src.color1;
+        t.colorTa = src.colorTa;
         t.trust = m_trust.data();
         t.colorTaScaled = m_colorTaScaled.data();
         t.color1Half = m_color1Half.data();
@@ -194,14 +216,15 @@ FinalOutput AfnPipeline::finalOutput(int slot) const
     return o;
 }
 
-void AfnPipeline::enqueueFilteringFusion(int slot, cudaStream_t stream) const
+void AfnPipeline::enqueueFilteringFusion(
+    const NetworkSources& src, const FinalOutput& out, cudaStream_t stream) const
 {
     FilterFuseArgs a;
     a.head1 = operands(m_layers[layerIndex(NetLayer::Head1)], nullptr, m_d1);
     a.headTa = operands(m_layers[layerIndex(NetLayer::HeadTa)], &m_d1, m_x);
     a.x = m_x.data.data();
     // With the albedo trust the TA colour times s, stored at the padded size.
-    a.colorTa.data = m_albedoTrust ? m_colorTaScaled.data() : colorTaSource(slot);
+    a.colorTa.data = m_albedoTrust ? m_colorTaScaled.data() : src.colorTa;
     a.colorTa.width = m_albedoTrust ? m_paddedWidth : m_layout.width;
     a.colorTa.height = m_albedoTrust ? m_paddedHeight : m_layout.height;
     a.colorTa.paddedWidth = m_paddedWidth;
@@ -213,12 +236,12 @@ void AfnPipeline::enqueueFilteringFusion(int slot, cudaStream_t stream) const
         a.fused = m_fused.data();
         a.refineInput = m_refineInput.data.data();
     } else {
-        a.output = finalOutput(slot);
+        a.output = out;
     }
     launchFilterFuse(a, stream);
 }
 
-void AfnPipeline::enqueueRefinement(int slot, cudaStream_t stream) const
+void AfnPipeline::enqueueRefinement(const FinalOutput& out, cudaStream_t stream) const
 {
     if (!refines())
         return;
@@ -228,8 +251,55 @@ void AfnPipeline::enqueueRefinement(int slot, cudaStream_t stream) const
     };
     conv(NetLayer::Ref1, m_refineInput, m_r1);
     conv(NetLayer::Ref2, m_r1, m_r2);
-    launchConvFinal(
-        operands(m_layers[layerIndex(NetLayer::Ref3)], nullptr, m_r2), finalOutput(slot), stream);
+    launchConvFinal(operands(m_layers[layerIndex(NetLayer::Ref3)], nullptr, m_r2), out, stream);
+}
+
+void AfnPipeline::enqueueNetwork(int slot, cudaStream_t stream) const
+{
+    const NetworkSources src = networkSources(slot);
+    if (!m_high) {
+        const FinalOutput out = finalOutput(slot);
+        enqueuePrepare(src, stream);
+        enqueueKernelPrediction(src, stream);
+        enqueueFilteringFusion(src, out, stream);
+        enqueueRefinement(out, stream);
+        return;
+    }
+    // quality=high (high_tier_pixel.h): per pass the inputs mirrored, the network's demodulated
+    // output (nothing skipped), mirrored back into the sum; then the mean, remodulated.
+    const FrameLayout& l = m_layout;
+    const float* given[6]
+        = { src.color1, src.colorTa, src.albedo, src.normal, src.depth, src.historyLength };
+    const int channels[6] = { 3, 3, 3, 3, 1, 1 };
+    for (int pass = 0; pass < kHighTierPasses; ++pass) {
+        const bool fx = (pass & 1) != 0, fy = (pass & 2) != 0;
+        NetworkSources mirrored = src;
+        const float** slots[6] = { &mirrored.color1, &mirrored.colorTa, &mirrored.albedo,
+            &mirrored.normal, &mirrored.depth, &mirrored.historyLength };
+        if (pass > 0)
+            for (int k = 0; k < 6; ++k) {
+                if (!given[k])
+                    continue;
+                launchFlip(
+                    given[k], m_flipped[k].data(), channels[k], l.width, l.height, fx, fy, stream);
+                *slots[k] = m_flipped[k].data();
+            }
+        FinalOutput out = finalOutput(slot);
+        out.albedo = mirrored.albedo; // the albedo of this pass's x (the trust's division)
+        out.computedRows = nullptr;
+        out.demodulated = 1;
+        out.data = m_passOut.data();
+        enqueuePrepare(mirrored, stream);
+        enqueueKernelPrediction(mirrored, stream);
+        enqueueFilteringFusion(mirrored, out, stream);
+        enqueueRefinement(out, stream);
+        launchAddPass(
+            m_passOut.data(), m_passSum.data(), l.width, l.height, fx, fy, pass == 0, stream);
+    }
+    FinalOutput mean = finalOutput(slot);
+    mean.trust = nullptr;
+    mean.computedRows = nullptr;
+    launchAveragePasses(m_passSum.data(), mean, stream);
 }
 
 void AfnPipeline::enqueueTaa(int slot, cudaStream_t stream) const

@@ -135,6 +135,9 @@ struct FinalOutput {
     /// remodulated as the network's output) instead of the network's; null: every row computed
     const unsigned char* computedRows = nullptr;
     const float* cheap = nullptr;
+    /// 1: `data` gets o itself after the albedo trust's division, neither clamped nor remodulated
+    /// (a pass of the quality tier high, high_tier_pixel.h)
+    int demodulated = 0;
     float* data = nullptr; ///< frame size, 3 floats per pixel
     int width = 0; ///< the frame (unpadded)
     int height = 0;
@@ -153,6 +156,8 @@ AFN_HD float outputValue(const FinalOutput& out, int x, int y, int c, float o)
     else if (out.trust)
         o /= trustScale(albedo,
             loadFloat(out.trust + static_cast<std::size_t>(y / 2) * out.trustWidth + x / 2));
+    if (out.demodulated)
+        return o;
     const float a = out.albedo ? albedoFactor(albedo, out.plainAlbedo != 0) : 1.0f;
     return clampIrradiance(o) * a;
 }

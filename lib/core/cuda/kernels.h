@@ -13,6 +13,7 @@
 //                                      (weights with albedoTrust=1)
 //   filterFuse                         heads, softmax, 7 x 7 filtering, Eq. 3
 //   conv x 3 (the last: convFinal)     refinement, residual, remodulation, crop
+//   (quality=high: flip, the network, addPass per pass; averagePasses)
 //   taa                                the output TAA (its output is the next frame's history)
 //   postFilter                         guides, six half-passes of the a-trous smoothing
 #pragma once
@@ -21,6 +22,7 @@
 #include "cuda/aux_prefilter_pixel.h"
 #include "cuda/conv_tile.h"
 #include "cuda/filter_fuse_lane.h"
+#include "cuda/high_tier_pixel.h"
 #include "cuda/post_filter_pixel.h"
 #include "cuda/prepare_block.h"
 #include "cuda/taa_pixel.h"
@@ -74,5 +76,14 @@ void launchTaa(const TaaBuffers& a, const TemporalBuffers& t, const TrustBuffers
 void launchPostFilter(const PostFilterSources& s, const PostFilterPlanes& g,
     const FrameConstants* frame, const float* in, float* out, float* scratch0, float* scratch1,
     cudaStream_t stream);
+
+/// The quality tier high: `dst` = `src` mirrored (`channels` floats per pixel of a w x h frame);
+/// `sum` += `pass` mirrored back (`first`: sum = 0 + pass); the output = the mean of the passes
+/// in `sum`, remodulated (high_tier_pixel.h).
+void launchFlip(const float* src, float* dst, int channels, int w, int h, bool fx, bool fy,
+    cudaStream_t stream);
+void launchAddPass(
+    const float* pass, float* sum, int w, int h, bool fx, bool fy, bool first, cudaStream_t stream);
+void launchAveragePasses(const float* sum, const FinalOutput& out, cudaStream_t stream);
 
 } // namespace afn::cuda

@@ -351,6 +351,27 @@ void emulateFilterFuse(const FilterFuseArgs& a)
         }
 }
 
+void emulateFlip(const float* src, float* dst, int channels, int w, int h, bool fx, bool fy)
+{
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x)
+            flipPixel(src, dst, channels, w, h, x, y, fx, fy);
+}
+
+void emulateAddPass(const float* pass, float* sum, int w, int h, bool fx, bool fy, bool first)
+{
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x)
+            addPassPixel(pass, sum, w, h, x, y, fx, fy, first);
+}
+
+void emulateAveragePasses(const float* sum, const FinalOutput& out)
+{
+    for (int y = 0; y < out.height; ++y)
+        for (int x = 0; x < out.width; ++x)
+            averagePassesPixel(sum, out, x, y);
+}
+
 void emulateTaa(const TaaBuffers& a, const TemporalBuffers& t, const TrustBuffers* trust,
     const FrameConstants& f)
 {

@@ -11,6 +11,7 @@
 #include "cuda/aux_prefilter_pixel.h"
 #include "cuda/conv_tile.h"
 #include "cuda/filter_fuse_lane.h"
+#include "cuda/high_tier_pixel.h"
 #include "cuda/post_filter_pixel.h"
 #include "cuda/prepare_block.h"
 #include "cuda/taa_pixel.h"
@@ -39,6 +40,10 @@ void emulatePool(const std::uint16_t* in, int width, int height, int stride, std
 void emulateConvRelu(const afn::cuda::ConvOperands& op, const afn::cuda::ReluOutput& out);
 void emulateConvFinal(const afn::cuda::ConvOperands& op, const afn::cuda::FinalOutput& out);
 void emulateFilterFuse(const afn::cuda::FilterFuseArgs& a);
+/// high_tier.cu's kernels.
+void emulateFlip(const float* src, float* dst, int channels, int w, int h, bool fx, bool fy);
+void emulateAddPass(const float* pass, float* sum, int w, int h, bool fx, bool fy, bool first);
+void emulateAveragePasses(const float* sum, const afn::cuda::FinalOutput& out);
 /// taa.cu's kernel; `trust` null where the history trust was not measured.
 void emulateTaa(const afn::cuda::TaaBuffers& a, const afn::cuda::TemporalBuffers& t,
     const afn::cuda::TrustBuffers* trust, const afn::cuda::FrameConstants& f);

@@ -215,68 +215,17 @@ void EmulatedAfnPipeline::run(const afn::Frame& f, const FrameConstants& c, afn:
     const bool oneSpp = m_variant == afn::afnet::Variant::OneSpp;
     const bool ta = m_variant == afn::afnet::Variant::Ta;
     float* colorTa = oneSpp ? m_irradiance.data() : m_accumulated[s].data();
-    PrepareBuffers pb;
-    pb.width = m_width;
-    pb.height = m_height;
-    pb.paddedWidth = m_paddedWidth;
-    pb.paddedHeight = m_paddedHeight;
-    pb.color1 = ta ? m_accumulated[s].data() : m_irradiance.data();
-    pb.colorTa = colorTa;
-    pb.albedo = b.albedo;
-    pb.normal = b.normal;
-    pb.depth = b.depth;
-    pb.depthRange = range;
-    pb.historyLength = m_historyInput ? m_history[s].data() : nullptr;
-    pb.x = m_x.data.data();
-    pb.xHalf = m_xHalf.data.data();
-    pb.color1Half = m_color1Half.data();
-    emulatePrepare(pb);
-
-    // KernelPrediction.
-    auto layer = [&](L l) -> const Layer& { return m_layers[static_cast<int>(l)]; };
-    auto conv = [&](L l, const Tensor* up, const Tensor& same, Tensor& o) {
-        emulateConvRelu(operands(layer(l), up, same), ReluOutput { o.data.data(), o.stride });
-    };
-    auto pool = [&](const Tensor& in, Tensor& o) {
-        emulatePool(in.data.data(), in.width, in.height, in.stride, o.data.data());
-    };
-    conv(L::Enc1, nullptr, m_xHalf, m_e1);
-    if (m_albedoTrust) {
-        AlbedoTrustBuffers at;
-        at.width = m_width;
-        at.height = m_height;
-        at.halfWidth = m_e1.width;
-        at.halfHeight = m_e1.height;
-        at.e1 = m_e1.data.data();
-        at.e1Stride = m_e1.stride;
-        at.e1Channels = layer(L::Enc1).packed.outChannels;
-        at.head = m_trustHead.data();
-        at.albedo = b.albedo;
-        at.color1 = pb.color1;
-        at.colorTa = colorTa;
-        at.trust = m_trust.data();
-        at.colorTaScaled = m_colorTaScaled.data();
-        at.color1Half = m_color1Half.data();
-        emulateAlbedoTrust(at);
-    }
-    pool(m_e1, m_e1Pool);
-    conv(L::Enc2, nullptr, m_e1Pool, m_e2);
-    pool(m_e2, m_e2Pool);
-    conv(L::Enc3, nullptr, m_e2Pool, m_e3);
-    conv(L::Dec2, &m_e3, m_e2, m_d2);
-    conv(L::Dec1, &m_d2, m_e1, m_d1);
-
-    // FilteringFusion.
+    const NetworkSources src { ta ? m_accumulated[s].data() : m_irradiance.data(), colorTa,
+        b.albedo, b.normal, b.depth, m_historyInput ? m_history[s].data() : nullptr };
     FinalOutput fo;
-    const bool refines = m_refine && !m_fast;
-    fo.fused = refines ? m_fused.data() : nullptr;
+    fo.fused = m_fused.data();
     fo.albedo = b.albedo;
     fo.plainAlbedo = c.colorDemodulated;
     fo.trust = m_albedoTrust ? m_trust.data() : nullptr;
     fo.trustWidth = m_paddedWidth / 2;
-    // Work skipping (AfnPipeline::upload).
+    // Work skipping (AfnPipeline::upload, skipsRows()).
     std::vector<char> computed(static_cast<std::size_t>(m_height), 1);
-    if (f.hasWorkMask() && !m_fast) {
+    if (f.hasWorkMask() && !(m_fast && m_refine) && !m_high) {
         const int margin = (m_taa ? afn::kTaaWorkMargin : 0)
             + (m_postFilter ? afn::afnet::kPostFilterRadius : 0);
         afn::Image grown;
@@ -290,28 +239,40 @@ void EmulatedAfnPipeline::run(const afn::Frame& f, const FrameConstants& c, afn:
     fo.data = m_output.data();
     fo.width = m_width;
     fo.height = m_height;
-    FilterFuseArgs a;
-    a.head1 = operands(layer(L::Head1), nullptr, m_d1);
-    a.headTa = operands(layer(L::HeadTa), &m_d1, m_x);
-    a.x = m_x.data.data();
-    a.colorTa = m_albedoTrust
-        ? PaddedColor { m_colorTaScaled.data(), m_paddedWidth, m_paddedHeight, m_paddedWidth,
-              m_paddedHeight }
-        : PaddedColor { colorTa, m_width, m_height, m_paddedWidth, m_paddedHeight };
-    a.color1Half = PlainColor { m_color1Half.data(), m_paddedWidth / 2, m_paddedHeight / 2 };
-    if (refines) {
-        a.fused = m_fused.data();
-        a.refineInput = m_refineInput.data.data();
-    } else {
-        a.output = fo;
-    }
-    emulateFilterFuse(a);
-
-    // Refinement.
-    if (refines) {
-        conv(L::Ref1, nullptr, m_refineInput, m_r1);
-        conv(L::Ref2, nullptr, m_r1, m_r2);
-        emulateConvFinal(operands(layer(L::Ref3), nullptr, m_r2), fo);
+    if (!m_high) {
+        runNetwork(src, fo, range);
+    } else { // AfnPipeline::enqueueNetwork
+        const std::size_t n = static_cast<std::size_t>(m_width) * m_height;
+        const float* given[6]
+            = { src.color1, src.colorTa, src.albedo, src.normal, src.depth, src.historyLength };
+        const int channels[6] = { 3, 3, 3, 3, 1, 1 };
+        std::vector<float> flipped[6], passOut(3 * n, std::nanf("")), passSum(3 * n);
+        for (int pass = 0; pass < kHighTierPasses; ++pass) {
+            const bool fx = (pass & 1) != 0, fy = (pass & 2) != 0;
+            NetworkSources mirrored = src;
+            const float** slots[6] = { &mirrored.color1, &mirrored.colorTa, &mirrored.albedo,
+                &mirrored.normal, &mirrored.depth, &mirrored.historyLength };
+            if (pass > 0)
+                for (int k = 0; k < 6; ++k) {
+                    if (!given[k])
+                        continue;
+                    flipped[k].assign(channels[k] * n, std::nanf(""));
+                    emulateFlip(
+                        given[k], flipped[k].data(), channels[k], m_width, m_height, fx, fy);
+                    *slots[k] = flipped[k].data();
+                }
+            FinalOutput out = fo;
+            out.albedo = mirrored.albedo;
+            out.computedRows = nullptr;
+            out.demodulated = 1;
+            out.data = passOut.data();
+            runNetwork(mirrored, out, range);
+            emulateAddPass(passOut.data(), passSum.data(), m_width, m_height, fx, fy, pass == 0);
+        }
+        FinalOutput mean = fo;
+        mean.trust = nullptr;
+        mean.computedRows = nullptr;
+        emulateAveragePasses(passSum.data(), mean);
     }
 
     m_radianceImage = afn::Image(m_width, m_height, 3);
@@ -366,6 +327,88 @@ void EmulatedAfnPipeline::run(const afn::Frame& f, const FrameConstants& c, afn:
     m_historyLengthImage = afn::Image(m_width, m_height, 1);
     std::copy(m_history[s].begin(), m_history[s].end(), m_historyLengthImage.data());
     m_slot ^= 1;
+}
+
+void EmulatedAfnPipeline::runNetwork(
+    const NetworkSources& src, const FinalOutput& fo, const std::uint32_t* range)
+{
+    using L = afn::afnet::Network::Layer;
+    PrepareBuffers pb;
+    pb.width = m_width;
+    pb.height = m_height;
+    pb.paddedWidth = m_paddedWidth;
+    pb.paddedHeight = m_paddedHeight;
+    pb.color1 = src.color1;
+    pb.colorTa = src.colorTa;
+    pb.albedo = src.albedo;
+    pb.normal = src.normal;
+    pb.depth = src.depth;
+    pb.depthRange = range;
+    pb.historyLength = src.historyLength;
+    pb.x = m_x.data.data();
+    pb.xHalf = m_xHalf.data.data();
+    pb.color1Half = m_color1Half.data();
+    emulatePrepare(pb);
+
+    // KernelPrediction.
+    auto layer = [&](L l) -> const Layer& { return m_layers[static_cast<int>(l)]; };
+    auto conv = [&](L l, const Tensor* up, const Tensor& same, Tensor& o) {
+        emulateConvRelu(operands(layer(l), up, same), ReluOutput { o.data.data(), o.stride });
+    };
+    auto pool = [&](const Tensor& in, Tensor& o) {
+        emulatePool(in.data.data(), in.width, in.height, in.stride, o.data.data());
+    };
+    conv(L::Enc1, nullptr, m_xHalf, m_e1);
+    if (m_albedoTrust) {
+        AlbedoTrustBuffers at;
+        at.width = m_width;
+        at.height = m_height;
+        at.halfWidth = m_e1.width;
+        at.halfHeight = m_e1.height;
+        at.e1 = m_e1.data.data();
+        at.e1Stride = m_e1.stride;
+        at.e1Channels = layer(L::Enc1).packed.outChannels;
+        at.head = m_trustHead.data();
+        at.albedo = src.albedo;
+        at.color1 = src.color1;
+        at.colorTa = src.colorTa;
+        at.trust = m_trust.data();
+        at.colorTaScaled = m_colorTaScaled.data();
+        at.color1Half = m_color1Half.data();
+        emulateAlbedoTrust(at);
+    }
+    pool(m_e1, m_e1Pool);
+    conv(L::Enc2, nullptr, m_e1Pool, m_e2);
+    pool(m_e2, m_e2Pool);
+    conv(L::Enc3, nullptr, m_e2Pool, m_e3);
+    conv(L::Dec2, &m_e3, m_e2, m_d2);
+    conv(L::Dec1, &m_d2, m_e1, m_d1);
+
+    // FilteringFusion.
+    const bool refines = m_refine && !m_fast;
+    FilterFuseArgs a;
+    a.head1 = operands(layer(L::Head1), nullptr, m_d1);
+    a.headTa = operands(layer(L::HeadTa), &m_d1, m_x);
+    a.x = m_x.data.data();
+    a.colorTa = m_albedoTrust
+        ? PaddedColor { m_colorTaScaled.data(), m_paddedWidth, m_paddedHeight, m_paddedWidth,
+              m_paddedHeight }
+        : PaddedColor { src.colorTa, m_width, m_height, m_paddedWidth, m_paddedHeight };
+    a.color1Half = PlainColor { m_color1Half.data(), m_paddedWidth / 2, m_paddedHeight / 2 };
+    if (refines) {
+        a.fused = m_fused.data();
+        a.refineInput = m_refineInput.data.data();
+    } else {
+        a.output = fo;
+    }
+    emulateFilterFuse(a);
+
+    // Refinement.
+    if (refines) {
+        conv(L::Ref1, nullptr, m_refineInput, m_r1);
+        conv(L::Ref2, nullptr, m_r1, m_r2);
+        emulateConvFinal(operands(layer(L::Ref3), nullptr, m_r2), fo);
+    }
 }
 
 afn::Image EmulatedAfnPipeline::networkInput() const

@@ -24,8 +24,9 @@ public:
     /// Run the TAA and the post-filter on the output (AfnPipeline::setTaa, setPostFilter).
     void setTaa(bool on) { m_taa = on; }
     void setPostFilter(bool on) { m_postFilter = on; }
-    /// The quality tier fast (AfnPipeline::setFastTier): no refinement.
+    /// The quality tiers fast (no refinement) and high (AfnPipeline::setFastTier, setHighTier).
     void setFastTier(bool on) { m_fast = on; }
+    void setHighTier(bool on) { m_high = on; }
     /// Denoise a gathered frame (as AfnCudaFilter::denoise) into `out` (3 ch, frame size).
     void run(const afn::Frame& frame, const afn::cuda::FrameConstants& constants, afn::Image& out);
 
@@ -60,10 +61,19 @@ private:
     afn::cuda::ConvOperands operands(
         const Layer& layer, const Tensor* up, const Tensor& same) const;
     void allocate(const afn::Frame& frame);
+    /// AfnPipeline::NetworkSources: what the network reads of a frame.
+    struct NetworkSources {
+        const float *color1, *colorTa, *albedo, *normal, *depth, *historyLength;
+    };
+    /// The network from its input to `fo` (AfnPipeline's prepare, prediction, filtering and
+    /// fusion, refinement).
+    void runNetwork(
+        const NetworkSources& src, const afn::cuda::FinalOutput& fo, const std::uint32_t* range);
 
     afn::afnet::Variant m_variant;
     bool m_refine;
     bool m_fast = false;
+    bool m_high = false;
     bool m_historyInput;
     bool m_albedoTrust;
     bool m_taa = false;

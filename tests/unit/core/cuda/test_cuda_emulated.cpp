@@ -22,6 +22,7 @@
 #include <algorithm>
 #include <cmath>
 #include <iostream>
+#include <string>
 
 using namespace afntest;
 
@@ -87,19 +88,20 @@ namespace {
 
 /// Run the CPU filter and the emulated CUDA engine on a sequence; every frame within tolerance.
 void expectFilterParity(const std::vector<char>& weights, int width, int height,
-    const SequenceInputs& inputs, int frames, bool noisyAovs = false, bool fast = false)
+    const SequenceInputs& inputs, int frames, bool noisyAovs = false,
+    const std::string& quality = "balanced")
 {
     auto cpu = afn::createFilter("afn");
     afntest::configureAsOnTheGpu(*cpu);
-    if (fast)
-        cpu->params().setString("quality", "fast");
+    cpu->params().setString("quality", quality);
     cpu->setData(AFN_DATA_WEIGHTS, weights.data(), weights.size());
     const afn::afnet::Network net = afn::afnet::networkFromData(weights.data(), weights.size());
     afntest::EmulatedAfnPipeline emulated(net);
     // taa=auto and postFilter=auto: on for weights trained below 16 spp, as on the CPU.
     emulated.setTaa(net.trainedSpp() < afn::afnet::kTaaAutoMaxSppExclusive);
     emulated.setPostFilter(net.trainedSpp() < afn::afnet::kPostFilterAutoMaxSppExclusive);
-    emulated.setFastTier(fast);
+    emulated.setFastTier(quality == "fast");
+    emulated.setHighTier(quality == "high");
     const afntest::SyntheticSequence seq(width, height, 11);
     afntest::FrameGatherer gatherer;
     gatherer.workSkipping = true; // skip=on, the CPU filter's default
@@ -151,11 +153,18 @@ TEST(CudaEmulated, FilterMatchesCpuWithHistoryInputAndAlbedoTrust)
 }
 
 // The quality tier fast: the fused image as the output (with the albedo trust undone), no
-// refinement.
-TEST(CudaEmulated, FilterMatchesCpuInTheFastTier)
+// refinement; and high: the network on the frame and its mirror images, averaged (every row
+// computed, work skipping or not).
+TEST(CudaEmulated, FilterMatchesCpuInTheFastAndHighTiers)
 {
-    for (const char* name : { "weights_full.afnw", "weights_trust.afnw" })
-        expectFilterParity(testWeights(name), 37, 21, SequenceInputs {}, 3, false, true);
+    for (const char* tier : { "fast", "high" })
+        for (const char* name :
+            { "weights_full.afnw", "weights_trust.afnw", "weights_fusion.afnw" }) {
+            SCOPED_TRACE(std::string(tier) + ", " + name);
+            expectFilterParity(testWeights(name), 37, 21, SequenceInputs {}, 3, false, tier);
+        }
+    expectFilterParity(
+        testWeights("weights_trust.afnw"), 45, 240, SequenceInputs {}, 2, false, "high");
 }
 
 // Work skipping (skip=on, the default): a sky band of 30 rows leaves its first 8-row block beyond
