@@ -364,7 +364,8 @@ FilterType filterType()
                  "rows of one; with the post-filter: 14 more), in 8-row steps; those pixels take "
                  "the temporally accumulated colour (and TAA, post-filter); needed pixels "
                  "bit-identical to skip=off (with TAA while they move less than a pixel per frame "
-                 "relative to the mask); not on a CUDA device";
+                 "relative to the mask); on a CUDA device the same pixels take that colour, "
+                 "the network still runs over them";
     return t;
 }
 

@@ -16,8 +16,7 @@ const ParamBinding<Settings>& settingsBinding()
                   "temporal anti-aliasing of the output (as svgf's taa: history clamped to the "
                   "current frame's 3x3 neighbourhood in YCoCg, then blended); auto: on for the "
                   "models trained below 16 spp, off for the 16- and 64-spp ones; under work "
-                  "skipping the network then also computes 3 rows around the needed ones; CPU "
-                  "device only (on CUDA auto runs as off)")
+                  "skipping the network then also computes 3 rows around the needed ones")
               .add(&S::taaAlpha, "taaAlpha", 0.0, 1.0, "TAA blend factor",
                   "weight of the current frame in the TAA blend (0.7, chosen on training "
                   "sequences; svgf and BMFR use 0.2)")
@@ -27,7 +26,7 @@ const ParamBinding<Settings>& settingsBinding()
                   "albedo, normal, depth and luminance differences) against low-frequency "
                   "blotches; auto: on for the models trained below 16 spp, off for the 16- and "
                   "64-spp ones; under work skipping the network then also computes 14 rows "
-                  "around the needed ones; CPU device only (on CUDA auto runs as off)")
+                  "around the needed ones")
               .add(&S::precision, "precision",
                   { { "auto", R::Auto }, { "fp32", R::Fp32 }, { "bf16", R::Bf16 } }, "precision",
                   "arithmetic of the network's convolutions: bf16 operands with fp32 sums, or "
