@@ -222,6 +222,11 @@ TEST_F(CudaAfn, ParityOnTheBlenderSequence)
         std::cout << "[ parity ] examples/sequence frame " << k << ": " << d.text() << "\n";
         EXPECT_TRUE(d.within(tolerance)) << "frame " << k << ": " << d.text();
     }
+    // The per-frame log's model line, as the CPU filter's for this full-input frame.
+    std::string gpuModel, cpuModel;
+    ASSERT_TRUE(gpu->stringStatistic(AFN_STAT_AFN_MODEL, gpuModel));
+    ASSERT_TRUE(cpu->stringStatistic(AFN_STAT_AFN_MODEL, cpuModel));
+    EXPECT_EQ(gpuModel, cpuModel);
 }
 
 TEST_F(CudaAfn, OtherMethodsAreUnsupportedOnTheCudaDevice)

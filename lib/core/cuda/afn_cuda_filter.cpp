@@ -78,9 +78,26 @@ void AfnCudaFilter::configure()
     }
 }
 
+bool AfnCudaFilter::stringStatistic(const std::string& name, std::string& value) const
+{
+    if (name != AFN_STAT_AFN_MODEL)
+        return false;
+    value = m_modelText;
+    return true;
+}
+
 void AfnCudaFilter::denoise(const Frame& in, Image& out)
 {
     reportProgress(0.1);
+    const afnet::InputSet available { in.hasAlbedo(), in.hasNormal(), in.hasDepth(),
+        in.hasMotion() || (in.hasPosition() && in.camera.valid) };
+    const afnet::InputSet missing { !available.albedo, !available.normal, !available.depth, false };
+    m_modelText = m_chosen ? afnet::describeChoice(afnet::InputSet::full(), *m_chosen)
+                           : "model given with afnSetFilterData";
+    if (missing.count() > 0)
+        m_modelText += "; absent, held at neutral values: " + afnet::inputSetKey(missing);
+    if (!available.temporal)
+        m_modelText += "; no motion or position: the history reprojected as for a static camera";
     FrameConstants c = frameConstants(in, m_reproject, m_accumulation, m_trust, m_aux);
     c.taaAlpha = m_taaAlpha;
     m_pipeline.run(in, c, out);

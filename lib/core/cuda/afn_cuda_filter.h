@@ -34,6 +34,10 @@ public:
     const AuxReport& auxReport() const override { return m_pipeline.lastAuxReport(); }
     bool auxNoisy() const override { return m_pipeline.lastAuxReport().noisy; }
     bool auxGrainLimited() const override { return m_pipeline.lastAuxReport().grainLimited; }
+    /// AFN_STAT_AFN_MODEL: the model that ran on the last frame, as the CPU filter says it, and
+    /// the inputs the frame lacked (held at their neutral values: the GPU has only full-input
+    /// models).
+    bool stringStatistic(const std::string& name, std::string& value) const override;
 
 private:
     void configure() override;
@@ -52,6 +56,7 @@ private:
     HistoryTrustSettings m_trust;
     AuxSettings m_aux;
     float m_taaAlpha = 0.7f; ///< afnet::Settings::taaAlpha
+    std::string m_modelText; ///< stringStatistic(AFN_STAT_AFN_MODEL) of the last frame
     AfnPipeline m_pipeline;
 };
 
