@@ -97,7 +97,8 @@ void AfnCudaFilter::denoise(const Frame& in, Image& out)
     if (missing.count() > 0)
         m_modelText += "; absent, held at neutral values: " + afnet::inputSetKey(missing);
     if (!available.temporal)
-        m_modelText += "; no motion or position: the history reprojected as for a static camera";
+        m_modelText += "; no motion or position: run without its temporal branch";
+    m_pipeline.setTemporalInputs(available.temporal);
     FrameConstants c = frameConstants(in, m_reproject, m_accumulation, m_trust, m_aux);
     c.taaAlpha = m_taaAlpha;
     m_pipeline.run(in, c, out);

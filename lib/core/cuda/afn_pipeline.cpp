@@ -318,6 +318,14 @@ void AfnPipeline::setHighTier(bool on)
     m_graphsValid = false;
 }
 
+void AfnPipeline::setTemporalInputs(bool on)
+{
+    if (on == m_temporalInputs)
+        return;
+    m_temporalInputs = on;
+    m_graphsValid = false; // the same buffers, other sources
+}
+
 void AfnPipeline::setPostFilter(bool on)
 {
     if (on == m_postFilter)

@@ -78,6 +78,10 @@ public:
     /// The quality tier high (methods/afn/quality_tiers.h): the network on the frame and its three
     /// mirror images, the outputs mirrored back and averaged.
     void setHighTier(bool on);
+    /// Whether the frames have motion vectors, or positions and cameras. Without them the network
+    /// runs without its temporal branch, as the CPU's model for such frames does
+    /// (methods/afn/network_inputs.h): the TA input is this frame's colour, history01 is 1.
+    void setTemporalInputs(bool on);
     /// Poison every device buffer with NaN when it is allocated and the output before every
     /// frame, so that a value nothing wrote shows up (tests).
     void setPoison(bool poison) { m_poison = poison; }
@@ -164,6 +168,7 @@ private:
     bool m_refine = false; ///< the weights have a refinement (variant full)
     bool m_fast = false; ///< setFastTier()
     bool m_high = false; ///< setHighTier()
+    bool m_temporalInputs = true; ///< setTemporalInputs()
     /// The refinement runs this frame.
     bool refines() const { return m_refine && !m_fast; }
     /// Work skipping applies (the tiers fast, where it skips the refinement, and high compute

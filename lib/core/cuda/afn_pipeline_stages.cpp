@@ -38,12 +38,14 @@ AfnPipeline::NetworkSources AfnPipeline::networkSources(int slot) const
 {
     const FrameLayout& l = m_layout;
     NetworkSources src;
-    src.color1 = color1Source(slot);
-    src.colorTa = colorTaSource(slot);
+    // Without temporal inputs the network runs without its temporal branch (network_inputs.h):
+    // both colours are this frame's.
+    src.color1 = m_temporalInputs ? color1Source(slot) : m_irradiance.data();
+    src.colorTa = m_temporalInputs ? colorTaSource(slot) : src.color1;
     src.albedo = l.albedo ? m_albedo.data() : nullptr;
     src.normal = l.normal ? m_normal[slot].data() : nullptr;
     src.depth = l.depth ? m_depth[slot].data() : nullptr;
-    src.historyLength = m_historyInput ? m_history[slot].data() : nullptr;
+    src.historyLength = m_historyInput && m_temporalInputs ? m_history[slot].data() : nullptr;
     return src;
 }
 
@@ -132,6 +134,7 @@ void AfnPipeline::enqueuePrepare(const NetworkSources& src, cudaStream_t stream)
     p.normal = src.normal;
     p.depth = src.depth;
     p.depthRange = m_depthRange.data();
+    p.historyChannel = m_historyInput ? 1 : 0;
     p.historyLength = src.historyLength;
     p.x = m_x.data.data();
     p.xHalf = m_xHalf.data.data();
@@ -209,7 +212,7 @@ FinalOutput AfnPipeline::finalOutput(int slot) const
     o.trust = m_albedoTrust ? m_trust.data() : nullptr;
     o.trustWidth = m_paddedWidth / 2;
     o.computedRows = m_computedRows.data();
-    o.cheap = colorTaSource(slot);
+    o.cheap = networkSources(slot).colorTa; // the network's own TA input (Network::run)
     o.data = m_output.data();
     o.width = m_layout.width;
     o.height = m_layout.height;

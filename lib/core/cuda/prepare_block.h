@@ -87,8 +87,10 @@ struct PrepareBuffers {
     const float* normal = nullptr; ///< 3 ch or null (normal01 = 0.5)
     const float* depth = nullptr; ///< 1 ch or null (depth01 = 0)
     const std::uint32_t* depthRange = nullptr; ///< ordered keys of the valid depths' min, max
-    /// 1 ch, the frames the TA colour holds: history01 becomes x's 14th channel; null: 13
-    /// channels (weights without the history input)
+    /// x has the 14th channel history01 (weights with the history input)
+    int historyChannel = 0;
+    /// 1 ch, the frames the TA colour holds (history01 = historyToUnit); null: history01 = 1
+    /// (a network run without its temporal branch)
     const float* historyLength = nullptr;
     std::uint16_t* x = nullptr; ///< padded frame, kInputStride halves per pixel
     std::uint16_t* xHalf = nullptr; ///< half of the padded frame, kInputStride halves per pixel
@@ -98,7 +100,7 @@ struct PrepareBuffers {
 /// Prepare block (xh, yh) of the half-resolution grid.
 AFN_HD void prepareBlock(const PrepareBuffers& b, const DepthScale& ds, int xh, int yh)
 {
-    const int channels = b.historyLength ? kHistoryInputChannels : kInputChannels;
+    const int channels = b.historyChannel ? kHistoryInputChannels : kInputChannels;
     float sum[kHistoryInputChannels] = {};
     float sum1[3] = { 0.0f, 0.0f, 0.0f };
     for (int q = 0; q < 4; ++q) {
@@ -115,7 +117,7 @@ AFN_HD void prepareBlock(const PrepareBuffers& b, const DepthScale& ds, int xh, 
             sum1[c] += c1;
         }
         v[12] = b.depth ? depthToUnit(b.depth[s], ds) : 0.0f;
-        v[13] = b.historyLength ? historyToUnit(b.historyLength[s]) : 0.0f;
+        v[13] = b.historyLength ? historyToUnit(b.historyLength[s]) : 1.0f;
         std::uint32_t words[kInputStride / 2];
         for (int w = 0; w < kInputStride / 2; ++w) {
             const int c = 2 * w;

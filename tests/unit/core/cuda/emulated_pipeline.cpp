@@ -215,8 +215,10 @@ void EmulatedAfnPipeline::run(const afn::Frame& f, const FrameConstants& c, afn:
     const bool oneSpp = m_variant == afn::afnet::Variant::OneSpp;
     const bool ta = m_variant == afn::afnet::Variant::Ta;
     float* colorTa = oneSpp ? m_irradiance.data() : m_accumulated[s].data();
-    const NetworkSources src { ta ? m_accumulated[s].data() : m_irradiance.data(), colorTa,
-        b.albedo, b.normal, b.depth, m_historyInput ? m_history[s].data() : nullptr };
+    // AfnPipeline::networkSources: without temporal inputs both colours are this frame's.
+    const float* color1 = ta && m_temporalInputs ? m_accumulated[s].data() : m_irradiance.data();
+    const NetworkSources src { color1, m_temporalInputs ? colorTa : color1, b.albedo, b.normal,
+        b.depth, m_historyInput && m_temporalInputs ? m_history[s].data() : nullptr };
     FinalOutput fo;
     fo.fused = m_fused.data();
     fo.albedo = b.albedo;
@@ -235,7 +237,7 @@ void EmulatedAfnPipeline::run(const afn::Frame& f, const FrameConstants& c, afn:
     }
     const std::vector<unsigned char> rows(computed.begin(), computed.end());
     fo.computedRows = rows.data();
-    fo.cheap = colorTa;
+    fo.cheap = src.colorTa;
     fo.data = m_output.data();
     fo.width = m_width;
     fo.height = m_height;
@@ -344,6 +346,7 @@ void EmulatedAfnPipeline::runNetwork(
     pb.normal = src.normal;
     pb.depth = src.depth;
     pb.depthRange = range;
+    pb.historyChannel = m_historyInput ? 1 : 0;
     pb.historyLength = src.historyLength;
     pb.x = m_x.data.data();
     pb.xHalf = m_xHalf.data.data();

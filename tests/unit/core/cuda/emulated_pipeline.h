@@ -27,6 +27,8 @@ public:
     /// The quality tiers fast (no refinement) and high (AfnPipeline::setFastTier, setHighTier).
     void setFastTier(bool on) { m_fast = on; }
     void setHighTier(bool on) { m_high = on; }
+    /// AfnPipeline::setTemporalInputs.
+    void setTemporalInputs(bool on) { m_temporalInputs = on; }
     /// Denoise a gathered frame (as AfnCudaFilter::denoise) into `out` (3 ch, frame size).
     void run(const afn::Frame& frame, const afn::cuda::FrameConstants& constants, afn::Image& out);
 
@@ -74,6 +76,7 @@ private:
     bool m_refine;
     bool m_fast = false;
     bool m_high = false;
+    bool m_temporalInputs = true;
     bool m_historyInput;
     bool m_albedoTrust;
     bool m_taa = false;
