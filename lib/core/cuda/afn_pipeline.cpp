@@ -6,7 +6,6 @@
 #include "cuda/gpu.h"
 #include "methods/afn/post_filter.h"
 #include "methods/afn/work_rows.h"
-#include "stages/taa.h"
 #include "stages/temporal_accumulation.h"
 
 namespace afn::cuda {
@@ -208,9 +207,8 @@ void AfnPipeline::allocate(const FrameLayout& layout)
     allocateBuffer(m_postScratch1, m_postFilter ? 3 * n : 0, p, st);
     for (auto& h : m_taaHistory)
         allocateBuffer(h, m_taa ? 3 * n : 0, p, st);
-    const int flippedChannels[6] = { 3, 3, 3, 3, 1, 1 };
     for (int k = 0; k < 6; ++k)
-        allocateBuffer(m_flipped[k], m_high ? flippedChannels[k] * n : 0, p, st);
+        allocateBuffer(m_flipped[k], m_high ? kNetworkSourceChannels[k] * n : 0, p, st);
     allocateBuffer(m_passOut, m_high ? 3 * n : 0, p, st);
     allocateBuffer(m_passSum, m_high ? 3 * n : 0, p, st);
     allocateBuffer(m_constants, 1, p, st);
@@ -291,29 +289,11 @@ void AfnPipeline::enqueue(Stage stage, cudaStream_t stream) const
     }
 }
 
-void AfnPipeline::setTaa(bool on)
+void AfnPipeline::setOption(bool& option, bool on)
 {
-    if (on == m_taa)
+    if (on == option)
         return;
-    m_taa = on;
-    m_layout = FrameLayout {}; // buffers and graphs again at the next frame
-    m_graphsValid = false;
-}
-
-void AfnPipeline::setFastTier(bool on)
-{
-    if (on == m_fast)
-        return;
-    m_fast = on;
-    m_layout = FrameLayout {}; // buffers and graphs again at the next frame
-    m_graphsValid = false;
-}
-
-void AfnPipeline::setHighTier(bool on)
-{
-    if (on == m_high)
-        return;
-    m_high = on;
+    option = on;
     m_layout = FrameLayout {}; // buffers and graphs again at the next frame
     m_graphsValid = false;
 }
@@ -324,15 +304,6 @@ void AfnPipeline::setTemporalInputs(bool on)
         return;
     m_temporalInputs = on;
     m_graphsValid = false; // the same buffers, other sources
-}
-
-void AfnPipeline::setPostFilter(bool on)
-{
-    if (on == m_postFilter)
-        return;
-    m_postFilter = on;
-    m_layout = FrameLayout {}; // buffers and graphs again at the next frame
-    m_graphsValid = false;
 }
 
 void AfnPipeline::upload(const Frame& f, const FrameConstants& constants)
@@ -364,16 +335,9 @@ void AfnPipeline::upload(const Frame& f, const FrameConstants& constants)
     // of the 8-row blocks near no work take the cheap path; the TAA's and the post-filter's
     // margins grow the needed rows.
     m_hostComputedRows.assign(static_cast<std::size_t>(f.height), 1);
-    if (f.hasWorkMask() && skipsRows()) {
-        const int margin
-            = (m_taa ? kTaaWorkMargin : 0) + (m_postFilter ? afnet::kPostFilterRadius : 0);
-        if (margin > 0) {
-            afnet::growWorkRows(f.work, margin, m_grownWork);
-            m_hostComputedRows = afnet::computedRows(&m_grownWork, f.height);
-        } else {
-            m_hostComputedRows = afnet::computedRows(&f.work, f.height);
-        }
-    }
+    if (f.hasWorkMask() && skipsRows())
+        m_hostComputedRows = afnet::computedRows(
+            f.work, afnet::workMargin(m_taa, m_postFilter), f.height, m_grownWork);
     AFN_CUDA_CHECK(cudaMemcpyAsync(m_computedRows.data(), m_hostComputedRows.data(),
         m_computedRows.bytes(), cudaMemcpyHostToDevice, s));
     AFN_CUDA_CHECK(cudaStreamSynchronize(s)); // the host rows are rewritten next frame

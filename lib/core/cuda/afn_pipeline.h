@@ -70,14 +70,14 @@ public:
     void setNetwork(const afnet::Network& network);
     /// Run afn's output TAA (stages/taa.h) and post-filter (methods/afn/post_filter.h) on the
     /// output from the next frame on.
-    void setTaa(bool on);
-    void setPostFilter(bool on);
+    void setTaa(bool on) { setOption(m_taa, on); }
+    void setPostFilter(bool on) { setOption(m_postFilter, on); }
     /// The quality tier fast (methods/afn/quality_tiers.h): the fused image as the output, no
     /// refinement (weights without one run as they are).
-    void setFastTier(bool on);
+    void setFastTier(bool on) { setOption(m_fast, on); }
     /// The quality tier high (methods/afn/quality_tiers.h): the network on the frame and its three
     /// mirror images, the outputs mirrored back and averaged.
-    void setHighTier(bool on);
+    void setHighTier(bool on) { setOption(m_high, on); }
     /// Whether the frames have motion vectors, or positions and cameras. Without them the network
     /// runs without its temporal branch, as the CPU's model for such frames does
     /// (methods/afn/network_inputs.h): the TA input is this frame's colour, history01 is 1.
@@ -153,6 +153,9 @@ private:
     void enqueueRefinement(const FinalOutput& out, cudaStream_t stream) const;
     /// The network from the input preparation to the output: once, or the high tier's passes.
     void enqueueNetwork(int slot, cudaStream_t stream) const;
+    /// Set an option that changes the buffers or graphs (reallocated and captured at the next
+    /// frame when it changes).
+    void setOption(bool& option, bool on);
     void enqueueTaa(int slot, cudaStream_t stream) const;
     void enqueuePostFilter(int slot, cudaStream_t stream) const;
     TemporalBuffers temporalBuffers(int slot) const;

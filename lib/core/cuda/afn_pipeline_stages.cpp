@@ -273,7 +273,6 @@ void AfnPipeline::enqueueNetwork(int slot, cudaStream_t stream) const
     const FrameLayout& l = m_layout;
     const float* given[6]
         = { src.color1, src.colorTa, src.albedo, src.normal, src.depth, src.historyLength };
-    const int channels[6] = { 3, 3, 3, 3, 1, 1 };
     for (int pass = 0; pass < kHighTierPasses; ++pass) {
         const bool fx = (pass & 1) != 0, fy = (pass & 2) != 0;
         NetworkSources mirrored = src;
@@ -283,8 +282,8 @@ void AfnPipeline::enqueueNetwork(int slot, cudaStream_t stream) const
             for (int k = 0; k < 6; ++k) {
                 if (!given[k])
                     continue;
-                launchFlip(
-                    given[k], m_flipped[k].data(), channels[k], l.width, l.height, fx, fy, stream);
+                launchFlip(given[k], m_flipped[k].data(), kNetworkSourceChannels[k], l.width,
+                    l.height, fx, fy, stream);
                 *slots[k] = m_flipped[k].data();
             }
         FinalOutput out = finalOutput(slot);

@@ -14,6 +14,9 @@
 namespace afn::cuda {
 
 constexpr int kHighTierPasses = 4;
+/// Channels of the network's frame-size sources in their order (AfnPipeline::NetworkSources:
+/// color1, colorTa, albedo, normal, depth, historyLength), each mirrored for a pass.
+constexpr int kNetworkSourceChannels[6] = { 3, 3, 3, 3, 1, 1 };
 
 /// dst(x, y) = src(x', y') of a `channels`-channel frame, x' = w - 1 - x where fx, y' likewise.
 AFN_HD void flipPixel(

@@ -249,7 +249,7 @@ private:
             || (m_settings.postFilter == Settings::PostFilter::Auto
                 && m_model->spp < kPostFilterAutoMaxSppExclusive);
         const Image* work = &in.work;
-        const int margin = (m_taaOn ? kTaaWorkMargin : 0) + (m_postOn ? kPostFilterRadius : 0);
+        const int margin = workMargin(m_taaOn, m_postOn);
         if (margin > 0) {
             growWorkRows(in.work, margin, m_workGrown);
             work = &m_workGrown;

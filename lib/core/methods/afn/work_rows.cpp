@@ -2,6 +2,9 @@
 // Rows under work skipping (see methods/afn/work_rows.h).
 #include "methods/afn/work_rows.h"
 
+#include "methods/afn/post_filter.h"
+#include "stages/taa.h"
+
 #include <algorithm>
 
 namespace afn::afnet {
@@ -39,6 +42,19 @@ std::vector<char> computedRows(const Image* work, int h)
         std::fill(computed.begin() + y0, computed.begin() + y1, needed ? 1 : 0);
     }
     return computed;
+}
+
+int workMargin(bool taa, bool postFilter)
+{
+    return (taa ? kTaaWorkMargin : 0) + (postFilter ? kPostFilterRadius : 0);
+}
+
+std::vector<char> computedRows(const Image& work, int margin, int h, Image& grown)
+{
+    if (margin <= 0 || work.empty())
+        return computedRows(&work, h);
+    growWorkRows(work, margin, grown);
+    return computedRows(&grown, h);
 }
 
 } // namespace afn::afnet

@@ -20,4 +20,12 @@ void growWorkRows(const Image& work, int margin, Image& dst);
 /// mask (null or empty). The other rows take the cheap path (Network::run).
 std::vector<char> computedRows(const Image* work, int h);
 
+/// The rows around the needed ones afn's output stages read: the TAA's kTaaWorkMargin (its
+/// neighbourhood and next history) and the post-filter's kPostFilterRadius, as they are on.
+int workMargin(bool taa, bool postFilter);
+
+/// computedRows() of `work` grown by `margin` rows (growWorkRows(); `grown` its scratch); every
+/// row without a mask.
+std::vector<char> computedRows(const Image& work, int margin, int h, Image& grown);
+
 } // namespace afn::afnet

@@ -4,9 +4,7 @@
 #include "emulated_pipeline.h"
 
 #include "base/exception.h"
-#include "methods/afn/post_filter.h"
 #include "methods/afn/work_rows.h"
-#include "stages/taa.h"
 
 #include <algorithm>
 #include <cmath>
@@ -228,12 +226,9 @@ void EmulatedAfnPipeline::run(const afn::Frame& f, const FrameConstants& c, afn:
     // Work skipping (AfnPipeline::upload, skipsRows()).
     std::vector<char> computed(static_cast<std::size_t>(m_height), 1);
     if (f.hasWorkMask() && !(m_fast && m_refine) && !m_high) {
-        const int margin = (m_taa ? afn::kTaaWorkMargin : 0)
-            + (m_postFilter ? afn::afnet::kPostFilterRadius : 0);
         afn::Image grown;
-        if (margin > 0)
-            afn::afnet::growWorkRows(f.work, margin, grown);
-        computed = afn::afnet::computedRows(margin > 0 ? &grown : &f.work, m_height);
+        computed = afn::afnet::computedRows(
+            f.work, afn::afnet::workMargin(m_taa, m_postFilter), m_height, grown);
     }
     const std::vector<unsigned char> rows(computed.begin(), computed.end());
     fo.computedRows = rows.data();
@@ -247,7 +242,6 @@ void EmulatedAfnPipeline::run(const afn::Frame& f, const FrameConstants& c, afn:
         const std::size_t n = static_cast<std::size_t>(m_width) * m_height;
         const float* given[6]
             = { src.color1, src.colorTa, src.albedo, src.normal, src.depth, src.historyLength };
-        const int channels[6] = { 3, 3, 3, 3, 1, 1 };
         std::vector<float> flipped[6], passOut(3 * n, std::nanf("")), passSum(3 * n);
         for (int pass = 0; pass < kHighTierPasses; ++pass) {
             const bool fx = (pass & 1) != 0, fy = (pass & 2) != 0;
@@ -258,9 +252,9 @@ void EmulatedAfnPipeline::run(const afn::Frame& f, const FrameConstants& c, afn:
                 for (int k = 0; k < 6; ++k) {
                     if (!given[k])
                         continue;
-                    flipped[k].assign(channels[k] * n, std::nanf(""));
-                    emulateFlip(
-                        given[k], flipped[k].data(), channels[k], m_width, m_height, fx, fy);
+                    flipped[k].assign(kNetworkSourceChannels[k] * n, std::nanf(""));
+                    emulateFlip(given[k], flipped[k].data(), kNetworkSourceChannels[k], m_width,
+                        m_height, fx, fy);
                     *slots[k] = flipped[k].data();
                 }
             FinalOutput out = fo;

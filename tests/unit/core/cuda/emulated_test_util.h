@@ -70,6 +70,19 @@ inline SequenceFrame noisyAovFrame(
     return in;
 }
 
+/// Frame k of `seq` with its left half 3x brighter from frame 3 on (a light switched on there).
+inline SequenceFrame lightSwitchedOnFrame(
+    const SyntheticSequence& seq, int k, const SequenceInputs& inputs)
+{
+    SequenceFrame in = seq.frame(k, inputs);
+    if (k >= 3)
+        for (int y = 0; y < in.color.height(); ++y)
+            for (int x = 0; x < in.color.width() / 2; ++x)
+                for (int c = 0; c < 3; ++c)
+                    in.color(x, y, c) *= 3.0f;
+    return in;
+}
+
 inline bool sameBits(const afn::Image& a, const afn::Image& b)
 {
     return a.size() == b.size()

@@ -11,11 +11,9 @@
 #include "emulated_test_util.h"
 #include "filter/registry.h"
 #include "methods/afn/network_inputs.h"
-#include "methods/afn/post_filter.h"
 #include "methods/afn/settings.h"
 #include "methods/afn/weights_source.h"
 #include "methods/afn/work_rows.h"
-#include "stages/taa.h"
 
 #include <gtest/gtest.h>
 
@@ -191,8 +189,8 @@ TEST(CudaEmulated, FilterMatchesCpuWhereRowsAreSkipped)
     gatherer.workSkipping = true;
     const afn::Frame& f = gatherer.gather(in);
     afn::Image grown;
-    afn::afnet::growWorkRows(f.work, afn::kTaaWorkMargin + afn::afnet::kPostFilterRadius, grown);
-    const std::vector<char> rows = afn::afnet::computedRows(&grown, f.height);
+    const std::vector<char> rows
+        = afn::afnet::computedRows(f.work, afn::afnet::workMargin(true, true), f.height, grown);
     ASSERT_EQ(std::count(rows.begin(), rows.end(), 0), 8) << "the test needs one skipped block";
     for (const char* name : { "weights_full.afnw", "weights_trust.afnw" })
         expectFilterParity(testWeights(name), 45, 240, SequenceInputs {}, 3);

@@ -43,12 +43,7 @@ TEST(CudaEmulated, FirstStageIsTheCpuStagesBitForBit)
             afn::Image out;
             double largestCut = 0.0;
             for (int k = 0; k < 6; ++k) {
-                afntest::SequenceFrame in = seq.frame(k, inputs);
-                if (k >= 3)
-                    for (int y = 0; y < in.color.height(); ++y)
-                        for (int x = 0; x < in.color.width() / 2; ++x)
-                            for (int c = 0; c < 3; ++c)
-                                in.color(x, y, c) *= 3.0f;
+                afntest::SequenceFrame in = lightSwitchedOnFrame(seq, k, inputs);
                 const afn::Frame& given = gatherer.gather(in);
                 cpu.run(given);
                 emulated.run(given,
@@ -148,12 +143,7 @@ TEST(CudaEmulated, TaaIsTheCpuTaa)
             afn::Image spare, out;
             bool differs = false;
             for (int k = 0; k < 6; ++k) {
-                afntest::SequenceFrame in = seq.frame(k, inputs);
-                if (k >= 3)
-                    for (int y = 0; y < in.color.height(); ++y)
-                        for (int x = 0; x < in.color.width() / 2; ++x)
-                            for (int c = 0; c < 3; ++c)
-                                in.color(x, y, c) *= 3.0f;
+                afntest::SequenceFrame in = lightSwitchedOnFrame(seq, k, inputs);
                 const afn::Frame& given = gatherer.gather(in);
                 cpu.run(given);
                 if (k == 0)
