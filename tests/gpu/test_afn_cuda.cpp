@@ -15,6 +15,7 @@
 #include "cuda/afn_cuda_filter.h"
 #include "cuda/gpu.h"
 #include "filter/registry.h"
+#include "methods/afn/model_set.h"
 #include "methods/afn/network_inputs.h"
 #include "methods/afn/weights_source.h"
 #include "raw_frames.h"
@@ -120,12 +121,14 @@ void runParityCase(const ParityCase& c)
         cpu->setData(AFN_DATA_WEIGHTS, weights.data(), weights.size());
         gpu->setData(AFN_DATA_WEIGHTS, weights.data(), weights.size());
     }
-    // The CPU stages and network input, for the intermediates.
-    afn::afnet::Network net;
-    if (weights.empty())
-        afn::afnet::loadEmbeddedNetwork(net);
-    else
-        net = afn::afnet::networkFromData(weights.data(), weights.size());
+    // The CPU stages and network input, for the intermediates: the model both filters choose for
+    // the sequence's inputs (model_set.h).
+    afn::afnet::ModelSet models = weights.empty()
+        ? afn::afnet::ModelSet::embedded()
+        : afn::afnet::ModelSet::fromData(weights.data(), weights.size());
+    afn::afnet::Model* model = models.choose(afntest::inputSetOf(c.inputs), 0, false);
+    ASSERT_NE(model, nullptr) << "no model for " << c.inputs.name();
+    afn::afnet::Network& net = model->net;
     afntest::FrameGatherer gatherer;
     afntest::CpuFirstStage stages(afn::AuxSettings {}, afn::HistoryTrustSettings {});
     afn::afnet::NetworkInputs inputs;
@@ -145,8 +148,8 @@ void runParityCase(const ParityCase& c)
         const afn::Frame& f = stages.frame;
         const afn::Image& irradiance = stages.irradiance;
         const afn::TemporalAccumulator& accumulator = stages.accumulator;
-        // The full model's inputs (cpuRunsTheFullModel), history01 where the weights read it.
-        inputs.prepare(f, afn::afnet::InputSet::full(), irradiance, accumulator.color(),
+        // The model's inputs, history01 where the weights read it.
+        inputs.prepare(f, model->inputs, irradiance, accumulator.color(),
             net.hasHistoryInput() ? &accumulator.historyLength() : nullptr);
         net.prepare(inputs.inputs());
         cuda.pipeline().downloadIntermediate(
@@ -169,6 +172,10 @@ void runParityCase(const ParityCase& c)
         EXPECT_LE(taDiff, 1e-5) << "frame " << k;
         // Values in [0, 1] stored as halves (one rounding, possibly on the other side of a tie).
         EXPECT_LE(xDiff, 5e-4) << "frame " << k;
+        std::string gpuModel, cpuModel; // the per-frame log's model line
+        ASSERT_TRUE(gpu->stringStatistic(AFN_STAT_AFN_MODEL, gpuModel));
+        ASSERT_TRUE(cpu->stringStatistic(AFN_STAT_AFN_MODEL, cpuModel));
+        EXPECT_EQ(gpuModel, cpuModel) << "frame " << k;
     }
 }
 
@@ -183,8 +190,8 @@ TEST_F(CudaAfn, ParityWithTheCpuEngine)
                       << ": no shipped weights the CUDA engine runs in this build\n";
             continue;
         }
-        if (!afntest::cpuRunsTheFullModel(c.inputs)) {
-            std::cout << "[ parity ] " << c.name() << ": the CPU runs a per-input-set model\n";
+        if (c.weights != "shipped" && !afntest::cpuRunsTheFullModel(c.inputs)) {
+            std::cout << "[ parity ] " << c.name() << ": one full-input archive, no model\n";
             continue;
         }
         runParityCase(c);

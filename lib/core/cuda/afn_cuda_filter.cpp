@@ -4,7 +4,6 @@
 #include "base/exception.h"
 #include "cuda/frame_constants.h"
 #include "filter/quality.h"
-#include "methods/afn/settings.h"
 #include "methods/afn/weights_source.h"
 #include "stages/aux_prefilter.h"
 
@@ -12,7 +11,7 @@ namespace afn::cuda {
 
 AfnCudaFilter::AfnCudaFilter(const FilterType& type, int gpu)
     : Filter(type, StageNeeds {})
-    , m_embedded(afnet::ModelSet::embedded())
+    , m_models(afnet::ModelSet::embedded())
     , m_pipeline(gpu)
 {
 }
@@ -21,11 +20,43 @@ void AfnCudaFilter::setData(const std::string& name, const void* data, std::size
 {
     if (name != AFN_DATA_WEIGHTS)
         Filter::setData(name, data, size);
-    m_net = afnet::networkFromData(data, size); // only valid weights replace the current ones
-    m_networkChanged = true;
-    m_userWeights = true;
+    m_models = afnet::ModelSet::fromData(data, size); // only valid weights replace the current ones
+    m_model = nullptr;
     markDirty();
     reset();
+}
+
+const afnet::Model& AfnCudaFilter::chooseModel(const afnet::InputSet& available)
+{
+    if (m_models.empty())
+        afnet::throwNoWeights();
+    if (const afnet::Model* m = m_models.choose(available, m_aux.spp, false))
+        return *m;
+    if (m_models.choose(available, m_aux.spp, true)) // only AFN large covers these inputs
+        throw Exception(AFN_ERROR_UNSUPPORTED,
+            "afn on a CUDA device has no AFN large graph yet: weights with variant=large run on "
+            "the CPU device (afntool: --device cpu)");
+    m_models.throwNoModelFor(available);
+}
+
+void AfnCudaFilter::useModel(const afnet::Model& model)
+{
+    if (&model != m_model) {
+        if (model.net.hasQuarterScale()) // no GPU graph for it yet
+            throw Exception(AFN_ERROR_UNSUPPORTED,
+                "afn on a CUDA device has no quarter-resolution scale yet: weights with "
+                "quarter=1 run on the CPU device (afntool: --device cpu)");
+        m_pipeline.setNetwork(model.net);
+        m_model = &model;
+    }
+    // The output TAA and the post-filter as the CPU's (afn_method.cpp): auto is on for models
+    // trained below 16 spp.
+    const bool lowSppTaa = model.spp < afnet::kTaaAutoMaxSppExclusive;
+    m_pipeline.setTaa(m_settings.taa == afnet::Settings::Taa::On
+        || (m_settings.taa == afnet::Settings::Taa::Auto && lowSppTaa));
+    const bool lowSppPost = model.spp < afnet::kPostFilterAutoMaxSppExclusive;
+    m_pipeline.setPostFilter(m_settings.postFilter == afnet::Settings::PostFilter::On
+        || (m_settings.postFilter == afnet::Settings::PostFilter::Auto && lowSppPost));
 }
 
 void AfnCudaFilter::configure()
@@ -35,47 +66,24 @@ void AfnCudaFilter::configure()
             "afn on a CUDA device writes no feature outputs; create the filter on the CPU "
             "device for them (afntool: --device cpu)");
     m_aux = auxBinding().read(params());
-    if (!m_userWeights) {
-        const afnet::Model* m = m_embedded.choose(afnet::InputSet::full(), m_aux.spp, false);
-        if (m && m != m_chosen) {
-            m_chosen = m;
-            m_net = m->net;
-            m_networkChanged = true;
-        }
-    }
-    if (!m_net.loaded())
-        afnet::throwNoWeights();
-    if (m_net.variant() == afnet::Variant::Large) // no GPU graph for it yet
-        throw Exception(AFN_ERROR_UNSUPPORTED,
-            "afn on a CUDA device has no AFN large graph yet: weights with variant=large run on "
-            "the CPU device (afntool: --device cpu)");
-    if (m_net.hasQuarterScale()) // no GPU graph for it yet
-        throw Exception(AFN_ERROR_UNSUPPORTED,
-            "afn on a CUDA device has no quarter-resolution scale yet: weights with quarter=1 "
-            "run on the CPU device (afntool: --device cpu)");
+    m_settings = afnet::settingsBinding().read(params());
     // Quality tiers (methods/afn/quality_tiers.h).
     const QualitySettings::Tier tier = qualityBinding().read(params()).quality;
     m_pipeline.setFastTier(tier == QualitySettings::Tier::Fast);
     m_pipeline.setHighTier(tier == QualitySettings::Tier::High);
-    // The output TAA and the post-filter as the CPU's (afn_method.cpp): auto is on for weights
-    // trained below 16 spp.
-    const afnet::Settings settings = afnet::settingsBinding().read(params());
-    const bool lowSpp = m_net.trainedSpp() < afnet::kTaaAutoMaxSppExclusive;
-    m_pipeline.setTaa(settings.taa == afnet::Settings::Taa::On
-        || (settings.taa == afnet::Settings::Taa::Auto && lowSpp));
-    m_taaAlpha = settings.taaAlpha;
-    const afnet::Settings::PostFilter post = settings.postFilter;
-    m_pipeline.setPostFilter(post == afnet::Settings::PostFilter::On
-        || (post == afnet::Settings::PostFilter::Auto
-            && m_net.trainedSpp() < afnet::kPostFilterAutoMaxSppExclusive));
     // The same parameters as the CPU filter's stages (filter/filter.cpp commit()).
     m_reproject = reprojectBinding().read(params());
     m_accumulation = accumulationBinding().read(params());
     m_trust = historyTrustBinding().read(params());
-    if (m_networkChanged) {
-        m_pipeline.setNetwork(m_net);
-        m_networkChanged = false;
-    }
+    // The model for the bound inputs, as the CPU filter: a missing one fails the commit; denoise
+    // chooses again from each frame's own inputs.
+    afnet::InputSet bound;
+    bound.albedo = imageBound(AFN_IMAGE_ALBEDO);
+    bound.normal = imageBound(AFN_IMAGE_NORMAL);
+    bound.depth = imageBound(AFN_IMAGE_DEPTH);
+    bound.temporal
+        = imageBound(AFN_IMAGE_MOTION) || (imageBound(AFN_IMAGE_POSITION) && cameraSet());
+    useModel(chooseModel(bound));
 }
 
 bool AfnCudaFilter::stringStatistic(const std::string& name, std::string& value) const
@@ -89,18 +97,13 @@ bool AfnCudaFilter::stringStatistic(const std::string& name, std::string& value)
 void AfnCudaFilter::denoise(const Frame& in, Image& out)
 {
     reportProgress(0.1);
-    const afnet::InputSet available { in.hasAlbedo(), in.hasNormal(), in.hasDepth(),
-        in.hasMotion() || (in.hasPosition() && in.camera.valid) };
-    const afnet::InputSet missing { !available.albedo, !available.normal, !available.depth, false };
-    m_modelText = m_chosen ? afnet::describeChoice(afnet::InputSet::full(), *m_chosen)
-                           : "model given with afnSetFilterData";
-    if (missing.count() > 0)
-        m_modelText += "; absent, held at neutral values: " + afnet::inputSetKey(missing);
-    if (!available.temporal)
-        m_modelText += "; no motion or position: run without its temporal branch";
-    m_pipeline.setTemporalInputs(available.temporal);
+    const afnet::InputSet available = afnet::inputSetOf(in);
+    const afnet::Model& model = chooseModel(available);
+    useModel(model);
+    m_modelText = afnet::describeChoice(available, model);
+    m_pipeline.setNetworkInputs(model.inputs);
     FrameConstants c = frameConstants(in, m_reproject, m_accumulation, m_trust, m_aux);
-    c.taaAlpha = m_taaAlpha;
+    c.taaAlpha = m_settings.taaAlpha;
     m_pipeline.run(in, c, out);
     reportProgress(0.95);
 }

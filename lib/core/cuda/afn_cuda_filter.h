@@ -11,6 +11,7 @@
 #include "cuda/afn_pipeline.h"
 #include "filter/registry.h"
 #include "methods/afn/model_set.h"
+#include "methods/afn/settings.h"
 #include "stages/aux_prefilter.h"
 #include "stages/history_trust.h"
 #include "stages/temporal_accumulation.h"
@@ -34,28 +35,29 @@ public:
     const AuxReport& auxReport() const override { return m_pipeline.lastAuxReport(); }
     bool auxNoisy() const override { return m_pipeline.lastAuxReport().noisy; }
     bool auxGrainLimited() const override { return m_pipeline.lastAuxReport().grainLimited; }
-    /// AFN_STAT_AFN_MODEL: the model that ran on the last frame, as the CPU filter says it, and
-    /// the inputs the frame lacked (held at their neutral values: the GPU has only full-input
-    /// models).
+    /// AFN_STAT_AFN_MODEL: the model that ran on the last frame, as the CPU filter says it.
     bool stringStatistic(const std::string& name, std::string& value) const override;
 
 private:
     void configure() override;
     void denoise(const Frame& in, Image& out) override;
 
-    afnet::Network m_net; ///< validated archive, packed for the GPU when it changes
-    bool m_networkChanged = false;
-    /// The built-in models; without weights given (setData) the full-input one trained at the
-    /// sample count nearest the `spp` parameter's runs (as the CPU filter chooses; AFN large is
-    /// left out: no GPU graph for it).
-    afnet::ModelSet m_embedded;
-    const afnet::Model* m_chosen = nullptr;
-    bool m_userWeights = false;
+    /// The model for a frame with `available` inputs (the CPU filter's choice without AFN large,
+    /// which has no GPU graph); throws as the CPU filter does when none is covered.
+    const afnet::Model& chooseModel(const afnet::InputSet& available);
+    /// Give the pipeline the model (packed and uploaded when it changes) and the settings that
+    /// follow from its training sample count (the output TAA and the post-filter on auto).
+    void useModel(const afnet::Model& model);
+
+    /// The built-in models, or the one archive given with setData, as the CPU filter's: the
+    /// model for each frame's inputs (model_set.h).
+    afnet::ModelSet m_models;
+    const afnet::Model* m_model = nullptr; ///< the model the pipeline has
+    afnet::Settings m_settings;
     ReprojectSettings m_reproject;
     AccumulationSettings m_accumulation;
     HistoryTrustSettings m_trust;
     AuxSettings m_aux;
-    float m_taaAlpha = 0.7f; ///< afnet::Settings::taaAlpha
     std::string m_modelText; ///< stringStatistic(AFN_STAT_AFN_MODEL) of the last frame
     AfnPipeline m_pipeline;
 };

@@ -174,6 +174,8 @@ void AfnPipeline::allocate(const FrameLayout& layout)
     allocateBuffer(m_albedo, layout.albedo ? 3 * n : 0, p, st);
     allocateBuffer(m_motion, layout.motion ? 2 * n : 0, p, st);
     allocateBuffer(m_irradiance, 3 * n, p, st);
+    for (int k = 0; k < 2; ++k)
+        allocateBuffer(m_radianceInputs[k], undemodulates(layout) ? 3 * n : 0, p, st);
     allocateBuffer(m_output, 3 * n, p, st);
     for (int s = 0; s < 2; ++s) {
         allocateBuffer(m_position[s], layout.position ? 3 * n : 0, p, st);
@@ -298,12 +300,13 @@ void AfnPipeline::setOption(bool& option, bool on)
     m_graphsValid = false;
 }
 
-void AfnPipeline::setTemporalInputs(bool on)
+void AfnPipeline::setNetworkInputs(const afnet::InputSet& inputs)
 {
-    if (on == m_temporalInputs)
+    if (inputs == m_networkInputs)
         return;
-    m_temporalInputs = on;
-    m_graphsValid = false; // the same buffers, other sources
+    m_networkInputs = inputs;
+    m_layout = FrameLayout {}; // other sources (and buffers): allocate and capture again
+    m_graphsValid = false;
 }
 
 void AfnPipeline::upload(const Frame& f, const FrameConstants& constants)

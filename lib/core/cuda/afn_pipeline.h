@@ -19,6 +19,7 @@
 #include "cuda/device_memory.h"
 #include "cuda/kernels.h"
 #include "filter/frame.h"
+#include "methods/afn/input_set.h"
 #include "methods/afn/network.h"
 #include "stages/aux_prefilter.h"
 
@@ -78,10 +79,14 @@ public:
     /// The quality tier high (methods/afn/quality_tiers.h): the network on the frame and its three
     /// mirror images, the outputs mirrored back and averaged.
     void setHighTier(bool on) { setOption(m_high, on); }
-    /// Whether the frames have motion vectors, or positions and cameras. Without them the network
-    /// runs without its temporal branch, as the CPU's model for such frames does
-    /// (methods/afn/network_inputs.h): the TA input is this frame's colour, history01 is 1.
-    void setTemporalInputs(bool on);
+    /// What of a frame the network reads: the input set of the model it runs (the CPU filter's
+    /// choice, methods/afn/model_set.h), as methods/afn/network_inputs.cpp prepares it. Without
+    /// `temporal` the network runs without its temporal branch (the TA input is this frame's
+    /// colour, history01 is 1); a role left out is held at its neutral value (albedo 1, normal01
+    /// 0.5, depth01 0); without `albedo` on a frame that has one, the network filters the colours
+    /// times the albedo and its output is not remodulated. The other stages (aux prefilter, TA,
+    /// TAA, post-filter) read the frame's inputs whatever the set, as on the CPU.
+    void setNetworkInputs(const afnet::InputSet& inputs);
     /// Poison every device buffer with NaN when it is allocated and the output before every
     /// frame, so that a value nothing wrote shows up (tests).
     void setPoison(bool poison) { m_poison = poison; }
@@ -160,9 +165,11 @@ private:
     void enqueuePostFilter(int slot, cudaStream_t stream) const;
     TemporalBuffers temporalBuffers(int slot) const;
     TrustBuffers trustBuffers() const;
-    /// The colours the network filters (the variants "1spp" and "ta" use one for both).
-    const float* colorTaSource(int slot) const;
-    const float* color1Source(int slot) const;
+    /// The network filters the colours times the albedo (setNetworkInputs()).
+    bool undemodulates(const FrameLayout& layout) const
+    {
+        return layout.albedo && !m_networkInputs.albedo;
+    }
 
     int m_gpu;
     Stream m_stream;
@@ -171,7 +178,7 @@ private:
     bool m_refine = false; ///< the weights have a refinement (variant full)
     bool m_fast = false; ///< setFastTier()
     bool m_high = false; ///< setHighTier()
-    bool m_temporalInputs = true; ///< setTemporalInputs()
+    afnet::InputSet m_networkInputs = afnet::InputSet::full(); ///< setNetworkInputs()
     /// The refinement runs this frame.
     bool refines() const { return m_refine && !m_fast; }
     /// Work skipping applies (the tiers fast, where it skips the refinement, and high compute
@@ -193,6 +200,8 @@ private:
     // Frame-size buffers (floats, interleaved).
     DeviceBuffer<float> m_color, m_albedo, m_motion, m_irradiance, m_output;
     std::array<DeviceBuffer<float>, 2> m_position, m_normal, m_depth, m_accumulated, m_history;
+    /// The 1-spp and TA colours times the albedo (undemodulates() only).
+    std::array<DeviceBuffer<float>, 2> m_radianceInputs;
     DeviceBuffer<std::uint32_t> m_depthRange;
     // The history trust (history_trust_block.h): per row block sums, per block raw trust, count
     // and trust, the cut pixels (one word, copied back with the output).

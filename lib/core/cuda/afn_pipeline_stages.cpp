@@ -24,28 +24,25 @@ std::size_t pixels(int w, int h)
 
 } // namespace
 
-const float* AfnPipeline::colorTaSource(int slot) const
-{
-    return m_variant == afnet::Variant::OneSpp ? m_irradiance.data() : m_accumulated[slot].data();
-}
-
-const float* AfnPipeline::color1Source(int slot) const
-{
-    return m_variant == afnet::Variant::Ta ? m_accumulated[slot].data() : m_irradiance.data();
-}
-
 AfnPipeline::NetworkSources AfnPipeline::networkSources(int slot) const
 {
     const FrameLayout& l = m_layout;
+    const afnet::InputSet& use = m_networkInputs;
+    // The colours (network_inputs.cpp prepare()): times the albedo for a model without it.
+    const bool radiance = undemodulates(l);
+    const float* irradiance = radiance ? m_radianceInputs[0].data() : m_irradiance.data();
+    const float* accumulated = radiance ? m_radianceInputs[1].data() : m_accumulated[slot].data();
+    // The variants "ta" and "1spp" filter one colour for both branches; without the temporal
+    // branch both colours are this frame's.
     NetworkSources src;
-    // Without temporal inputs the network runs without its temporal branch (network_inputs.h):
-    // both colours are this frame's.
-    src.color1 = m_temporalInputs ? color1Source(slot) : m_irradiance.data();
-    src.colorTa = m_temporalInputs ? colorTaSource(slot) : src.color1;
-    src.albedo = l.albedo ? m_albedo.data() : nullptr;
-    src.normal = l.normal ? m_normal[slot].data() : nullptr;
-    src.depth = l.depth ? m_depth[slot].data() : nullptr;
-    src.historyLength = m_historyInput && m_temporalInputs ? m_history[slot].data() : nullptr;
+    src.color1 = use.temporal && m_variant == afnet::Variant::Ta ? accumulated : irradiance;
+    src.colorTa = !use.temporal               ? src.color1
+        : m_variant == afnet::Variant::OneSpp ? irradiance
+                                              : accumulated;
+    src.albedo = l.albedo && use.albedo ? m_albedo.data() : nullptr;
+    src.normal = l.normal && use.normal ? m_normal[slot].data() : nullptr;
+    src.depth = l.depth && use.depth ? m_depth[slot].data() : nullptr;
+    src.historyLength = m_historyInput && use.temporal ? m_history[slot].data() : nullptr;
     return src;
 }
 
@@ -113,6 +110,14 @@ void AfnPipeline::enqueueFirstStage(int slot, cudaStream_t stream) const
     launchAuxPrefilter(a, b, m_constants.data(), stream);
     launchResetFrameCounters(m_depthRange.data(), m_cutPixels.data(), stream);
     launchTemporal(b, trustBuffers(), m_constants.data(), m_depthRange.data(), stream);
+    if (undemodulates(l)) { // a model without albedo on a frame with one
+        const bool plain = l.colorDemodulated;
+        launchUndemodulate(m_irradiance.data(), m_albedo.data(), plain, m_radianceInputs[0].data(),
+            l.width, l.height, stream);
+        if (m_networkInputs.temporal)
+            launchUndemodulate(m_accumulated[slot].data(), m_albedo.data(), plain,
+                m_radianceInputs[1].data(), l.width, l.height, stream);
+    }
 }
 
 void AfnPipeline::enqueueTemporalFeatures(int slot, cudaStream_t stream) const
@@ -207,7 +212,7 @@ FinalOutput AfnPipeline::finalOutput(int slot) const
 {
     FinalOutput o;
     o.fused = m_fused.data();
-    o.albedo = m_layout.albedo ? m_albedo.data() : nullptr;
+    o.albedo = networkSources(slot).albedo; // null for a model without albedo: not remodulated
     o.plainAlbedo = m_layout.colorDemodulated ? 1 : 0;
     o.trust = m_albedoTrust ? m_trust.data() : nullptr;
     o.trustWidth = m_paddedWidth / 2;

@@ -116,6 +116,13 @@ AFN_HD float clampIrradiance(float v)
 {
     return v > 0.0f ? minOf(v, kMaxIrradianceDevice) : 0.0f;
 }
+/// The radiance of an irradiance value for a model without albedo (methods/afn/network_inputs.cpp
+/// undemodulate(): remodulated as stages/demodulate.cpp remodulate(), then at most
+/// kMaxIrradiance).
+AFN_HD float undemodulateValue(float irradiance, float albedo, bool plain)
+{
+    return minOf(clampIrradiance(irradiance) * albedoFactor(albedo, plain), kMaxIrradianceDevice);
+}
 /// T(x) = clip(max(x, 0)^(1/2.2), 0, 1).
 AFN_HD float toneMap(float x)
 {

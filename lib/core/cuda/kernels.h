@@ -7,6 +7,8 @@
 //   auxPrefilter                       flags, decision, prefiltered normal, depth and albedo
 //   resetFrameCounters, temporal       TA: demodulate, reproject, history trust, accumulate;
 //                                      depth range
+//   (undemodulate)                     the colours again times the albedo, for a model
+//                                      without albedo on a frame with one
 //   prepare                            network input x, its 2 x 2 average, D(1-spp colour)
 //   conv / pool                        encoder-decoder at 1/2 .. 1/8 resolution (tensor cores)
 //   albedoTrust                        after the first encoder level: t, the colours times s
@@ -47,6 +49,11 @@ void launchTemporal(const TemporalBuffers& b, const TrustBuffers& t, const Frame
 
 /// Network input over the half-resolution grid of the padded frame.
 void launchPrepare(const PrepareBuffers& b, cudaStream_t stream);
+
+/// `out` = undemodulateValue(`irradiance`, `albedo`) (3 floats per pixel of a w x h frame): the
+/// colours a model without albedo filters when the frame has one (network_inputs.h).
+void launchUndemodulate(const float* irradiance, const float* albedo, bool plain, float* out, int w,
+    int h, cudaStream_t stream);
 
 /// D: 2 x 2 average of a half-precision NHWC tensor (`stride` halves per pixel, even size) into
 /// `out` of half the size and the same stride.

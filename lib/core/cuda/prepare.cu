@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: Apache-2.0
-// The network input (prepare_block.h), one thread per 2 x 2 block of the padded frame; and the
+// The network input (prepare_block.h), one thread per 2 x 2 block of the padded frame; the colours
+// times the albedo for a model without albedo (device_math.h undemodulateValue); and the
 // 2 x 2 average pooling of half-precision tensors, one thread per output pixel and 8 channels.
 // Compiled with --fmad=false (cuda/CMakeLists.txt) like the CPU's float arithmetic.
 #include "cuda/check.h"
@@ -20,6 +21,14 @@ __global__ void __launch_bounds__(kThreads) prepareKernel(PrepareBuffers b)
     const int xh = static_cast<int>(index % wh), yh = static_cast<int>(index / wh);
     const DepthScale ds = b.depth ? depthScale(b.depthRange[0], b.depthRange[1]) : DepthScale {};
     prepareBlock(b, ds, xh, yh);
+}
+
+__global__ void __launch_bounds__(kThreads) undemodulateKernel(
+    const float* irradiance, const float* albedo, bool plain, float* out, long long values)
+{
+    const long long i = static_cast<long long>(blockIdx.x) * kThreads + threadIdx.x;
+    if (i < values)
+        out[i] = undemodulateValue(irradiance[i], albedo[i], plain);
 }
 
 /// Average of the 8 halves in four 16-byte words, rounded to halves.
@@ -76,6 +85,15 @@ void launchPrepare(const PrepareBuffers& b, cudaStream_t stream)
     const long long blocks = static_cast<long long>(b.paddedWidth / 2) * (b.paddedHeight / 2);
     prepareKernel<<<blocksFor(blocks), kThreads, 0, stream>>>(b);
     AFN_CUDA_CHECK_LAUNCH("prepareKernel");
+}
+
+void launchUndemodulate(const float* irradiance, const float* albedo, bool plain, float* out, int w,
+    int h, cudaStream_t stream)
+{
+    const long long values = 3LL * w * h;
+    undemodulateKernel<<<blocksFor(values), kThreads, 0, stream>>>(
+        irradiance, albedo, plain, out, values);
+    AFN_CUDA_CHECK_LAUNCH("undemodulateKernel");
 }
 
 void launchPool(const std::uint16_t* in, int width, int height, int stride, std::uint16_t* out,

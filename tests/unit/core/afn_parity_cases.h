@@ -6,6 +6,7 @@
 
 #include "afn_synthetic_sequence.h"
 #include "filter/filter.h"
+#include "methods/afn/input_set.h"
 #include "stages/aux_prefilter.h"
 #include "stages/demodulate.h"
 #include "stages/reproject.h"
@@ -58,7 +59,8 @@ struct CpuFirstStage {
 
 struct ParityCase {
     /// "full", "fusion", "trust" (tests/data/afn_parity: weights_trust has the history input and
-    /// the albedo trust) or "shipped" (weights/)
+    /// the albedo trust; the full input set only) or "shipped" (the built-in models, weights/:
+    /// the one for the sequence's input set)
     std::string weights;
     int width = 0;
     int height = 0;
@@ -72,7 +74,8 @@ struct ParityCase {
 };
 
 /// Every input set the engines must agree on: all AOVs with motion; positions and cameras
-/// without motion; depth without positions; colour only; no albedo.
+/// without motion; depth without positions; colour only; no albedo; albedo without normal (a
+/// model without albedo on a frame with one).
 inline std::vector<SequenceInputs> parityInputSets()
 {
     SequenceInputs all;
@@ -85,16 +88,25 @@ inline std::vector<SequenceInputs> parityInputSets()
     SequenceInputs colorOnly { false, false, false, false, false, false };
     SequenceInputs noAlbedo = all;
     noAlbedo.albedo = false;
-    return { all, camera, depthOnly, colorOnly, noAlbedo };
+    SequenceInputs albedoOnly = all;
+    albedoOnly.normal = false;
+    albedoOnly.depth = false;
+    return { all, camera, depthOnly, colorOnly, noAlbedo, albedoOnly };
+}
+
+/// The input set (methods/afn/input_set.h) of a sequence's frames.
+inline afn::afnet::InputSet inputSetOf(const SequenceInputs& in)
+{
+    return { in.albedo, in.normal, in.depth, in.motion || (in.position && in.camera) };
 }
 
 /// Whether the CPU filter runs the full-input model on `in`: albedo, normal, depth and a
 /// temporal history (motion, or positions with a camera). For fewer inputs it runs the model for
-/// that input set (methods/afn/model_set.h), or refuses when only the full one is loaded; the CUDA
-/// filter has only the full model so far (docs/gpu.md), so CPU-filter parity skips those sets.
+/// that input set (methods/afn/model_set.h), or refuses when only the full one is loaded (weights
+/// given as one archive).
 inline bool cpuRunsTheFullModel(const SequenceInputs& in)
 {
-    return in.albedo && in.normal && in.depth && (in.motion || (in.position && in.camera));
+    return inputSetOf(in) == afn::afnet::InputSet::full();
 }
 
 /// The GPU parity cases: sizes from 1 x 1 to 1280 x 720 (odd ones included), each input set,
@@ -114,7 +126,7 @@ inline std::vector<ParityCase> gpuParityCases()
     for (const auto& [w, h] :
         std::vector<std::pair<int, int>> { { 1, 1 }, { 37, 21 }, { 129, 67 } })
         cases.push_back({ "trust", w, h, all, 3 });
-    for (const SequenceInputs& in : parityInputSets())
+    for (const SequenceInputs& in : parityInputSets()) // the built-in model of each input set
         cases.push_back({ "shipped", 161, 91, in, 3 });
     cases.push_back({ "shipped", 333, 187, all, 4 });
     cases.push_back({ "shipped", 640, 360, all, 3 });

@@ -181,6 +181,13 @@ void emulateTemporal(const TemporalBuffers& b, const TrustBuffers& t, const Fram
             temporalBlend(b, f, measured ? pixelTrust(t, x, y) : 1.0f, x, y);
 }
 
+void emulateUndemodulate(
+    const float* irradiance, const float* albedo, bool plain, float* out, int w, int h)
+{
+    for (std::size_t i = 0; i < 3 * static_cast<std::size_t>(w) * h; ++i)
+        out[i] = undemodulateValue(irradiance[i], albedo[i], plain);
+}
+
 void emulatePrepare(const PrepareBuffers& b)
 {
     const DepthScale ds = b.depth ? depthScale(b.depthRange[0], b.depthRange[1]) : DepthScale {};

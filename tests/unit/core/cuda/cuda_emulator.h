@@ -34,6 +34,8 @@ void emulateAuxPrefilter(const afn::cuda::AuxBuffers& b, const afn::cuda::Tempor
 /// groups and soft minimum (adding to *t.cutPixels), blend.
 void emulateTemporal(const afn::cuda::TemporalBuffers& b, const afn::cuda::TrustBuffers& t,
     const afn::cuda::FrameConstants& f, std::uint32_t* depthRange);
+void emulateUndemodulate(
+    const float* irradiance, const float* albedo, bool plain, float* out, int w, int h);
 void emulatePrepare(const afn::cuda::PrepareBuffers& b);
 void emulateAlbedoTrust(const afn::cuda::AlbedoTrustBuffers& b);
 void emulatePool(const std::uint16_t* in, int width, int height, int stride, std::uint16_t* out);

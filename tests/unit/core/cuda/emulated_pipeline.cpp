@@ -210,16 +210,34 @@ void EmulatedAfnPipeline::run(const afn::Frame& f, const FrameConstants& c, afn:
     t.cutPixels = &cutPixels;
     emulateTemporal(b, t, c, range);
     m_cutShare = cutPixels / (static_cast<double>(m_width) * m_height);
-    const bool oneSpp = m_variant == afn::afnet::Variant::OneSpp;
-    const bool ta = m_variant == afn::afnet::Variant::Ta;
-    float* colorTa = oneSpp ? m_irradiance.data() : m_accumulated[s].data();
-    // AfnPipeline::networkSources: without temporal inputs both colours are this frame's.
-    const float* color1 = ta && m_temporalInputs ? m_accumulated[s].data() : m_irradiance.data();
-    const NetworkSources src { color1, m_temporalInputs ? colorTa : color1, b.albedo, b.normal,
-        b.depth, m_historyInput && m_temporalInputs ? m_history[s].data() : nullptr };
+    // AfnPipeline::networkSources and the undemodulation of enqueueFirstStage.
+    const afn::afnet::InputSet& use = m_networkInputs;
+    const std::size_t values = 3 * static_cast<std::size_t>(m_width) * m_height;
+    const float* irradiance = m_irradiance.data();
+    const float* accumulated = m_accumulated[s].data();
+    if (f.hasAlbedo() && !use.albedo) {
+        const float* sources[2] = { irradiance, accumulated };
+        for (int k = 0; k < 2; ++k) {
+            m_radianceInputs[k].assign(values, std::nanf(""));
+            if (k == 0 || use.temporal)
+                emulateUndemodulate(sources[k], m_albedo.data(), c.colorDemodulated != 0,
+                    m_radianceInputs[k].data(), m_width, m_height);
+        }
+        irradiance = m_radianceInputs[0].data();
+        accumulated = m_radianceInputs[1].data();
+    }
+    NetworkSources src;
+    src.color1 = use.temporal && m_variant == afn::afnet::Variant::Ta ? accumulated : irradiance;
+    src.colorTa = !use.temporal                    ? src.color1
+        : m_variant == afn::afnet::Variant::OneSpp ? irradiance
+                                                   : accumulated;
+    src.albedo = use.albedo ? b.albedo : nullptr;
+    src.normal = use.normal ? b.normal : nullptr;
+    src.depth = use.depth ? b.depth : nullptr;
+    src.historyLength = m_historyInput && use.temporal ? m_history[s].data() : nullptr;
     FinalOutput fo;
     fo.fused = m_fused.data();
-    fo.albedo = b.albedo;
+    fo.albedo = src.albedo;
     fo.plainAlbedo = c.colorDemodulated;
     fo.trust = m_albedoTrust ? m_trust.data() : nullptr;
     fo.trustWidth = m_paddedWidth / 2;

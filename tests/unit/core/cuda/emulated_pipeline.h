@@ -9,6 +9,7 @@
 #include "base/image.h"
 #include "cuda/frame_constants.h"
 #include "filter/frame.h"
+#include "methods/afn/input_set.h"
 #include "methods/afn/network.h"
 
 #include <array>
@@ -27,8 +28,8 @@ public:
     /// The quality tiers fast (no refinement) and high (AfnPipeline::setFastTier, setHighTier).
     void setFastTier(bool on) { m_fast = on; }
     void setHighTier(bool on) { m_high = on; }
-    /// AfnPipeline::setTemporalInputs.
-    void setTemporalInputs(bool on) { m_temporalInputs = on; }
+    /// AfnPipeline::setNetworkInputs.
+    void setNetworkInputs(const afn::afnet::InputSet& inputs) { m_networkInputs = inputs; }
     /// Denoise a gathered frame (as AfnCudaFilter::denoise) into `out` (3 ch, frame size).
     void run(const afn::Frame& frame, const afn::cuda::FrameConstants& constants, afn::Image& out);
 
@@ -76,7 +77,8 @@ private:
     bool m_refine;
     bool m_fast = false;
     bool m_high = false;
-    bool m_temporalInputs = true;
+    afn::afnet::InputSet m_networkInputs = afn::afnet::InputSet::full();
+    std::array<std::vector<float>, 2> m_radianceInputs; ///< AfnPipeline's, for undemodulates()
     bool m_historyInput;
     bool m_albedoTrust;
     bool m_taa = false;

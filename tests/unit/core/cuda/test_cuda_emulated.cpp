@@ -10,6 +10,7 @@
 #include "emulated_pipeline.h"
 #include "emulated_test_util.h"
 #include "filter/registry.h"
+#include "methods/afn/model_set.h"
 #include "methods/afn/network_inputs.h"
 #include "methods/afn/settings.h"
 #include "methods/afn/weights_source.h"
@@ -45,7 +46,9 @@ TEST(CudaEmulated, NetworkInputIsTheCpuInputInHalfPrecision)
         afn::afnet::Network cpu = loaded;
         const afntest::SyntheticSequence seq(29, 19, 2);
         afntest::EmulatedAfnPipeline emulated(loaded);
-        emulated.setTemporalInputs(temporal);
+        afn::afnet::InputSet use = afn::afnet::InputSet::full();
+        use.temporal = temporal;
+        emulated.setNetworkInputs(use);
         afntest::FrameGatherer gatherer;
         afntest::CpuFirstStage stages(kAux, kTrust);
         afn::afnet::NetworkInputs inputs;
@@ -56,8 +59,6 @@ TEST(CudaEmulated, NetworkInputIsTheCpuInputInHalfPrecision)
             stages.run(given);
             const afn::Frame& f = stages.frame;
             const afn::TemporalAccumulator& accumulator = stages.accumulator;
-            afn::afnet::InputSet use = afn::afnet::InputSet::full();
-            use.temporal = temporal;
             inputs.prepare(f, use, stages.irradiance, accumulator.color(),
                 loaded.hasHistoryInput() ? &accumulator.historyLength() : nullptr);
             cpu.runWholeFrame(inputs.inputs(), result);
@@ -98,6 +99,7 @@ TEST(CudaEmulated, NetworkInputIsTheCpuInputInHalfPrecision)
 namespace {
 
 /// Run the CPU filter and the emulated CUDA engine on a sequence; every frame within tolerance.
+/// `weights` empty: both with the built-in models (the one for the sequence's inputs).
 void expectFilterParity(const std::vector<char>& weights, int width, int height,
     const SequenceInputs& inputs, int frames, bool noisyAovs = false,
     const std::string& quality = "balanced")
@@ -105,12 +107,19 @@ void expectFilterParity(const std::vector<char>& weights, int width, int height,
     auto cpu = afn::createFilter("afn");
     afntest::configureAsOnTheGpu(*cpu);
     cpu->params().setString("quality", quality);
-    cpu->setData(AFN_DATA_WEIGHTS, weights.data(), weights.size());
-    const afn::afnet::Network net = afn::afnet::networkFromData(weights.data(), weights.size());
-    afntest::EmulatedAfnPipeline emulated(net);
-    // taa=auto and postFilter=auto: on for weights trained below 16 spp, as on the CPU.
-    emulated.setTaa(net.trainedSpp() < afn::afnet::kTaaAutoMaxSppExclusive);
-    emulated.setPostFilter(net.trainedSpp() < afn::afnet::kPostFilterAutoMaxSppExclusive);
+    if (!weights.empty())
+        cpu->setData(AFN_DATA_WEIGHTS, weights.data(), weights.size());
+    // The model and its inputs as AfnCudaFilter chooses them (model_set.h, without AFN large).
+    afn::afnet::ModelSet models = weights.empty()
+        ? afn::afnet::ModelSet::embedded()
+        : afn::afnet::ModelSet::fromData(weights.data(), weights.size());
+    const afn::afnet::Model* model = models.choose(afntest::inputSetOf(inputs), 0, false);
+    ASSERT_NE(model, nullptr) << inputs.name() << ": no model for these inputs";
+    afntest::EmulatedAfnPipeline emulated(model->net);
+    emulated.setNetworkInputs(model->inputs);
+    // taa=auto and postFilter=auto: on for models trained below 16 spp, as on the CPU.
+    emulated.setTaa(model->spp < afn::afnet::kTaaAutoMaxSppExclusive);
+    emulated.setPostFilter(model->spp < afn::afnet::kPostFilterAutoMaxSppExclusive);
     emulated.setFastTier(quality == "fast");
     emulated.setHighTier(quality == "high");
     const afntest::SyntheticSequence seq(width, height, 11);
@@ -249,16 +258,31 @@ TEST(CudaEmulated, FilterMatchesCpuWithShippedWeights)
         expectFilterParity(spp16, 64, 40, SequenceInputs {}, 3);
 }
 
+// The built-in model of each input set (model_set.h: colour only, colour + albedo + normal, the
+// full set), as both engines choose it: inputs the model was not trained for held at their
+// neutral values, and a model without albedo on a frame with one filtering the colours times the
+// albedo, its output not remodulated (network_inputs.cpp).
+TEST(CudaEmulated, FilterMatchesCpuWithTheBuiltInModelOfEachInputSet)
+{
+    if (afn::afnet::ModelSet::embedded().empty())
+        GTEST_SKIP() << "this build has no built-in weights";
+    for (const SequenceInputs& inputs : afntest::parityInputSets())
+        expectFilterParity({}, 51, 33, inputs, 3);
+}
+
 // The GPU test's cases (tests/gpu) on the emulation: how the tolerance was chosen. Minutes of CPU
 // time, so not part of ctest: test_cuda_engine --gtest_also_run_disabled_tests
 // --gtest_filter=*Calibration*
 TEST(CudaEmulated, DISABLED_CalibrationOnTheGpuParityCases)
 {
     for (const afntest::ParityCase& c : afntest::gpuParityCases()) {
-        std::vector<char> weights = c.weights == "shipped"
-            ? shippedWeights()
+        const bool shipped = c.weights == "shipped"; // the built-in models, as tests/gpu
+        if (shipped && afn::afnet::ModelSet::embedded().empty())
+            continue;
+        const std::vector<char> weights = shipped
+            ? std::vector<char> {}
             : testWeights(("weights_" + c.weights + ".afnw").c_str());
-        if (weights.empty() || !afntest::cpuRunsTheFullModel(c.inputs)) // as tests/gpu
+        if (!shipped && !afntest::cpuRunsTheFullModel(c.inputs)) // one full-input archive
             continue;
         expectFilterParity(weights, c.width, c.height, c.inputs, c.frames);
     }
