@@ -6,7 +6,8 @@
 // download of a frame are timed apart, and so is a whole afnExecuteFilter-equivalent call (gather
 // on the CPU, upload, graph, download, output write; wall clock). Inputs: a synthetic sequence
 // with every AOV (second frame, so the history is in use); weights: the shipped model when built
-// in, else random weights of its architecture.
+// in, else random weights of its architecture; AFN large's whole graph too where it is built in
+// (the model chosen at 64 spp).
 //
 // Usage: bench_afn_cuda [--sizes 1280x720,1920x1080,3840x2160] [--csv FILE]
 // Exit status: 0 done, 1 error, 77 no usable GPU (nothing measured).
@@ -17,6 +18,7 @@
 #include "cuda/frame_constants.h"
 #include "cuda/gpu.h"
 #include "filter/registry.h"
+#include "methods/afn/model_set.h"
 #include "methods/afn/random_weights.h"
 #include "methods/afn/settings.h"
 #include "methods/afn/weights_source.h"
@@ -106,7 +108,7 @@ bool allFinite(const afn::Image& img)
 }
 
 void benchmarkSize(const afn::Device& device, const afn::afnet::Network& net,
-    bool hasBuiltInWeights, int w, int h, std::vector<Row>& rows)
+    const afn::afnet::Network* large, bool hasBuiltInWeights, int w, int h, std::vector<Row>& rows)
 {
     const std::string size = std::to_string(w) + "x" + std::to_string(h);
     const long long pixels = static_cast<long long>(w) * h;
@@ -177,6 +179,25 @@ void benchmarkSize(const afn::Device& device, const afn::afnet::Network& net,
     if (!allFinite(out))
         throw std::runtime_error("the output of " + size + " has NaN or Inf values");
 
+    // AFN large (the built-in model from about 45 spp on), the whole per-frame graph.
+    if (large) {
+        AfnPipeline largePipe(device.gpuOrdinal());
+        largePipe.setNetwork(*large); // taa=auto and postFilter=auto are off at its 64 spp
+        afn::AuxSettings largeAux;
+        largeAux.spp = 64;
+        afntest::FrameGatherer largeGatherer;
+        for (int k = 0; k < 2; ++k) {
+            const afn::Frame& f = largeGatherer.gather(in[k]);
+            largePipe.run(
+                f, afn::cuda::frameConstants(f, reproject, accumulation, trust, largeAux), out);
+        }
+        rows.push_back({ size, "AFN large (graph)",
+            timeOnStream(largePipe.stream(), batches, perBatch, [&] { largePipe.launch(); }),
+            "the per-frame graph of the 64-spp model, CUDA events" });
+        if (!allFinite(out))
+            throw std::runtime_error("the AFN large output of " + size + " has NaN or Inf");
+    }
+
     // The whole filter as the API runs it (needs the built-in weights).
     if (!hasBuiltInWeights)
         return;
@@ -241,9 +262,14 @@ int main(int argc, char** argv)
             net.load(afn::afnet::randomWeights(afn::afnet::Architecture {}));
             std::cout << "bench_afn_cuda: weights: random, the shipped architecture\n";
         }
+        // AFN large: the built-in model the filter chooses at 64 spp, when it is one.
+        afn::afnet::ModelSet models = afn::afnet::ModelSet::embedded();
+        const afn::afnet::Model* m = models.choose(afn::afnet::InputSet::full(), 64);
+        const afn::afnet::Network* large
+            = m && m->net.variant() == afn::afnet::Variant::Large ? &m->net : nullptr;
         std::vector<Row> rows;
         for (const auto& [w, h] : parseSizes(sizesText))
-            benchmarkSize(*device, net, builtIn, w, h, rows);
+            benchmarkSize(*device, net, large, builtIn, w, h, rows);
 
         std::printf("\n%-10s  %-22s %9s %9s %9s  %s\n", "size", "what", "median", "min", "max",
             "how (milliseconds per frame)");

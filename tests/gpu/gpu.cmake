@@ -13,4 +13,5 @@ afn_embed_file(test_afn_cuda ${AFN_TEST_DATA}/afn_parity/weights_full.afnw afnTe
 afn_embed_file(test_afn_cuda ${AFN_TEST_DATA}/afn_parity/weights_fusion.afnw afnTestWeightsFusion)
 afn_embed_file(test_afn_cuda ${AFN_TEST_DATA}/afn_parity/weights_trust.afnw afnTestWeightsTrust)
 afn_embed_file(test_afn_cuda ${AFN_TEST_DATA}/afn_parity/weights_quarter.afnw afnTestWeightsQuarter)
+afn_embed_file(test_afn_cuda ${AFN_TEST_DATA}/afn_parity/weights_large.afnw afnTestWeightsLarge)
 gtest_discover_tests(test_afn_cuda DISCOVERY_TIMEOUT 60 PROPERTIES LABELS gpu TIMEOUT 600)

@@ -17,6 +17,7 @@
 #include "filter/registry.h"
 #include "methods/afn/model_set.h"
 #include "methods/afn/network_inputs.h"
+#include "methods/afn/tone_map.h"
 #include "methods/afn/weights_source.h"
 #include "raw_frames.h"
 #include "stages/demodulate.h"
@@ -25,6 +26,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -39,6 +41,8 @@ extern "C" const unsigned char afnTestWeightsFusion[];
 extern "C" const unsigned long long afnTestWeightsFusion_size;
 extern "C" const unsigned char afnTestWeightsTrust[];
 extern "C" const unsigned long long afnTestWeightsTrust_size;
+extern "C" const unsigned char afnTestWeightsLarge[];
+extern "C" const unsigned long long afnTestWeightsLarge_size;
 extern "C" const unsigned char afnTestWeightsQuarter[];
 extern "C" const unsigned long long afnTestWeightsQuarter_size;
 
@@ -59,6 +63,8 @@ std::vector<char> weightsBytes(const std::string& which)
         return { afnTestWeightsFusion, afnTestWeightsFusion + afnTestWeightsFusion_size };
     if (which == "trust")
         return { afnTestWeightsTrust, afnTestWeightsTrust + afnTestWeightsTrust_size };
+    if (which == "large")
+        return { afnTestWeightsLarge, afnTestWeightsLarge + afnTestWeightsLarge_size };
     return {};
 }
 
@@ -107,6 +113,26 @@ protected:
     }
 };
 
+/// AFN large's network input from the CPU's inputs (network_large.cpp prepare()): x = [T(c),
+/// albedo, normal01, depth01] at the padded size, edge replicated.
+afn::Image largeInput(const afn::afnet::Inputs& in)
+{
+    const int w = in.color1->width(), h = in.color1->height();
+    afn::Image x(afn::afnet::paddedSize(w), afn::afnet::paddedSize(h), 10);
+    for (int y = 0; y < x.height(); ++y)
+        for (int px = 0; px < x.width(); ++px) {
+            const int sx = std::min(px, w - 1), sy = std::min(y, h - 1);
+            float* o = x.at(px, y);
+            for (int k = 0; k < 3; ++k) {
+                o[k] = afn::afnet::toneMap(in.color1->at(sx, sy)[k]);
+                o[3 + k] = in.albedo->at(sx, sy)[k];
+                o[6 + k] = in.normal01->at(sx, sy)[k];
+            }
+            o[9] = in.depth01->at(sx, sy)[0];
+        }
+    return x;
+}
+
 /// One case: the CPU and CUDA filters side by side, every frame checked.
 void runParityCase(const ParityCase& c)
 {
@@ -121,16 +147,20 @@ void runParityCase(const ParityCase& c)
         cpu->setData(AFN_DATA_WEIGHTS, weights.data(), weights.size());
         gpu->setData(AFN_DATA_WEIGHTS, weights.data(), weights.size());
     }
+    for (afn::Filter* f : { cpu.get(), gpu.get() })
+        f->params().setNumber("spp", c.spp, AFN_PARAM_INT);
+    afn::AuxSettings aux;
+    aux.spp = c.spp;
     // The CPU stages and network input, for the intermediates: the model both filters choose for
     // the sequence's inputs (model_set.h).
     afn::afnet::ModelSet models = weights.empty()
         ? afn::afnet::ModelSet::embedded()
         : afn::afnet::ModelSet::fromData(weights.data(), weights.size());
-    afn::afnet::Model* model = models.choose(afntest::inputSetOf(c.inputs), 0, false);
+    afn::afnet::Model* model = models.choose(afntest::inputSetOf(c.inputs), c.spp);
     ASSERT_NE(model, nullptr) << "no model for " << c.inputs.name();
     afn::afnet::Network& net = model->net;
     afntest::FrameGatherer gatherer;
-    afntest::CpuFirstStage stages(afn::AuxSettings {}, afn::HistoryTrustSettings {});
+    afntest::CpuFirstStage stages(aux, afn::HistoryTrustSettings {});
     afn::afnet::NetworkInputs inputs;
     afn::Image gpuIrr, gpuAcc, gpuX;
 
@@ -151,7 +181,10 @@ void runParityCase(const ParityCase& c)
         // The model's inputs, history01 where the weights read it.
         inputs.prepare(f, model->inputs, irradiance, accumulator.color(),
             net.hasHistoryInput() ? &accumulator.historyLength() : nullptr);
-        net.prepare(inputs.inputs());
+        const bool large = net.variant() == afn::afnet::Variant::Large;
+        const afn::Image expectedX = large ? largeInput(inputs.inputs()) : afn::Image {};
+        if (!large)
+            net.prepare(inputs.inputs());
         cuda.pipeline().downloadIntermediate(
             afn::cuda::AfnPipeline::Intermediate::Irradiance, gpuIrr);
         cuda.pipeline().downloadIntermediate(
@@ -162,7 +195,7 @@ void runParityCase(const ParityCase& c)
         const afntest::OutputDifference d = afntest::compareOutputs(gpuOut, cpuOut);
         const double irrDiff = afntest::maxAbsDifference(gpuIrr, irradiance);
         const double taDiff = afntest::maxAbsDifference(gpuAcc, accumulator.color());
-        const double xDiff = afntest::maxAbsDifference(gpuX, net.input());
+        const double xDiff = afntest::maxAbsDifference(gpuX, large ? expectedX : net.input());
         std::cout << "[ parity ] " << c.name() << " frame " << k << ": " << d.text()
                   << "; TA max|diff| " << taDiff << ", irradiance " << irrDiff << ", network input "
                   << xDiff << "\n";

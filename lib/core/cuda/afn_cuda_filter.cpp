@@ -30,22 +30,14 @@ const afnet::Model& AfnCudaFilter::chooseModel(const afnet::InputSet& available)
 {
     if (m_models.empty())
         afnet::throwNoWeights();
-    if (const afnet::Model* m = m_models.choose(available, m_aux.spp, false))
+    if (const afnet::Model* m = m_models.choose(available, m_aux.spp))
         return *m;
-    if (m_models.choose(available, m_aux.spp, true)) // only AFN large covers these inputs
-        throw Exception(AFN_ERROR_UNSUPPORTED,
-            "afn on a CUDA device has no AFN large graph yet: weights with variant=large run on "
-            "the CPU device (afntool: --device cpu)");
     m_models.throwNoModelFor(available);
 }
 
 void AfnCudaFilter::useModel(const afnet::Model& model)
 {
     if (&model != m_model) {
-        if (model.net.hasQuarterScale()) // no GPU graph for it yet
-            throw Exception(AFN_ERROR_UNSUPPORTED,
-                "afn on a CUDA device has no quarter-resolution scale yet: weights with "
-                "quarter=1 run on the CPU device (afntool: --device cpu)");
         m_pipeline.setNetwork(model.net);
         m_model = &model;
     }
@@ -75,8 +67,15 @@ void AfnCudaFilter::configure()
     m_reproject = reprojectBinding().read(params());
     m_accumulation = accumulationBinding().read(params());
     m_trust = historyTrustBinding().read(params());
+    for (const afnet::Model& m : m_models.models())
+        if (m.net.hasQuarterScale()) // no GPU graph for it yet
+            throw Exception(AFN_ERROR_UNSUPPORTED,
+                "afn on a CUDA device has no quarter-resolution scale yet: weights with "
+                "quarter=1 run on the CPU device (afntool: --device cpu)");
     // The model for the bound inputs, as the CPU filter: a missing one fails the commit; denoise
     // chooses again from each frame's own inputs.
+    if (!outputBound())
+        return;
     afnet::InputSet bound;
     bound.albedo = imageBound(AFN_IMAGE_ALBEDO);
     bound.normal = imageBound(AFN_IMAGE_NORMAL);

@@ -42,8 +42,8 @@ private:
     void configure() override;
     void denoise(const Frame& in, Image& out) override;
 
-    /// The model for a frame with `available` inputs (the CPU filter's choice without AFN large,
-    /// which has no GPU graph); throws as the CPU filter does when none is covered.
+    /// The model for a frame with `available` inputs (the CPU filter's choice); throws as the
+    /// CPU filter does when none is covered.
     const afnet::Model& chooseModel(const afnet::InputSet& available);
     /// Give the pipeline the model (packed and uploaded when it changes) and the settings that
     /// follow from its training sample count (the output TAA and the post-filter on auto).

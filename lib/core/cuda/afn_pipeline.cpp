@@ -19,19 +19,6 @@ constexpr int layerIndex(NetLayer l)
     return static_cast<int>(l);
 }
 
-/// Allocate `count` elements; a fresh allocation is filled with 0xff bytes (NaN as float and as
-/// half) on `stream` when `poison` is set. (Every copy and fill of the pipeline goes through its
-/// own stream: the legacy default stream is not ordered with a non-blocking stream.)
-template <typename T>
-void allocateBuffer(DeviceBuffer<T>& b, std::size_t count, bool poison, cudaStream_t stream)
-{
-    if (b.size() == count)
-        return;
-    b.resize(count);
-    if (poison && count > 0)
-        AFN_CUDA_CHECK(cudaMemsetAsync(b.data(), 0xff, b.bytes(), stream));
-}
-
 std::size_t pixels(int w, int h)
 {
     return static_cast<std::size_t>(w) * static_cast<std::size_t>(h);
@@ -100,14 +87,6 @@ FrameLayout FrameLayout::of(const Frame& f)
     return l;
 }
 
-void AfnPipeline::Tensor::allocate(int w, int h, int channels, bool poison, cudaStream_t stream)
-{
-    width = w;
-    height = h;
-    stride = channelStride(channels);
-    allocateBuffer(data, pixels(w, h) * stride, poison, stream);
-}
-
 AfnPipeline::AfnPipeline(int gpu)
     : m_gpu((useGpu(gpu), gpu)) // the stream below belongs to this GPU
 {
@@ -127,10 +106,14 @@ void AfnPipeline::setNetwork(const afnet::Network& network)
     m_refine = m_variant == afnet::Variant::Full;
     m_historyInput = network.hasHistoryInput();
     m_albedoTrust = network.hasAlbedoTrust();
+    if (large())
+        m_large.setNetwork(network.large(), m_stream.get());
+    else
+        m_large.release();
     for (int i = 0; i < static_cast<int>(m_layers.size()); ++i) {
         const auto which = static_cast<NetLayer>(i);
         Layer& layer = m_layers[i];
-        if (!m_refine && i >= layerIndex(NetLayer::Ref1)) {
+        if (large() || (!m_refine && i >= layerIndex(NetLayer::Ref1))) {
             layer = Layer {};
             continue;
         }
@@ -141,13 +124,7 @@ void AfnPipeline::setNetwork(const afnet::Network& network)
             up = network.layer(NetLayer::Dec2).outChannels();
         else if (which == NetLayer::HeadTa)
             up = network.layer(NetLayer::Dec1).outChannels();
-        layer.packed = packConv(network.layer(which), up);
-        layer.weights.resize(layer.packed.weights.size());
-        layer.bias.resize(layer.packed.bias.size());
-        AFN_CUDA_CHECK(cudaMemcpyAsync(layer.weights.data(), layer.packed.weights.data(),
-            layer.weights.bytes(), cudaMemcpyHostToDevice, m_stream.get()));
-        AFN_CUDA_CHECK(cudaMemcpyAsync(layer.bias.data(), layer.packed.bias.data(),
-            layer.bias.bytes(), cudaMemcpyHostToDevice, m_stream.get()));
+        layer.upload(network.layer(which), up, m_stream.get());
     }
     std::vector<float> head; // the albedo trust's head, alive until the copy is done
     if (m_albedoTrust) {
@@ -219,6 +196,16 @@ void AfnPipeline::allocate(const FrameLayout& layout)
     m_paddedWidth = paddedSize(w);
     m_paddedHeight = paddedSize(h);
     const int wp = m_paddedWidth, hp = m_paddedHeight;
+    if (large()) { // AFN large's own tensors instead of the AFN graph's
+        for (Tensor* t : { &m_x, &m_xHalf, &m_e1, &m_e1Pool, &m_e2, &m_e2Pool, &m_e3, &m_d2, &m_d1,
+                 &m_refineInput, &m_r1, &m_r2 })
+            *t = Tensor {};
+        for (DeviceBuffer<float>* b : { &m_color1Half, &m_fused, &m_trust, &m_colorTaScaled })
+            b->release();
+        m_large.allocate(wp, hp, p, st);
+        m_layout = layout;
+        return;
+    }
     const int inputs = m_historyInput ? kHistoryInputChannels : kInputChannels;
     m_x.allocate(wp, hp, inputs, p, st);
     m_xHalf.allocate(wp / 2, hp / 2, inputs, p, st);
@@ -422,11 +409,13 @@ void AfnPipeline::downloadIntermediate(Intermediate which, Image& out)
     case Intermediate::Accumulated:
         return floats(m_accumulated[m_lastSlot], w, h, 3);
     case Intermediate::NetworkInput:
+        if (large())
+            return halves(m_large.input(), kLargeInputChannels);
         return halves(m_x, m_historyInput ? kHistoryInputChannels : kInputChannels);
     case Intermediate::DecoderOutput:
         return halves(m_d1, m_layers[layerIndex(NetLayer::Dec1)].packed.outChannels);
     case Intermediate::Fused:
-        return floats(m_fused, m_paddedWidth, m_paddedHeight, 3);
+        return floats(large() ? m_large.fused() : m_fused, m_paddedWidth, m_paddedHeight, 3);
     case Intermediate::AlbedoTrust:
         return floats(m_trust, m_paddedWidth / 2, m_paddedHeight / 2, 1);
     }

@@ -13,11 +13,14 @@
 // KernelPrediction (encoder-decoder; the albedo trust after its first level for weights with
 // albedoTrust=1), FilteringFusion (heads, softmax, filtering, Eq. 3), Refinement (variant "full";
 // the output divided by the albedo trust's scale, remodulated), Taa and PostFilter (when set).
+// Weights of AFN large run its graph (large_graph.h) in the network's stages instead.
 #pragma once
 
 #include "base/image.h"
+#include "cuda/device_layers.h"
 #include "cuda/device_memory.h"
 #include "cuda/kernels.h"
+#include "cuda/large_graph.h"
 #include "filter/frame.h"
 #include "methods/afn/input_set.h"
 #include "methods/afn/network.h"
@@ -118,25 +121,21 @@ public:
     std::size_t downloadBytes() const;
 
     /// An intermediate of the last frame, as floats (tests). Irradiance, Accumulated: frame size,
-    /// 3 ch; NetworkInput: padded size, 13 ch (14 with the history input); DecoderOutput: half
-    /// the padded size; Fused: padded size, 3 ch (variant "full" only); AlbedoTrust: half the
-    /// padded size, 1 ch (weights with the albedo trust only). Call after run().
+    /// 3 ch; NetworkInput: padded size, 13 ch (14 with the history input; AFN large: its 10);
+    /// DecoderOutput: half the padded size (not AFN large); Fused: padded size, 3 ch (variant
+    /// "full", and AFN large's i); AlbedoTrust: half the padded size, 1 ch (weights with the
+    /// albedo trust only). Call after run().
     void downloadIntermediate(Intermediate which, Image& out);
 
 private:
-    struct Layer {
-        PackedConv packed;
-        DeviceBuffer<std::uint32_t> weights;
-        DeviceBuffer<float> bias;
-    };
-    struct Tensor {
-        DeviceBuffer<std::uint16_t> data;
-        int width = 0, height = 0, stride = 0;
-        void allocate(int w, int h, int channels, bool poison, cudaStream_t stream);
-    };
+    using Layer = DeviceLayer;
+    using Tensor = HalfTensor;
     void allocate(const FrameLayout& layout);
     void captureGraphs();
-    ConvOperands operands(const Layer& layer, const Tensor* up, const Tensor& same) const;
+    ConvOperands operands(const Layer& layer, const Tensor* up, const Tensor& same) const
+    {
+        return convOperands(layer, up, same);
+    }
     FinalOutput finalOutput(int slot) const;
     /// What the network reads of a frame (frame size): the slot's buffers, or their mirror
     /// images for a pass of the quality tier high.
@@ -182,8 +181,11 @@ private:
     /// The refinement runs this frame.
     bool refines() const { return m_refine && !m_fast; }
     /// Work skipping applies (the tiers fast, where it skips the refinement, and high compute
-    /// every pixel, as on the CPU: quality_tiers.h).
-    bool skipsRows() const { return !(m_fast && m_refine) && !m_high; }
+    /// every pixel, as AFN large does, as on the CPU: quality_tiers.h, network_large.h).
+    bool skipsRows() const { return !(m_fast && m_refine) && !m_high && !large(); }
+    /// The weights are AFN large (m_large runs instead of the AFN graph; every row computed, the
+    /// tier fast as balanced, as the CPU's Network).
+    bool large() const { return m_variant == afnet::Variant::Large; }
     bool m_historyInput = false; ///< the network reads history01 (Network::hasHistoryInput)
     bool m_albedoTrust = false; ///< Network::hasAlbedoTrust
     bool m_taa = false; ///< setTaa()
@@ -241,6 +243,7 @@ private:
     DeviceBuffer<float> m_color1Half, m_fused;
     // The albedo trust's t (half the padded frame) and the TA colour times s (padded frame).
     DeviceBuffer<float> m_trust, m_colorTaScaled;
+    LargeGraph m_large; ///< AFN large's layers and tensors (weights with variant=large)
 };
 
 } // namespace afn::cuda

@@ -128,6 +128,11 @@ void AfnPipeline::enqueueTemporalFeatures(int slot, cudaStream_t stream) const
 
 void AfnPipeline::enqueuePrepare(const NetworkSources& src, cudaStream_t stream) const
 {
+    if (large()) {
+        const LargeSources ls { m_layout.width, m_layout.height, src.color1, src.albedo, src.normal,
+            src.depth, m_depthRange.data() };
+        return m_large.enqueuePrepare(ls, stream);
+    }
     PrepareBuffers p;
     p.width = m_layout.width;
     p.height = m_layout.height;
@@ -147,33 +152,10 @@ void AfnPipeline::enqueuePrepare(const NetworkSources& src, cudaStream_t stream)
     launchPrepare(p, stream);
 }
 
-ConvOperands AfnPipeline::operands(const Layer& layer, const Tensor* up, const Tensor& same) const
-{
-    const PackedConv& pc = layer.packed;
-    const bool upOk = up ? (pc.upChunks() * kChunk == up->stride && 2 * up->width == same.width
-                          && 2 * up->height == same.height)
-                         : pc.upChunks() == 0;
-    if (!upOk || pc.sameChunks() * kChunk != same.stride || pc.tiles() == 0)
-        throwInvalidOperation("CUDA afn: a layer does not match its input tensors");
-    ConvOperands op;
-    op.up = up ? up->data.data() : nullptr;
-    op.upStride = up ? up->stride : 0;
-    op.upChunks = pc.upChunks();
-    op.upWidth = up ? up->width : 0;
-    op.same = same.data.data();
-    op.sameStride = same.stride;
-    op.sameChunks = pc.sameChunks();
-    op.width = same.width;
-    op.height = same.height;
-    op.ksize = pc.ksize;
-    op.weights = layer.weights.data();
-    op.bias = layer.bias.data();
-    op.tiles = pc.tiles();
-    return op;
-}
-
 void AfnPipeline::enqueueKernelPrediction(const NetworkSources& src, cudaStream_t stream) const
 {
+    if (large())
+        return m_large.enqueuePrediction(stream);
     auto conv = [&](NetLayer l, const Tensor* up, const Tensor& same, const Tensor& out) {
         launchConvRelu(operands(m_layers[layerIndex(l)], up, same),
             ReluOutput { out.data.data(), out.stride }, stream);
@@ -227,6 +209,8 @@ FinalOutput AfnPipeline::finalOutput(int slot) const
 void AfnPipeline::enqueueFilteringFusion(
     const NetworkSources& src, const FinalOutput& out, cudaStream_t stream) const
 {
+    if (large())
+        return m_large.enqueueFilteringFusion(stream);
     FilterFuseArgs a;
     a.head1 = operands(m_layers[layerIndex(NetLayer::Head1)], nullptr, m_d1);
     a.headTa = operands(m_layers[layerIndex(NetLayer::HeadTa)], &m_d1, m_x);
@@ -251,6 +235,8 @@ void AfnPipeline::enqueueFilteringFusion(
 
 void AfnPipeline::enqueueRefinement(const FinalOutput& out, cudaStream_t stream) const
 {
+    if (large())
+        return m_large.enqueueRefinement(out, stream);
     if (!refines())
         return;
     auto conv = [&](NetLayer l, const Tensor& same, const Tensor& out) {

@@ -28,6 +28,17 @@ struct ReluEpilogue {
     }
 };
 
+/// Epilogue of a layer without activation (float output).
+struct LinearEpilogue {
+    LinearOutput out;
+    __device__ void store(
+        const ConvOperands& op, int lane, int x0, int y, int tile, const float (&c)[4]) const
+    {
+        storeLinear(op, out, lane, x0, y, tile, c);
+    }
+    __device__ void finish(const ConvOperands&, int, int, int) const { }
+};
+
 /// Epilogue of the last refinement layer (one N tile).
 struct FinalEpilogue {
     FinalOutput out;
@@ -115,6 +126,28 @@ void launchConvRelu(const ConvOperands& op, const ReluOutput& out, cudaStream_t 
         return launch<6>(op, epi, groups, stream);
     case 7:
         return launch<7>(op, epi, groups, stream);
+    default:
+        return launch<8>(op, epi, groups, stream);
+    }
+}
+
+void launchConvLinear(const ConvOperands& op, const LinearOutput& out, cudaStream_t stream)
+{
+    checkOperands(op);
+    if (!out.data || out.channels <= 0 || out.channels > op.tiles * kTileN)
+        throwCudaError(cudaErrorInvalidValue, "linear convolution output", __FILE__, __LINE__);
+    const int groups = (op.tiles + kMaxTilesPerWarp - 1) / kMaxTilesPerWarp;
+    const int perGroup = (op.tiles + groups - 1) / groups;
+    const LinearEpilogue epi { out };
+    switch (perGroup) {
+    case 1:
+        return launch<1>(op, epi, groups, stream);
+    case 2:
+        return launch<2>(op, epi, groups, stream);
+    case 3:
+        return launch<3>(op, epi, groups, stream);
+    case 4:
+        return launch<4>(op, epi, groups, stream);
     default:
         return launch<8>(op, epi, groups, stream);
     }

@@ -105,6 +105,26 @@ AFN_HD void storeRelu(const ConvOperands& op, const ReluOutput& out, int lane, i
     }
 }
 
+/// Output of a layer without activation in float (AFN large's heads): `channels` floats per
+/// pixel (the layer's output channels), NHWC.
+struct LinearOutput {
+    float* data = nullptr;
+    int channels = 0;
+};
+
+/// Write `lane`'s accumulators of N tile `tile` (bias added) for a Row16 tile at (x0, y).
+AFN_HD void storeLinear(const ConvOperands& op, const LinearOutput& out, int lane, int x0, int y,
+    int tile, const float (&c)[4])
+{
+    for (int i = 0; i < 4; ++i) {
+        const int px = x0 + Fragment::cRow(lane, i), n = tile * kTileN + Fragment::cCol(lane, i);
+        if (px >= op.width || n >= out.channels)
+            continue;
+        out.data[(static_cast<std::size_t>(y) * op.width + px) * out.channels + n]
+            = c[i] + loadFloat(op.bias + n);
+    }
+}
+
 /// Zero the channels between the last N tile and the stride (a 24-channel layer has a stride of
 /// 32: channels 24-31 are written 0 so that the next layer may read them).
 AFN_HD void storeZeroPadding(const ConvOperands& op, const ReluOutput& out, int lane, int x0, int y)

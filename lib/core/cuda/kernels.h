@@ -15,6 +15,9 @@
 //                                      (weights with albedoTrust=1)
 //   filterFuse                         heads, softmax, 7 x 7 filtering, Eq. 3
 //   conv x 3 (the last: convFinal)     refinement, residual, remodulation, crop
+//   AFN large instead of prepare .. convFinal (large_graph.h): largePrepare, down2, the U-Net,
+//   convLinear (3 heads), largeFilter (3 scales), fuseScales x 2, largeRefineInput and conv x 3
+//   per refinement module
 //   (quality=high: flip, the network, addPass per pass; averagePasses)
 //   taa                                the output TAA (its output is the next frame's history)
 //   postFilter                         guides, six half-passes of the a-trous smoothing
@@ -25,6 +28,7 @@
 #include "cuda/conv_tile.h"
 #include "cuda/filter_fuse_lane.h"
 #include "cuda/high_tier_pixel.h"
+#include "cuda/large_pixel.h"
 #include "cuda/post_filter_pixel.h"
 #include "cuda/prepare_block.h"
 #include "cuda/taa_pixel.h"
@@ -66,11 +70,26 @@ void launchAlbedoTrust(const AlbedoTrustBuffers& b, cudaStream_t stream);
 /// A hidden convolution layer (bias, ReLU, half-precision output).
 void launchConvRelu(const ConvOperands& op, const ReluOutput& out, cudaStream_t stream);
 
+/// A layer without activation (AFN large's heads), float output.
+void launchConvLinear(const ConvOperands& op, const LinearOutput& out, cudaStream_t stream);
+
 /// The last refinement layer (3 output channels), writing the remodulated, cropped output.
 void launchConvFinal(const ConvOperands& op, const FinalOutput& out, cudaStream_t stream);
 
 /// Heads, softmax, filtering and Eq. 3 over the padded frame.
 void launchFilterFuse(const FilterFuseArgs& a, cudaStream_t stream);
+
+/// AFN large (large_pixel.h): the input preparation over the half-resolution grid of the padded
+/// frame; D of a float image (`out` w x h, `in` twice that); one scale's softmax and 5 x 5
+/// filtering; Eq. 3 between scales in place on `fine` (width x height); a refinement module's
+/// input over the padded frame (width x height).
+void launchLargePrepare(const LargePrepareBuffers& b, cudaStream_t stream);
+void launchDown2(const float* in, float* out, int w, int h, int channels, cudaStream_t stream);
+void launchLargeFilter(const LargeFilterArgs& a, cudaStream_t stream);
+void launchFuseScales(float* fine, const float* coarse, const float* logits, int logitStride,
+    int channel, int width, int height, cudaStream_t stream);
+void launchLargeRefineInput(const float* o, const std::uint16_t* x, std::uint16_t* refineInput,
+    int width, int height, cudaStream_t stream);
 
 /// afn's output TAA over the frame; `t` the frame's temporal buffers (for the history taps),
 /// `trust` the history trust's (read where it was measured).

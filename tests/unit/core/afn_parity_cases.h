@@ -58,18 +58,19 @@ struct CpuFirstStage {
 };
 
 struct ParityCase {
-    /// "full", "fusion", "trust" (tests/data/afn_parity: weights_trust has the history input and
-    /// the albedo trust; the full input set only) or "shipped" (the built-in models, weights/:
-    /// the one for the sequence's input set)
+    /// "full", "fusion", "trust", "large" (tests/data/afn_parity: weights_trust has the history
+    /// input and the albedo trust, weights_large is AFN large; the full input set only) or
+    /// "shipped" (the built-in models, weights/: the one for the sequence's input set and `spp`)
     std::string weights;
     int width = 0;
     int height = 0;
     SequenceInputs inputs;
     int frames = 3;
+    int spp = 0; ///< the samples per pixel the frames are said to have (the `spp` parameter)
     std::string name() const
     {
         return weights + " " + std::to_string(width) + "x" + std::to_string(height) + " "
-            + inputs.name();
+            + inputs.name() + (spp > 0 ? " " + std::to_string(spp) + " spp" : "");
     }
 };
 
@@ -110,8 +111,8 @@ inline bool cpuRunsTheFullModel(const SequenceInputs& in)
 }
 
 /// The GPU parity cases: sizes from 1 x 1 to 1280 x 720 (odd ones included), each input set,
-/// the committed test archives (variants "full" and "fusion"; "full" with the history input and
-/// the albedo trust) and the shipped model.
+/// the committed test archives (variants "full", "fusion" and "large"; "full" with the history
+/// input and the albedo trust) and the shipped models (AFN large at 64 spp).
 inline std::vector<ParityCase> gpuParityCases()
 {
     std::vector<ParityCase> cases;
@@ -128,6 +129,10 @@ inline std::vector<ParityCase> gpuParityCases()
         cases.push_back({ "trust", w, h, all, 3 });
     for (const SequenceInputs& in : parityInputSets()) // the built-in model of each input set
         cases.push_back({ "shipped", 161, 91, in, 3 });
+    for (const auto& [w, h] :
+        std::vector<std::pair<int, int>> { { 1, 1 }, { 37, 21 }, { 129, 67 } })
+        cases.push_back({ "large", w, h, all, 3 });
+    cases.push_back({ "shipped", 161, 91, all, 3, 64 }); // AFN large, the built-in 64-spp model
     cases.push_back({ "shipped", 333, 187, all, 4 });
     cases.push_back({ "shipped", 640, 360, all, 3 });
     cases.push_back({ "shipped", 1280, 720, all, 3 });

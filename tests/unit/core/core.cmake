@@ -71,6 +71,9 @@ afn_add_gtest(test_cuda_engine
     unit/core/cuda/test_cuda_emulated_stages.cpp
     unit/core/cuda/test_cuda_emulated_blender.cpp
     unit/core/cuda/cuda_emulator.cpp
+    unit/core/cuda/cuda_emulator_large.cpp
+    unit/core/cuda/emulated_tensors.cpp
+    unit/core/cuda/emulated_large.cpp
     unit/core/cuda/emulated_pipeline.cpp
   LIBS afn_core PkgConfig::OIIO)
 target_include_directories(test_cuda_engine PRIVATE ${AFN_CORE_TESTS})

@@ -86,6 +86,15 @@ void LargeNetwork::load(const nn::WeightsArchive& a)
                 "invalid or corrupted weights (" + a.source() + "): refinement layers must be 3x3");
 }
 
+const nn::Conv& LargeNetwork::layer(int index) const
+{
+    const nn::Conv* layers[kLayers] = { &m_enc1, &m_enc2, &m_enc3, &m_dec2, &m_dec1, &m_head3,
+        &m_head2, &m_head1, &m_ref[0], &m_ref[1], &m_ref[2], &m_ref[3], &m_ref[4], &m_ref[5] };
+    if (index < 0 || index >= kLayers)
+        throwInvalidArgument("AFN large: no layer " + std::to_string(index));
+    return *layers[index];
+}
+
 void LargeNetwork::prepare(const Inputs& in)
 {
     const int w = in.color1->width(), h = in.color1->height();

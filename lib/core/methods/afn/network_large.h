@@ -29,6 +29,12 @@ struct Inputs; // network.h
 
 class LargeNetwork {
 public:
+    /// The layers (the CUDA engine packs them); refA1..3, refB1..3 are the two refinement modules.
+    enum class Layer { Enc1, Enc2, Enc3, Dec2, Dec1, Head3, Head2, Head1, RefA1 };
+    static constexpr int kLayers = 14;
+    /// Layer `index` in Layer order (RefA1 + k for the k-th refinement layer).
+    const nn::Conv& layer(int index) const;
+
     /// Build the graph from an archive (variant=large); throws "invalid or corrupted weights".
     void load(const nn::WeightsArchive& weights);
 

@@ -269,6 +269,13 @@ void emulateConvRelu(const ConvOperands& op, const ReluOutput& out)
     });
 }
 
+void emulateConvLinear(const ConvOperands& op, const LinearOutput& out)
+{
+    emulateConv(op, [&](int lane, int x0, int y, int tile, const float(&c)[4]) {
+        storeLinear(op, out, lane, x0, y, tile, c);
+    });
+}
+
 void emulateConvFinal(const ConvOperands& op, const FinalOutput& out)
 {
     emulateConv(op, [&](int lane, int x0, int y, int tile, const float(&c)[4]) {

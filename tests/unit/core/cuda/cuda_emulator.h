@@ -12,6 +12,7 @@
 #include "cuda/conv_tile.h"
 #include "cuda/filter_fuse_lane.h"
 #include "cuda/high_tier_pixel.h"
+#include "cuda/large_pixel.h"
 #include "cuda/post_filter_pixel.h"
 #include "cuda/prepare_block.h"
 #include "cuda/taa_pixel.h"
@@ -41,7 +42,16 @@ void emulateAlbedoTrust(const afn::cuda::AlbedoTrustBuffers& b);
 void emulatePool(const std::uint16_t* in, int width, int height, int stride, std::uint16_t* out);
 void emulateConvRelu(const afn::cuda::ConvOperands& op, const afn::cuda::ReluOutput& out);
 void emulateConvFinal(const afn::cuda::ConvOperands& op, const afn::cuda::FinalOutput& out);
+void emulateConvLinear(const afn::cuda::ConvOperands& op, const afn::cuda::LinearOutput& out);
 void emulateFilterFuse(const afn::cuda::FilterFuseArgs& a);
+/// large.cu's kernels (cuda_emulator_large.cpp).
+void emulateLargePrepare(const afn::cuda::LargePrepareBuffers& b);
+void emulateDown2(const float* in, float* out, int w, int h, int channels);
+void emulateLargeFilter(const afn::cuda::LargeFilterArgs& a);
+void emulateFuseScales(float* fine, const float* coarse, const float* logits, int logitStride,
+    int channel, int width, int height);
+void emulateLargeRefineInput(
+    const float* o, const std::uint16_t* x, std::uint16_t* refineInput, int width, int height);
 /// high_tier.cu's kernels.
 void emulateFlip(const float* src, float* dst, int channels, int w, int h, bool fx, bool fy);
 void emulateAddPass(const float* pass, float* sum, int w, int h, bool fx, bool fy, bool first);

@@ -14,24 +14,6 @@ namespace afntest {
 
 using namespace afn::cuda;
 
-void EmulatedAfnPipeline::Tensor::allocate(int w, int h, int channels)
-{
-    width = w;
-    height = h;
-    stride = channelStride(channels);
-    // NaN halves: a value the kernels never wrote shows up in the results.
-    data.assign(static_cast<std::size_t>(w) * h * stride, 0xffffu);
-}
-
-afn::Image EmulatedAfnPipeline::Tensor::toImage(int channels) const
-{
-    afn::Image img(width, height, channels);
-    for (std::size_t p = 0; p < static_cast<std::size_t>(width) * height; ++p)
-        for (int c = 0; c < channels; ++c)
-            img.data()[p * channels + c] = halfToFloat(data[p * stride + c]);
-    return img;
-}
-
 EmulatedAfnPipeline::EmulatedAfnPipeline(const afn::afnet::Network& net)
     : m_variant(net.variant())
     , m_refine(net.variant() == afn::afnet::Variant::Full)
@@ -40,6 +22,10 @@ EmulatedAfnPipeline::EmulatedAfnPipeline(const afn::afnet::Network& net)
 {
     if (m_albedoTrust)
         m_trustHead = packTrustHead(net.albedoTrustHead());
+    if (m_variant == afn::afnet::Variant::Large) {
+        m_large.setNetwork(net.large());
+        return;
+    }
     using L = afn::afnet::Network::Layer;
     for (int i = 0; i < 10; ++i) {
         const auto which = static_cast<L>(i);
@@ -54,30 +40,6 @@ EmulatedAfnPipeline::EmulatedAfnPipeline(const afn::afnet::Network& net)
             up = net.layer(L::Dec1).outChannels();
         m_layers[i].packed = packConv(net.layer(which), up);
     }
-}
-
-ConvOperands EmulatedAfnPipeline::operands(
-    const Layer& layer, const Tensor* up, const Tensor& same) const
-{
-    const PackedConv& pc = layer.packed;
-    if ((up && (pc.upChunks() * kChunk != up->stride || 2 * up->width != same.width))
-        || (!up && pc.upChunks() != 0) || pc.sameChunks() * kChunk != same.stride)
-        afn::throwInvalidOperation("emulated CUDA afn: a layer does not match its inputs");
-    ConvOperands op;
-    op.up = up ? up->data.data() : nullptr;
-    op.upStride = up ? up->stride : 0;
-    op.upChunks = pc.upChunks();
-    op.upWidth = up ? up->width : 0;
-    op.same = same.data.data();
-    op.sameStride = same.stride;
-    op.sameChunks = pc.sameChunks();
-    op.width = same.width;
-    op.height = same.height;
-    op.ksize = pc.ksize;
-    op.weights = pc.weights.data();
-    op.bias = pc.bias.data();
-    op.tiles = pc.tiles();
-    return op;
 }
 
 void EmulatedAfnPipeline::allocate(const afn::Frame& f)
@@ -112,6 +74,10 @@ void EmulatedAfnPipeline::allocate(const afn::Frame& f)
     std::memset(&m_auxState, 0xff, sizeof(m_auxState)); // as poisoned device memory
     auto ch = [&](L l) { return m_layers[static_cast<int>(l)].packed.outChannels; };
     const int wp = m_paddedWidth, hp = m_paddedHeight;
+    if (m_variant == afn::afnet::Variant::Large) { // AfnPipeline::allocate
+        m_large.allocate(wp, hp);
+        return;
+    }
     const int inputs = m_historyInput ? kHistoryInputChannels : kInputChannels;
     m_x.allocate(wp, hp, inputs);
     m_xHalf.allocate(wp / 2, hp / 2, inputs);
@@ -243,7 +209,8 @@ void EmulatedAfnPipeline::run(const afn::Frame& f, const FrameConstants& c, afn:
     fo.trustWidth = m_paddedWidth / 2;
     // Work skipping (AfnPipeline::upload, skipsRows()).
     std::vector<char> computed(static_cast<std::size_t>(m_height), 1);
-    if (f.hasWorkMask() && !(m_fast && m_refine) && !m_high) {
+    if (f.hasWorkMask() && !(m_fast && m_refine) && !m_high
+        && m_variant != afn::afnet::Variant::Large) {
         afn::Image grown;
         computed = afn::afnet::computedRows(
             f.work, afn::afnet::workMargin(m_taa, m_postFilter), m_height, grown);
@@ -346,6 +313,10 @@ void EmulatedAfnPipeline::run(const afn::Frame& f, const FrameConstants& c, afn:
 void EmulatedAfnPipeline::runNetwork(
     const NetworkSources& src, const FinalOutput& fo, const std::uint32_t* range)
 {
+    if (m_variant == afn::afnet::Variant::Large) // AfnPipeline's stages for AFN large
+        return m_large.run(LargeSources { m_width, m_height, src.color1, src.albedo, src.normal,
+                               src.depth, range },
+            fo);
     using L = afn::afnet::Network::Layer;
     PrepareBuffers pb;
     pb.width = m_width;
@@ -428,6 +399,8 @@ void EmulatedAfnPipeline::runNetwork(
 
 afn::Image EmulatedAfnPipeline::networkInput() const
 {
+    if (m_variant == afn::afnet::Variant::Large)
+        return m_large.input().toImage(kLargeInputChannels);
     return m_x.toImage(m_historyInput ? kHistoryInputChannels : kInputChannels);
 }
 

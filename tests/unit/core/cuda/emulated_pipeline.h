@@ -5,6 +5,8 @@
 #pragma once
 
 #include "cuda_emulator.h"
+#include "emulated_large.h"
+#include "emulated_tensors.h"
 
 #include "base/image.h"
 #include "cuda/frame_constants.h"
@@ -52,17 +54,12 @@ public:
     afn::Image albedoTrust() const;
 
 private:
-    struct Tensor {
-        std::vector<std::uint16_t> data;
-        int width = 0, height = 0, stride = 0;
-        void allocate(int w, int h, int channels);
-        afn::Image toImage(int channels) const;
-    };
-    struct Layer {
-        afn::cuda::PackedConv packed;
-    };
-    afn::cuda::ConvOperands operands(
-        const Layer& layer, const Tensor* up, const Tensor& same) const;
+    using Tensor = HostTensor;
+    using Layer = HostLayer;
+    afn::cuda::ConvOperands operands(const Layer& layer, const Tensor* up, const Tensor& same) const
+    {
+        return hostOperands(layer, up, same);
+    }
     void allocate(const afn::Frame& frame);
     /// AfnPipeline::NetworkSources: what the network reads of a frame.
     struct NetworkSources {
@@ -79,6 +76,7 @@ private:
     bool m_high = false;
     afn::afnet::InputSet m_networkInputs = afn::afnet::InputSet::full();
     std::array<std::vector<float>, 2> m_radianceInputs; ///< AfnPipeline's, for undemodulates()
+    EmulatedLargeGraph m_large; ///< AFN large's graph (weights with variant=large)
     bool m_historyInput;
     bool m_albedoTrust;
     bool m_taa = false;

@@ -99,21 +99,25 @@ TEST(CudaEmulated, NetworkInputIsTheCpuInputInHalfPrecision)
 namespace {
 
 /// Run the CPU filter and the emulated CUDA engine on a sequence; every frame within tolerance.
-/// `weights` empty: both with the built-in models (the one for the sequence's inputs).
+/// `weights` empty: both with the built-in models (the one for the sequence's inputs and `spp`,
+/// the samples per pixel the frames are said to have; 0 unknown).
 void expectFilterParity(const std::vector<char>& weights, int width, int height,
     const SequenceInputs& inputs, int frames, bool noisyAovs = false,
-    const std::string& quality = "balanced")
+    const std::string& quality = "balanced", int spp = 0)
 {
     auto cpu = afn::createFilter("afn");
     afntest::configureAsOnTheGpu(*cpu);
     cpu->params().setString("quality", quality);
+    cpu->params().setNumber("spp", spp, AFN_PARAM_INT);
+    afn::AuxSettings aux = kAux;
+    aux.spp = spp;
     if (!weights.empty())
         cpu->setData(AFN_DATA_WEIGHTS, weights.data(), weights.size());
-    // The model and its inputs as AfnCudaFilter chooses them (model_set.h, without AFN large).
+    // The model and its inputs as AfnCudaFilter chooses them (model_set.h).
     afn::afnet::ModelSet models = weights.empty()
         ? afn::afnet::ModelSet::embedded()
         : afn::afnet::ModelSet::fromData(weights.data(), weights.size());
-    const afn::afnet::Model* model = models.choose(afntest::inputSetOf(inputs), 0, false);
+    const afn::afnet::Model* model = models.choose(afntest::inputSetOf(inputs), spp);
     ASSERT_NE(model, nullptr) << inputs.name() << ": no model for these inputs";
     afntest::EmulatedAfnPipeline emulated(model->net);
     emulated.setNetworkInputs(model->inputs);
@@ -133,7 +137,7 @@ void expectFilterParity(const std::vector<char>& weights, int width, int height,
         afntest::runFrame(*cpu, in, cpuOut);
         const afn::Frame& f = gatherer.gather(in);
         emulated.run(
-            f, afn::cuda::frameConstants(f, kReproject, kAccumulation, kTrust, kAux), emuOut);
+            f, afn::cuda::frameConstants(f, kReproject, kAccumulation, kTrust, aux), emuOut);
         const afntest::OutputDifference d = afntest::compareOutputs(emuOut, cpuOut);
         std::cout << "[ emulated ] " << width << "x" << height << " " << inputs.name() << " frame "
                   << k << ": " << d.text() << "\n";
@@ -270,6 +274,24 @@ TEST(CudaEmulated, FilterMatchesCpuWithTheBuiltInModelOfEachInputSet)
         expectFilterParity({}, 51, 33, inputs, 3);
 }
 
+// AFN large (large_graph.h): the test archive at several sizes, in the tier high (its passes) and
+// with the built-in model chosen at 64 spp (weights/afn-large-spp64.afnw), the aux prefilter,
+// TAA and post-filter as the CPU runs them at that count.
+TEST(CudaEmulated, FilterMatchesCpuWithAfnLarge)
+{
+    const auto large = testWeights("weights_large.afnw");
+    expectFilterParity(large, 37, 21, SequenceInputs {}, 3);
+    expectFilterParity(large, 8, 8, SequenceInputs {}, 2);
+    expectFilterParity(large, 1, 1, SequenceInputs {}, 2);
+    expectFilterParity(large, 37, 21, SequenceInputs {}, 2, false, "high");
+    expectFilterParity(large, 37, 21, SequenceInputs {}, 2, false, "fast");
+    expectFilterParity(large, 45, 240, SequenceInputs {}, 2); // rows a balanced AFN would skip
+    if (afn::afnet::ModelSet::embedded().empty())
+        GTEST_SKIP() << "this build has no built-in weights";
+    expectFilterParity({}, 64, 40, SequenceInputs {}, 3, false, "balanced", 64);
+    expectFilterParity({}, 51, 33, SequenceInputs {}, 3, true, "balanced", 64);
+}
+
 // The GPU test's cases (tests/gpu) on the emulation: how the tolerance was chosen. Minutes of CPU
 // time, so not part of ctest: test_cuda_engine --gtest_also_run_disabled_tests
 // --gtest_filter=*Calibration*
@@ -284,6 +306,7 @@ TEST(CudaEmulated, DISABLED_CalibrationOnTheGpuParityCases)
             : testWeights(("weights_" + c.weights + ".afnw").c_str());
         if (!shipped && !afntest::cpuRunsTheFullModel(c.inputs)) // one full-input archive
             continue;
-        expectFilterParity(weights, c.width, c.height, c.inputs, c.frames);
+        expectFilterParity(
+            weights, c.width, c.height, c.inputs, c.frames, false, "balanced", c.spp);
     }
 }
