@@ -67,11 +67,6 @@ void AfnCudaFilter::configure()
     m_reproject = reprojectBinding().read(params());
     m_accumulation = accumulationBinding().read(params());
     m_trust = historyTrustBinding().read(params());
-    for (const afnet::Model& m : m_models.models())
-        if (m.net.hasQuarterScale()) // no GPU graph for it yet
-            throw Exception(AFN_ERROR_UNSUPPORTED,
-                "afn on a CUDA device has no quarter-resolution scale yet: weights with "
-                "quarter=1 run on the CPU device (afntool: --device cpu)");
     // The model for the bound inputs, as the CPU filter: a missing one fails the commit; denoise
     // chooses again from each frame's own inputs.
     if (!outputBound())

@@ -106,6 +106,11 @@ void AfnPipeline::setNetwork(const afnet::Network& network)
     m_refine = m_variant == afnet::Variant::Full;
     m_historyInput = network.hasHistoryInput();
     m_albedoTrust = network.hasAlbedoTrust();
+    m_quarter = network.hasQuarterScale();
+    if (m_quarter)
+        m_head4.upload(network.quarterHead(), 0, m_stream.get());
+    else
+        m_head4 = Layer {};
     if (large())
         m_large.setNetwork(network.large(), m_stream.get());
     else
@@ -219,17 +224,25 @@ void AfnPipeline::allocate(const FrameLayout& layout)
     allocateBuffer(m_color1Half, 3 * pixels(wp / 2, hp / 2), p, st);
     allocateBuffer(m_trust, m_albedoTrust ? pixels(wp / 2, hp / 2) : 0, p, st);
     allocateBuffer(m_colorTaScaled, m_albedoTrust ? 3 * pixels(wp, hp) : 0, p, st);
-    if (refines()) {
+    if (storesFused()) {
         allocateBuffer(m_fused, 3 * pixels(wp, hp), p, st);
         m_refineInput.allocate(wp, hp, kRefineInputChannels, p, st);
-        m_r1.allocate(wp, hp, channels(NetLayer::Ref1), p, st);
-        m_r2.allocate(wp, hp, channels(NetLayer::Ref2), p, st);
     } else {
         m_fused.release();
         m_refineInput = Tensor {};
+    }
+    if (refines()) {
+        m_r1.allocate(wp, hp, channels(NetLayer::Ref1), p, st);
+        m_r2.allocate(wp, hp, channels(NetLayer::Ref2), p, st);
+    } else {
         m_r1 = Tensor {};
         m_r2 = Tensor {};
     }
+    const std::size_t quarter = m_quarter ? pixels(wp / 4, hp / 4) : 0;
+    allocateBuffer(m_quarterHalf, 12 * quarter, p, st); // D(i): 3 floats at half the size
+    allocateBuffer(m_quarterLow, 3 * quarter, p, st);
+    allocateBuffer(m_quarterLogits, m_head4.packed.outChannels * quarter, p, st);
+    allocateBuffer(m_quarterDelta, 3 * quarter, p, st);
     m_layout = layout;
 }
 

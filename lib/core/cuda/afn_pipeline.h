@@ -182,12 +182,16 @@ private:
     bool refines() const { return m_refine && !m_fast; }
     /// Work skipping applies (the tiers fast, where it skips the refinement, and high compute
     /// every pixel, as AFN large does, as on the CPU: quality_tiers.h, network_large.h).
-    bool skipsRows() const { return !(m_fast && m_refine) && !m_high && !large(); }
+    bool skipsRows() const { return !(m_fast && m_refine) && !m_high && !large() && !m_quarter; }
     /// The weights are AFN large (m_large runs instead of the AFN graph; every row computed, the
     /// tier fast as balanced, as the CPU's Network).
     bool large() const { return m_variant == afnet::Variant::Large; }
     bool m_historyInput = false; ///< the network reads history01 (Network::hasHistoryInput)
     bool m_albedoTrust = false; ///< Network::hasAlbedoTrust
+    bool m_quarter = false; ///< Network::hasQuarterScale (every row computed, as on the CPU)
+    /// The fused image is stored (for the refinement, or for the quarter scale to correct it).
+    bool storesFused() const { return refines() || m_quarter; }
+    void enqueueQuarterScale(const FinalOutput& out, cudaStream_t stream) const;
     bool m_taa = false; ///< setTaa()
     bool m_postFilter = false; ///< setPostFilter()
     afnet::Variant m_variant = afnet::Variant::Full;
@@ -244,6 +248,9 @@ private:
     // The albedo trust's t (half the padded frame) and the TA colour times s (padded frame).
     DeviceBuffer<float> m_trust, m_colorTaScaled;
     LargeGraph m_large; ///< AFN large's layers and tensors (weights with variant=large)
+    // The quarter scale (quarter_pixel.h): head4, D(i), l = D(D(i)), head4's logits, the delta.
+    Layer m_head4;
+    DeviceBuffer<float> m_quarterHalf, m_quarterLow, m_quarterLogits, m_quarterDelta;
 };
 
 } // namespace afn::cuda

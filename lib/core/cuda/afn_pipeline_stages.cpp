@@ -224,13 +224,36 @@ void AfnPipeline::enqueueFilteringFusion(
     a.color1Half.data = m_color1Half.data();
     a.color1Half.width = m_paddedWidth / 2;
     a.color1Half.height = m_paddedHeight / 2;
-    if (refines()) {
+    if (storesFused()) {
         a.fused = m_fused.data();
         a.refineInput = m_refineInput.data.data();
     } else {
         a.output = out;
     }
     launchFilterFuse(a, stream);
+    if (m_quarter)
+        enqueueQuarterScale(out, stream);
+}
+
+void AfnPipeline::enqueueQuarterScale(const FinalOutput& out, cudaStream_t stream) const
+{
+    // i += U4(sigmoid(beta) (K * l - l)), l = D(D(i)) (quarter_scale.h), then what the fused
+    // kernel would have done with i: the refinement input, or the output.
+    const int wp = m_paddedWidth, hp = m_paddedHeight;
+    launchDown2(m_fused.data(), m_quarterHalf.data(), wp / 2, hp / 2, 3, stream);
+    launchDown2(m_quarterHalf.data(), m_quarterLow.data(), wp / 4, hp / 4, 3, stream);
+    const int logits = m_head4.packed.outChannels;
+    launchConvLinear(
+        operands(m_head4, nullptr, m_d2), LinearOutput { m_quarterLogits.data(), logits }, stream);
+    launchQuarterDelta(QuarterArgs { m_quarterLogits.data(), logits, m_quarterLow.data(),
+                           m_quarterDelta.data(), wp / 4, hp / 4 },
+        stream);
+    launchAddUpsampled4(m_quarterDelta.data(), m_fused.data(), wp, hp, stream);
+    if (refines())
+        launchRefineInput(
+            m_fused.data(), m_x.data.data(), m_refineInput.data.data(), wp, hp, stream);
+    else
+        launchFusedOutput(m_fused.data(), wp, out, stream);
 }
 
 void AfnPipeline::enqueueRefinement(const FinalOutput& out, cudaStream_t stream) const

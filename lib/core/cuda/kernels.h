@@ -14,6 +14,7 @@
 //   albedoTrust                        after the first encoder level: t, the colours times s
 //                                      (weights with albedoTrust=1)
 //   filterFuse                         heads, softmax, 7 x 7 filtering, Eq. 3
+//   (quarter=1: down2 x 2, convLinear, quarterDelta, addUpsampled4, refineInput or fusedOutput)
 //   conv x 3 (the last: convFinal)     refinement, residual, remodulation, crop
 //   AFN large instead of prepare .. convFinal (large_graph.h): largePrepare, down2, the U-Net,
 //   convLinear (3 heads), largeFilter (3 scales), fuseScales x 2, largeRefineInput and conv x 3
@@ -31,6 +32,7 @@
 #include "cuda/large_pixel.h"
 #include "cuda/post_filter_pixel.h"
 #include "cuda/prepare_block.h"
+#include "cuda/quarter_pixel.h"
 #include "cuda/taa_pixel.h"
 #include "cuda/temporal_pixel.h"
 
@@ -90,6 +92,17 @@ void launchFuseScales(float* fine, const float* coarse, const float* logits, int
     int channel, int width, int height, cudaStream_t stream);
 void launchLargeRefineInput(const float* o, const std::uint16_t* x, std::uint16_t* refineInput,
     int width, int height, cudaStream_t stream);
+
+/// AFN's quarter-resolution scale (quarter_pixel.h): delta at 1/4 of the padded size; i +=
+/// U4(delta) over the padded frame (width x height); then the refinement input from i over the
+/// padded frame, or the output from i (no refinement) over the frame.
+void launchQuarterDelta(const QuarterArgs& a, cudaStream_t stream);
+void launchAddUpsampled4(
+    const float* delta, float* fused, int width, int height, cudaStream_t stream);
+void launchRefineInput(const float* fused, const std::uint16_t* x, std::uint16_t* refineInput,
+    int width, int height, cudaStream_t stream);
+void launchFusedOutput(
+    const float* fused, int paddedWidth, const FinalOutput& out, cudaStream_t stream);
 
 /// afn's output TAA over the frame; `t` the frame's temporal buffers (for the history taps),
 /// `trust` the history trust's (read where it was measured).

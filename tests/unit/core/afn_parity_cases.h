@@ -58,8 +58,9 @@ struct CpuFirstStage {
 };
 
 struct ParityCase {
-    /// "full", "fusion", "trust", "large" (tests/data/afn_parity: weights_trust has the history
-    /// input and the albedo trust, weights_large is AFN large; the full input set only) or
+    /// "full", "fusion", "trust", "large", "quarter" (tests/data/afn_parity: weights_trust has
+    /// the history input and the albedo trust, weights_large is AFN large, weights_quarter has
+    /// the quarter-resolution scale; the full input set only) or
     /// "shipped" (the built-in models, weights/: the one for the sequence's input set and `spp`)
     std::string weights;
     int width = 0;
@@ -112,7 +113,8 @@ inline bool cpuRunsTheFullModel(const SequenceInputs& in)
 
 /// The GPU parity cases: sizes from 1 x 1 to 1280 x 720 (odd ones included), each input set,
 /// the committed test archives (variants "full", "fusion" and "large"; "full" with the history
-/// input and the albedo trust) and the shipped models (AFN large at 64 spp).
+/// input and the albedo trust, and with the quarter scale) and the shipped models (AFN large at
+/// 64 spp).
 inline std::vector<ParityCase> gpuParityCases()
 {
     std::vector<ParityCase> cases;
@@ -132,6 +134,8 @@ inline std::vector<ParityCase> gpuParityCases()
     for (const auto& [w, h] :
         std::vector<std::pair<int, int>> { { 1, 1 }, { 37, 21 }, { 129, 67 } })
         cases.push_back({ "large", w, h, all, 3 });
+    cases.push_back({ "quarter", 37, 21, all, 3 });
+    cases.push_back({ "quarter", 129, 67, all, 3 });
     cases.push_back({ "shipped", 161, 91, all, 3, 64 }); // AFN large, the built-in 64-spp model
     cases.push_back({ "shipped", 333, 187, all, 4 });
     cases.push_back({ "shipped", 640, 360, all, 3 });

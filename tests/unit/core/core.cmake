@@ -71,7 +71,7 @@ afn_add_gtest(test_cuda_engine
     unit/core/cuda/test_cuda_emulated_stages.cpp
     unit/core/cuda/test_cuda_emulated_blender.cpp
     unit/core/cuda/cuda_emulator.cpp
-    unit/core/cuda/cuda_emulator_large.cpp
+    unit/core/cuda/cuda_emulator_scales.cpp
     unit/core/cuda/emulated_tensors.cpp
     unit/core/cuda/emulated_large.cpp
     unit/core/cuda/emulated_pipeline.cpp

@@ -45,7 +45,6 @@ public:
     void add(const nn::WeightsArchive& archive);
 
     bool empty() const { return m_models.empty(); }
-    const std::vector<Model>& models() const { return m_models; }
     /// The model for a frame with `available` inputs and `spp` samples per pixel (0: unknown);
     /// nullptr when no model is covered. `allowLarge` false: AFN large is left out (an engine
     /// without its graph).

@@ -150,6 +150,8 @@ public:
     const Image& albedoTrust() const { return m_trust; }
     /// The quarter scale's intermediates (hasQuarterScale() only).
     const QuarterBuffers& quarter() const { return m_quarterBuf; }
+    /// The quarter scale's head head4 (hasQuarterScale() only; else not loaded).
+    const nn::Conv& quarterHead() const { return m_head4; }
     /// AFN large's graph and its intermediates (variant Large only).
     const LargeNetwork& large() const { return m_large; }
 

@@ -15,6 +15,7 @@
 #include "cuda/large_pixel.h"
 #include "cuda/post_filter_pixel.h"
 #include "cuda/prepare_block.h"
+#include "cuda/quarter_pixel.h"
 #include "cuda/taa_pixel.h"
 #include "cuda/temporal_pixel.h"
 
@@ -44,7 +45,13 @@ void emulateConvRelu(const afn::cuda::ConvOperands& op, const afn::cuda::ReluOut
 void emulateConvFinal(const afn::cuda::ConvOperands& op, const afn::cuda::FinalOutput& out);
 void emulateConvLinear(const afn::cuda::ConvOperands& op, const afn::cuda::LinearOutput& out);
 void emulateFilterFuse(const afn::cuda::FilterFuseArgs& a);
-/// large.cu's kernels (cuda_emulator_large.cpp).
+/// quarter.cu's kernels (cuda_emulator_scales.cpp).
+void emulateQuarterDelta(const afn::cuda::QuarterArgs& a);
+void emulateAddUpsampled4(const float* delta, float* fused, int width, int height);
+void emulateRefineInput(
+    const float* fused, const std::uint16_t* x, std::uint16_t* refineInput, int width, int height);
+void emulateFusedOutput(const float* fused, int paddedWidth, const afn::cuda::FinalOutput& out);
+/// large.cu's kernels (cuda_emulator_scales.cpp).
 void emulateLargePrepare(const afn::cuda::LargePrepareBuffers& b);
 void emulateDown2(const float* in, float* out, int w, int h, int channels);
 void emulateLargeFilter(const afn::cuda::LargeFilterArgs& a);

@@ -19,9 +19,12 @@ EmulatedAfnPipeline::EmulatedAfnPipeline(const afn::afnet::Network& net)
     , m_refine(net.variant() == afn::afnet::Variant::Full)
     , m_historyInput(net.hasHistoryInput())
     , m_albedoTrust(net.hasAlbedoTrust())
+    , m_quarter(net.hasQuarterScale())
 {
     if (m_albedoTrust)
         m_trustHead = packTrustHead(net.albedoTrustHead());
+    if (m_quarter)
+        m_head4.packed = packConv(net.quarterHead(), 0);
     if (m_variant == afn::afnet::Variant::Large) {
         m_large.setNetwork(net.large());
         return;
@@ -93,9 +96,11 @@ void EmulatedAfnPipeline::allocate(const afn::Frame& f)
         m_trust.assign(static_cast<std::size_t>(wp / 2) * (hp / 2), nan);
         m_colorTaScaled.assign(3 * static_cast<std::size_t>(wp) * hp, nan);
     }
-    if (m_refine) {
+    if (m_refine || m_quarter) {
         m_fused.assign(3 * static_cast<std::size_t>(wp) * hp, nan);
         m_refineInput.allocate(wp, hp, kRefineInputChannels);
+    }
+    if (m_refine) {
         m_r1.allocate(wp, hp, ch(L::Ref1));
         m_r2.allocate(wp, hp, ch(L::Ref2));
     }
@@ -210,7 +215,7 @@ void EmulatedAfnPipeline::run(const afn::Frame& f, const FrameConstants& c, afn:
     // Work skipping (AfnPipeline::upload, skipsRows()).
     std::vector<char> computed(static_cast<std::size_t>(m_height), 1);
     if (f.hasWorkMask() && !(m_fast && m_refine) && !m_high
-        && m_variant != afn::afnet::Variant::Large) {
+        && m_variant != afn::afnet::Variant::Large && !m_quarter) {
         afn::Image grown;
         computed = afn::afnet::computedRows(
             f.work, afn::afnet::workMargin(m_taa, m_postFilter), m_height, grown);
@@ -381,13 +386,15 @@ void EmulatedAfnPipeline::runNetwork(
               m_paddedHeight }
         : PaddedColor { src.colorTa, m_width, m_height, m_paddedWidth, m_paddedHeight };
     a.color1Half = PlainColor { m_color1Half.data(), m_paddedWidth / 2, m_paddedHeight / 2 };
-    if (refines) {
+    if (refines || m_quarter) {
         a.fused = m_fused.data();
         a.refineInput = m_refineInput.data.data();
     } else {
         a.output = fo;
     }
     emulateFilterFuse(a);
+    if (m_quarter) // AfnPipeline::enqueueQuarterScale
+        emulateQuarterScale(refines, fo);
 
     // Refinement.
     if (refines) {
@@ -395,6 +402,25 @@ void EmulatedAfnPipeline::runNetwork(
         conv(L::Ref2, nullptr, m_r1, m_r2);
         emulateConvFinal(operands(layer(L::Ref3), nullptr, m_r2), fo);
     }
+}
+
+void EmulatedAfnPipeline::emulateQuarterScale(bool refines, const FinalOutput& fo)
+{
+    const int wp = m_paddedWidth, hp = m_paddedHeight;
+    const std::size_t quarter = static_cast<std::size_t>(wp / 4) * (hp / 4);
+    const int logits = m_head4.packed.outChannels;
+    std::vector<float> half(12 * quarter), low(3 * quarter), head(logits * quarter),
+        delta(3 * quarter);
+    emulateDown2(m_fused.data(), half.data(), wp / 2, hp / 2, 3);
+    emulateDown2(half.data(), low.data(), wp / 4, hp / 4, 3);
+    emulateConvLinear(operands(m_head4, nullptr, m_d2), LinearOutput { head.data(), logits });
+    emulateQuarterDelta(
+        QuarterArgs { head.data(), logits, low.data(), delta.data(), wp / 4, hp / 4 });
+    emulateAddUpsampled4(delta.data(), m_fused.data(), wp, hp);
+    if (refines)
+        emulateRefineInput(m_fused.data(), m_x.data.data(), m_refineInput.data.data(), wp, hp);
+    else
+        emulateFusedOutput(m_fused.data(), wp, fo);
 }
 
 afn::Image EmulatedAfnPipeline::networkInput() const

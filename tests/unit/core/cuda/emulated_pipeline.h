@@ -67,6 +67,8 @@ private:
     };
     /// The network from its input to `fo` (AfnPipeline's prepare, prediction, filtering and
     /// fusion, refinement).
+    /// AfnPipeline::enqueueQuarterScale on m_fused.
+    void emulateQuarterScale(bool refines, const afn::cuda::FinalOutput& fo);
     void runNetwork(
         const NetworkSources& src, const afn::cuda::FinalOutput& fo, const std::uint32_t* range);
 
@@ -79,6 +81,8 @@ private:
     EmulatedLargeGraph m_large; ///< AFN large's graph (weights with variant=large)
     bool m_historyInput;
     bool m_albedoTrust;
+    bool m_quarter; ///< Network::hasQuarterScale
+    Layer m_head4; ///< its head
     bool m_taa = false;
     bool m_taaRan = false; ///< the last frame ran the TAA (AfnPipeline::upload)
     bool m_postFilter = false;

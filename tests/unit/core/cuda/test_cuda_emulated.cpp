@@ -292,6 +292,19 @@ TEST(CudaEmulated, FilterMatchesCpuWithAfnLarge)
     expectFilterParity({}, 51, 33, SequenceInputs {}, 3, true, "balanced", 64);
 }
 
+// The quarter-resolution scale (quarter_pixel.h): weights with quarter=1 (variant full), every
+// row computed, in each tier (fast: the fused output corrected by it).
+TEST(CudaEmulated, FilterMatchesCpuWithTheQuarterScale)
+{
+    const auto quarter = testWeights("weights_quarter.afnw");
+    expectFilterParity(quarter, 37, 21, SequenceInputs {}, 3);
+    expectFilterParity(quarter, 8, 8, SequenceInputs {}, 2);
+    expectFilterParity(quarter, 1, 1, SequenceInputs {}, 2);
+    expectFilterParity(quarter, 45, 240, SequenceInputs {}, 2);
+    for (const char* tier : { "fast", "high" })
+        expectFilterParity(quarter, 37, 21, SequenceInputs {}, 2, false, tier);
+}
+
 // The GPU test's cases (tests/gpu) on the emulation: how the tolerance was chosen. Minutes of CPU
 // time, so not part of ctest: test_cuda_engine --gtest_also_run_disabled_tests
 // --gtest_filter=*Calibration*

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: Apache-2.0
-// large.cu's kernels on the CPU (see cuda_emulator.h): the per-block and per-pixel code of
-// large_pixel.h over the kernels' grids.
+// large.cu's and quarter.cu's kernels on the CPU (see cuda_emulator.h): the per-block and
+// per-pixel code of large_pixel.h and quarter_pixel.h over the kernels' grids.
 #include "cuda_emulator.h"
 
 #include <cstddef>
@@ -44,6 +44,34 @@ void emulateLargeRefineInput(
 {
     for (std::size_t p = 0; p < static_cast<std::size_t>(width) * height; ++p)
         largeRefineInputPixel(o, x, refineInput, p);
+}
+
+void emulateQuarterDelta(const QuarterArgs& a)
+{
+    for (int y = 0; y < a.height; ++y)
+        for (int x = 0; x < a.width; ++x)
+            quarterDeltaPixel(a, x, y);
+}
+
+void emulateAddUpsampled4(const float* delta, float* fused, int width, int height)
+{
+    for (int y = 0; y < height; ++y)
+        for (int x = 0; x < width; ++x)
+            addUpsampled4Pixel(delta, fused, width, height, x, y);
+}
+
+void emulateRefineInput(
+    const float* fused, const std::uint16_t* x, std::uint16_t* refineInput, int width, int height)
+{
+    for (std::size_t p = 0; p < static_cast<std::size_t>(width) * height; ++p)
+        refineInputPixel(fused, x, refineInput, p);
+}
+
+void emulateFusedOutput(const float* fused, int paddedWidth, const FinalOutput& out)
+{
+    for (int y = 0; y < out.height; ++y)
+        for (int x = 0; x < out.width; ++x)
+            fusedOutputPixel(fused, paddedWidth, out, x, y);
 }
 
 } // namespace afntest
