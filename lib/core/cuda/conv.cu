@@ -103,15 +103,12 @@ void checkOperands(const ConvOperands& op)
         throwCudaError(cudaErrorInvalidValue, "convolution operands", __FILE__, __LINE__);
 }
 
-} // namespace
-
-void launchConvRelu(const ConvOperands& op, const ReluOutput& out, cudaStream_t stream)
+/// Every N tile of the layer: up to kMaxTilesPerWarp per warp, split evenly over gridDim.y.
+template <typename Epilogue>
+void launchTiles(const ConvOperands& op, const Epilogue& epi, cudaStream_t stream)
 {
-    checkOperands(op);
     const int groups = (op.tiles + kMaxTilesPerWarp - 1) / kMaxTilesPerWarp;
-    const int perGroup = (op.tiles + groups - 1) / groups;
-    const ReluEpilogue epi { out };
-    switch (perGroup) {
+    switch ((op.tiles + groups - 1) / groups) {
     case 1:
         return launch<1>(op, epi, groups, stream);
     case 2:
@@ -131,26 +128,20 @@ void launchConvRelu(const ConvOperands& op, const ReluOutput& out, cudaStream_t 
     }
 }
 
+} // namespace
+
+void launchConvRelu(const ConvOperands& op, const ReluOutput& out, cudaStream_t stream)
+{
+    checkOperands(op);
+    launchTiles(op, ReluEpilogue { out }, stream);
+}
+
 void launchConvLinear(const ConvOperands& op, const LinearOutput& out, cudaStream_t stream)
 {
     checkOperands(op);
     if (!out.data || out.channels <= 0 || out.channels > op.tiles * kTileN)
         throwCudaError(cudaErrorInvalidValue, "linear convolution output", __FILE__, __LINE__);
-    const int groups = (op.tiles + kMaxTilesPerWarp - 1) / kMaxTilesPerWarp;
-    const int perGroup = (op.tiles + groups - 1) / groups;
-    const LinearEpilogue epi { out };
-    switch (perGroup) {
-    case 1:
-        return launch<1>(op, epi, groups, stream);
-    case 2:
-        return launch<2>(op, epi, groups, stream);
-    case 3:
-        return launch<3>(op, epi, groups, stream);
-    case 4:
-        return launch<4>(op, epi, groups, stream);
-    default:
-        return launch<8>(op, epi, groups, stream);
-    }
+    launchTiles(op, LinearEpilogue { out }, stream);
 }
 
 void launchConvFinal(const ConvOperands& op, const FinalOutput& out, cudaStream_t stream)

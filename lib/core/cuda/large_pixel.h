@@ -115,6 +115,25 @@ AFN_HD float finiteLogitDevice(float v)
     return v != v ? -3.402823466e38f : minOf(maxOf(v, -3.402823466e38f), 3.402823466e38f);
 }
 
+/// k = softmax(logits[0 .. n - 1]) as the CPU's softmax() (cpu/afn_fusion.cpp): finite logits,
+/// the maximum subtracted, exp, the sum, times 1 / sum.
+AFN_HD void softmaxOf(const float* logits, int n, float* k)
+{
+    for (int j = 0; j < n; ++j)
+        k[j] = finiteLogitDevice(logits[j]);
+    float m = k[0];
+    for (int j = 1; j < n; ++j)
+        m = maxOf(m, k[j]);
+    float s = 0.0f;
+    for (int j = 0; j < n; ++j) {
+        k[j] = expf(k[j] - m);
+        s += k[j];
+    }
+    const float inv = 1.0f / s;
+    for (int j = 0; j < n; ++j)
+        k[j] *= inv;
+}
+
 /// One scale's filtering: the head's logits (`logitStride` floats per pixel, taps first), the
 /// scale's colour and the filtered output (3 floats per pixel each, width x height).
 struct LargeFilterArgs {
@@ -126,26 +145,14 @@ struct LargeFilterArgs {
     int height = 0;
 };
 
-/// Pixel (x, y): softmax of the 25 logits as the CPU's softmax() (maximum subtracted, exp, sum,
-/// times 1 / sum), then sum over taps j = (dy + 2) * 5 + (dx + 2) of k_j * colour(clamp(x + dx),
-/// clamp(y + dy)) in index order (network_large.cpp filterScale()).
+/// Pixel (x, y): softmax of the 25 logits (softmaxOf()), then sum over taps j = (dy + 2) * 5 + (dx
+/// + 2) of k_j * colour(clamp(x + dx), clamp(y + dy)) in index order (network_large.cpp
+/// filterScale()).
 AFN_HD void largeFilterPixel(const LargeFilterArgs& a, int x, int y)
 {
     const std::size_t p = static_cast<std::size_t>(y) * a.width + x;
     float k[kLargeTaps];
-    for (int j = 0; j < kLargeTaps; ++j)
-        k[j] = finiteLogitDevice(a.logits[p * a.logitStride + j]);
-    float m = k[0];
-    for (int j = 1; j < kLargeTaps; ++j)
-        m = maxOf(m, k[j]);
-    float s = 0.0f;
-    for (int j = 0; j < kLargeTaps; ++j) {
-        k[j] = expf(k[j] - m);
-        s += k[j];
-    }
-    const float inv = 1.0f / s;
-    for (int j = 0; j < kLargeTaps; ++j)
-        k[j] *= inv;
+    softmaxOf(a.logits + p * a.logitStride, kLargeTaps, k);
     constexpr int r = kLargeKernelSize / 2;
     float acc[3] = { 0.0f, 0.0f, 0.0f };
     for (int j = 0; j < kLargeTaps; ++j) {

@@ -2,57 +2,41 @@
 // The quarter-resolution scale's kernels and what follows it (quarter_pixel.h), one thread per
 // pixel. Compiled with --fmad=false (cuda/CMakeLists.txt) like the CPU's float arithmetic.
 #include "cuda/check.h"
+#include "cuda/grid.cuh"
 #include "cuda/kernels.h"
 
 namespace afn::cuda {
 
 namespace {
 
-constexpr int kThreads = 256;
-
-unsigned blocksFor(long long items)
-{
-    return static_cast<unsigned>((items + kThreads - 1) / kThreads);
-}
-
-__device__ bool pixelOf(int width, int height, int& x, int& y)
-{
-    const long long i = static_cast<long long>(blockIdx.x) * kThreads + threadIdx.x;
-    if (i >= static_cast<long long>(width) * height)
-        return false;
-    x = static_cast<int>(i % width);
-    y = static_cast<int>(i / width);
-    return true;
-}
-
-__global__ void __launch_bounds__(kThreads) quarterDeltaKernel(QuarterArgs a)
+__global__ void __launch_bounds__(kGridThreads) quarterDeltaKernel(QuarterArgs a)
 {
     int x, y;
-    if (pixelOf(a.width, a.height, x, y))
+    if (gridItem(a.width, a.height, x, y))
         quarterDeltaPixel(a, x, y);
 }
 
-__global__ void __launch_bounds__(kThreads)
+__global__ void __launch_bounds__(kGridThreads)
     addUpsampled4Kernel(const float* delta, float* fused, int width, int height)
 {
     int x, y;
-    if (pixelOf(width, height, x, y))
+    if (gridItem(width, height, x, y))
         addUpsampled4Pixel(delta, fused, width, height, x, y);
 }
 
-__global__ void __launch_bounds__(kThreads)
+__global__ void __launch_bounds__(kGridThreads)
     refineInputKernel(const float* fused, const std::uint16_t* x, std::uint16_t* r, long long n)
 {
-    const long long p = static_cast<long long>(blockIdx.x) * kThreads + threadIdx.x;
+    const long long p = static_cast<long long>(blockIdx.x) * kGridThreads + threadIdx.x;
     if (p < n)
         refineInputPixel(fused, x, r, static_cast<std::size_t>(p));
 }
 
-__global__ void __launch_bounds__(kThreads)
+__global__ void __launch_bounds__(kGridThreads)
     fusedOutputKernel(const float* fused, int paddedWidth, FinalOutput out)
 {
     int x, y;
-    if (pixelOf(out.width, out.height, x, y))
+    if (gridItem(out.width, out.height, x, y))
         fusedOutputPixel(fused, paddedWidth, out, x, y);
 }
 
@@ -60,7 +44,7 @@ __global__ void __launch_bounds__(kThreads)
 
 void launchQuarterDelta(const QuarterArgs& a, cudaStream_t stream)
 {
-    quarterDeltaKernel<<<blocksFor(static_cast<long long>(a.width) * a.height), kThreads, 0,
+    quarterDeltaKernel<<<gridBlocks(static_cast<long long>(a.width) * a.height), kGridThreads, 0,
         stream>>>(a);
     AFN_CUDA_CHECK_LAUNCH("quarterDeltaKernel");
 }
@@ -68,8 +52,8 @@ void launchQuarterDelta(const QuarterArgs& a, cudaStream_t stream)
 void launchAddUpsampled4(
     const float* delta, float* fused, int width, int height, cudaStream_t stream)
 {
-    addUpsampled4Kernel<<<blocksFor(static_cast<long long>(width) * height), kThreads, 0, stream>>>(
-        delta, fused, width, height);
+    addUpsampled4Kernel<<<gridBlocks(static_cast<long long>(width) * height), kGridThreads, 0,
+        stream>>>(delta, fused, width, height);
     AFN_CUDA_CHECK_LAUNCH("addUpsampled4Kernel");
 }
 
@@ -77,14 +61,14 @@ void launchRefineInput(const float* fused, const std::uint16_t* x, std::uint16_t
     int width, int height, cudaStream_t stream)
 {
     const long long n = static_cast<long long>(width) * height;
-    refineInputKernel<<<blocksFor(n), kThreads, 0, stream>>>(fused, x, refineInput, n);
+    refineInputKernel<<<gridBlocks(n), kGridThreads, 0, stream>>>(fused, x, refineInput, n);
     AFN_CUDA_CHECK_LAUNCH("refineInputKernel");
 }
 
 void launchFusedOutput(
     const float* fused, int paddedWidth, const FinalOutput& out, cudaStream_t stream)
 {
-    fusedOutputKernel<<<blocksFor(static_cast<long long>(out.width) * out.height), kThreads, 0,
+    fusedOutputKernel<<<gridBlocks(static_cast<long long>(out.width) * out.height), kGridThreads, 0,
         stream>>>(fused, paddedWidth, out);
     AFN_CUDA_CHECK_LAUNCH("fusedOutputKernel");
 }

@@ -33,26 +33,14 @@ struct QuarterArgs {
     int height = 0;
 };
 
-/// delta at quarter pixel (x, y); the softmax as the CPU's softmax(), the taps summed in row order
-/// (applyKernel()).
+/// delta at quarter pixel (x, y); the softmax as the CPU's (softmaxOf()), the taps summed in row
+/// order (applyKernel()).
 AFN_HD void quarterDeltaPixel(const QuarterArgs& a, int x, int y)
 {
     const std::size_t p = static_cast<std::size_t>(y) * a.width + x;
     const float* q = a.logits + p * a.logitStride;
     float k[kQuarterTaps];
-    for (int j = 0; j < kQuarterTaps; ++j)
-        k[j] = finiteLogitDevice(q[j]);
-    float m = k[0];
-    for (int j = 1; j < kQuarterTaps; ++j)
-        m = maxOf(m, k[j]);
-    float s = 0.0f;
-    for (int j = 0; j < kQuarterTaps; ++j) {
-        k[j] = expf(k[j] - m);
-        s += k[j];
-    }
-    const float inv = 1.0f / s;
-    for (int j = 0; j < kQuarterTaps; ++j)
-        k[j] *= inv;
+    softmaxOf(q, kQuarterTaps, k);
     constexpr int r = kQuarterKernelSize / 2;
     float acc[3] = { 0.0f, 0.0f, 0.0f };
     for (int dy = 0; dy < kQuarterKernelSize; ++dy) {
