@@ -6,7 +6,8 @@
 // reprojection, accumulation) equal to the CPU stages', the network input equal to half
 // precision. The GPU buffers are poisoned with NaN, so a value no kernel wrote fails the test.
 // Also: real renders (the bundled Blender sequence as raw frames), the C API, other methods
-// refused, reset and new weights mid-sequence, concurrent filters.
+// refused, reset and new weights mid-sequence, the model following the inputs across resets,
+// concurrent filters.
 // Without a usable GPU every test is skipped with the reason.
 #include "afn_output_compare.h"
 #include "afn_parity_cases.h"
@@ -374,6 +375,49 @@ TEST_F(CudaAfn, ResetAndNewWeightsMidSequence)
         std::cout << "[ reset ] frame " << k << ": " << d.text() << "\n";
         EXPECT_TRUE(d.within(afntest::Tolerance {})) << "frame " << k << ": " << d.text();
         EXPECT_EQ(gpu->frameIndex(), cpu->frameIndex());
+    }
+}
+
+// The built-in models follow the inputs across resets (a new shot with other passes): full, colour
+// only, albedo without normal, full again, and the `spp` parameter raised to 64 (AFN large); the
+// same model on both devices (the log's model line) and outputs within tolerance.
+TEST_F(CudaAfn, TheModelFollowsTheInputsAcrossResets)
+{
+    if (!hasShippedWeights())
+        GTEST_SKIP() << "this build has no built-in weights";
+    auto cpu = afn::createFilter("afn");
+    afntest::configureAsOnTheGpu(*cpu);
+    auto gpu = afn::createFilter("afn", *g_cuda);
+    cudaFilter(*gpu).setPoison(true);
+    SequenceInputs colorOnly { false, false, false, false, false, false };
+    SequenceInputs albedoOnly;
+    albedoOnly.normal = false;
+    albedoOnly.depth = false;
+    const struct {
+        SequenceInputs inputs;
+        int spp;
+    } shots[] = { { SequenceInputs {}, 1 }, { colorOnly, 1 }, { albedoOnly, 1 },
+        { SequenceInputs {}, 1 }, { SequenceInputs {}, 64 } };
+    const afntest::SyntheticSequence seq(77, 45, 3);
+    afn::Image outs[2] = { afn::Image(77, 45, 3), afn::Image(77, 45, 3) };
+    for (const auto& shot : shots) {
+        for (auto* f : { cpu.get(), gpu.get() }) {
+            f->reset();
+            f->params().setNumber("spp", shot.spp, AFN_PARAM_INT);
+        }
+        for (int k = 0; k < 3; ++k) {
+            afntest::SequenceFrame in = seq.frame(k, shot.inputs);
+            afntest::runFrame(*cpu, in, outs[0]);
+            afntest::runFrame(*gpu, in, outs[1]);
+            const afntest::OutputDifference d = afntest::compareOutputs(outs[1], outs[0]);
+            std::string gpuModel, cpuModel;
+            ASSERT_TRUE(gpu->stringStatistic(AFN_STAT_AFN_MODEL, gpuModel));
+            ASSERT_TRUE(cpu->stringStatistic(AFN_STAT_AFN_MODEL, cpuModel));
+            std::cout << "[ shots ] " << shot.inputs.name() << " " << shot.spp << " spp frame " << k
+                      << " (" << cpuModel << "): " << d.text() << "\n";
+            EXPECT_TRUE(d.within(afntest::Tolerance {})) << shot.inputs.name() << " " << d.text();
+            EXPECT_EQ(gpuModel, cpuModel);
+        }
     }
 }
 
