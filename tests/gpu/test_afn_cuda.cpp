@@ -86,6 +86,16 @@ afn::cuda::AfnCudaFilter& cudaFilter(afn::Filter& f)
     return *c;
 }
 
+/// The per-frame log's model line of the last frame (AFN_STAT_AFN_MODEL); a failure where the
+/// filter has none.
+std::string modelLine(const afn::Filter& f)
+{
+    std::string line;
+    if (!f.stringStatistic(AFN_STAT_AFN_MODEL, line))
+        ADD_FAILURE() << "the filter reports no " << AFN_STAT_AFN_MODEL;
+    return line;
+}
+
 void poison(afn::Image& img)
 {
     img.fill(std::numeric_limits<float>::quiet_NaN());
@@ -208,10 +218,7 @@ void runParityCase(const ParityCase& c)
         EXPECT_LE(taDiff, 1e-5) << "frame " << k;
         // Values in [0, 1] stored as halves (one rounding, possibly on the other side of a tie).
         EXPECT_LE(xDiff, 5e-4) << "frame " << k;
-        std::string gpuModel, cpuModel; // the per-frame log's model line
-        ASSERT_TRUE(gpu->stringStatistic(AFN_STAT_AFN_MODEL, gpuModel));
-        ASSERT_TRUE(cpu->stringStatistic(AFN_STAT_AFN_MODEL, cpuModel));
-        EXPECT_EQ(gpuModel, cpuModel) << "frame " << k;
+        EXPECT_EQ(modelLine(*gpu), modelLine(*cpu)) << "frame " << k;
     }
 }
 
@@ -266,10 +273,7 @@ TEST_F(CudaAfn, ParityOnTheBlenderSequence)
         EXPECT_TRUE(d.within(tolerance)) << "frame " << k << ": " << d.text();
     }
     // The per-frame log's model line, as the CPU filter's for this full-input frame.
-    std::string gpuModel, cpuModel;
-    ASSERT_TRUE(gpu->stringStatistic(AFN_STAT_AFN_MODEL, gpuModel));
-    ASSERT_TRUE(cpu->stringStatistic(AFN_STAT_AFN_MODEL, cpuModel));
-    EXPECT_EQ(gpuModel, cpuModel);
+    EXPECT_EQ(modelLine(*gpu), modelLine(*cpu));
 }
 
 TEST_F(CudaAfn, OtherMethodsAreUnsupportedOnTheCudaDevice)
@@ -410,13 +414,11 @@ TEST_F(CudaAfn, TheModelFollowsTheInputsAcrossResets)
             afntest::runFrame(*cpu, in, outs[0]);
             afntest::runFrame(*gpu, in, outs[1]);
             const afntest::OutputDifference d = afntest::compareOutputs(outs[1], outs[0]);
-            std::string gpuModel, cpuModel;
-            ASSERT_TRUE(gpu->stringStatistic(AFN_STAT_AFN_MODEL, gpuModel));
-            ASSERT_TRUE(cpu->stringStatistic(AFN_STAT_AFN_MODEL, cpuModel));
+            const std::string cpuModel = modelLine(*cpu);
             std::cout << "[ shots ] " << shot.inputs.name() << " " << shot.spp << " spp frame " << k
                       << " (" << cpuModel << "): " << d.text() << "\n";
             EXPECT_TRUE(d.within(afntest::Tolerance {})) << shot.inputs.name() << " " << d.text();
-            EXPECT_EQ(gpuModel, cpuModel);
+            EXPECT_EQ(modelLine(*gpu), cpuModel);
         }
     }
 }

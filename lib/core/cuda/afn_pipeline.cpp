@@ -12,18 +12,6 @@ namespace afn::cuda {
 
 namespace {
 
-using NetLayer = afnet::Network::Layer;
-
-constexpr int layerIndex(NetLayer l)
-{
-    return static_cast<int>(l);
-}
-
-std::size_t pixels(int w, int h)
-{
-    return static_cast<std::size_t>(w) * static_cast<std::size_t>(h);
-}
-
 template <typename T>
 void uploadImage(DeviceBuffer<T>& dst, const Image& src, std::size_t expected, cudaStream_t stream)
 {
@@ -117,9 +105,9 @@ void AfnPipeline::setNetwork(const afnet::Network& network)
         m_large.release();
     for (int i = 0; i < static_cast<int>(m_layers.size()); ++i) {
         const auto which = static_cast<NetLayer>(i);
-        Layer& layer = m_layers[i];
-        if (large() || (!m_refine && i >= layerIndex(NetLayer::Ref1))) {
-            layer = Layer {};
+        Layer& dst = m_layers[i];
+        if (large() || (!m_refine && i >= static_cast<int>(NetLayer::Ref1))) {
+            dst = Layer {};
             continue;
         }
         int up = 0; // channels of the half-size input of concat(U(up), same)
@@ -129,7 +117,7 @@ void AfnPipeline::setNetwork(const afnet::Network& network)
             up = network.layer(NetLayer::Dec2).outChannels();
         else if (which == NetLayer::HeadTa)
             up = network.layer(NetLayer::Dec1).outChannels();
-        layer.upload(network.layer(which), up, m_stream.get());
+        dst.upload(network.layer(which), up, m_stream.get());
     }
     std::vector<float> head; // the albedo trust's head, alive until the copy is done
     if (m_albedoTrust) {
@@ -149,7 +137,7 @@ void AfnPipeline::setNetwork(const afnet::Network& network)
 void AfnPipeline::allocate(const FrameLayout& layout)
 {
     const int w = layout.width, h = layout.height;
-    const std::size_t n = pixels(w, h);
+    const std::size_t n = pixelCount(w, h);
     const bool p = m_poison;
     const cudaStream_t st = m_stream.get();
     allocateBuffer(m_color, 3 * n, p, st);
@@ -197,7 +185,7 @@ void AfnPipeline::allocate(const FrameLayout& layout)
     allocateBuffer(m_passSum, m_high ? 3 * n : 0, p, st);
     allocateBuffer(m_constants, 1, p, st);
 
-    const auto channels = [&](NetLayer l) { return m_layers[layerIndex(l)].packed.outChannels; };
+    const auto channels = [&](NetLayer l) { return layer(l).packed.outChannels; };
     m_paddedWidth = paddedSize(w);
     m_paddedHeight = paddedSize(h);
     const int wp = m_paddedWidth, hp = m_paddedHeight;
@@ -221,11 +209,11 @@ void AfnPipeline::allocate(const FrameLayout& layout)
     m_e3.allocate(wp / 8, hp / 8, channels(NetLayer::Enc3), p, st);
     m_d2.allocate(wp / 4, hp / 4, channels(NetLayer::Dec2), p, st);
     m_d1.allocate(wp / 2, hp / 2, channels(NetLayer::Dec1), p, st);
-    allocateBuffer(m_color1Half, 3 * pixels(wp / 2, hp / 2), p, st);
-    allocateBuffer(m_trust, m_albedoTrust ? pixels(wp / 2, hp / 2) : 0, p, st);
-    allocateBuffer(m_colorTaScaled, m_albedoTrust ? 3 * pixels(wp, hp) : 0, p, st);
+    allocateBuffer(m_color1Half, 3 * pixelCount(wp / 2, hp / 2), p, st);
+    allocateBuffer(m_trust, m_albedoTrust ? pixelCount(wp / 2, hp / 2) : 0, p, st);
+    allocateBuffer(m_colorTaScaled, m_albedoTrust ? 3 * pixelCount(wp, hp) : 0, p, st);
     if (storesFused()) {
-        allocateBuffer(m_fused, 3 * pixels(wp, hp), p, st);
+        allocateBuffer(m_fused, 3 * pixelCount(wp, hp), p, st);
         m_refineInput.allocate(wp, hp, kRefineInputChannels, p, st);
     } else {
         m_fused.release();
@@ -238,7 +226,7 @@ void AfnPipeline::allocate(const FrameLayout& layout)
         m_r1 = Tensor {};
         m_r2 = Tensor {};
     }
-    const std::size_t quarter = m_quarter ? pixels(wp / 4, hp / 4) : 0;
+    const std::size_t quarter = m_quarter ? pixelCount(wp / 4, hp / 4) : 0;
     allocateBuffer(m_quarterHalf, 12 * quarter, p, st); // D(i): 3 floats at half the size
     allocateBuffer(m_quarterLow, 3 * quarter, p, st);
     allocateBuffer(m_quarterLogits, m_head4.packed.outChannels * quarter, p, st);
@@ -315,7 +303,7 @@ void AfnPipeline::upload(const Frame& f, const FrameConstants& constants)
     if (FrameLayout::of(f) != m_layout || !m_graphsValid)
         throwInvalidOperation("CUDA afn: upload of a frame the pipeline is not configured for");
     const cudaStream_t s = m_stream.get();
-    const std::size_t n = pixels(f.width, f.height);
+    const std::size_t n = pixelCount(f.width, f.height);
     uploadImage(m_color, f.color, 3 * n, s);
     if (m_layout.albedo)
         uploadImage(m_albedoRaw, f.albedo, 3 * n, s);
@@ -385,7 +373,7 @@ std::size_t AfnPipeline::uploadBytes() const
     const FrameLayout& l = m_layout;
     const std::size_t floatsPerPixel = 3 + (l.albedo ? 3 : 0) + (l.motion ? 2 : 0)
         + (l.position ? 3 : 0) + (l.normal ? 3 : 0) + (l.depth ? 1 : 0);
-    return pixels(l.width, l.height) * floatsPerPixel * sizeof(float) + sizeof(FrameConstants);
+    return pixelCount(l.width, l.height) * floatsPerPixel * sizeof(float) + sizeof(FrameConstants);
 }
 
 std::size_t AfnPipeline::downloadBytes() const
@@ -398,7 +386,7 @@ void AfnPipeline::downloadIntermediate(Intermediate which, Image& out)
     useGpu(m_gpu);
     AFN_CUDA_CHECK(cudaStreamSynchronize(m_stream.get()));
     auto floats = [&](const DeviceBuffer<float>& b, int w, int h, int c) {
-        if (b.size() != pixels(w, h) * c)
+        if (b.size() != pixelCount(w, h) * c)
             throwInvalidOperation("CUDA afn: that intermediate is not computed");
         out.resize(w, h, c);
         AFN_CUDA_CHECK(cudaMemcpyAsync(
@@ -411,7 +399,7 @@ void AfnPipeline::downloadIntermediate(Intermediate which, Image& out)
             h.data(), t.data.data(), t.data.bytes(), cudaMemcpyDeviceToHost, m_stream.get()));
         AFN_CUDA_CHECK(cudaStreamSynchronize(m_stream.get()));
         out.resize(t.width, t.height, c);
-        for (std::size_t p = 0; p < pixels(t.width, t.height); ++p)
+        for (std::size_t p = 0; p < pixelCount(t.width, t.height); ++p)
             for (int k = 0; k < c; ++k)
                 out.data()[p * c + k] = halfToFloat(h[p * t.stride + k]);
     };
@@ -426,7 +414,7 @@ void AfnPipeline::downloadIntermediate(Intermediate which, Image& out)
             return halves(m_large.input(), kLargeInputChannels);
         return halves(m_x, m_historyInput ? kHistoryInputChannels : kInputChannels);
     case Intermediate::DecoderOutput:
-        return halves(m_d1, m_layers[layerIndex(NetLayer::Dec1)].packed.outChannels);
+        return halves(m_d1, layer(NetLayer::Dec1).packed.outChannels);
     case Intermediate::Fused:
         return floats(large() ? m_large.fused() : m_fused, m_paddedWidth, m_paddedHeight, 3);
     case Intermediate::AlbedoTrust:

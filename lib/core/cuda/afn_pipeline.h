@@ -130,6 +130,8 @@ public:
 private:
     using Layer = DeviceLayer;
     using Tensor = HalfTensor;
+    using NetLayer = afnet::Network::Layer;
+    const Layer& layer(NetLayer l) const { return m_layers[static_cast<int>(l)]; }
     void allocate(const FrameLayout& layout);
     void captureGraphs();
     ConvOperands operands(const Layer& layer, const Tensor* up, const Tensor& same) const

@@ -8,22 +8,6 @@
 
 namespace afn::cuda {
 
-namespace {
-
-using NetLayer = afnet::Network::Layer;
-
-constexpr int layerIndex(NetLayer l)
-{
-    return static_cast<int>(l);
-}
-
-std::size_t pixels(int w, int h)
-{
-    return static_cast<std::size_t>(w) * static_cast<std::size_t>(h);
-}
-
-} // namespace
-
 AfnPipeline::NetworkSources AfnPipeline::networkSources(int slot) const
 {
     const FrameLayout& l = m_layout;
@@ -157,8 +141,8 @@ void AfnPipeline::enqueueKernelPrediction(const NetworkSources& src, cudaStream_
     if (large())
         return m_large.enqueuePrediction(stream);
     auto conv = [&](NetLayer l, const Tensor* up, const Tensor& same, const Tensor& out) {
-        launchConvRelu(operands(m_layers[layerIndex(l)], up, same),
-            ReluOutput { out.data.data(), out.stride }, stream);
+        launchConvRelu(
+            operands(layer(l), up, same), ReluOutput { out.data.data(), out.stride }, stream);
     };
     auto pool = [&](const Tensor& in, const Tensor& out) {
         launchPool(in.data.data(), in.width, in.height, in.stride, out.data.data(), stream);
@@ -172,7 +156,7 @@ void AfnPipeline::enqueueKernelPrediction(const NetworkSources& src, cudaStream_
         t.halfHeight = m_e1.height;
         t.e1 = m_e1.data.data();
         t.e1Stride = m_e1.stride;
-        t.e1Channels = m_layers[layerIndex(NetLayer::Enc1)].packed.outChannels;
+        t.e1Channels = layer(NetLayer::Enc1).packed.outChannels;
         t.head = m_trustHead.data();
         t.albedo = src.albedo;
         t.color1 = src.color1;
@@ -212,8 +196,8 @@ void AfnPipeline::enqueueFilteringFusion(
     if (large())
         return m_large.enqueueFilteringFusion(stream);
     FilterFuseArgs a;
-    a.head1 = operands(m_layers[layerIndex(NetLayer::Head1)], nullptr, m_d1);
-    a.headTa = operands(m_layers[layerIndex(NetLayer::HeadTa)], &m_d1, m_x);
+    a.head1 = operands(layer(NetLayer::Head1), nullptr, m_d1);
+    a.headTa = operands(layer(NetLayer::HeadTa), &m_d1, m_x);
     a.x = m_x.data.data();
     // With the albedo trust the TA colour times s, stored at the padded size.
     a.colorTa.data = m_albedoTrust ? m_colorTaScaled.data() : src.colorTa;
@@ -263,12 +247,12 @@ void AfnPipeline::enqueueRefinement(const FinalOutput& out, cudaStream_t stream)
     if (!refines())
         return;
     auto conv = [&](NetLayer l, const Tensor& same, const Tensor& out) {
-        launchConvRelu(operands(m_layers[layerIndex(l)], nullptr, same),
-            ReluOutput { out.data.data(), out.stride }, stream);
+        launchConvRelu(
+            operands(layer(l), nullptr, same), ReluOutput { out.data.data(), out.stride }, stream);
     };
     conv(NetLayer::Ref1, m_refineInput, m_r1);
     conv(NetLayer::Ref2, m_r1, m_r2);
-    launchConvFinal(operands(m_layers[layerIndex(NetLayer::Ref3)], nullptr, m_r2), out, stream);
+    launchConvFinal(operands(layer(NetLayer::Ref3), nullptr, m_r2), out, stream);
 }
 
 void AfnPipeline::enqueueNetwork(int slot, cudaStream_t stream) const
@@ -339,7 +323,7 @@ void AfnPipeline::enqueuePostFilter(int slot, cudaStream_t stream) const
     if (!m_postFilter)
         return;
     const FrameLayout& l = m_layout;
-    const std::size_t n = pixels(l.width, l.height);
+    const std::size_t n = pixelCount(l.width, l.height);
     PostFilterSources s;
     s.width = l.width;
     s.height = l.height;

@@ -2,7 +2,7 @@
 // Device layers and tensors (see cuda/device_layers.h).
 #include "cuda/device_layers.h"
 
-#include "base/exception.h"
+#include "cuda/conv_operands.h"
 
 namespace afn::cuda {
 
@@ -27,27 +27,7 @@ void HalfTensor::allocate(int w, int h, int channels, bool poison, cudaStream_t 
 
 ConvOperands convOperands(const DeviceLayer& layer, const HalfTensor* up, const HalfTensor& same)
 {
-    const PackedConv& pc = layer.packed;
-    const bool upOk = up ? (pc.upChunks() * kChunk == up->stride && 2 * up->width == same.width
-                          && 2 * up->height == same.height)
-                         : pc.upChunks() == 0;
-    if (!upOk || pc.sameChunks() * kChunk != same.stride || pc.tiles() == 0)
-        throwInvalidOperation("CUDA afn: a layer does not match its input tensors");
-    ConvOperands op;
-    op.up = up ? up->data.data() : nullptr;
-    op.upStride = up ? up->stride : 0;
-    op.upChunks = pc.upChunks();
-    op.upWidth = up ? up->width : 0;
-    op.same = same.data.data();
-    op.sameStride = same.stride;
-    op.sameChunks = pc.sameChunks();
-    op.width = same.width;
-    op.height = same.height;
-    op.ksize = pc.ksize;
-    op.weights = layer.weights.data();
-    op.bias = layer.bias.data();
-    op.tiles = pc.tiles();
-    return op;
+    return convOperandsOf(layer.packed, layer.weights.data(), layer.bias.data(), up, same);
 }
 
 } // namespace afn::cuda

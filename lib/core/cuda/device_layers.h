@@ -16,6 +16,12 @@
 
 namespace afn::cuda {
 
+/// Pixels of a w x h image (std::size_t: frames past 2^31 values stay countable).
+inline std::size_t pixelCount(int w, int h)
+{
+    return static_cast<std::size_t>(w) * static_cast<std::size_t>(h);
+}
+
 /// Allocate `count` elements (nothing when the size is unchanged); a fresh allocation is filled
 /// with 0xff bytes (NaN as float and as half) on `stream` when `poison` is set. (Every copy and
 /// fill goes through the pipeline's own stream: the legacy default stream is not ordered with a

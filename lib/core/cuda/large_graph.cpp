@@ -8,11 +8,6 @@ namespace afn::cuda {
 
 namespace {
 
-std::size_t pixels(int w, int h)
-{
-    return static_cast<std::size_t>(w) * static_cast<std::size_t>(h);
-}
-
 constexpr int kRefineModules = 2;
 constexpr int kRefineLayersPerModule = 3;
 
@@ -51,8 +46,8 @@ void LargeGraph::allocate(int wp, int hp, bool p, cudaStream_t st)
     m_e3.allocate(wp / 8, hp / 8, channels(L::Enc3), p, st);
     m_d2.allocate(wp / 4, hp / 4, channels(L::Dec2), p, st);
     m_d1.allocate(wp / 2, hp / 2, channels(L::Dec1), p, st);
-    const std::size_t full = pixels(wp, hp), half = pixels(wp / 2, hp / 2);
-    const std::size_t quarter = pixels(wp / 4, hp / 4);
+    const std::size_t full = pixelCount(wp, hp), half = pixelCount(wp / 2, hp / 2);
+    const std::size_t quarter = pixelCount(wp / 4, hp / 4);
     allocateBuffer(m_c, 3 * full, p, st);
     allocateBuffer(m_cHalf, 3 * half, p, st);
     allocateBuffer(m_cQuarter, 3 * quarter, p, st);

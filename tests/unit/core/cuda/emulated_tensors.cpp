@@ -2,7 +2,7 @@
 // Host layers and tensors of the emulated pipelines (see emulated_tensors.h).
 #include "emulated_tensors.h"
 
-#include "base/exception.h"
+#include "cuda/conv_operands.h"
 
 namespace afntest {
 
@@ -28,25 +28,8 @@ afn::Image HostTensor::toImage(int channels) const
 
 ConvOperands hostOperands(const HostLayer& layer, const HostTensor* up, const HostTensor& same)
 {
-    const PackedConv& pc = layer.packed;
-    if ((up && (pc.upChunks() * kChunk != up->stride || 2 * up->width != same.width))
-        || (!up && pc.upChunks() != 0) || pc.sameChunks() * kChunk != same.stride)
-        afn::throwInvalidOperation("emulated CUDA afn: a layer does not match its inputs");
-    ConvOperands op;
-    op.up = up ? up->data.data() : nullptr;
-    op.upStride = up ? up->stride : 0;
-    op.upChunks = pc.upChunks();
-    op.upWidth = up ? up->width : 0;
-    op.same = same.data.data();
-    op.sameStride = same.stride;
-    op.sameChunks = pc.sameChunks();
-    op.width = same.width;
-    op.height = same.height;
-    op.ksize = pc.ksize;
-    op.weights = pc.weights.data();
-    op.bias = pc.bias.data();
-    op.tiles = pc.tiles();
-    return op;
+    return convOperandsOf(
+        layer.packed, layer.packed.weights.data(), layer.packed.bias.data(), up, same);
 }
 
 } // namespace afntest

@@ -24,7 +24,7 @@ struct HostTensor {
     afn::Image toImage(int channels) const;
 };
 
-/// cuda::convOperands over host buffers; throws InvalidOperation when they do not match.
+/// cuda::convOperandsOf over host buffers; throws InvalidOperation when they do not match.
 afn::cuda::ConvOperands hostOperands(
     const HostLayer& layer, const HostTensor* up, const HostTensor& same);
 
