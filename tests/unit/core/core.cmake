@@ -20,6 +20,7 @@ afn_add_gtest(test_methods
     unit/core/methods/test_methods_filters.cpp
     unit/core/methods/test_methods_blender.cpp
     unit/core/methods/svgf/test_svgf_kernels.cpp
+    unit/core/methods/svgf/test_svgf_variance_kernel.cpp
     unit/core/methods/svgf/test_svgf_integrate.cpp
     unit/core/methods/svgf/test_svgf_guide.cpp
     unit/core/methods/test_work_skipping.cpp

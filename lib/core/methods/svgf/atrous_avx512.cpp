@@ -17,6 +17,7 @@
 // the portable kernel's in the last bits only (tests/unit/core/methods/svgf/test_svgf_kernels.cpp
 // checks both against a double-precision evaluation of the formulas).
 #include "cpu/avx512.h"
+#include "methods/svgf/avx512_math.h"
 #include "methods/svgf/kernels.h"
 #include "methods/svgf/tap_vector.h"
 
@@ -29,40 +30,8 @@ namespace afn::svgf {
 
 namespace {
 
-constexpr float kLog2e = 1.44269504088896341f;
 constexpr float kMaxExponent = 40.0f; ///< as atrous_kernel.cpp: exp(-e) < exp(-40) adds 0
 constexpr float kB3[3] = { 3.0f / 8.0f, 1.0f / 4.0f, 1.0f / 16.0f }; ///< by |offset|
-
-/// Lanes l of 16 with 0 <= qx0 + l < width.
-inline __mmask16 columnsInImage(int qx0, int width)
-{
-    const int lo = qx0 < 0 ? -qx0 : 0;
-    const int hi = width - qx0 < 16 ? width - qx0 : 16;
-    if (hi <= lo)
-        return 0;
-    const unsigned bits = (hi == 16 ? 0xffffu : (1u << hi) - 1u) & ~((1u << lo) - 1u);
-    return static_cast<__mmask16>(bits);
-}
-
-/// 2^a for a <= 0 (finite results for a >= -126; lanes below are flushed or masked by callers).
-AFN_CPU_AVX512_INLINE __m512 exp2v(__m512 a)
-{
-    const __m512 fl = _mm512_roundscale_ps(a, _MM_FROUND_TO_NEG_INF | _MM_FROUND_NO_EXC);
-    const __m512 f = _mm512_sub_ps(a, fl);
-    __m512 p = _mm512_set1_ps(1.877576695e-03f);
-    p = _mm512_fmadd_ps(p, f, _mm512_set1_ps(8.989340626e-03f));
-    p = _mm512_fmadd_ps(p, f, _mm512_set1_ps(5.582631752e-02f));
-    p = _mm512_fmadd_ps(p, f, _mm512_set1_ps(2.401536107e-01f));
-    p = _mm512_fmadd_ps(p, f, _mm512_set1_ps(6.931530833e-01f));
-    p = _mm512_fmadd_ps(p, f, _mm512_set1_ps(9.999999404e-01f));
-    return _mm512_scalef_ps(p, fl);
-}
-
-AFN_CPU_AVX512_INLINE __m512 absv(__m512 v)
-{
-    return _mm512_castsi512_ps(
-        _mm512_and_si512(_mm512_castps_si512(v), _mm512_set1_epi32(0x7fffffff)));
-}
 
 /// The 16 values of a tap at p: lanes outside `m` read 0 without touching memory, or, in a block
 /// whose taps all lie inside the image (kInterior, m all ones), one plain load.

@@ -85,6 +85,11 @@ inline void regionColumns(
     begin = region ? region->x0(y) / lanes * lanes : 0;
     end = region ? region->x1(y) : width;
 }
+/// The kernel family of cpu::activeIsa(): varianceRowsAvx512 or varianceRowsPortable.
 void varianceRows(const VarianceArgs& a, int y0, int y1);
+/// 8 lanes, GCC vector extensions, cloned per instruction set (variance_kernel.cpp).
+void varianceRowsPortable(const VarianceArgs& a, int y0, int y1);
+/// 16 lanes, AVX-512F (variance_avx512.cpp); only where the CPU has it.
+void varianceRowsAvx512(const VarianceArgs& a, int y0, int y1);
 
 } // namespace afn::svgf

@@ -1,10 +1,12 @@
 // SPDX-License-Identifier: Apache-2.0
-// SVGF's variance estimate, 8 pixels at a time (see methods/svgf/kernels.h): the temporal variance
+// SVGF's variance estimate, 8 pixels at a time (see methods/svgf/kernels.h; where the CPU has
+// AVX-512 the 16-lane kernel of variance_avx512.cpp runs instead): the temporal variance
 // max(0, m2 - m1^2) where the history is long enough, else the 7x7 cross-bilateral estimate of
 // colour and moments (weights exp(-e) * max(0, n.n')^sigmaN, delta form around the centre) boosted
 // by 4 / length (methods/svgf/denoiser.h). A vector whose 8 pixels all have a long history skips
 // the 7x7 loop. Weights of exp(-e) with e >= 87 (below 1.7e-38) are taken as 0: the scalar expf
 // gave denormals there.
+#include "cpu/isa.h"
 #include "cpu/target.h"
 #include "methods/svgf/kernels.h"
 #include "methods/svgf/tap_vector.h"
@@ -111,9 +113,17 @@ AFN_SVGF_INLINE void varianceRowsOf(const VarianceArgs& a, int y0, int y1)
     }
 }
 
-AFN_CPU_KERNEL_CLONES void varianceRows(const VarianceArgs& a, int y0, int y1)
+AFN_CPU_KERNEL_CLONES void varianceRowsPortable(const VarianceArgs& a, int y0, int y1)
 {
     varianceRowsOf(a, y0, y1);
+}
+
+void varianceRows(const VarianceArgs& a, int y0, int y1)
+{
+    if (cpu::activeIsa() == cpu::Isa::Avx512)
+        varianceRowsAvx512(a, y0, y1);
+    else
+        varianceRowsPortable(a, y0, y1);
 }
 
 } // namespace afn::svgf
