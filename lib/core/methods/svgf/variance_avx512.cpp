@@ -130,9 +130,8 @@ AFN_CPU_AVX512_INLINE Sums crossBilateral(const VarianceArgs& a, const Centre& c
             if (kHasDepth) {
                 // sigmaZ |dzdx dx + dzdy dy| + 1e-4 |z| + 1e-30: the same for (dx, dy) and
                 // (-dx, -dy).
-                const __m512 grad
-                    = _mm512_fmadd_ps(c.dzdx, _mm512_set1_ps(static_cast<float>(dx)),
-                        _mm512_mul_ps(c.dzdy, _mm512_set1_ps(static_cast<float>(dy))));
+                const __m512 grad = _mm512_fmadd_ps(c.dzdx, _mm512_set1_ps(static_cast<float>(dx)),
+                    _mm512_mul_ps(c.dzdy, _mm512_set1_ps(static_cast<float>(dy))));
                 const __m512 denom = _mm512_fmadd_ps(_mm512_set1_ps(sigmaZ), absv(grad), c.zEps);
                 rz = _mm512_div_ps(_mm512_set1_ps(kLog2e), denom);
             }

@@ -94,8 +94,8 @@ Expected scalarVariance(const Scene& s, int x, int y)
                     / (kPhiL + 1e-10);
                 if (g.hasDepth) {
                     const double z = at(g.planes, kDepth, x, y);
-                    const double grad = at(g.planes, kDepthDx, x, y) * dx
-                        + at(g.planes, kDepthDy, x, y) * dy;
+                    const double grad
+                        = at(g.planes, kDepthDx, x, y) * dx + at(g.planes, kDepthDy, x, y) * dy;
                     e += std::abs(z - at(g.planes, kDepth, qx, qy))
                         / (g.sigmaZ * std::abs(grad) + 1e-4 * std::abs(z) + 1e-30);
                 }
