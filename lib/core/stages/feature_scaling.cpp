@@ -1,9 +1,14 @@
 // SPDX-License-Identifier: Apache-2.0
-// Auxiliary-feature scaling of the learned methods' inputs (see stages/feature_scaling.h).
+// Auxiliary-feature scaling of the learned methods' inputs (see stages/feature_scaling.h), in
+// parallel over blocks of rows (each value depends on its own pixel and, for depth, on the
+// frame's range: the same results for any split).
 #include "stages/feature_scaling.h"
+
+#include "base/parallel.h"
 
 #include <algorithm>
 #include <cmath>
+#include <mutex>
 
 namespace afn {
 
@@ -14,10 +19,13 @@ void normalToUnitRange(const Image& normal, int w, int h, Image& out)
         out.fill(0.5f);
         return;
     }
-    for (std::size_t k = 0; k < out.size(); ++k) {
-        const float n = normal.data()[k];
-        out.data()[k] = std::isfinite(n) ? std::min(std::max(n * 0.5f + 0.5f, 0.0f), 1.0f) : 0.5f;
-    }
+    parallelRows(h, [&](int y0, int y1) {
+        const float* in = normal.at(0, y0);
+        float* o = out.at(0, y0);
+        for (std::size_t k = 0, n = static_cast<std::size_t>(y1 - y0) * w * 3; k < n; ++k)
+            o[k]
+                = std::isfinite(in[k]) ? std::min(std::max(in[k] * 0.5f + 0.5f, 0.0f), 1.0f) : 0.5f;
+    });
 }
 
 void depthToUnitRange(const Image& depth, int w, int h, Image& out)
@@ -28,23 +36,40 @@ void depthToUnitRange(const Image& depth, int w, int h, Image& out)
         return;
     }
     auto valid = [](float z) { return std::isfinite(z) && std::fabs(z) < kDepthSky; };
+    // The valid depths' minimum and maximum, per block of rows, then over the blocks (the same
+    // values in any order).
     float lo = 0.0f, hi = 0.0f;
     bool any = false;
-    for (std::size_t k = 0; k < out.size(); ++k) {
-        const float z = depth.data()[k];
-        if (!valid(z))
-            continue;
-        lo = any ? std::min(lo, z) : z;
-        hi = any ? std::max(hi, z) : z;
+    std::mutex merge;
+    parallelRows(h, [&](int y0, int y1) {
+        const float* d = depth.at(0, y0);
+        float blo = 0.0f, bhi = 0.0f;
+        bool bany = false;
+        for (std::size_t k = 0, n = static_cast<std::size_t>(y1 - y0) * w; k < n; ++k) {
+            const float z = d[k];
+            if (!valid(z))
+                continue;
+            blo = bany ? std::min(blo, z) : z;
+            bhi = bany ? std::max(bhi, z) : z;
+            bany = true;
+        }
+        if (!bany)
+            return;
+        const std::lock_guard<std::mutex> lock(merge);
+        lo = any ? std::min(lo, blo) : blo;
+        hi = any ? std::max(hi, bhi) : bhi;
         any = true;
-    }
+    });
     // Same arithmetic as numpy in color.py: float32 (z - lo) times the float32-rounded 1/(hi - lo).
     const float scale = hi > lo ? static_cast<float>(1.0 / (static_cast<double>(hi) - lo)) : 0.0f;
-    for (std::size_t k = 0; k < out.size(); ++k) {
-        const float z = depth.data()[k];
-        const float v = valid(z) ? (z - lo) * scale : 1.0f;
-        out.data()[k] = std::min(std::max(v, 0.0f), 1.0f);
-    }
+    parallelRows(h, [&](int y0, int y1) {
+        const float* d = depth.at(0, y0);
+        float* o = out.at(0, y0);
+        for (std::size_t k = 0, n = static_cast<std::size_t>(y1 - y0) * w; k < n; ++k) {
+            const float v = valid(d[k]) ? (d[k] - lo) * scale : 1.0f;
+            o[k] = std::min(std::max(v, 0.0f), 1.0f);
+        }
+    });
 }
 
 } // namespace afn

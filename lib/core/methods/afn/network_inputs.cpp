@@ -2,6 +2,7 @@
 // AFN network inputs per input set (see methods/afn/network_inputs.h).
 #include "methods/afn/network_inputs.h"
 
+#include "base/parallel.h"
 #include "filter/frame.h"
 #include "stages/demodulate.h"
 #include "stages/temporal_accumulation.h"
@@ -61,11 +62,15 @@ void NetworkInputs::makeHistory01(const Image& length, bool temporal, int w, int
     m_history01.resize(w, h, 1);
     const bool lengths
         = temporal && length.width() == w && length.height() == h && length.channels() == 1;
-    for (std::size_t k = 0; k < m_history01.size(); ++k) {
-        const float n = lengths ? length.data()[k] : 1.0f;
-        // n >= 1 normally; a NaN or a length below 1 counts as no history.
-        m_history01.data()[k] = n > 1.0f ? std::max(1.0f / n, 1.0f / kMaxHistoryLength) : 1.0f;
-    }
+    parallelRows(h, [&](int y0, int y1) {
+        float* o = m_history01.at(0, y0);
+        const float* len = lengths ? length.at(0, y0) : nullptr;
+        for (std::size_t k = 0, n = static_cast<std::size_t>(y1 - y0) * w; k < n; ++k) {
+            const float s = len ? len[k] : 1.0f;
+            // s >= 1 normally; a NaN or a length below 1 counts as no history.
+            o[k] = s > 1.0f ? std::max(1.0f / s, 1.0f / kMaxHistoryLength) : 1.0f;
+        }
+    });
 }
 
 void NetworkInputs::radiance(const Frame& in, const Image& result, Image& out) const
