@@ -22,10 +22,6 @@ AFN_CPU_AVX512 void blendOwnHistory16(const float* c, const float* prev, const f
     float alphaMin, const float* trust, float* acc, float* spp)
 {
     const __m512 one = _mm512_set1_ps(1.0f);
-    // The second blend of a row with some trust below 1 (TemporalAccumulator::blendRows): 16
-    // pixels all at trust 1 keep the first blend's values, which this would write again.
-    if (trust && _mm512_cmp_ps_mask(_mm512_loadu_ps(trust), one, _CMP_LT_OQ) == 0)
-        return;
     const __m512 s = _mm512_loadu_ps(prevSpp);
     __m512 s1 = _mm512_add_ps(s, one);
     // std::max(1 / (s + 1), alphaMin): alphaMin where 1 / (s + 1) < alphaMin.

@@ -10,9 +10,8 @@ namespace afn {
 /// below 1, alpha += (1 - alpha) (1 - t) and s *= t (stages/history_trust.h); acc =
 /// blendHistory(prev, c, alpha) per channel, spp = alpha < 1 ? min(s + 1, kMaxHistoryLength) : 1:
 /// the scalar operations lane by lane (the same bits). `c`, `prev` and `acc` are 48 packed floats,
-/// `prevSpp`, `trust` and `spp` 16; `trust` nullptr is trust 1. Where `trust` is given and all 16
-/// values are 1, nothing is written: the caller's blend at trust 1 (nullptr) already wrote those
-/// values. AVX-512F only (cpu::activeIsa() == Avx512).
+/// `prevSpp`, `trust` and `spp` 16; `trust` nullptr is trust 1. AVX-512F only (cpu::activeIsa()
+/// == Avx512).
 void blendOwnHistory16(const float* c, const float* prev, const float* prevSpp, float alphaMin,
     const float* trust, float* acc, float* spp);
 
