@@ -3,8 +3,9 @@
 //
 // Memory: the whole-frame path stores ~50 floats per padded pixel (x 13, d1 6 at half
 // res, e1 4, fused/d_TA/out 3 each, ...): 190 MiB per megapixel, 6 GiB at 8K. Here the padded
-// frame is cut into stripes of kStripeRows output rows (a multiple of 8, so that every level of
-// the U-Net has whole rows). A stripe [Y0, Y1) works in a window of padded rows
+// frame is cut into near-equal stripes of at most kStripeRows output rows (multiples of 8, so
+// that every level of the U-Net has whole rows), as many as a multiple of the thread count, so
+// that the threads end together (run()). A stripe [Y0, Y1) works in a window of padded rows
 // [Y0 - kHalo, Y1 + kHalo) clipped to the frame, and at level l (1/2^l resolution) in the window
 // rows scaled by 2^-l; every buffer is window-sized and comes from a pool of workspaces (one per
 // concurrently running stripe, reused across frames): memory is O(threads x width x
@@ -55,6 +56,8 @@
 #include "base/exception.h"
 #include "base/parallel.h"
 #include "methods/afn/fusion.h"
+
+#include <tbb/task_arena.h>
 
 #include <algorithm>
 #include <atomic>
@@ -166,15 +169,16 @@ void Network::runStripe(const Inputs& in, int y0, int y1, StripeWorkspace& ws, I
     // Kernel prediction. The input rows this workspace filled for the previous stripe of the same
     // run (the window moved down, same height) are moved, not computed again: the tone map and
     // the input over the halo rows the two windows share (the same values: fillInput is per row).
-    const bool sameShape = ws.x.width() == wp && ws.x.height() == n
+    // The windows of a run's stripes may differ in height (run(): near-equal stripes); rows keep
+    // their layout (padded width x channels) whatever the height, so the shared rows are moved
+    // while the images still hold the previous window, then the images take this one's height.
+    const int filled = ws.filledW1 - ws.filledW0;
+    const bool sameRows = ws.x.width() == wp && ws.x.height() == filled
         && ws.x.channels() == inputChannels() && ws.color1.sameShape(ws.colorTa)
-        && ws.color1.width() == wp && ws.color1.height() == n && ws.color1.channels() == 3;
+        && ws.color1.width() == wp && ws.color1.height() == filled && ws.color1.channels() == 3;
     // With the albedo trust the colours are rescaled in place below: nothing is taken over.
-    const bool reuse = !m_albedoTrust && sameShape && ws.filledRun == runId && w0 > ws.filledW0
+    const bool reuse = !m_albedoTrust && sameRows && ws.filledRun == runId && w0 > ws.filledW0
         && w0 < ws.filledW1 && w1 >= ws.filledW1;
-    ws.x.reshape(wp, n, inputChannels());
-    ws.color1.reshape(wp, n, 3);
-    ws.colorTa.reshape(wp, n, 3);
     int fillFrom = w0;
     if (reuse) {
         for (Image* img : { &ws.x, &ws.color1, &ws.colorTa })
@@ -182,6 +186,9 @@ void Network::runStripe(const Inputs& in, int y0, int y1, StripeWorkspace& ws, I
         fillFrom = ws.filledW1;
         *rowsReused += ws.filledW1 - w0;
     }
+    ws.x.reshape(wp, n, inputChannels());
+    ws.color1.reshape(wp, n, 3);
+    ws.colorTa.reshape(wp, n, 3);
     fillInput(in, fillFrom, w1, w0, ws.x, ws.color1, ws.colorTa);
     ws.filledRun = runId, ws.filledW0 = w0, ws.filledW1 = w1;
     if (!m_albedoTrust) // else once the colours are rescaled, below
@@ -276,11 +283,22 @@ void Network::run(const Inputs& given, Image& out, const Image* work)
     pool.rowsReused = 0;
     const std::uint64_t runId = ++g_runs;
     const Image& cheap = given.colorTa ? *given.colorTa : *in.colorTa;
-    // Stripes [y0, y1) of padded rows; rows of the frame in none take the cheap path.
+    // Stripes [y0, y1) of padded rows; rows of the frame in none take the cheap path. A run of
+    // rows is cut into near-equal stripes on the 8-row grid, at most kStripeRows each, their
+    // count a multiple of the thread count where the run has the blocks for it: with 64-row
+    // stripes a 720-row frame made 11 whole stripes and one of 16 rows, and on 2 threads one
+    // thread computed 48 rows more than the other while that one waited (about 6 ms a frame).
+    const int threads = std::max(1, tbb::this_task_arena::max_concurrency());
     std::vector<std::pair<int, int>> stripes;
     auto addRun = [&](int y0, int y1) {
-        for (int y = y0; y < y1; y += kStripeRows)
-            stripes.emplace_back(y, std::min(y1, y + kStripeRows));
+        const int blocks = (y1 - y0 + 7) / 8, most = kStripeRows / 8;
+        const int count
+            = std::min(blocks, ((blocks + most - 1) / most + threads - 1) / threads * threads);
+        for (int k = 0; k < count; ++k) {
+            const int b0 = static_cast<int>(static_cast<long>(k) * blocks / count);
+            const int b1 = static_cast<int>(static_cast<long>(k + 1) * blocks / count);
+            stripes.emplace_back(y0 + 8 * b0, std::min(y1, y0 + 8 * b1));
+        }
     };
     // The rows of the 8-row blocks with work (work_rows.h; a block starts below h: hp - h < 8).
     const std::vector<char> computed = computedRows(masked ? work : nullptr, h);

@@ -2,13 +2,16 @@
 // The AFN stripe path (methods/afn/network_stripes.cpp): bit-identical to the whole-frame stages
 // for frames of one and of many stripes (odd sizes, both variants, 1 thread and all), also where a
 // stripe takes input rows over from the previous one, and its work mask: stripes
-// without work take the cheap path, the others are unchanged.
+// without work take the cheap path, the others are unchanged. The stripe plan depends on the
+// thread count (near-equal stripes of at most 64 rows, their count a multiple of the threads):
+// the tests that count stripes or reused rows run in an arena of a fixed size.
 #include "afn_random_inputs.h"
 #include "methods/afn/network.h"
 #include "methods/afn/random_weights.h"
 
 #include <gtest/gtest.h>
 #include <tbb/global_control.h>
+#include <tbb/task_arena.h>
 
 #include <algorithm>
 #include <memory>
@@ -50,8 +53,9 @@ Network randomNetwork(const std::string& variant)
 
 TEST(AfnStripes, EqualWholeFramePathBitForBit)
 {
-    // One stripe (padded 40x24), and many: 203 rows pad to 208 = 3 stripes of 64 and one of 16,
-    // so windows are clipped at the top, in the middle, and at the bottom.
+    // One stripe (padded 40x24), and many: 203 rows pad to 208 = 26 blocks of 8 rows, at least
+    // four stripes of at most 56 rows, so windows are clipped at the top, in the middle, and at
+    // the bottom.
     for (const std::string variant : { "full", "fusion", "trust" })
         for (const auto& [w, h] : { std::pair { 37, 21 }, std::pair { 45, 203 } }) {
             Network net = randomNetwork(variant);
@@ -96,26 +100,27 @@ TEST(AfnStripes, WorkspacesKeepNoTraceOfEarlierStripesOrFrames)
 
 TEST(AfnStripes, InputRowsTakenOverFromThePreviousStripeAreBitIdentical)
 {
-    // 330 rows pad to 336: stripes of 64 from 0 to 320, windows of 128 rows for the three in the
-    // middle, so a workspace that runs consecutive stripes moves the 64 shared input rows of the
-    // last window instead of computing them (on one thread every stripe follows its neighbour).
+    // 330 rows pad to 336 = 42 blocks: on one thread six stripes of 56 rows, windows of up to
+    // 120 rows, so a workspace that runs consecutive stripes moves the 64 input rows each window
+    // shares with the last one instead of computing them (on one thread every stripe follows its
+    // neighbour, whatever the windows' heights): 5 x 64 rows.
     // A second run of other inputs must not take rows over from the first. With the albedo trust
     // the colours are rescaled in place, so nothing is taken over.
     for (const std::string variant : { "full", "fusion", "trust" }) {
-        const int reused = variant == "trust" ? 0 : 2 * 64;
+        const int reused = variant == "trust" ? 0 : 5 * 64;
         Network net = randomNetwork(variant);
         Frame f(29, 330);
         const afntest::RandomAfnInputs g(29, 330, 12u);
         Image whole, wholeG, striped, stripedG, again;
         net.runWholeFrame(f.in, whole);
         net.runWholeFrame(g.in, wholeG);
-        {
-            tbb::global_control one(tbb::global_control::max_allowed_parallelism, 1);
+        tbb::task_arena(1).execute([&] {
             net.run(f.in, striped);
+            EXPECT_EQ(net.stripes(), 6) << variant;
             EXPECT_EQ(net.inputRowsReused(), reused) << variant;
             net.run(g.in, stripedG);
             EXPECT_EQ(net.inputRowsReused(), reused) << variant;
-        }
+        });
         EXPECT_EQ(differingValues(whole, striped), 0) << variant;
         EXPECT_EQ(differingValues(wholeG, stripedG), 0) << variant << " second inputs";
         net.run(f.in, again); // all threads: whatever is taken over, the same values
@@ -135,9 +140,15 @@ TEST(AfnStripes, WorkMaskSkipsStripesWithoutWorkOnly)
     std::fill(work.data(), work.at(0, masked), 0.0f);
     net.run(f.in, skipped, &work);
     // Rows 0-179 masked: the 8-row blocks up to row 175 have no work; block [176, 184) has rows
-    // 180+, so the network computes padded rows [176, 304) as stripes [176, 240), [240, 304).
+    // 180+, so the network computes padded rows [176, 304): on 2 threads stripes [176, 240),
+    // [240, 304), on 4 four of 32 rows.
     EXPECT_EQ(net.skippedRows(), 176);
-    EXPECT_EQ(net.stripes(), 2);
+    for (const int threads : { 2, 4 }) {
+        Image again;
+        tbb::task_arena(threads).execute([&] { net.run(f.in, again, &work); });
+        EXPECT_EQ(net.stripes(), threads);
+        EXPECT_EQ(differingValues(skipped, again), 0) << threads << " threads";
+    }
     int differ = 0, notCheap = 0;
     for (int y = 0; y < h; ++y)
         for (int x = 0; x < w; ++x)
@@ -159,8 +170,9 @@ TEST(AfnStripes, WorkMaskSkipsStripesWithoutWorkOnly)
 
 TEST(AfnStripes, WorkMaskRunsOffTheStripeGridAreBitIdentical)
 {
-    // Two bands of work, neither on the 64-row grid: rows 100-169 (blocks [96, 176): stripes
-    // [96, 160), [160, 176)) and rows 250-252 (block [248, 256)); the rows between are cheap.
+    // Two bands of work, neither on the 64-row grid: rows 100-169 (blocks [96, 176): on 2 threads
+    // stripes [96, 136), [136, 176)) and rows 250-252 (block [248, 256): one stripe); the rows
+    // between are cheap.
     const int w = 41, h = 300;
     Network net = randomNetwork("full");
     Frame f(w, h);
@@ -171,7 +183,7 @@ TEST(AfnStripes, WorkMaskRunsOffTheStripeGridAreBitIdentical)
         work(y % w, y, 0) = 1.0f; // one pixel a row marks the row
     for (int y = 250; y < 253; ++y)
         work(0, y, 0) = 1.0f;
-    net.run(f.in, skipped, &work);
+    tbb::task_arena(2).execute([&] { net.run(f.in, skipped, &work); });
     EXPECT_EQ(net.stripes(), 3);
     EXPECT_EQ(net.skippedRows(), h - 80 - 8);
     int differ = 0, notCheap = 0;
