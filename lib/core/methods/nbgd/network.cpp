@@ -30,15 +30,22 @@ void Network::run(const Image& input, const Image& cta, Image& out)
     m_guide1.run(nullptr, input, m_hidden, false);
     nn::leakyRelu(m_hidden, kLeakySlope);
     m_guide2.run(nullptr, m_hidden, m_guides, false);
-    float* s = m_guides.data();
-    for (std::size_t k = 0; k < m_guides.size(); ++k)
-        s[k] = 1.0f / (1.0f + std::exp(-s[k]));
-    // Guides in [0, 255] for the grids (channels 0-2), as the training code's s * 255.
+    // The sigmoid of the guides (every pixel of the network's padded frame), then the guides in
+    // [0, 255] for the grids (channels 0-2), as the training code's s * 255; per value, in
+    // parallel over rows.
+    const std::size_t rowValues = static_cast<std::size_t>(m_guides.width()) * m_guides.channels();
+    parallelRows(m_guides.height(), [&](int y0, int y1) {
+        float* s = m_guides.at(0, y0);
+        for (std::size_t k = 0; k < static_cast<std::size_t>(y1 - y0) * rowValues; ++k)
+            s[k] = 1.0f / (1.0f + std::exp(-s[k]));
+    });
     Image scaled(cta.width(), cta.height(), kGrids);
-    for (int y = 0; y < cta.height(); ++y)
-        for (int x = 0; x < cta.width(); ++x)
-            for (int k = 0; k < kGrids; ++k)
-                scaled(x, y, k) = m_guides(x, y, k) * kGuideScale;
+    parallelRows(cta.height(), [&](int y0, int y1) {
+        for (int y = y0; y < y1; ++y)
+            for (int x = 0; x < cta.width(); ++x)
+                for (int k = 0; k < kGrids; ++k)
+                    scaled(x, y, k) = m_guides(x, y, k) * kGuideScale;
+    });
     parallelFor(kGrids, [&](int k) {
         m_grids[k].filter(cta, scaled, k, kGridSteps[k][0], kGridSteps[k][1], m_sliced[k]);
     });
