@@ -55,14 +55,6 @@ struct Sums {
     __m512 ws, vsum, dc[3];
 };
 
-/// How max(0, n_p . n_q)^sigmaN is evaluated (methods/svgf/guide.h) where sigmaN is not 2^7.
-struct NormalPower {
-    int squarings = -1; ///< sigmaN = 2^squarings: that many squarings
-    unsigned integer = 0; ///< else an integer sigmaN: binary powering
-    bool integral = false;
-    float sigmaN = 0.0f; ///< else std::pow per lane
-};
-
 /// max(0, n_p . n_q)^sigmaN; kSquarings >= 0: sigmaN = 2^kSquarings (the default 128 = 2^7,
 /// unrolled), -1: as `np` says.
 template <bool kInterior, bool kHasNormal, int kSquarings>
@@ -74,31 +66,7 @@ AFN_CPU_AVX512_INLINE __m512 normalFactor16(
     __m512 d = _mm512_mul_ps(c.n[0], loadTap<kInterior>(m, r.n[0] + qx));
     d = _mm512_fmadd_ps(c.n[1], loadTap<kInterior>(m, r.n[1] + qx), d);
     d = _mm512_fmadd_ps(c.n[2], loadTap<kInterior>(m, r.n[2] + qx), d);
-    d = _mm512_max_ps(d, _mm512_setzero_ps()); // NaN -> 0, as std::fmax
-    if (kSquarings >= 0) {
-        for (int k = 0; k < kSquarings; ++k)
-            d = _mm512_mul_ps(d, d);
-        return d;
-    }
-    if (np.squarings >= 0) {
-        for (int k = 0; k < np.squarings; ++k)
-            d = _mm512_mul_ps(d, d);
-        return d;
-    }
-    if (np.integral) {
-        __m512 result = _mm512_set1_ps(1.0f);
-        for (unsigned e = np.integer; e; e >>= 1u) {
-            if (e & 1u)
-                result = _mm512_mul_ps(result, d);
-            d = _mm512_mul_ps(d, d);
-        }
-        return result;
-    }
-    alignas(64) float v[16];
-    _mm512_store_ps(v, d);
-    for (float& x : v)
-        x = std::pow(x, np.sigmaN);
-    return _mm512_load_ps(v);
+    return normalPower16<kSquarings>(np, d);
 }
 
 /// Add the tap at column qx of row r (lanes `m` in the image), with log2 h = `log2h` and the
@@ -302,10 +270,7 @@ AFN_CPU_AVX512 void atrousRows16(const AtrousArgs& a, int y0, int y1, const Norm
             }
             _mm512_mask_storeu_ps(
                 out.row(kVariance, y) + x, m0, _mm512_mul_ps(_mm512_mul_ps(s.vsum, inv), inv));
-            __m512 lum = _mm512_mul_ps(_mm512_set1_ps(0.2126f), o[0]);
-            lum = _mm512_fmadd_ps(_mm512_set1_ps(0.7152f), o[1], lum);
-            lum = _mm512_fmadd_ps(_mm512_set1_ps(0.0722f), o[2], lum);
-            _mm512_mask_storeu_ps(out.row(kLuminance, y) + x, m0, lum);
+            _mm512_mask_storeu_ps(out.row(kLuminance, y) + x, m0, luminance16(o[0], o[1], o[2]));
         }
     }
 }
@@ -316,27 +281,11 @@ void atrousRowsAvx512(const AtrousArgs& a, int y0, int y1)
 {
     const FlushDenormals flush;
     const Guide& g = *a.guide;
-    NormalPower np;
-    np.sigmaN = g.sigmaN;
-    np.integral = g.integerSigmaN;
-    if (g.integerSigmaN) {
-        np.integer = static_cast<unsigned>(g.sigmaN);
-        if (np.integer != 0 && (np.integer & (np.integer - 1)) == 0)
-            np.squarings = __builtin_ctz(np.integer);
-    }
-    const bool default128 = np.squarings == 7;
-    if (g.hasNormal && g.hasDepth && default128)
-        atrousRows16<true, true, 7>(a, y0, y1, np);
-    else if (g.hasNormal && g.hasDepth)
-        atrousRows16<true, true, -1>(a, y0, y1, np);
-    else if (g.hasNormal && default128)
-        atrousRows16<true, false, 7>(a, y0, y1, np);
-    else if (g.hasNormal)
-        atrousRows16<true, false, -1>(a, y0, y1, np);
-    else if (g.hasDepth)
-        atrousRows16<false, true, -1>(a, y0, y1, np);
-    else
-        atrousRows16<false, false, -1>(a, y0, y1, np);
+    const NormalPower np = normalPowerOf(g);
+    forGuide(g, [&](auto normal, auto depth, auto squarings) {
+        atrousRows16<decltype(normal)::value, decltype(depth)::value, decltype(squarings)::value>(
+            a, y0, y1, np);
+    });
 }
 
 #else

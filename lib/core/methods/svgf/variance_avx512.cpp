@@ -39,37 +39,11 @@ struct Sums {
     __m512 ws, dc[3], dm[2];
 };
 
-/// max(0, d)^sigmaN: kSquarings >= 0: sigmaN = 2^kSquarings (the default 128); -1: any sigmaN
-/// (binary powering for an integer, std::pow per lane else).
-template <int kSquarings> AFN_CPU_AVX512_INLINE __m512 normalPower(__m512 d, const Guide& g)
-{
-    d = _mm512_max_ps(d, _mm512_setzero_ps()); // NaN -> 0, as std::fmax
-    if (kSquarings >= 0) {
-        for (int k = 0; k < kSquarings; ++k)
-            d = _mm512_mul_ps(d, d);
-        return d;
-    }
-    if (g.integerSigmaN) {
-        __m512 result = _mm512_set1_ps(1.0f);
-        for (auto e = static_cast<unsigned>(g.sigmaN); e; e >>= 1u) {
-            if (e & 1u)
-                result = _mm512_mul_ps(result, d);
-            d = _mm512_mul_ps(d, d);
-        }
-        return result;
-    }
-    alignas(64) float v[16];
-    _mm512_store_ps(v, d);
-    for (float& x : v)
-        x = std::pow(x, g.sigmaN);
-    return _mm512_load_ps(v);
-}
-
 /// Add the tap at column qx of row qy (lanes `m` in the image) with the depth term's
 /// log2e / denominator `rz` to the sums.
 template <bool kHasNormal, bool kHasDepth, int kSquarings>
-AFN_CPU_AVX512_INLINE void addTap(const VarianceArgs& a, const Centre& c, float invPhi2, int qx,
-    int qy, __mmask16 m, __m512 rz, Sums& s)
+AFN_CPU_AVX512_INLINE void addTap(const VarianceArgs& a, const NormalPower& np, const Centre& c,
+    float invPhi2, int qx, int qy, __mmask16 m, __m512 rz, Sums& s)
 {
     const Planes& in = *a.in;
     const Guide& g = *a.guide;
@@ -87,7 +61,7 @@ AFN_CPU_AVX512_INLINE void addTap(const VarianceArgs& a, const Centre& c, float 
         __m512 d = _mm512_mul_ps(c.n[0], _mm512_maskz_loadu_ps(m, g.planes.row(kNormalX, qy) + qx));
         d = _mm512_fmadd_ps(c.n[1], _mm512_maskz_loadu_ps(m, g.planes.row(kNormalY, qy) + qx), d);
         d = _mm512_fmadd_ps(c.n[2], _mm512_maskz_loadu_ps(m, g.planes.row(kNormalZ, qy) + qx), d);
-        wq = _mm512_mul_ps(wq, normalPower<kSquarings>(d, g));
+        wq = _mm512_mul_ps(wq, normalPower16<kSquarings>(np, d));
     }
     wq = _mm512_maskz_mov_ps(keep, wq);
     s.ws = _mm512_add_ps(s.ws, wq);
@@ -104,7 +78,8 @@ AFN_CPU_AVX512_INLINE void addTap(const VarianceArgs& a, const Centre& c, float 
 /// The 7x7 cross-bilateral sums of pixels x .. x + 15 of row y: the centre, then the 24 tap
 /// pairs (dx, dy), (-dx, -dy) with dy > 0, or dy = 0 and dx > 0.
 template <bool kHasNormal, bool kHasDepth, int kSquarings>
-AFN_CPU_AVX512_INLINE Sums crossBilateral(const VarianceArgs& a, const Centre& c, int x, int y)
+AFN_CPU_AVX512_INLINE Sums crossBilateral(
+    const VarianceArgs& a, const NormalPower& np, const Centre& c, int x, int y)
 {
     const int w = a.in->width(), h = a.in->height();
     const float invPhi2 = kLog2e / (a.phiL + 1e-10f);
@@ -120,7 +95,7 @@ AFN_CPU_AVX512_INLINE Sums crossBilateral(const VarianceArgs& a, const Centre& c
         s.dm[k] = _mm512_setzero_ps();
     // The centre: e = 0 plus the depth term's 0; the normal factor of a unit normal with itself.
     addTap<kHasNormal, false, kSquarings>(
-        a, c, invPhi2, x, y, cols[kRadius], _mm512_setzero_ps(), s);
+        a, np, c, invPhi2, x, y, cols[kRadius], _mm512_setzero_ps(), s);
     for (int dy = 0; dy <= kRadius; ++dy)
         for (int dx = dy == 0 ? 1 : -kRadius; dx <= kRadius; ++dx) {
             const bool up = y + dy < h, down = y - dy >= 0;
@@ -137,16 +112,16 @@ AFN_CPU_AVX512_INLINE Sums crossBilateral(const VarianceArgs& a, const Centre& c
             }
             if (up)
                 addTap<kHasNormal, kHasDepth, kSquarings>(
-                    a, c, invPhi2, x + dx, y + dy, cols[kRadius + dx], rz, s);
+                    a, np, c, invPhi2, x + dx, y + dy, cols[kRadius + dx], rz, s);
             if (down)
                 addTap<kHasNormal, kHasDepth, kSquarings>(
-                    a, c, invPhi2, x - dx, y - dy, cols[kRadius - dx], rz, s);
+                    a, np, c, invPhi2, x - dx, y - dy, cols[kRadius - dx], rz, s);
         }
     return s;
 }
 
 template <bool kHasNormal, bool kHasDepth, int kSquarings>
-AFN_CPU_AVX512 void varianceRows16(const VarianceArgs& a, int y0, int y1)
+AFN_CPU_AVX512 void varianceRows16(const VarianceArgs& a, int y0, int y1, const NormalPower& np)
 {
     const Planes& in = *a.in;
     const Guide& g = *a.guide;
@@ -180,7 +155,7 @@ AFN_CPU_AVX512 void varianceRows16(const VarianceArgs& a, int y0, int y1)
                     c.zEps = _mm512_add_ps(
                         _mm512_mul_ps(_mm512_set1_ps(1e-4f), absv(c.z)), _mm512_set1_ps(1e-30f));
                 }
-                const Sums s = crossBilateral<kHasNormal, kHasDepth, kSquarings>(a, c, x, y);
+                const Sums s = crossBilateral<kHasNormal, kHasDepth, kSquarings>(a, np, c, x, y);
                 const __mmask16 some = _mm512_cmp_ps_mask(s.ws, zero, _CMP_GT_OQ);
                 const __m512 inv = _mm512_maskz_div_ps(some, _mm512_set1_ps(1.0f), s.ws);
                 __m512 mo[2];
@@ -197,10 +172,8 @@ AFN_CPU_AVX512 void varianceRows16(const VarianceArgs& a, int y0, int y1)
             for (int k = 0; k < 3; ++k)
                 _mm512_mask_storeu_ps(out.row(kRed + k, y) + x, m0, rgb[k]);
             _mm512_mask_storeu_ps(out.row(kVariance, y) + x, m0, var);
-            __m512 lum = _mm512_mul_ps(_mm512_set1_ps(0.2126f), rgb[0]);
-            lum = _mm512_fmadd_ps(_mm512_set1_ps(0.7152f), rgb[1], lum);
-            lum = _mm512_fmadd_ps(_mm512_set1_ps(0.0722f), rgb[2], lum);
-            _mm512_mask_storeu_ps(out.row(kLuminance, y) + x, m0, lum);
+            _mm512_mask_storeu_ps(
+                out.row(kLuminance, y) + x, m0, luminance16(rgb[0], rgb[1], rgb[2]));
         }
     }
 }
@@ -210,20 +183,11 @@ AFN_CPU_AVX512 void varianceRows16(const VarianceArgs& a, int y0, int y1)
 void varianceRowsAvx512(const VarianceArgs& a, int y0, int y1)
 {
     const FlushDenormals flush;
-    const Guide& g = *a.guide;
-    const bool default128 = g.integerSigmaN && g.sigmaN == 128.0f;
-    if (g.hasNormal && g.hasDepth && default128)
-        varianceRows16<true, true, 7>(a, y0, y1);
-    else if (g.hasNormal && g.hasDepth)
-        varianceRows16<true, true, -1>(a, y0, y1);
-    else if (g.hasNormal && default128)
-        varianceRows16<true, false, 7>(a, y0, y1);
-    else if (g.hasNormal)
-        varianceRows16<true, false, -1>(a, y0, y1);
-    else if (g.hasDepth)
-        varianceRows16<false, true, -1>(a, y0, y1);
-    else
-        varianceRows16<false, false, -1>(a, y0, y1);
+    const NormalPower np = normalPowerOf(*a.guide);
+    forGuide(*a.guide, [&](auto normal, auto depth, auto squarings) {
+        varianceRows16<decltype(normal)::value, decltype(depth)::value, decltype(squarings)::value>(
+            a, y0, y1, np);
+    });
 }
 
 #else

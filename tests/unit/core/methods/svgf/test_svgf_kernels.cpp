@@ -10,6 +10,7 @@
 // tests still see a plausible image.
 #include "cpu/isa.h"
 #include "methods/svgf/kernels.h"
+#include "svgf_random_guide.h"
 
 #include <gtest/gtest.h>
 
@@ -51,15 +52,7 @@ Scene randomScene(bool hasNormal, bool hasDepth, unsigned seed, int width = kW)
                 s.in.row(k, y)[x] = c[k] = 2.0f * u(rng);
             s.in.row(kVariance, y)[x] = 0.5f * u(rng);
             s.in.row(kLuminance, y)[x] = luminance(c);
-            // Normals near +z (so that many taps keep a weight), unit length.
-            float n[3] = { 0.3f * (u(rng) - 0.5f), 0.3f * (u(rng) - 0.5f), 1.0f };
-            const float len = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
-            for (int k = 0; k < 3; ++k)
-                s.guide.planes.row(kNormalX + k, y)[x] = n[k] / len;
-            // A sloped depth with noise, its gradient as the guide would store it.
-            s.guide.planes.row(kDepth, y)[x] = 5.0f + 0.05f * x + 0.02f * y + 0.01f * u(rng);
-            s.guide.planes.row(kDepthDx, y)[x] = 0.05f;
-            s.guide.planes.row(kDepthDy, y)[x] = 0.02f;
+            afntest::setRandomGuidePixel(s.guide, x, y, 0.3f, rng);
         }
     return s;
 }

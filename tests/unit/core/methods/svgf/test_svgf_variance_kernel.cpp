@@ -7,6 +7,7 @@
 // a multiple of the vector width (37, and 101 with blocks far from both borders).
 #include "cpu/isa.h"
 #include "methods/svgf/kernels.h"
+#include "svgf_random_guide.h"
 
 #include <gtest/gtest.h>
 
@@ -51,13 +52,7 @@ Scene randomScene(bool hasNormal, bool hasDepth, float sigmaN, int width, unsign
             s.in.row(kMoment1, y)[x] = l;
             s.in.row(kMoment2, y)[x] = l * l + 0.01f + 0.5f * u(rng);
             s.in.row(kHistoryLength, y)[x] = lengths[rng() % 5];
-            float n[3] = { 0.2f * (u(rng) - 0.5f), 0.2f * (u(rng) - 0.5f), 1.0f };
-            const float len = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
-            for (int k = 0; k < 3; ++k)
-                s.guide.planes.row(kNormalX + k, y)[x] = n[k] / len;
-            s.guide.planes.row(kDepth, y)[x] = 5.0f + 0.05f * x + 0.02f * y + 0.01f * u(rng);
-            s.guide.planes.row(kDepthDx, y)[x] = 0.05f;
-            s.guide.planes.row(kDepthDy, y)[x] = 0.02f;
+            afntest::setRandomGuidePixel(s.guide, x, y, 0.2f, rng);
         }
     return s;
 }
