@@ -70,6 +70,15 @@ TEST(AfnStripes, EqualWholeFramePathBitForBit)
                 net.run(f.in, oneThread);
             }
             EXPECT_EQ(differingValues(whole, oneThread), 0) << variant << " 1 thread";
+            // The stripe plan of other thread counts (3: stripes of unequal heights; 16: more
+            // stripes than 203 rows make at 64, down to 8-16 rows each) gives the same bits.
+            for (const int threads : { 3, 16 }) {
+                Image planned;
+                tbb::task_arena(threads).execute([&] { net.run(f.in, planned); });
+                if (h > 64)
+                    EXPECT_EQ(net.stripes(), threads == 3 ? 6 : 16);
+                EXPECT_EQ(differingValues(whole, planned), 0) << variant << " " << threads;
+            }
         }
 }
 
