@@ -86,6 +86,20 @@ afn::cuda::AfnCudaFilter& cudaFilter(afn::Filter& f)
     return *c;
 }
 
+/// afn on the CPU, configured as the CUDA filter computes (afn_parity_cases.h), and afn on the
+/// CUDA device with its buffers poisoned (a value read before it is written shows as NaN).
+struct FilterPair {
+    std::unique_ptr<afn::Filter> cpu, gpu;
+};
+
+FilterPair cpuAndGpuFilters()
+{
+    FilterPair p { afn::createFilter("afn"), afn::createFilter("afn", *g_cuda) };
+    afntest::configureAsOnTheGpu(*p.cpu);
+    cudaFilter(*p.gpu).setPoison(true);
+    return p;
+}
+
 /// The per-frame log's model line of the last frame (AFN_STAT_AFN_MODEL); a failure where the
 /// filter has none.
 std::string modelLine(const afn::Filter& f)
@@ -151,11 +165,8 @@ void runParityCase(const ParityCase& c)
 {
     SCOPED_TRACE(c.name());
     const std::vector<char> weights = weightsBytes(c.weights);
-    auto cpu = afn::createFilter("afn");
-    afntest::configureAsOnTheGpu(*cpu);
-    auto gpu = afn::createFilter("afn", *g_cuda);
+    auto [cpu, gpu] = cpuAndGpuFilters();
     afn::cuda::AfnCudaFilter& cuda = cudaFilter(*gpu);
-    cuda.setPoison(true);
     if (!weights.empty()) {
         cpu->setData(AFN_DATA_WEIGHTS, weights.data(), weights.size());
         gpu->setData(AFN_DATA_WEIGHTS, weights.data(), weights.size());
@@ -251,10 +262,7 @@ TEST_F(CudaAfn, ParityOnTheBlenderSequence)
         GTEST_SKIP() << "AFN_GPU_FRAMES is not set (scripts/gpu-check.sh sets it)";
     if (!hasShippedWeights())
         GTEST_SKIP() << "this build has no built-in weights";
-    auto cpu = afn::createFilter("afn");
-    afntest::configureAsOnTheGpu(*cpu);
-    auto gpu = afn::createFilter("afn", *g_cuda);
-    cudaFilter(*gpu).setPoison(true);
+    auto [cpu, gpu] = cpuAndGpuFilters();
     for (auto* f : { cpu.get(), gpu.get() })
         f->params().setNumber("motion.yUp", 1.0, AFN_PARAM_BOOL);
     const afntest::Tolerance tolerance;
@@ -356,10 +364,7 @@ TEST_F(CudaAfn, ThroughTheCApi)
 
 TEST_F(CudaAfn, ResetAndNewWeightsMidSequence)
 {
-    auto cpu = afn::createFilter("afn");
-    afntest::configureAsOnTheGpu(*cpu);
-    auto gpu = afn::createFilter("afn", *g_cuda);
-    cudaFilter(*gpu).setPoison(true);
+    auto [cpu, gpu] = cpuAndGpuFilters();
     const std::vector<char> full = weightsBytes("full"), fusion = weightsBytes("fusion");
     for (auto* f : { cpu.get(), gpu.get() })
         f->setData(AFN_DATA_WEIGHTS, full.data(), full.size());
@@ -389,10 +394,7 @@ TEST_F(CudaAfn, TheModelFollowsTheInputsAcrossResets)
 {
     if (!hasShippedWeights())
         GTEST_SKIP() << "this build has no built-in weights";
-    auto cpu = afn::createFilter("afn");
-    afntest::configureAsOnTheGpu(*cpu);
-    auto gpu = afn::createFilter("afn", *g_cuda);
-    cudaFilter(*gpu).setPoison(true);
+    auto [cpu, gpu] = cpuAndGpuFilters();
     SequenceInputs colorOnly { false, false, false, false, false, false };
     SequenceInputs albedoOnly;
     albedoOnly.normal = false;

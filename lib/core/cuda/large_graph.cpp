@@ -6,13 +6,6 @@
 
 namespace afn::cuda {
 
-namespace {
-
-constexpr int kRefineModules = 2;
-constexpr int kRefineLayersPerModule = 3;
-
-} // namespace
-
 void LargeGraph::setNetwork(const afnet::LargeNetwork& net, cudaStream_t stream)
 {
     for (int i = 0; i < afnet::LargeNetwork::kLayers; ++i) {
@@ -69,21 +62,9 @@ void LargeGraph::enqueuePrepare(const LargeSources& src, cudaStream_t stream) co
 {
     if (m_paddedWidth != paddedSize(src.width) || m_paddedHeight != paddedSize(src.height))
         throwInvalidOperation("CUDA afn: AFN large is not allocated for this frame");
-    LargePrepareBuffers b;
-    b.width = src.width;
-    b.height = src.height;
-    b.paddedWidth = m_paddedWidth;
-    b.paddedHeight = m_paddedHeight;
-    b.color = src.color;
-    b.albedo = src.albedo;
-    b.normal = src.normal;
-    b.depth = src.depth;
-    b.depthRange = src.depthRange;
-    b.x = m_x.data.data();
-    b.xHalf = m_xHalf.data.data();
-    b.c = m_c.data();
-    b.cHalf = m_cHalf.data();
-    launchLargePrepare(b, stream);
+    launchLargePrepare(largePrepareBuffers(src, m_paddedWidth, m_paddedHeight, m_x.data.data(),
+                           m_xHalf.data.data(), m_c.data(), m_cHalf.data()),
+        stream);
     launchDown2(
         m_cHalf.data(), m_cQuarter.data(), m_paddedWidth / 4, m_paddedHeight / 4, 3, stream);
 }
@@ -133,27 +114,16 @@ void LargeGraph::enqueueFilteringFusion(cudaStream_t stream) const
 void LargeGraph::enqueueRefinement(const FinalOutput& out, cudaStream_t stream) const
 {
     const int wp = m_paddedWidth, hp = m_paddedHeight;
-    for (int m = 0; m < kRefineModules; ++m) {
-        const int first = m * kRefineLayersPerModule;
+    for (int m = 0; m < kLargeRefineModules; ++m) {
+        const int first = m * kLargeRefineLayers;
         const float* o = m == 0 ? m_fused.data() : m_refined.data();
         launchLargeRefineInput(o, m_x.data.data(), m_refineInput.data.data(), wp, hp, stream);
         launchConvRelu(convOperands(layer(L::RefA1, first), nullptr, m_refineInput),
             ReluOutput { m_r1.data.data(), m_r1.stride }, stream);
         launchConvRelu(convOperands(layer(L::RefA1, first + 1), nullptr, m_r1),
             ReluOutput { m_r2.data.data(), m_r2.stride }, stream);
-        FinalOutput fo;
-        if (m == 0) { // o at the padded size, as it is
-            fo.data = m_refined.data();
-            fo.width = wp;
-            fo.height = hp;
-            fo.demodulated = 1;
-        } else {
-            fo = out;
-            fo.computedRows = nullptr;
-            fo.trust = nullptr;
-        }
-        fo.fused = o;
-        launchConvFinal(convOperands(layer(L::RefA1, first + 2), nullptr, m_r2), fo, stream);
+        launchConvFinal(convOperands(layer(L::RefA1, first + 2), nullptr, m_r2),
+            largeRefinementOutput(m, out, m_refined.data(), wp, hp, o), stream);
     }
 }
 

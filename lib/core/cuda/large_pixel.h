@@ -13,6 +13,7 @@
 // the tensor cores as AFN's (conv_tile.h). Compiled with --fmad=false like the CPU's arithmetic.
 #pragma once
 
+#include "cuda/conv_tile.h"
 #include "cuda/device_math.h"
 #include "cuda/prepare_block.h"
 
@@ -53,6 +54,54 @@ struct LargePrepareBuffers {
     float* c = nullptr; ///< padded frame, 3 floats per pixel
     float* cHalf = nullptr; ///< half the padded frame, 3 floats per pixel
 };
+
+/// AFN large's refinement (methods/afn/network_large.cpp): modules of three layers, each module
+/// refining the previous one's output.
+constexpr int kLargeRefineModules = 2;
+constexpr int kLargeRefineLayers = 3;
+
+/// Where refinement module m, whose input is `o`, writes: a module before the last at the padded
+/// size, demodulated, into `refined` (the next module's input); the last one into the frame's
+/// output `out`, every row computed, without the albedo trust.
+inline FinalOutput largeRefinementOutput(int m, const FinalOutput& out, float* refined,
+    int paddedWidth, int paddedHeight, const float* o)
+{
+    FinalOutput fo;
+    if (m + 1 < kLargeRefineModules) {
+        fo.data = refined;
+        fo.width = paddedWidth;
+        fo.height = paddedHeight;
+        fo.demodulated = 1;
+    } else {
+        fo = out;
+        fo.computedRows = nullptr;
+        fo.trust = nullptr;
+    }
+    fo.fused = o;
+    return fo;
+}
+
+/// The preparation's buffers: frame `s` padded to paddedWidth x paddedHeight, into x, xHalf, c and
+/// cHalf (the device graph's buffers, or the host emulation's).
+inline LargePrepareBuffers largePrepareBuffers(const LargeSources& s, int paddedWidth,
+    int paddedHeight, std::uint16_t* x, std::uint16_t* xHalf, float* c, float* cHalf)
+{
+    LargePrepareBuffers b;
+    b.width = s.width;
+    b.height = s.height;
+    b.paddedWidth = paddedWidth;
+    b.paddedHeight = paddedHeight;
+    b.color = s.color;
+    b.albedo = s.albedo;
+    b.normal = s.normal;
+    b.depth = s.depth;
+    b.depthRange = s.depthRange;
+    b.x = x;
+    b.xHalf = xHalf;
+    b.c = c;
+    b.cHalf = cHalf;
+    return b;
+}
 
 /// Block (xh, yh) of the half-resolution grid.
 AFN_HD void largePrepareBlock(const LargePrepareBuffers& b, const DepthScale& ds, int xh, int yh)

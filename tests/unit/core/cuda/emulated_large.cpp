@@ -60,21 +60,8 @@ void EmulatedLargeGraph::run(const LargeSources& src, const FinalOutput& out)
 {
     const int wp = m_paddedWidth, hp = m_paddedHeight;
     // Prepare.
-    LargePrepareBuffers b;
-    b.width = src.width;
-    b.height = src.height;
-    b.paddedWidth = wp;
-    b.paddedHeight = hp;
-    b.color = src.color;
-    b.albedo = src.albedo;
-    b.normal = src.normal;
-    b.depth = src.depth;
-    b.depthRange = src.depthRange;
-    b.x = m_x.data.data();
-    b.xHalf = m_xHalf.data.data();
-    b.c = m_c.data();
-    b.cHalf = m_cHalf.data();
-    emulateLargePrepare(b);
+    emulateLargePrepare(largePrepareBuffers(
+        src, wp, hp, m_x.data.data(), m_xHalf.data.data(), m_c.data(), m_cHalf.data()));
     emulateDown2(m_cHalf.data(), m_cQuarter.data(), wp / 4, hp / 4, 3);
     // Prediction.
     auto conv = [&](L l, int offset, const HostTensor* up, const HostTensor& same, HostTensor& o) {
@@ -113,25 +100,14 @@ void EmulatedLargeGraph::run(const LargeSources& src, const FinalOutput& out)
     emulateFuseScales(m_fused.data(), m_f2.data(), m_h1.data(), layer(L::Head1).packed.outChannels,
         kLargeTaps, wp, hp);
     // Refinement.
-    for (int m = 0; m < 2; ++m) {
-        const int first = 3 * m;
+    for (int m = 0; m < kLargeRefineModules; ++m) {
+        const int first = m * kLargeRefineLayers;
         const float* o = m == 0 ? m_fused.data() : m_refined.data();
         emulateLargeRefineInput(o, m_x.data.data(), m_refineInput.data.data(), wp, hp);
         conv(L::RefA1, first, nullptr, m_refineInput, m_r1);
         conv(L::RefA1, first + 1, nullptr, m_r1, m_r2);
-        FinalOutput fo;
-        if (m == 0) {
-            fo.data = m_refined.data();
-            fo.width = wp;
-            fo.height = hp;
-            fo.demodulated = 1;
-        } else {
-            fo = out;
-            fo.computedRows = nullptr;
-            fo.trust = nullptr;
-        }
-        fo.fused = o;
-        emulateConvFinal(hostOperands(layer(L::RefA1, first + 2), nullptr, m_r2), fo);
+        emulateConvFinal(hostOperands(layer(L::RefA1, first + 2), nullptr, m_r2),
+            largeRefinementOutput(m, out, m_refined.data(), wp, hp, o));
     }
 }
 
