@@ -41,14 +41,9 @@ void AfnCudaFilter::useModel(const afnet::Model& model)
         m_pipeline.setNetwork(model.net);
         m_model = &model;
     }
-    // The output TAA and the post-filter as the CPU's (afn_method.cpp): auto is on for models
-    // trained below 16 spp.
-    const bool lowSppTaa = model.spp < afnet::kTaaAutoMaxSppExclusive;
-    m_pipeline.setTaa(m_settings.taa == afnet::Settings::Taa::On
-        || (m_settings.taa == afnet::Settings::Taa::Auto && lowSppTaa));
-    const bool lowSppPost = model.spp < afnet::kPostFilterAutoMaxSppExclusive;
-    m_pipeline.setPostFilter(m_settings.postFilter == afnet::Settings::PostFilter::On
-        || (m_settings.postFilter == afnet::Settings::PostFilter::Auto && lowSppPost));
+    // The output TAA and the post-filter as the CPU's (afn_method.cpp).
+    m_pipeline.setTaa(afnet::taaOn(m_settings, model.spp));
+    m_pipeline.setPostFilter(afnet::postFilterOn(m_settings, model.spp));
 }
 
 void AfnCudaFilter::configure()

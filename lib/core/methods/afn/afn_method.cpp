@@ -243,11 +243,8 @@ private:
         // Every model runs through the same quality tier (quality_tiers.h) and work skipping
         // (network.h: skipped stripes take inputs().colorTa, the model's own TA input).
         // With TAA the rows around the needed ones too (its neighbourhood and next history).
-        m_taaOn = m_settings.taa == Settings::Taa::On
-            || (m_settings.taa == Settings::Taa::Auto && m_model->spp < kTaaAutoMaxSppExclusive);
-        m_postOn = m_settings.postFilter == Settings::PostFilter::On
-            || (m_settings.postFilter == Settings::PostFilter::Auto
-                && m_model->spp < kPostFilterAutoMaxSppExclusive);
+        m_taaOn = taaOn(m_settings, m_model->spp);
+        m_postOn = postFilterOn(m_settings, m_model->spp);
         const Image* work = &in.work;
         const int margin = workMargin(m_taaOn, m_postOn);
         if (margin > 0) {

@@ -61,6 +61,23 @@ constexpr int kPostFilterAutoMaxSppExclusive = 16;
 /// Models trained at this many samples per pixel or more run without TAA under taa=auto.
 constexpr int kTaaAutoMaxSppExclusive = 16;
 
+/// Whether the output TAA runs for a model trained at `modelSpp` (on, or auto below
+/// kTaaAutoMaxSppExclusive); the CPU and the CUDA filter both ask here.
+inline bool taaOn(const Settings& s, int modelSpp)
+{
+    return s.taa == Settings::Taa::On
+        || (s.taa == Settings::Taa::Auto && modelSpp < kTaaAutoMaxSppExclusive);
+}
+
+/// Whether the post-filter runs for a model trained at `modelSpp` (on, or auto below
+/// kPostFilterAutoMaxSppExclusive).
+inline bool postFilterOn(const Settings& s, int modelSpp)
+{
+    return s.postFilter == Settings::PostFilter::On
+        || (s.postFilter == Settings::PostFilter::Auto
+            && modelSpp < kPostFilterAutoMaxSppExclusive);
+}
+
 /// The descriptors of Settings (settings.cpp).
 const ParamBinding<Settings>& settingsBinding();
 
