@@ -317,7 +317,7 @@ void bandRowsFp32(const ConvArgs& a, int y0, int y1)
 
 void convRowsAvx512(const ConvArgs& a, int y0, int y1)
 {
-    if (a.wbf16)
+    if (a.wbf16 || a.wtbf16)
         return convRowsAvx512Bf16(a, y0, y1);
     const int group = bandRowGroup(a);
     for (int ya = y0; ya < y1; ya += group)

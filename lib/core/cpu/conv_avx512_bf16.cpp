@@ -293,6 +293,8 @@ void bandRowsBf16(const ConvArgs& a, int y0, int y1)
             toBf16Emulated(band16, band.data(), n);
         std::memset(band16 + n, 0, sizeof(std::uint16_t) * slack);
     }
+    if (a.wtbf16)
+        return fewOutputsRowsBf16(a, band16, y0, y1, hardware);
     if (mode == Bf16Mode::Amx && a.wamx) {
         const AmxConvPass p { band16, static_cast<long>(w + 2 * (a.k / 2)) * c, c, a.wamx, a.bp16,
             a.k, a.cp16, a.outC, w, a.dstPix, a.relu, a.dst + (y0 - a.dstY0) * a.dstRow, a.dstRow };

@@ -41,7 +41,17 @@ struct ConvArgs {
     /// rounded up to 16 (the band's channels): the AMX kernel's B tiles (cpu/conv_amx_bf16.h).
     /// Set with wbf16 where the CPU can run AMX.
     const std::uint16_t* wamx = nullptr;
+    /// Layers of at most kFewOutputs outputs in bf16 (cpu/conv_few_outputs_bf16.cpp): weights
+    /// [ky][co][kx][ci padded to bandChannels(in)], each (ky, co) run padded with zeros to
+    /// fewOutputsChunks(k, in) x 32 values. Where set, convRowsAvx512 runs the layer in bf16.
+    const std::uint16_t* wtbf16 = nullptr;
 };
+
+/// 32-value vectors of one kernel row of a few-output layer's bf16 weights (ConvArgs::wtbf16).
+inline int fewOutputsChunks(int k, int in)
+{
+    return (k * ((in + 15) / 16 * 16) + 31) / 32;
+}
 
 /// Channels of a band pixel: the layer's input channels rounded up to 16 (one AVX-512 vector; even,
 /// so bf16 channel pairs never straddle two pixels).
@@ -76,7 +86,7 @@ inline ConvBandGeometry convBandGeometry(const ConvArgs& a, int y0, int y1)
 void convRows(const ConvArgs& a, int y0, int y1);
 
 /// Output rows [y0, y1) with the AVX-512 micro-kernels (cpu/conv_avx512.cpp; call only where
-/// activeIsa() is Avx512). Layers with `wbf16` run convRowsAvx512Bf16.
+/// activeIsa() is Avx512). Layers with `wbf16` or `wtbf16` run convRowsAvx512Bf16.
 void convRowsAvx512(const ConvArgs& a, int y0, int y1);
 
 /// The same in bfloat16 (cpu/conv_avx512_bf16.cpp; activeBf16Mode() picks VDPBF16PS or its
@@ -94,6 +104,12 @@ void fillConvBandAvx512(const ConvArgs& a, int y0, int y1, int c, std::vector<fl
 /// false, writing nothing, for band pixels wider than 256 channels.
 bool fillConvBandBf16Avx512(
     const ConvArgs& a, int y0, int y1, int c, std::uint16_t* d, std::size_t slack);
+
+/// Output rows [y0, y1) of a layer with `wtbf16` from its bf16 band (rows [y0 - k/2, y1 + k/2),
+/// as fillConvBandBf16Avx512 writes it, with the slack): VDPBF16PS where `hardware`, else its
+/// AVX-512F emulation with the same bits (cpu/conv_few_outputs_bf16.cpp).
+void fewOutputsRowsBf16(
+    const ConvArgs& a, const std::uint16_t* band, int y0, int y1, bool hardware);
 
 /// The calling thread's band buffer, shared by the fp32 and bf16 kernels (each call refills it;
 /// the bf16 kernel rounds it in place): one buffer per thread, the size of the largest band.

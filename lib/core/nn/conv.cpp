@@ -66,6 +66,7 @@ void Conv::load(const WeightsArchive& a, const std::string& name, int expectedIn
         std::copy_n(&m_wp[row * m_outPadded], out, &m_wp16[row * m_outPadded16]);
     m_wt16.clear();
     m_wbf16.clear();
+    m_wtbf16.clear();
     m_wamx.clear();
     m_precision = Precision::Fp32;
     if (out > cpu::kFewOutputs) {
@@ -100,6 +101,16 @@ void Conv::load(const WeightsArchive& a, const std::string& name, int expectedIn
                 for (int ci = 0; ci < in; ++ci)
                     m_wt16[(static_cast<std::size_t>(t) * out + co) * inPadded + ci]
                         = w.data[(static_cast<std::size_t>(co) * in + ci) * k * k + t];
+        const int chunks = cpu::fewOutputsChunks(k, in);
+        m_wtbf16.assign(static_cast<std::size_t>(k) * out * chunks * 32, 0);
+        for (int ky = 0; ky < k; ++ky)
+            for (int co = 0; co < out; ++co)
+                for (int kx = 0; kx < k; ++kx)
+                    for (int ci = 0; ci < in; ++ci)
+                        m_wtbf16[(static_cast<std::size_t>(ky) * out + co) * chunks * 32
+                            + static_cast<std::size_t>(kx) * inPadded + ci]
+                            = cpu::toBf16(w.data[(static_cast<std::size_t>(co) * in + ci) * k * k
+                                + ky * k + kx]);
     }
 }
 
@@ -115,8 +126,10 @@ cpu::ConvArgs Conv::args(const Image* up, const Image& same, bool relu) const
     a.bp16 = m_bp16.data();
     a.cp16 = m_outPadded16;
     a.wt16 = m_wt16.empty() ? nullptr : m_wt16.data();
-    if (precision() == Precision::Bf16)
-        a.wbf16 = m_wbf16.data();
+    if (precision() == Precision::Bf16) {
+        a.wbf16 = m_wbf16.empty() ? nullptr : m_wbf16.data();
+        a.wtbf16 = m_wtbf16.empty() ? nullptr : m_wtbf16.data();
+    }
     if (precision() == Precision::Bf16 && !m_wamx.empty())
         a.wamx = m_wamx.data() + m_wamxOffset;
     return a;

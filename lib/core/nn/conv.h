@@ -52,11 +52,10 @@ public:
     void runRows(const Image* up, const Image& same, int y0, int y1, float* dst, long rowStride,
         int pixelStride, bool relu, int x0 = 0, int x1 = -1) const;
 
-    /// Run in `p` from now on (Fp32 after load). Layers of at most cpu::kFewOutputs outputs stay
-    /// fp32 (their kernel puts input channels in the lanes; they are a small share of the work).
+    /// Run in `p` from now on (Fp32 after load).
     void setPrecision(Precision p) { m_precision = p; }
-    /// The precision the layer runs in on the AVX-512 engine (Fp32 for few-output layers).
-    Precision precision() const { return m_wbf16.empty() ? Precision::Fp32 : m_precision; }
+    /// The precision the layer runs in on the AVX-512 engine.
+    Precision precision() const { return m_precision; }
 
     /// Multiply-adds x 2 per output pixel (the layer's FLOP per pixel, without padding).
     double flopPerPixel() const { return 2.0 * m_k * m_k * m_in * m_out; }
@@ -80,6 +79,9 @@ private:
     std::vector<float> m_wt16; ///< at most cpu::kFewOutputs outputs: [ky][kx][co][ci padded to 16]
     /// bf16 weights [ky][kx][ci pair][co padded to 16][2] (other layers than m_wt16's)
     std::vector<std::uint16_t> m_wbf16;
+    /// m_wt16's layers in bf16: [ky][co][kx][ci padded to 16], each (ky, co) run padded to
+    /// cpu::fewOutputsChunks x 32 values (cpu::ConvArgs::wtbf16)
+    std::vector<std::uint16_t> m_wtbf16;
     /// m_wbf16 with each tap's pairs padded to (in rounded up to 16) / 2, where the CPU runs AMX
     std::vector<std::uint16_t> m_wamx;
     /// Elements of m_wamx before its first weight: 0-31, so that the weights start on a 64-byte

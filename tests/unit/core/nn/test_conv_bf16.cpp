@@ -3,8 +3,9 @@
 // where the CPU has them, VDPBF16PS, its emulation) against a double reference of the same
 // bf16-rounded operands (the kernel's only error is then fp32 summation) and within bf16's
 // rounding of fp32's result, the hardware instruction and its AVX-512F emulation bit for bit
-// (where the CPU has AVX512_BF16), whole rows and column chunks the same bits, and few-output
-// layers unchanged.
+// (where the CPU has AVX512_BF16), whole rows and column chunks the same bits, and fp32 unchanged
+// after a switch to bf16 and back. Few-output layers (cpu/conv_few_outputs_bf16.cpp) are checked
+// the same way.
 #include "afn_test_util.h"
 #include "cpu/bf16.h"
 #include "cpu/isa.h"
@@ -167,6 +168,11 @@ TEST_F(ConvBf16, MatchesTheReferenceOfBf16OperandsOnEveryBlockShape)
         checkLayer(0, 96, 24, 3, 17, 5, true); // C = 96
         checkLayer(0, 10, 16, 3, 33, 7, true); // refinement
         checkLayer(0, 20, 70, 3, 21, 6, false); // two channel blocks (64 + 6)
+        checkLayer(0, 16, 3, 3, 37, 6, false); // refinement's last layer (a last block of 5)
+        checkLayer(0, 16, 1, 3, 16, 5, false); // albedo trust head (one whole block)
+        checkLayer(8, 24, 2, 3, 35, 4, true); // 3 vectors per kernel row, upsampled part
+        checkLayer(0, 13, 4, 1, 33, 3, true); // 1x1, a half vector
+        checkLayer(0, 16, 2, 5, 19, 7, false); // run-time shape (5x5)
     }
 }
 
@@ -184,7 +190,9 @@ TEST_F(ConvBf16, HardwareAndEmulationGiveTheSameBits)
     for (const Shape& sh : { Shape { 0, 37, 50, 3, 41, 11 }, Shape { 24, 14, 50, 1, 37, 6 },
              Shape { 32, 16, 24, 3, 23, 9 }, Shape { 64, 32, 32, 3, 19, 7 },
              Shape { 0, 10, 16, 3, 35, 8 }, Shape { 0, 32, 32, 3, 21, 5 },
-             Shape { 8, 5, 16, 3, 17, 6 } }) {
+             Shape { 8, 5, 16, 3, 17, 6 }, Shape { 0, 16, 3, 3, 37, 6 },
+             Shape { 8, 24, 2, 3, 35, 4 }, Shape { 0, 13, 4, 1, 33, 3 },
+             Shape { 0, 16, 2, 5, 19, 7 } }) {
         SCOPED_TRACE("up " + std::to_string(sh.cu) + " same " + std::to_string(sh.cs) + " k "
             + std::to_string(sh.k));
         Layer l = makeLayer(sh.cu + sh.cs, sh.co, sh.k, 7u + static_cast<unsigned>(sh.cs));
@@ -208,18 +216,23 @@ TEST_F(ConvBf16, HardwareAndEmulationGiveTheSameBits)
     }
 }
 
-TEST_F(ConvBf16, FewOutputLayersAndFp32StayAsTheyWere)
+TEST_F(ConvBf16, Fp32StaysAsItWas)
 {
-    Layer few = makeLayer(16, 3, 3, 9);
-    few.conv.setPrecision(Precision::Bf16);
-    EXPECT_EQ(few.conv.precision(), Precision::Fp32);
-    Layer l = makeLayer(13, 16, 3, 10);
-    const Image same = randomImage(19, 6, 13, 11);
-    Image fp32, again;
-    l.conv.run(nullptr, same, fp32, false);
-    l.conv.setPrecision(Precision::Bf16);
-    l.conv.setPrecision(Precision::Fp32);
-    l.conv.run(nullptr, same, again, false);
-    for (std::size_t i = 0; i < fp32.size(); ++i)
-        ASSERT_EQ(fp32.data()[i], again.data()[i]);
+    for (const auto [cin, co] : { std::pair { 13, 16 }, std::pair { 16, 3 } }) {
+        Layer l = makeLayer(cin, co, 3, 10);
+        const Image same = randomImage(19, 6, cin, 11);
+        Image fp32, bf16, again;
+        l.conv.run(nullptr, same, fp32, false);
+        l.conv.setPrecision(Precision::Bf16);
+        ASSERT_EQ(l.conv.precision(), Precision::Bf16);
+        l.conv.run(nullptr, same, bf16, false);
+        l.conv.setPrecision(Precision::Fp32);
+        l.conv.run(nullptr, same, again, false);
+        bool differs = false;
+        for (std::size_t i = 0; i < fp32.size(); ++i) {
+            ASSERT_EQ(fp32.data()[i], again.data()[i]);
+            differs = differs || fp32.data()[i] != bf16.data()[i];
+        }
+        EXPECT_TRUE(differs) << co << " outputs: bf16 left no trace";
+    }
 }
