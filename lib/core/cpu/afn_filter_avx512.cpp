@@ -9,7 +9,10 @@
 // methods/afn/fusion.h with no border test. Per pixel the operations are those of the portable
 // kernel (normalised weights e_j / sum, taps summed in order j = 0..48) except the exponential's
 // polynomial and the order of the sum of the exponentials: within the parity tolerance
-// (AfnEngine.PortableAndAvx512KernelsAgree, AfnParity.*). One pixel per call needs horizontal
+// (AfnEngine.PortableAndAvx512KernelsAgree, AfnParity.*). Logits of heads that ran in bf16 take a
+// cheaper exponential (exp16Bf16: 2^n p(f), a degree-4 polynomial, relative error 2.7e-6 against
+// the 2e-7 of the Cephes one, where the logits themselves carry bf16's 4e-3): half its
+// instructions. One pixel per call needs horizontal
 // reductions for the maximum and the sums, which makes it several times slower
 // (docs/performance.md).
 #include "cpu/afn_filter_avx512.h"
@@ -90,6 +93,24 @@ AFN_CPU_AVX512_INLINE __m512 exp16(__m512 x)
     return _mm512_mul_ps(p, _mm512_castsi512_ps(bits));
 }
 
+/// exp(x) for x <= 0 where the logits come from bf16 heads: x log2(e) = n + f, n an integer,
+/// |f| <= 1/2, then 2^f by a degree-4 polynomial (coefficients fitted for relative error on
+/// [-1/2, 1/2]: at most 2.7e-6) scaled by 2^n (VSCALEFPS). x is clamped to -87 as in exp16: the
+/// result stays a normal float, and -inf (a logit of -FLT_MAX against +FLT_MAX) gives no NaN.
+AFN_CPU_AVX512_INLINE __m512 exp16Bf16(__m512 x)
+{
+    x = _mm512_max_ps(x, _mm512_set1_ps(-87.0f));
+    const __m512 t = _mm512_mul_ps(x, _mm512_set1_ps(1.44269504088896341f));
+    const __m512 n = _mm512_roundscale_ps(t, _MM_FROUND_TO_NEAREST_INT | _MM_FROUND_NO_EXC);
+    const __m512 f = _mm512_sub_ps(t, n);
+    __m512 p = _mm512_set1_ps(0.00957007147371769f);
+    p = _mm512_fmadd_ps(p, f, _mm512_set1_ps(0.05591777339577675f));
+    p = _mm512_fmadd_ps(p, f, _mm512_set1_ps(0.240247443318367f));
+    p = _mm512_fmadd_ps(p, f, _mm512_set1_ps(0.6931218504905701f));
+    p = _mm512_fmadd_ps(p, f, _mm512_set1_ps(0.9999992847442627f));
+    return _mm512_scalef_ps(p, n);
+}
+
 /// v[j][i] = v[i][j] for a 16 x 16 block of floats (rows in, columns out): pairs unpacked within
 /// 128-bit lanes, 64-bit halves shuffled, then the 4 x 4 transpose of the 128-bit lanes.
 AFN_CPU_AVX512_INLINE void transpose16x16(__m512 (&v)[16])
@@ -124,9 +145,8 @@ AFN_CPU_AVX512_INLINE __m512 finite16(__m512 v)
     return _mm512_min_ps(_mm512_max_ps(v, _mm512_set1_ps(-FLT_MAX)), _mm512_set1_ps(FLT_MAX));
 }
 
-} // namespace
-
-AFN_CPU_AVX512 void softmaxApplyRowAvx512(
+template <bool Bf16Logits>
+AFN_CPU_AVX512_INLINE void softmaxApply(
     const float* logits, int stride, int n, const PlanarRows& rows, int x0, int y, float* rgb)
 {
     const __mmask16 valid = firstLanes(n);
@@ -159,7 +179,8 @@ AFN_CPU_AVX512 void softmaxApplyRowAvx512(
     }
     __m512 s = zero;
     for (int j = 0; j < afnet::kKernelTaps; ++j) {
-        const __m512 v = exp16(_mm512_sub_ps(_mm512_load_ps(e[j]), m));
+        const __m512 d = _mm512_sub_ps(_mm512_load_ps(e[j]), m);
+        const __m512 v = Bf16Logits ? exp16Bf16(d) : exp16(d);
         _mm512_store_ps(e[j], v);
         s = _mm512_add_ps(s, v);
     }
@@ -184,9 +205,20 @@ AFN_CPU_AVX512 void softmaxApplyRowAvx512(
             rgb[3 * i + c] = out[c][i];
 }
 
+} // namespace
+
+AFN_CPU_AVX512 void softmaxApplyRowAvx512(const float* logits, int stride, int n,
+    const PlanarRows& rows, int x0, int y, float* rgb, bool bf16Logits)
+{
+    if (bf16Logits)
+        softmaxApply<true>(logits, stride, n, rows, x0, y, rgb);
+    else
+        softmaxApply<false>(logits, stride, n, rows, x0, y, rgb);
+}
+
 #else
 
-void softmaxApplyRowAvx512(const float*, int, int, const PlanarRows&, int, int, float*) { }
+void softmaxApplyRowAvx512(const float*, int, int, const PlanarRows&, int, int, float*, bool) { }
 
 #endif
 

@@ -33,8 +33,9 @@ private:
 /// Softmax (methods/afn/fusion.h semantics: non-finite logits made finite, maximum subtracted)
 /// over the 49 logits of each of n <= 16 pixels x0 .. x0 + n - 1 of row y, pixel p's logits at
 /// logits + p * stride, then its normalised 7x7 kernel applied to the image `rows` holds (rows
-/// y - 3 .. y + 3 resident). Pixel p's filtered colour is written to rgb + 3 p.
-void softmaxApplyRowAvx512(
-    const float* logits, int stride, int n, const PlanarRows& rows, int x0, int y, float* rgb);
+/// y - 3 .. y + 3 resident). Pixel p's filtered colour is written to rgb + 3 p. `bf16Logits`: the
+/// heads ran in bf16; a cheaper exponential then serves (cpu/afn_filter_avx512.cpp).
+void softmaxApplyRowAvx512(const float* logits, int stride, int n, const PlanarRows& rows, int x0,
+    int y, float* rgb, bool bf16Logits = false);
 
 } // namespace afn::cpu

@@ -112,14 +112,16 @@ inline __attribute__((always_inline)) void softmax49(float* l)
 
 /// Softmax and 7x7 filter of pixels x0 .. x0 + n - 1 of row y of `img`, pixel i's logits at
 /// logits + i * stride (overwritten by the portable path), its colour to rgb + 3 i: 16 pixels per
-/// call on AVX-512 (rows y - 3 .. y + 3 resident in `planar`), otherwise pixel by pixel.
+/// call on AVX-512 (rows y - 3 .. y + 3 resident in `planar`; `bf16`: the head ran in bf16),
+/// otherwise pixel by pixel.
 inline __attribute__((always_inline)) void filterRun(float* logits, int stride, int n,
-    const Image& img, const cpu::PlanarRows& planar, int x0, int y, float* rgb, bool avx512)
+    const Image& img, const cpu::PlanarRows& planar, int x0, int y, float* rgb, bool avx512,
+    bool bf16)
 {
     if (avx512) {
         for (int i = 0; i < n; i += 16)
             cpu::softmaxApplyRowAvx512(logits + static_cast<std::size_t>(i) * stride, stride,
-                std::min(16, n - i), planar, x0 + i, y, rgb + 3 * i);
+                std::min(16, n - i), planar, x0 + i, y, rgb + 3 * i, bf16);
         return;
     }
     for (int i = 0; i < n; ++i) {
@@ -155,6 +157,8 @@ AFN_CPU_CLONES void filterAndFuseRows(
     d1Row.resize(static_cast<std::size_t>(kChunk) * 3);
     dTaRows.resize(static_cast<std::size_t>(4 * kChunk) * 3);
     const bool avx512 = cpu::activeIsa() == cpu::Isa::Avx512;
+    const bool bf16Head1 = in.head1->precision() == nn::Precision::Bf16;
+    const bool bf16HeadTa = in.headTa->precision() == nn::Precision::Bf16;
     if (avx512) {
         planar1.reset(*in.color1Half);
         planarTa.reset(*in.colorTa);
@@ -174,11 +178,12 @@ AFN_CPU_CLONES void filterAndFuseRows(
             in.headTa->runRows(&d1, x, 2 * yh, 2 * yh + 2, rowsTa.data(),
                 static_cast<long>(nf) * sTa, sTa, false, f0, f0 + nf);
             // Pixel i of full-res row q of the chunk: logits at (q * nf + i) * sTa.
-            filterRun(rows1.data(), s1, nh, *in.color1Half, planar1, h0, yh, d1Row.data(), avx512);
+            filterRun(rows1.data(), s1, nh, *in.color1Half, planar1, h0, yh, d1Row.data(), avx512,
+                bf16Head1);
             for (int q = 0; q < 2; ++q)
                 filterRun(rowsTa.data() + static_cast<std::size_t>(q) * nf * sTa, sTa, nf,
                     *in.colorTa, planarTa, f0, 2 * yh + q,
-                    dTaRows.data() + static_cast<std::size_t>(q) * nf * 3, avx512);
+                    dTaRows.data() + static_cast<std::size_t>(q) * nf * 3, avx512, bf16HeadTa);
             for (int i = 0; i < nh; ++i) {
                 const int xh = h0 + i;
                 // 1-spp branch at half resolution.

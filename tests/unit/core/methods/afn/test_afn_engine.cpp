@@ -148,6 +148,7 @@ TEST(AfnEngine, RowFilterMatchesThePerPixelKernelAtBordersTailsAndExtremeLogits)
     // cpu::softmaxApplyRowAvx512 (16 pixels per call, planar rows with a zero pad) against the
     // portable softmax + applyKernel on every pixel of a 37 x 9 image: the left, right, top and
     // bottom borders, a 5-pixel tail, and logits that are NaN, +-Inf, +-FLT_MAX, huge and equal.
+    // The logits span [-4, 4] and reach the exponentials' clamp (-87) through the extreme ones.
     IsaGuard guard;
     afn::cpu::forceIsa(afn::cpu::Isa::Avx512);
     if (afn::cpu::activeIsa() != afn::cpu::Isa::Avx512)
@@ -176,37 +177,41 @@ TEST(AfnEngine, RowFilterMatchesThePerPixelKernelAtBordersTailsAndExtremeLogits)
         logits[7 * stride + j] = 2.5f; // a box filter
     for (int j = 0; j < 49; ++j)
         logits[33 * stride + j] = std::nanf(""); // every logit NaN: still a distribution
-    afn::cpu::PlanarRows rows;
-    rows.reset(img);
-    double maxAbs = 0.0;
-    for (int y = 0; y < h; ++y) {
-        for (int yy = y - 3; yy <= y + 3; ++yy)
-            rows.ensure(yy);
-        std::vector<float> fast(3 * w);
-        for (int x0 = 0; x0 < w; x0 += 16)
-            afn::cpu::softmaxApplyRowAvx512(logits.data() + x0 * stride, stride,
-                std::min(16, w - x0), rows, x0, y, fast.data() + 3 * x0);
-        for (int x = 0; x < w; ++x) {
-            float k[49], rgb[3];
-            std::copy(logits.begin() + x * stride, logits.begin() + x * stride + 49, k);
-            afn::afnet::softmax(k, 49);
-            afn::afnet::applyKernel(img, x, y, k, rgb);
-            for (int c = 0; c < 3; ++c) {
-                ASSERT_TRUE(std::isfinite(fast[3 * x + c])) << x << "," << y;
-                maxAbs = std::max(maxAbs, double(std::fabs(fast[3 * x + c] - rgb[c])));
+    // Both exponentials: the Cephes one and the bf16 heads' cheaper one (relative error 2.7e-6).
+    for (const bool bf16 : { false, true }) {
+        SCOPED_TRACE(bf16 ? "bf16 logits" : "fp32 logits");
+        afn::cpu::PlanarRows rows;
+        rows.reset(img);
+        double maxAbs = 0.0;
+        for (int y = 0; y < h; ++y) {
+            for (int yy = y - 3; yy <= y + 3; ++yy)
+                rows.ensure(yy);
+            std::vector<float> fast(3 * w);
+            for (int x0 = 0; x0 < w; x0 += 16)
+                afn::cpu::softmaxApplyRowAvx512(logits.data() + x0 * stride, stride,
+                    std::min(16, w - x0), rows, x0, y, fast.data() + 3 * x0, bf16);
+            for (int x = 0; x < w; ++x) {
+                float k[49], rgb[3];
+                std::copy(logits.begin() + x * stride, logits.begin() + x * stride + 49, k);
+                afn::afnet::softmax(k, 49);
+                afn::afnet::applyKernel(img, x, y, k, rgb);
+                for (int c = 0; c < 3; ++c) {
+                    ASSERT_TRUE(std::isfinite(fast[3 * x + c])) << x << "," << y;
+                    maxAbs = std::max(maxAbs, double(std::fabs(fast[3 * x + c] - rgb[c])));
+                }
             }
         }
+        EXPECT_LT(maxAbs, 1e-5 * 10.0);
+        // The box filter at an inner pixel is the mean of its 49 neighbours.
+        rows.reset(img);
+        for (int yy = 1; yy <= 7; ++yy)
+            rows.ensure(yy);
+        std::vector<float> out(3 * 16);
+        afn::cpu::softmaxApplyRowAvx512(logits.data(), stride, 16, rows, 0, 4, out.data(), bf16);
+        double mean = 0.0;
+        for (int dy = -3; dy <= 3; ++dy)
+            for (int dx = -3; dx <= 3; ++dx)
+                mean += img(7 + dx, 4 + dy, 1);
+        EXPECT_NEAR(out[3 * 7 + 1], mean / 49.0, 1e-5);
     }
-    EXPECT_LT(maxAbs, 1e-5 * 10.0);
-    // The box filter at an inner pixel is the mean of its 49 neighbours.
-    rows.reset(img);
-    for (int yy = 1; yy <= 7; ++yy)
-        rows.ensure(yy);
-    std::vector<float> out(3 * 16);
-    afn::cpu::softmaxApplyRowAvx512(logits.data(), stride, 16, rows, 0, 4, out.data());
-    double mean = 0.0;
-    for (int dy = -3; dy <= 3; ++dy)
-        for (int dx = -3; dx <= 3; ++dx)
-            mean += img(7 + dx, 4 + dy, 1);
-    EXPECT_NEAR(out[3 * 7 + 1], mean / 49.0, 1e-5);
 }
