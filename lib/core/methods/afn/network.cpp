@@ -176,6 +176,8 @@ void Network::fillInput(
     thread_local std::vector<float> tone; // the row's two tone-mapped colours
     tone.resize(static_cast<std::size_t>(6) * w);
     const int nc = x.channels();
+    // Channels 0-5 of x are read by the convolutions only: in bf16 the cheaper tone map serves.
+    const auto toneMapInput = m_precision == nn::Precision::Bf16 ? toneMapRunBf16 : toneMapRun;
     // Pixel xx >= w of a padded row repeats pixel w - 1 (edge replication), as rows >= h repeat
     // row h - 1.
     auto replicate = [&](Image& img, int row) {
@@ -187,8 +189,8 @@ void Network::fillInput(
     for (int y = y0; y < y1; ++y) {
         const int sy = std::min(y, h - 1); // edge replication
         const int row = y - origin;
-        toneMapRun(in.color1->at(0, sy), tone.data(), 3 * w);
-        toneMapRun(in.colorTa->at(0, sy), tone.data() + 3 * w, 3 * w);
+        toneMapInput(in.color1->at(0, sy), tone.data(), 3 * w);
+        toneMapInput(in.colorTa->at(0, sy), tone.data() + 3 * w, 3 * w);
         const float* ta = tone.data();
         const float* tb = tone.data() + 3 * w;
         const float* al = in.albedo->at(0, sy);

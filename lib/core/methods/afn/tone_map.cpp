@@ -45,4 +45,13 @@ void toneMapRun(const float* in, float* out, int n)
         out[i] = toneMap(in[i]);
 }
 
+void toneMapRunBf16(const float* in, float* out, int n)
+{
+    int i = 0;
+    if (cpu::activeIsa() == cpu::Isa::Avx512)
+        i = toneMapRunAvx512Bf16(in, out, n);
+    for (; i < n; ++i)
+        out[i] = toneMap(in[i]);
+}
+
 } // namespace afn::afnet

@@ -4,7 +4,8 @@
 // mantissa in [1, 2) exactly as frexp does (denormals included); q = floor(e / 11) (exactly, from
 // a multiply: below) and j = e - 11 q are exact; the polynomials are evaluated in the same order
 // without FMA (-ffp-contract=off, see CMakeLists.txt); the table is read by a lane permute; scalef
-// multiplies by 2^(5 q) as ldexp.
+// multiplies by 2^(5 q) as ldexp. toneMapRunAvx512Bf16 is the cheaper approximation for inputs
+// of a network that runs in bf16 (tone_map.h).
 #include "methods/afn/tone_map_avx512.h"
 
 #include "cpu/avx512.h"
@@ -64,9 +65,47 @@ AFN_CPU_AVX512 int toneMapRunAvx512(const float* in, float* out, int n)
     return i;
 }
 
+AFN_CPU_AVX512 int toneMapRunAvx512Bf16(const float* in, float* out, int n)
+{
+    using namespace tonemap;
+    const __m512 zero = _mm512_set1_ps(0.0f), one = _mm512_set1_ps(1.0f),
+                 half = _mm512_set1_ps(0.5f);
+    int i = 0;
+    for (; i + 16 <= n; i += 16) {
+        const __m512 x = _mm512_loadu_ps(in + i);
+        const __mmask16 positive = _mm512_cmp_ps_mask(x, zero, _CMP_GT_OQ); // false for NaN
+        const __mmask16 atLeastOne = _mm512_cmp_ps_mask(x, one, _CMP_GE_OQ);
+        const __m512 xs = _mm512_mask_mov_ps(half, positive & ~atLeastOne, x);
+        // log2 x = e + log2(1 + t), m = 1 + t in [1, 2).
+        const __m512 t
+            = _mm512_sub_ps(_mm512_getmant_ps(xs, _MM_MANT_NORM_1_2, _MM_MANT_SIGN_zero), one);
+        __m512 l = _mm512_set1_ps(kLog2C[5]);
+        for (int k = 4; k >= 0; --k)
+            l = _mm512_fmadd_ps(l, t, _mm512_set1_ps(kLog2C[k]));
+        const __m512 g = _mm512_set1_ps(kInvGamma);
+        const __m512 u = _mm512_fmadd_ps(_mm512_getexp_ps(xs), g, _mm512_mul_ps(l, g));
+        // 2^u = 2^nu 2^f, |f| <= 1/2.
+        const __m512 nu = _mm512_roundscale_ps(u, _MM_FROUND_TO_NEAREST_INT | _MM_FROUND_NO_EXC);
+        const __m512 f = _mm512_sub_ps(u, nu);
+        __m512 p = _mm512_set1_ps(kExp2C[4]);
+        for (int k = 3; k >= 0; --k)
+            p = _mm512_fmadd_ps(p, f, _mm512_set1_ps(kExp2C[k]));
+        __m512 y = _mm512_scalef_ps(p, nu);
+        y = _mm512_mask_mov_ps(zero, positive, y);
+        y = _mm512_mask_mov_ps(y, atLeastOne, one);
+        _mm512_storeu_ps(out + i, y);
+    }
+    return i;
+}
+
 #else
 
 int toneMapRunAvx512(const float*, float*, int)
+{
+    return 0;
+}
+
+int toneMapRunAvx512Bf16(const float*, float*, int)
 {
     return 0;
 }

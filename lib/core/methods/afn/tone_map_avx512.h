@@ -8,4 +8,7 @@ namespace afn::afnet {
 /// scalar operations lane by lane. AVX-512F only (cpu::activeIsa() == Avx512).
 int toneMapRunAvx512(const float* in, float* out, int n);
 
+/// The same count of toneMapRunBf16's values (tone_map.h), with FMAs. AVX-512F only.
+int toneMapRunAvx512Bf16(const float* in, float* out, int n);
+
 } // namespace afn::afnet

@@ -18,4 +18,11 @@ constexpr float kLogC3 = 1.0f / 3.0f, kLogC5 = 1.0f / 5.0f, kLogC7 = 1.0f / 7.0f
 constexpr float kExpC2 = 1.0f / 2.0f, kExpC3 = 1.0f / 6.0f, kExpC4 = 1.0f / 24.0f,
                 kExpC5 = 1.0f / 120.0f, kExpC6 = 1.0f / 720.0f;
 
+/// toneMapRunBf16: log2(1 + t) ~ sum c_k t^k on [0, 1) (fitted for absolute error: 1.3e-5) and
+/// 2^f ~ sum c_k f^k on [-1/2, 1/2] (fitted for relative error: 2.7e-6).
+constexpr float kLog2C[6] = { 1.2554382919915952e-05f, 1.4416842460632324f, -0.7079913020133972f,
+    0.4136277437210083f, -0.19219395518302917f, 0.04487327113747597f };
+constexpr float kExp2C[5] = { 0.9999992847442627f, 0.6931218504905701f, 0.240247443318367f,
+    0.05591777339577675f, 0.00957007147371769f };
+
 } // namespace afn::afnet::tonemap

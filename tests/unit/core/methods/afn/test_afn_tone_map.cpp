@@ -2,7 +2,8 @@
 // The AFN input tone map without powf (methods/afn/tone_map.h): against std::pow within 3e-7
 // absolute and 4 ulp on a sweep of (0, 1) (every 97th float, denormals included), exact at the
 // clip points, and the AVX-512 run gives the scalar function's bits (on a CPU without AVX-512F
-// both take the scalar path, said in the output).
+// both take the scalar path, said in the output). The bf16 network's tone map (toneMapRunBf16)
+// within 1e-5 relative of it over the same sweep, with the same limits and special values.
 #include "cpu/isa.h"
 #include "isa_scope.h"
 #include "methods/afn/tone_map.h"
@@ -20,6 +21,7 @@ namespace {
 
 using afn::afnet::toneMap;
 using afn::afnet::toneMapRun;
+using afn::afnet::toneMapRunBf16;
 
 float fromBits(std::uint32_t b)
 {
@@ -106,6 +108,43 @@ TEST(AfnToneMap, VectorRunGivesTheScalarBits)
             ADD_FAILURE() << "x = " << in[i] << ": run " << out[i] << " vs scalar "
                           << toneMap(in[i]);
     EXPECT_EQ(mismatches, 0u);
+}
+
+TEST(AfnToneMap, Bf16InputsRunWithinItsToleranceAndTheSameLimits)
+{
+    if (!isa_test::haveAvx512())
+        std::cout << "[ info ] this CPU has no AVX-512F: toneMapRunBf16 takes the scalar path\n";
+    std::vector<float> in = sweep();
+    const float inf = std::numeric_limits<float>::infinity();
+    const std::vector<float> special
+        = { 0.0f, -0.0f, -1.0f, 1.0f, 2.0f, inf, -inf, std::numeric_limits<float>::quiet_NaN(),
+              std::numeric_limits<float>::denorm_min(), std::nextafter(1.0f, 0.0f), 0.5f, 0.25f };
+    in.insert(in.end(), special.begin(), special.end());
+    in.push_back(0.125f); // a tail that is not a multiple of 16
+    std::vector<float> out(in.size());
+    {
+        const isa_test::IsaScope scope(afn::cpu::Isa::Avx512);
+        toneMapRunBf16(in.data(), out.data(), static_cast<int>(in.size()));
+    }
+    double maxRel = 0.0;
+    float worst = 0.0f;
+    bool differs = false;
+    for (std::size_t i = 0; i < in.size(); ++i) {
+        const float want = toneMap(in[i]);
+        differs = differs || bitsOf(out[i]) != bitsOf(want);
+        if (want == 0.0f || want == 1.0f) { // the limits: exactly
+            ASSERT_EQ(out[i], want) << "x = " << in[i];
+            continue;
+        }
+        const double rel = std::fabs(static_cast<double>(out[i]) - want) / want;
+        if (rel > maxRel)
+            maxRel = rel, worst = in[i];
+    }
+    std::cout << "[ info ] max |toneMapRunBf16 / toneMap - 1| = " << maxRel << " (at " << worst
+              << ")\n";
+    EXPECT_LT(maxRel, 1e-5);
+    if (isa_test::haveAvx512())
+        EXPECT_TRUE(differs) << "the cheaper tone map did not run";
 }
 
 } // namespace
