@@ -61,7 +61,8 @@ AFN_CPU_AVX512_INLINE __m512 sumLanes16(const __m512 (&acc)[16])
         const __m512 a = s2[2 * m], b = s2[2 * m + 1];
         s3[m] = _mm512_add_ps(_mm512_unpacklo_ps(a, b), _mm512_unpackhi_ps(a, b));
     }
-    return _mm512_add_ps(_mm512_shuffle_ps(s3[0], s3[1], 0x44), _mm512_shuffle_ps(s3[0], s3[1], 0xEE));
+    return _mm512_add_ps(
+        _mm512_shuffle_ps(s3[0], s3[1], 0x44), _mm512_shuffle_ps(s3[0], s3[1], 0xEE));
 }
 
 /// One layer's operands (values: bf16 elements).
@@ -83,8 +84,7 @@ AFN_CPU_AVX512_INLINE __m512i loadChunk(const std::uint16_t* s, int j, int runVa
 {
     if (32 * j + 16 < runValues)
         return _mm512_loadu_si512(s + 32 * j);
-    return _mm512_zextsi256_si512(
-        _mm256_loadu_si256(reinterpret_cast<const __m256i*>(s + 32 * j)));
+    return _mm512_zextsi256_si512(_mm256_loadu_si256(reinterpret_cast<const __m256i*>(s + 32 * j)));
 }
 
 /// Values from one kernel row's weights to the next: [ky][co][chunks x 32].
