@@ -83,8 +83,9 @@ public:
     /// Channels of the network input x: 13, or 14 with the history input.
     int inputChannels() const { return m_history ? 14 : 13; }
     /// Run the convolutions in `p` from now on (nn::Conv::setPrecision; Fp32 after load): every
-    /// layer of kernel prediction and refinement except the 3-output last one. The 7x7 filtering,
-    /// fusion and softmax stay fp32. AFN large runs fp32 whatever `p`.
+    /// layer of kernel prediction and refinement. In bf16 the input tone map (toneMapRunBf16) and
+    /// the softmax's exponential (cpu/afn_filter_avx512.cpp) take cheaper approximations; the 7x7
+    /// filtering and the fusion stay fp32. AFN large runs fp32 whatever `p`.
     void setPrecision(nn::Precision p);
     /// What the convolutions run in (Fp32 for AFN large).
     nn::Precision precision() const { return m_precision; }
