@@ -18,6 +18,8 @@
 //   accumulators hide the instruction's latency. A row's last block computes all 16 pixels and
 //   stores its np: the others read the next band row or, on the last band row, at most 15 pixels
 //   into the band's slack (kConvBandSlackPixels + 2 pixels).
+// channelHardware and channelEmulated differ in the multiply-add only: the first needs the
+// AVX512_BF16 target, which the emulation (for CPUs without it) must not be compiled for.
 // Summation order, fixed and independent of rows, columns and threads: per lane the kernel rows,
 // then the row's vectors in order, within a pair channel 2q + 1 then 2q (the instruction's order);
 // then the lanes by the tree; then the bias. Without AVX512_BF16 the same arithmetic runs with

@@ -36,22 +36,26 @@ float toneMap(float x)
     return std::ldexp(kPow2Fifths[j] * p, 5 * q);
 }
 
-void toneMapRun(const float* in, float* out, int n)
+namespace {
+
+/// The AVX-512 run where the CPU has it (it returns how many values it did), toneMap for the rest.
+void runWith(int (*avx512)(const float*, float*, int), const float* in, float* out, int n)
 {
-    int i = 0;
-    if (cpu::activeIsa() == cpu::Isa::Avx512)
-        i = toneMapRunAvx512(in, out, n);
+    int i = cpu::activeIsa() == cpu::Isa::Avx512 ? avx512(in, out, n) : 0;
     for (; i < n; ++i)
         out[i] = toneMap(in[i]);
 }
 
+} // namespace
+
+void toneMapRun(const float* in, float* out, int n)
+{
+    runWith(toneMapRunAvx512, in, out, n);
+}
+
 void toneMapRunBf16(const float* in, float* out, int n)
 {
-    int i = 0;
-    if (cpu::activeIsa() == cpu::Isa::Avx512)
-        i = toneMapRunAvx512Bf16(in, out, n);
-    for (; i < n; ++i)
-        out[i] = toneMap(in[i]);
+    runWith(toneMapRunAvx512Bf16, in, out, n);
 }
 
 } // namespace afn::afnet

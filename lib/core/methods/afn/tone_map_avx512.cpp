@@ -15,20 +15,44 @@ namespace afn::afnet {
 
 #ifdef AFN_CPU_HAVE_AVX512
 
+namespace {
+
+/// The tone map's limits for 16 values: which are > 0 (false for NaN) and which >= 1; `inside`
+/// holds x where it is in (0, 1) and 0.5 (any value in range) elsewhere, whose result limited()
+/// then replaces.
+struct Limits {
+    __mmask16 positive, atLeastOne;
+    __m512 inside;
+};
+
+AFN_CPU_AVX512_INLINE Limits limitsOf(__m512 x)
+{
+    const __mmask16 positive = _mm512_cmp_ps_mask(x, _mm512_set1_ps(0.0f), _CMP_GT_OQ);
+    const __mmask16 atLeastOne = _mm512_cmp_ps_mask(x, _mm512_set1_ps(1.0f), _CMP_GE_OQ);
+    return { positive, atLeastOne,
+        _mm512_mask_mov_ps(_mm512_set1_ps(0.5f), positive & ~atLeastOne, x) };
+}
+
+/// y where x is in (0, 1), 0 where x <= 0 or NaN, 1 where x >= 1.
+AFN_CPU_AVX512_INLINE __m512 limited(const Limits& l, __m512 y)
+{
+    y = _mm512_mask_mov_ps(_mm512_set1_ps(0.0f), l.positive, y);
+    return _mm512_mask_mov_ps(y, l.atLeastOne, _mm512_set1_ps(1.0f));
+}
+
+} // namespace
+
 AFN_CPU_AVX512 int toneMapRunAvx512(const float* in, float* out, int n)
 {
     using namespace tonemap;
-    const __m512 zero = _mm512_set1_ps(0.0f), one = _mm512_set1_ps(1.0f),
-                 two = _mm512_set1_ps(2.0f), half = _mm512_set1_ps(0.5f),
-                 eleven = _mm512_set1_ps(11.0f), five = _mm512_set1_ps(5.0f);
+    const __m512 one = _mm512_set1_ps(1.0f), two = _mm512_set1_ps(2.0f),
+                 half = _mm512_set1_ps(0.5f), eleven = _mm512_set1_ps(11.0f),
+                 five = _mm512_set1_ps(5.0f);
     const __m512 table = _mm512_loadu_ps(kPow2Fifths);
     int i = 0;
     for (; i + 16 <= n; i += 16) {
-        const __m512 x = _mm512_loadu_ps(in + i);
-        const __mmask16 positive = _mm512_cmp_ps_mask(x, zero, _CMP_GT_OQ); // false for NaN
-        const __mmask16 atLeastOne = _mm512_cmp_ps_mask(x, one, _CMP_GE_OQ);
-        // Lanes outside (0, 1) compute on 0.5 (any value in range) and are replaced below.
-        const __m512 xs = _mm512_mask_mov_ps(half, positive & ~atLeastOne, x);
+        const Limits lim = limitsOf(_mm512_loadu_ps(in + i));
+        const __m512 xs = lim.inside;
         __m512 m = _mm512_getmant_ps(xs, _MM_MANT_NORM_1_2, _MM_MANT_SIGN_zero);
         __m512 e = _mm512_getexp_ps(xs);
         const __mmask16 big = _mm512_cmp_ps_mask(m, _mm512_set1_ps(kSqrt2), _CMP_GE_OQ);
@@ -57,10 +81,8 @@ AFN_CPU_AVX512 int toneMapRunAvx512(const float* in, float* out, int n)
         p = _mm512_mul_ps(u, _mm512_add_ps(_mm512_set1_ps(kExpC2), p));
         p = _mm512_mul_ps(u, _mm512_add_ps(one, p));
         p = _mm512_add_ps(one, p);
-        __m512 y = _mm512_scalef_ps(_mm512_mul_ps(t, p), _mm512_mul_ps(five, q));
-        y = _mm512_mask_mov_ps(zero, positive, y);
-        y = _mm512_mask_mov_ps(y, atLeastOne, one);
-        _mm512_storeu_ps(out + i, y);
+        _mm512_storeu_ps(
+            out + i, limited(lim, _mm512_scalef_ps(_mm512_mul_ps(t, p), _mm512_mul_ps(five, q))));
     }
     return i;
 }
@@ -68,14 +90,11 @@ AFN_CPU_AVX512 int toneMapRunAvx512(const float* in, float* out, int n)
 AFN_CPU_AVX512 int toneMapRunAvx512Bf16(const float* in, float* out, int n)
 {
     using namespace tonemap;
-    const __m512 zero = _mm512_set1_ps(0.0f), one = _mm512_set1_ps(1.0f),
-                 half = _mm512_set1_ps(0.5f);
+    const __m512 one = _mm512_set1_ps(1.0f);
     int i = 0;
     for (; i + 16 <= n; i += 16) {
-        const __m512 x = _mm512_loadu_ps(in + i);
-        const __mmask16 positive = _mm512_cmp_ps_mask(x, zero, _CMP_GT_OQ); // false for NaN
-        const __mmask16 atLeastOne = _mm512_cmp_ps_mask(x, one, _CMP_GE_OQ);
-        const __m512 xs = _mm512_mask_mov_ps(half, positive & ~atLeastOne, x);
+        const Limits lim = limitsOf(_mm512_loadu_ps(in + i));
+        const __m512 xs = lim.inside;
         // log2 x = e + log2(1 + t), m = 1 + t in [1, 2).
         const __m512 t
             = _mm512_sub_ps(_mm512_getmant_ps(xs, _MM_MANT_NORM_1_2, _MM_MANT_SIGN_zero), one);
@@ -90,10 +109,7 @@ AFN_CPU_AVX512 int toneMapRunAvx512Bf16(const float* in, float* out, int n)
         __m512 p = _mm512_set1_ps(kExp2C[4]);
         for (int k = 3; k >= 0; --k)
             p = _mm512_fmadd_ps(p, f, _mm512_set1_ps(kExp2C[k]));
-        __m512 y = _mm512_scalef_ps(p, nu);
-        y = _mm512_mask_mov_ps(zero, positive, y);
-        y = _mm512_mask_mov_ps(y, atLeastOne, one);
-        _mm512_storeu_ps(out + i, y);
+        _mm512_storeu_ps(out + i, limited(lim, _mm512_scalef_ps(p, nu)));
     }
     return i;
 }
