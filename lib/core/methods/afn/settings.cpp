@@ -32,8 +32,10 @@ const ParamBinding<Settings>& settingsBinding()
                   "arithmetic of the network's convolutions: bf16 operands with fp32 sums, or "
                   "fp32; auto: bf16 where the CPU has AVX512_BF16 (on AMX tiles where it also has "
                   "AMX-BF16), else fp32; bf16 on a CPU without AVX512_BF16 is emulated (the same "
-                  "results at fp32's speed); the filtering and output stages are fp32 in every "
-                  "case; CPU device only (CUDA runs its own half precision)");
+                  "results at fp32's speed); bf16 also takes cheaper approximations of the "
+                  "network's input tone map and softmax exponential (relative errors below "
+                  "1e-5); the 7x7 filters and the output stages are fp32 in every case; CPU "
+                  "device only (CUDA runs its own half precision)");
     return binding;
 }
 
