@@ -169,6 +169,14 @@ Inputs Network::checkInputs(const Inputs& given)
     return in;
 }
 
+void Network::toneMapNetworkInput(const float* in, float* out, int n) const
+{
+    if (m_precision == nn::Precision::Bf16)
+        toneMapRunBf16(in, out, n);
+    else
+        toneMapRun(in, out, n);
+}
+
 void Network::fillInput(
     const Inputs& in, int y0, int y1, int origin, Image& x, Image& color1, Image& colorTa) const
 {
@@ -176,8 +184,6 @@ void Network::fillInput(
     thread_local std::vector<float> tone; // the row's two tone-mapped colours
     tone.resize(static_cast<std::size_t>(6) * w);
     const int nc = x.channels();
-    // Channels 0-5 of x are read by the convolutions only: in bf16 the cheaper tone map serves.
-    const auto toneMapInput = m_precision == nn::Precision::Bf16 ? toneMapRunBf16 : toneMapRun;
     // Pixel xx >= w of a padded row repeats pixel w - 1 (edge replication), as rows >= h repeat
     // row h - 1.
     auto replicate = [&](Image& img, int row) {
@@ -189,8 +195,8 @@ void Network::fillInput(
     for (int y = y0; y < y1; ++y) {
         const int sy = std::min(y, h - 1); // edge replication
         const int row = y - origin;
-        toneMapInput(in.color1->at(0, sy), tone.data(), 3 * w);
-        toneMapInput(in.colorTa->at(0, sy), tone.data() + 3 * w, 3 * w);
+        toneMapNetworkInput(in.color1->at(0, sy), tone.data(), 3 * w);
+        toneMapNetworkInput(in.colorTa->at(0, sy), tone.data() + 3 * w, 3 * w);
         const float* ta = tone.data();
         const float* tb = tone.data() + 3 * w;
         const float* al = in.albedo->at(0, sy);

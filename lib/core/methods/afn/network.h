@@ -166,6 +166,10 @@ private:
     /// o row y at dst + (y - y0) * dstRow, width x 3 floats. Rows outside the images read zero.
     void refineRows(
         const Image& fused, const Image& x, int y0, int y1, float* dst, long dstRow) const;
+    /// The tone map of the inputs that only the convolutions read (x's colours, the refinement's
+    /// input): toneMapRunBf16 where they run in bf16 (which rounds its inputs next), else
+    /// toneMapRun.
+    void toneMapNetworkInput(const float* in, float* out, int n) const;
     struct WorkspacePool; // network_stripes.cpp
     /// Output rows [y0, y1) of the padded frame (cropped into `out`); adds each stage's thread
     /// milliseconds to ms[] and, of the prediction's, the input preparation's to *inputMs.

@@ -46,10 +46,8 @@ void Network::refineRows(
     b.r1.resize(wp, rows, m_ref1.outChannels());
     b.r2.resize(wp, rows, m_ref2.outChannels());
     b.tone.resize(static_cast<std::size_t>(3) * wp);
-    // The tone-mapped rows are read by ref1 only: in bf16 the cheaper tone map serves.
-    const auto toneMapInput = m_precision == nn::Precision::Bf16 ? toneMapRunBf16 : toneMapRun;
     for (int y = a0; y < a1; ++y) {
-        toneMapInput(fused.at(0, y), b.tone.data(), 3 * wp);
+        toneMapNetworkInput(fused.at(0, y), b.tone.data(), 3 * wp);
         for (int xx = 0; xx < wp; ++xx) {
             const float* t = b.tone.data() + 3 * xx;
             const float* f = x.at(xx, y);

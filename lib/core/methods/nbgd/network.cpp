@@ -39,15 +39,15 @@ void Network::run(const Image& input, const Image& cta, Image& out)
         for (std::size_t k = 0; k < static_cast<std::size_t>(y1 - y0) * rowValues; ++k)
             s[k] = 1.0f / (1.0f + std::exp(-s[k]));
     });
-    Image scaled(cta.width(), cta.height(), kGrids);
+    m_scaled.resize(cta.width(), cta.height(), kGrids);
     parallelRows(cta.height(), [&](int y0, int y1) {
         for (int y = y0; y < y1; ++y)
             for (int x = 0; x < cta.width(); ++x)
                 for (int k = 0; k < kGrids; ++k)
-                    scaled(x, y, k) = m_guides(x, y, k) * kGuideScale;
+                    m_scaled(x, y, k) = m_guides(x, y, k) * kGuideScale;
     });
     parallelFor(kGrids, [&](int k) {
-        m_grids[k].filter(cta, scaled, k, kGridSteps[k][0], kGridSteps[k][1], m_sliced[k]);
+        m_grids[k].filter(cta, m_scaled, k, kGridSteps[k][0], kGridSteps[k][1], m_sliced[k]);
     });
     out.resize(cta.width(), cta.height(), 3);
     parallelRows(cta.height(), [&](int y0, int y1) {

@@ -46,6 +46,7 @@ public:
 private:
     nn::Conv m_guide1, m_guide2;
     Image m_hidden, m_guides;
+    Image m_scaled; ///< the grids' guides in [0, 255], cta's size (kept across frames)
     std::array<BilateralGrid, kGrids> m_grids;
     std::array<Image, kGrids> m_sliced;
 };
