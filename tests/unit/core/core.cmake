@@ -18,6 +18,7 @@ afn_add_gtest(test_methods
     unit/core/methods/test_history_trust.cpp
     unit/core/methods/test_bmfr_detail.cpp
     unit/core/methods/test_methods_filters.cpp
+    unit/core/methods/test_svgf_sparse_samples.cpp
     unit/core/methods/test_methods_blender.cpp
     unit/core/methods/svgf/test_svgf_kernels.cpp
     unit/core/methods/svgf/test_svgf_variance_kernel.cpp

@@ -68,6 +68,15 @@ const ParamBinding<Settings>& settingsBinding()
                   "minimum weight of the current frame in the moments history (paper 0.2)")
               .add(&S::varianceHistory, "varianceHistory", 1, 255, "Spatial variance below",
                   "history length (frames) below which variance is estimated over 7x7 (paper 4)")
+              .add(&S::spread, "spread",
+                  { { "auto", S::Spread::Auto }, { "off", S::Spread::Off },
+                      { "on", S::Spread::On } },
+                  "Spread sparse samples",
+                  "where the history is short (first frames, cuts, disocclusions), drop the "
+                  "luminance edge-stopping of the 7x7 estimate in neighbourhoods of a few bright "
+                  "samples among dark ones (coefficient of variation 1 -> 3), so that their "
+                  "light spreads instead of staying in single bright pixels over a dark frame; "
+                  "not in the paper; auto: below 4 spp or when the sample count is unknown")
               .add(&S::taa, "taa", "TAA",
                   "temporal anti-aliasing of the remodulated output, the paper's last step "
                   "(history clamped to the current frame's 3x3 neighbourhood in YCoCg): smooths "

@@ -8,7 +8,16 @@
 //      disocclusion;
 //   3. variance = max(0, m2 - m1^2); while len < varianceHistory a 7x7 cross-bilateral estimate of
 //      moments and colour replaces it (phiL = sigmaL, not variance-scaled), boosted by 4/len
-//      (Falcor);
+//      (Falcor). Not in the paper (`spread`, on below 4 spp): each such pixel's luminance term is
+//      scaled by 1 - r, r the sparse share of its neighbourhood (kernels.h sparseShare: 0 at a
+//      coefficient of variation of 1, 1 from 3, from the 7x7 moments with the guide's weights
+//      only). At 1 spp a dark scene's first frame, or the frame after a light switches, is a
+//      few bright samples among black pixels: the paper's luminance weights keep each bright
+//      sample to itself and each black pixel black, so svgf put out a dark frame speckled with
+//      white dots (`room-1000000`: 24 % of its pixels off by more than 0.25 tone-mapped, 4.9 %
+//      with the spread; docs/afn-evaluation.md). Normalised bilateral weights cannot average
+//      such samples without bias; the guide's weights alone can. Where the neighbourhood varies
+//      like an image (edges, gradients: cv below 1) the paper's estimate is kept;
 //   4. à-trous: 5x5 B3-spline taps h = (1/16, 1/4, 3/8, 1/4, 1/16), step 2^i, weights of
 //      methods/svgf/guide.h with phiL = sigmaL * sqrt(g3x3(var)) + 1e-10; variance filtered with
 //      squared weights; the output of iteration feedbackTap is the next frame's colour history.

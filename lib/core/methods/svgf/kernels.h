@@ -73,8 +73,27 @@ struct VarianceArgs {
     Planes* out = nullptr; ///< ColorPlane
     float phiL = 4.0f; ///< luminance edge-stopping (sigmaL, not variance-scaled)
     float varianceHistory = 4.0f;
+    /// Spread sparse samples (Settings::spread): the luminance term of each short-history
+    /// pixel's estimate is scaled by 1 - sparseShare(cv) of its neighbourhood (below).
+    bool spread = false;
     const WorkRegion* region = nullptr; ///< per row, the columns to compute (null: all)
 };
+
+/// The share of the 7x7 estimate's luminance edge-stopping that `spread` drops, from the
+/// coefficient of variation cv = sd / mean of the neighbourhood's luminance (the moments' 7x7
+/// estimate with the normal and depth weights only): 0 up to kSparseCvLow, 1 from kSparseCvHigh,
+/// linear between. A neighbourhood of a few bright samples among dark ones (1 spp, dark scenes,
+/// the frame after a cut) has a cv of 2-5, and the paper's luminance weights keep each bright
+/// sample to itself and each dark pixel dark (methods/svgf/denoiser.h). Gradients, textures of
+/// the light and the lit side of an edge stay below 1; the dark side of a high-contrast edge
+/// reaches it within 3 pixels (a 10:1 edge: cv 1.4 where one column in seven is lit), where
+/// some of the light spreads over the edge on these first frames.
+constexpr float kSparseCvLow = 1.0f, kSparseCvHigh = 3.0f;
+inline float sparseShare(float cv)
+{
+    const float r = (cv - kSparseCvLow) * (1.0f / (kSparseCvHigh - kSparseCvLow));
+    return r > 0.0f ? (r < 1.0f ? r : 1.0f) : 0.0f; // NaN -> 0
+}
 
 /// Columns [begin, end) of row y that a kernel computes: the region's span with its start rounded
 /// down to a boundary of `lanes` (vectors start where they do without a region), or the whole

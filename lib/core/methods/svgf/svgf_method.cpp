@@ -5,6 +5,7 @@
 #include "filter/quality.h"
 #include "filter/registry.h"
 #include "methods/svgf/denoiser.h"
+#include "stages/aux_prefilter.h"
 #include "stages/demodulate.h"
 #include "stages/taa.h"
 
@@ -23,6 +24,7 @@ private:
     void configure() override
     {
         m_settings = settingsBinding().read(params());
+        m_settings.spp = auxBinding().read(params()).spp; // the shared "spp" parameter
         m_svgf.setSettings(m_settings);
         m_svgf.setTrustSettings(historyTrustBinding().read(params()));
     }

@@ -211,6 +211,7 @@ void Denoiser::estimateVariance(const WorkRegion* region)
     a.out = &m_cv;
     a.phiL = m_settings.sigmaL;
     a.varianceHistory = static_cast<float>(m_settings.varianceHistory);
+    a.spread = spreadsSparseSamples(m_settings);
     a.region = region;
     parallelRows(h, [&](int y0, int y1) { varianceRows(a, y0, y1); });
 }

@@ -10,6 +10,9 @@
 //   - taps (dx, dy) and (-dx, -dy) share the depth term's denominator, so one division serves
 //     both;
 //   - 16 lanes, masked loads at the image's borders (lanes outside it get weight 0).
+// With VarianceArgs::spread a first 7x7 pass with the guide's weights only gives each pixel's
+// sparse share r (kernels.h sparseShare), and the luminance term's log2e / phiL is scaled by 1 - r
+// (the same factor the portable kernel divides phiL by; r = 0 leaves every bit as without it).
 // A vector whose 16 pixels all have a long history skips the 7x7 loop. The sums run in a fixed
 // order per pixel (the centre, then the tap pairs): results do not depend on the row split, and
 // differ from the portable kernel's in the last bits only
@@ -43,12 +46,12 @@ struct Sums {
 /// log2e / denominator `rz` to the sums.
 template <bool kHasNormal, bool kHasDepth, int kSquarings>
 AFN_CPU_AVX512_INLINE void addTap(const VarianceArgs& a, const NormalPower& np, const Centre& c,
-    float invPhi2, int qx, int qy, __mmask16 m, __m512 rz, Sums& s)
+    __m512 invPhi2, int qx, int qy, __mmask16 m, __m512 rz, Sums& s)
 {
     const Planes& in = *a.in;
     const Guide& g = *a.guide;
     const __m512 lq = _mm512_maskz_loadu_ps(m, in.row(kIntLuminance, qy) + qx);
-    __m512 e2 = _mm512_mul_ps(absv(_mm512_sub_ps(c.l, lq)), _mm512_set1_ps(invPhi2));
+    __m512 e2 = _mm512_mul_ps(absv(_mm512_sub_ps(c.l, lq)), invPhi2);
     if (kHasDepth) {
         const __m512 zq = _mm512_maskz_loadu_ps(m, g.planes.row(kDepth, qy) + qx);
         e2 = _mm512_fmadd_ps(absv(_mm512_sub_ps(c.z, zq)), rz, e2);
@@ -76,13 +79,13 @@ AFN_CPU_AVX512_INLINE void addTap(const VarianceArgs& a, const NormalPower& np, 
 }
 
 /// The 7x7 cross-bilateral sums of pixels x .. x + 15 of row y: the centre, then the 24 tap
-/// pairs (dx, dy), (-dx, -dy) with dy > 0, or dy = 0 and dx > 0.
+/// pairs (dx, dy), (-dx, -dy) with dy > 0, or dy = 0 and dx > 0; the luminance term is
+/// |l_p - l_q| invPhi2 (log2e / phiL per lane; 0: the guide's weights only).
 template <bool kHasNormal, bool kHasDepth, int kSquarings>
 AFN_CPU_AVX512_INLINE Sums crossBilateral(
-    const VarianceArgs& a, const NormalPower& np, const Centre& c, int x, int y)
+    const VarianceArgs& a, const NormalPower& np, const Centre& c, int x, int y, __m512 invPhi2)
 {
     const int w = a.in->width(), h = a.in->height();
-    const float invPhi2 = kLog2e / (a.phiL + 1e-10f);
     const float sigmaZ = a.guide->sigmaZ;
     __mmask16 cols[2 * kRadius + 1];
     for (int dx = -kRadius; dx <= kRadius; ++dx)
@@ -120,6 +123,22 @@ AFN_CPU_AVX512_INLINE Sums crossBilateral(
     return s;
 }
 
+/// kernels.h sparseShare of 16 pixels from the sums of a pass with the guide's weights only.
+AFN_CPU_AVX512_INLINE __m512 sparseShare16(const Sums& g, const Centre& c)
+{
+    const __m512 zero = _mm512_setzero_ps();
+    const __mmask16 some = _mm512_cmp_ps_mask(g.ws, zero, _CMP_GT_OQ);
+    const __m512 inv = _mm512_maskz_div_ps(some, _mm512_set1_ps(1.0f), g.ws);
+    const __m512 m1 = _mm512_fmadd_ps(g.dm[0], inv, c.m[0]);
+    const __m512 m2 = _mm512_fmadd_ps(g.dm[1], inv, c.m[1]);
+    const __m512 sd = _mm512_sqrt_ps(_mm512_max_ps(_mm512_fnmadd_ps(m1, m1, m2), zero));
+    const __m512 cv = _mm512_div_ps(sd, _mm512_max_ps(m1, _mm512_set1_ps(1e-20f)));
+    const __m512 r = _mm512_mul_ps(_mm512_sub_ps(cv, _mm512_set1_ps(kSparseCvLow)),
+        _mm512_set1_ps(1.0f / (kSparseCvHigh - kSparseCvLow)));
+    // max first: a NaN r becomes 0, as sparseShare's.
+    return _mm512_min_ps(_mm512_max_ps(r, zero), _mm512_set1_ps(1.0f));
+}
+
 template <bool kHasNormal, bool kHasDepth, int kSquarings>
 AFN_CPU_AVX512 void varianceRows16(const VarianceArgs& a, int y0, int y1, const NormalPower& np)
 {
@@ -155,7 +174,15 @@ AFN_CPU_AVX512 void varianceRows16(const VarianceArgs& a, int y0, int y1, const 
                     c.zEps = _mm512_add_ps(
                         _mm512_mul_ps(_mm512_set1_ps(1e-4f), absv(c.z)), _mm512_set1_ps(1e-30f));
                 }
-                const Sums s = crossBilateral<kHasNormal, kHasDepth, kSquarings>(a, np, c, x, y);
+                __m512 invPhi2 = _mm512_set1_ps(kLog2e / (a.phiL + 1e-10f));
+                if (a.spread)
+                    invPhi2 = _mm512_mul_ps(invPhi2,
+                        _mm512_sub_ps(_mm512_set1_ps(1.0f),
+                            sparseShare16(crossBilateral<kHasNormal, kHasDepth, kSquarings>(
+                                              a, np, c, x, y, zero),
+                                c)));
+                const Sums s
+                    = crossBilateral<kHasNormal, kHasDepth, kSquarings>(a, np, c, x, y, invPhi2);
                 const __mmask16 some = _mm512_cmp_ps_mask(s.ws, zero, _CMP_GT_OQ);
                 const __m512 inv = _mm512_maskz_div_ps(some, _mm512_set1_ps(1.0f), s.ws);
                 __m512 mo[2];

@@ -3,13 +3,18 @@
 // AVX-512 the 16-lane kernel of variance_avx512.cpp runs instead): the temporal variance
 // max(0, m2 - m1^2) where the history is long enough, else the 7x7 cross-bilateral estimate of
 // colour and moments (weights exp(-e) * max(0, n.n')^sigmaN, delta form around the centre) boosted
-// by 4 / length (methods/svgf/denoiser.h). A vector whose 8 pixels all have a long history skips
+// by 4 / length (methods/svgf/denoiser.h); with VarianceArgs::spread, a first 7x7 pass with the
+// guide's weights only gives each pixel's sparse share (kernels.h sparseShare), which scales its
+// luminance term. A vector whose 8 pixels all have a long history skips
 // the 7x7 loop. Weights of exp(-e) with e >= 87 (below 1.7e-38) are taken as 0: the scalar expf
 // gave denormals there.
 #include "cpu/isa.h"
 #include "cpu/target.h"
 #include "methods/svgf/kernels.h"
 #include "methods/svgf/tap_vector.h"
+
+#include <algorithm>
+#include <cmath>
 
 #pragma GCC diagnostic ignored "-Wpsabi"
 
@@ -23,15 +28,16 @@ struct Estimate {
     V8 c[3], m[2];
 };
 
-/// The 7x7 cross-bilateral estimate of pixels x .. x + 7 of row y.
+/// The 7x7 cross-bilateral estimate of pixels x .. x + 7 of row y, with the luminance term
+/// |l_p - l_q| / phi (per lane; kLuminance false: without it, the guide's weights only).
+template <bool kLuminance>
 AFN_SVGF_INLINE Estimate crossBilateral(
-    const VarianceArgs& a, int x, int y, const V8* cp, const V8* mp, V8 lp)
+    const VarianceArgs& a, int x, int y, const V8* cp, const V8* mp, V8 lp, V8 phi)
 {
     const Planes& in = *a.in;
     const Guide& g = *a.guide;
     const int w = in.width(), h = in.height();
     const GuideCentre gc = guideCentre(g, x, y);
-    const float phi = a.phiL + 1e-10f;
     V8 ws = {}, dc[3] = {}, dm[2] = {};
     for (int dy = -3; dy <= 3; ++dy) {
         const int qy = y + dy;
@@ -39,7 +45,9 @@ AFN_SVGF_INLINE Estimate crossBilateral(
             continue;
         for (int dx = -3; dx <= 3; ++dx) {
             const TapColumns t = tapColumns(x + dx, w);
-            V8 e = absV(lp - loadTap(in.row(kIntLuminance, qy), t, w)) / phi;
+            V8 e = {};
+            if (kLuminance)
+                e = absV(lp - loadTap(in.row(kIntLuminance, qy), t, w)) / phi;
             if (g.hasDepth)
                 e = depthTerm(g, gc, loadTap(g.planes.row(kDepth, qy), t, w),
                         static_cast<float>(dx), static_cast<float>(dy))
@@ -98,7 +106,18 @@ AFN_SVGF_INLINE void varianceRowsOf(const VarianceArgs& a, int y0, int y1)
                 any = any || shortHistory[l];
             if (any) {
                 const V8 lp = cpu::load8(in.row(kIntLuminance, y) + x);
-                const Estimate e = crossBilateral(a, x, y, c, m, lp);
+                V8 phi = cpu::splat8(a.phiL + 1e-10f);
+                if (a.spread) {
+                    const Estimate g = crossBilateral<false>(a, x, y, c, m, lp, phi);
+                    const V8 var = g.m[1] - g.m[0] * g.m[0];
+                    V8 sd = {};
+                    for (int l = 0; l < kLanes; ++l)
+                        sd[l] = std::sqrt(std::max(var[l], 0.0f));
+                    const V8 cv = sd / (g.m[0] > 1e-20f ? g.m[0] : cpu::splat8(1e-20f));
+                    for (int l = 0; l < kLanes; ++l)
+                        phi[l] /= 1.0f - sparseShare(cv[l]); // 1 - 1 = 0: no luminance term
+                }
+                const Estimate e = crossBilateral<true>(a, x, y, c, m, lp, phi);
                 const V8 spatial = e.m[1] - e.m[0] * e.m[0];
                 const V8 boosted = (spatial > 0.0f ? spatial : V8 {}) * (4.0f / len);
                 var = shortHistory ? boosted : var;

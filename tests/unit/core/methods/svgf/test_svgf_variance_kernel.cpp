@@ -4,7 +4,9 @@
 // formulas in double precision, on random planes whose history lengths mix short and long ones
 // within each vector: every guide combination, the default normal exponent 128 (the AVX-512
 // kernel's unrolled squarings), another power of two and a non-integer one, widths that are not
-// a multiple of the vector width (37, and 101 with blocks far from both borders).
+// a multiple of the vector width (37, and 101 with blocks far from both borders), with and without
+// spreading sparse samples (VarianceArgs::spread; the random moments give neighbourhoods on both
+// sides of the sparse share's ramp).
 #include "cpu/isa.h"
 #include "methods/svgf/kernels.h"
 #include "svgf_random_guide.h"
@@ -44,9 +46,13 @@ Scene randomScene(bool hasNormal, bool hasDepth, float sigmaN, int width, unsign
     s.guide.integerSigmaN = sigmaN == std::floor(sigmaN);
     for (int y = 0; y < kH; ++y)
         for (int x = 0; x < width; ++x) {
+            // The right half holds a few bright samples among dim ones: neighbourhoods whose
+            // coefficient of variation lies on the sparse share's ramp (1.2-2.5), the left
+            // half's below it.
+            const float scale = x > width / 2 && u(rng) < 0.15f ? 16.0f : 2.0f;
             float c[3];
             for (int k = 0; k < 3; ++k)
-                s.in.row(kIntRed + k, y)[x] = c[k] = 2.0f * u(rng);
+                s.in.row(kIntRed + k, y)[x] = c[k] = scale * u(rng);
             const float l = luminance(c);
             s.in.row(kIntLuminance, y)[x] = l;
             s.in.row(kMoment1, y)[x] = l;
@@ -66,11 +72,55 @@ struct Expected {
     double rgb[3], variance, luminance;
 };
 
-/// kernels.h VarianceArgs and methods/svgf/denoiser.h, in double.
-Expected scalarVariance(const Scene& s, int x, int y)
+struct Sums {
+    double ws = 0.0, c[3] = {}, m[2] = {};
+};
+
+/// The 7x7 cross-bilateral sums with the luminance term |l_p - l_q| * lumScale / phiL.
+Sums crossBilateral(const Scene& s, int x, int y, double lumScale)
 {
     const Planes& in = s.in;
     const Guide& g = s.guide;
+    Sums r;
+    double& ws = r.ws;
+    double* c = r.c;
+    double* m = r.m;
+    for (int dy = -3; dy <= 3; ++dy)
+        for (int dx = -3; dx <= 3; ++dx) {
+            const int qx = x + dx, qy = y + dy;
+            if (qx < 0 || qy < 0 || qx >= in.width() || qy >= in.height())
+                continue;
+            double e = lumScale
+                * std::abs(at(in, kIntLuminance, x, y) - at(in, kIntLuminance, qx, qy))
+                / (kPhiL + 1e-10);
+            if (g.hasDepth) {
+                const double z = at(g.planes, kDepth, x, y);
+                const double grad
+                    = at(g.planes, kDepthDx, x, y) * dx + at(g.planes, kDepthDy, x, y) * dy;
+                e += std::abs(z - at(g.planes, kDepth, qx, qy))
+                    / (g.sigmaZ * std::abs(grad) + 1e-4 * std::abs(z) + 1e-30);
+            }
+            double wn = 1.0;
+            if (g.hasNormal) {
+                double d = 0.0;
+                for (int k = 0; k < 3; ++k)
+                    d += at(g.planes, kNormalX + k, x, y) * at(g.planes, kNormalX + k, qx, qy);
+                wn = std::pow(std::max(0.0, d), static_cast<double>(g.sigmaN));
+            }
+            const double w = e < 87.0 ? std::exp(-e) * wn : 0.0;
+            ws += w;
+            for (int k = 0; k < 3; ++k)
+                c[k] += w * at(in, kIntRed + k, qx, qy);
+            for (int k = 0; k < 2; ++k)
+                m[k] += w * at(in, kMoment1 + k, qx, qy);
+        }
+    return r;
+}
+
+/// kernels.h VarianceArgs and methods/svgf/denoiser.h, in double.
+Expected scalarVariance(const Scene& s, int x, int y, bool spread)
+{
+    const Planes& in = s.in;
     Expected r {};
     const double len = at(in, kHistoryLength, x, y);
     if (len >= kVarianceHistory) {
@@ -79,38 +129,18 @@ Expected scalarVariance(const Scene& s, int x, int y)
         const double m1 = at(in, kMoment1, x, y);
         r.variance = std::max(0.0, at(in, kMoment2, x, y) - m1 * m1);
     } else {
-        double ws = 0.0, c[3] = {}, m[2] = {};
-        for (int dy = -3; dy <= 3; ++dy)
-            for (int dx = -3; dx <= 3; ++dx) {
-                const int qx = x + dx, qy = y + dy;
-                if (qx < 0 || qy < 0 || qx >= in.width() || qy >= in.height())
-                    continue;
-                double e = std::abs(at(in, kIntLuminance, x, y) - at(in, kIntLuminance, qx, qy))
-                    / (kPhiL + 1e-10);
-                if (g.hasDepth) {
-                    const double z = at(g.planes, kDepth, x, y);
-                    const double grad
-                        = at(g.planes, kDepthDx, x, y) * dx + at(g.planes, kDepthDy, x, y) * dy;
-                    e += std::abs(z - at(g.planes, kDepth, qx, qy))
-                        / (g.sigmaZ * std::abs(grad) + 1e-4 * std::abs(z) + 1e-30);
-                }
-                double wn = 1.0;
-                if (g.hasNormal) {
-                    double d = 0.0;
-                    for (int k = 0; k < 3; ++k)
-                        d += at(g.planes, kNormalX + k, x, y) * at(g.planes, kNormalX + k, qx, qy);
-                    wn = std::pow(std::max(0.0, d), static_cast<double>(g.sigmaN));
-                }
-                const double w = e < 87.0 ? std::exp(-e) * wn : 0.0;
-                ws += w;
-                for (int k = 0; k < 3; ++k)
-                    c[k] += w * at(in, kIntRed + k, qx, qy);
-                for (int k = 0; k < 2; ++k)
-                    m[k] += w * at(in, kMoment1 + k, qx, qy);
-            }
+        double lumScale = 1.0;
+        if (spread) { // the sparse share of the guide-only estimate's moments
+            const Sums g = crossBilateral(s, x, y, 0.0);
+            const double m1 = g.m[0] / g.ws, m2 = g.m[1] / g.ws;
+            const double cv = std::sqrt(std::max(0.0, m2 - m1 * m1)) / std::max(m1, 1e-20);
+            lumScale
+                = 1.0 - std::clamp((cv - kSparseCvLow) / (kSparseCvHigh - kSparseCvLow), 0.0, 1.0);
+        }
+        const Sums e = crossBilateral(s, x, y, lumScale);
         for (int k = 0; k < 3; ++k)
-            r.rgb[k] = c[k] / ws;
-        const double m1 = m[0] / ws, m2 = m[1] / ws;
+            r.rgb[k] = e.c[k] / e.ws;
+        const double m1 = e.m[0] / e.ws, m2 = e.m[1] / e.ws;
         r.variance = std::max(0.0, m2 - m1 * m1) * 4.0 / len;
     }
     r.luminance = 0.2126 * r.rgb[0] + 0.7152 * r.rgb[1] + 0.0722 * r.rgb[2];
@@ -124,11 +154,11 @@ void expectNear(double expected, float got, const char* what, int x, int y)
 }
 
 class SvgfVarianceKernel
-    : public ::testing::TestWithParam<std::tuple<afn::cpu::Isa, bool, bool, float>> { };
+    : public ::testing::TestWithParam<std::tuple<afn::cpu::Isa, bool, bool, float, bool>> { };
 
 TEST_P(SvgfVarianceKernel, MatchesTheScalarFormula)
 {
-    const auto [isa, hasNormal, hasDepth, sigmaN] = GetParam();
+    const auto [isa, hasNormal, hasDepth, sigmaN, spread] = GetParam();
     const afn::cpu::Isa saved = afn::cpu::activeIsa();
     afn::cpu::forceIsa(isa);
     const bool active = afn::cpu::activeIsa() == isa;
@@ -144,10 +174,11 @@ TEST_P(SvgfVarianceKernel, MatchesTheScalarFormula)
             args.out = &out;
             args.phiL = kPhiL;
             args.varianceHistory = kVarianceHistory;
+            args.spread = spread;
             varianceRows(args, 0, kH);
             for (int y = 0; y < kH; ++y)
                 for (int x = 0; x < width; ++x) {
-                    const Expected e = scalarVariance(s, x, y);
+                    const Expected e = scalarVariance(s, x, y, spread);
                     for (int k = 0; k < 3; ++k)
                         expectNear(e.rgb[k], out.row(kRed + k, y)[x], "colour", x, y);
                     expectNear(e.variance, out.row(kVariance, y)[x], "variance", x, y);
@@ -161,6 +192,7 @@ TEST_P(SvgfVarianceKernel, MatchesTheScalarFormula)
 
 INSTANTIATE_TEST_SUITE_P(GuidesAndExponents, SvgfVarianceKernel,
     ::testing::Combine(::testing::Values(afn::cpu::Isa::Portable, afn::cpu::Isa::Avx512),
-        ::testing::Bool(), ::testing::Bool(), ::testing::Values(128.0f, 16.0f, 10.5f)));
+        ::testing::Bool(), ::testing::Bool(), ::testing::Values(128.0f, 16.0f, 10.5f),
+        ::testing::Bool()));
 
 } // namespace
