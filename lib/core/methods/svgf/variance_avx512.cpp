@@ -43,15 +43,19 @@ struct Sums {
 };
 
 /// Add the tap at column qx of row qy (lanes `m` in the image) with the depth term's
-/// log2e / denominator `rz` to the sums.
-template <bool kHasNormal, bool kHasDepth, int kSquarings>
+/// log2e / denominator `rz` to the sums; kFull false: the guide's weights only, and no colour
+/// sums (the first pass of `spread` reads the weights and moments).
+template <bool kHasNormal, bool kHasDepth, int kSquarings, bool kFull = true>
 AFN_CPU_AVX512_INLINE void addTap(const VarianceArgs& a, const NormalPower& np, const Centre& c,
     __m512 invPhi2, int qx, int qy, __mmask16 m, __m512 rz, Sums& s)
 {
     const Planes& in = *a.in;
     const Guide& g = *a.guide;
-    const __m512 lq = _mm512_maskz_loadu_ps(m, in.row(kIntLuminance, qy) + qx);
-    __m512 e2 = _mm512_mul_ps(absv(_mm512_sub_ps(c.l, lq)), invPhi2);
+    __m512 e2 = _mm512_setzero_ps();
+    if (kFull) {
+        const __m512 lq = _mm512_maskz_loadu_ps(m, in.row(kIntLuminance, qy) + qx);
+        e2 = _mm512_mul_ps(absv(_mm512_sub_ps(c.l, lq)), invPhi2);
+    }
     if (kHasDepth) {
         const __m512 zq = _mm512_maskz_loadu_ps(m, g.planes.row(kDepth, qy) + qx);
         e2 = _mm512_fmadd_ps(absv(_mm512_sub_ps(c.z, zq)), rz, e2);
@@ -68,7 +72,7 @@ AFN_CPU_AVX512_INLINE void addTap(const VarianceArgs& a, const NormalPower& np, 
     }
     wq = _mm512_maskz_mov_ps(keep, wq);
     s.ws = _mm512_add_ps(s.ws, wq);
-    for (int k = 0; k < 3; ++k) {
+    for (int k = 0; k < 3 && kFull; ++k) {
         const __m512 cq = _mm512_maskz_loadu_ps(m, in.row(kIntRed + k, qy) + qx);
         s.dc[k] = _mm512_fmadd_ps(wq, _mm512_sub_ps(cq, c.c[k]), s.dc[k]);
     }
@@ -80,8 +84,9 @@ AFN_CPU_AVX512_INLINE void addTap(const VarianceArgs& a, const NormalPower& np, 
 
 /// The 7x7 cross-bilateral sums of pixels x .. x + 15 of row y: the centre, then the 24 tap
 /// pairs (dx, dy), (-dx, -dy) with dy > 0, or dy = 0 and dx > 0; the luminance term is
-/// |l_p - l_q| invPhi2 (log2e / phiL per lane; 0: the guide's weights only).
-template <bool kHasNormal, bool kHasDepth, int kSquarings>
+/// |l_p - l_q| invPhi2 (log2e / phiL per lane); kFull false: the guide's weights only, without
+/// the colour sums (invPhi2 unread).
+template <bool kHasNormal, bool kHasDepth, int kSquarings, bool kFull = true>
 AFN_CPU_AVX512_INLINE Sums crossBilateral(
     const VarianceArgs& a, const NormalPower& np, const Centre& c, int x, int y, __m512 invPhi2)
 {
@@ -97,7 +102,7 @@ AFN_CPU_AVX512_INLINE Sums crossBilateral(
     for (int k = 0; k < 2; ++k)
         s.dm[k] = _mm512_setzero_ps();
     // The centre: e = 0 plus the depth term's 0; the normal factor of a unit normal with itself.
-    addTap<kHasNormal, false, kSquarings>(
+    addTap<kHasNormal, false, kSquarings, kFull>(
         a, np, c, invPhi2, x, y, cols[kRadius], _mm512_setzero_ps(), s);
     for (int dy = 0; dy <= kRadius; ++dy)
         for (int dx = dy == 0 ? 1 : -kRadius; dx <= kRadius; ++dx) {
@@ -114,10 +119,10 @@ AFN_CPU_AVX512_INLINE Sums crossBilateral(
                 rz = _mm512_div_ps(_mm512_set1_ps(kLog2e), denom);
             }
             if (up)
-                addTap<kHasNormal, kHasDepth, kSquarings>(
+                addTap<kHasNormal, kHasDepth, kSquarings, kFull>(
                     a, np, c, invPhi2, x + dx, y + dy, cols[kRadius + dx], rz, s);
             if (down)
-                addTap<kHasNormal, kHasDepth, kSquarings>(
+                addTap<kHasNormal, kHasDepth, kSquarings, kFull>(
                     a, np, c, invPhi2, x - dx, y - dy, cols[kRadius - dx], rz, s);
         }
     return s;
@@ -178,7 +183,7 @@ AFN_CPU_AVX512 void varianceRows16(const VarianceArgs& a, int y0, int y1, const 
                 if (a.spread)
                     invPhi2 = _mm512_mul_ps(invPhi2,
                         _mm512_sub_ps(_mm512_set1_ps(1.0f),
-                            sparseShare16(crossBilateral<kHasNormal, kHasDepth, kSquarings>(
+                            sparseShare16(crossBilateral<kHasNormal, kHasDepth, kSquarings, false>(
                                               a, np, c, x, y, zero),
                                 c)));
                 const Sums s

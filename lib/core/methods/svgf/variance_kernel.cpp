@@ -29,8 +29,9 @@ struct Estimate {
 };
 
 /// The 7x7 cross-bilateral estimate of pixels x .. x + 7 of row y, with the luminance term
-/// |l_p - l_q| / phi (per lane; kLuminance false: without it, the guide's weights only).
-template <bool kLuminance>
+/// |l_p - l_q| / phi (per lane); kFull false: the guide's weights only, and no colour estimate
+/// (the first pass of `spread` reads the moments; r.c is then the centre's colour).
+template <bool kFull>
 AFN_SVGF_INLINE Estimate crossBilateral(
     const VarianceArgs& a, int x, int y, const V8* cp, const V8* mp, V8 lp, V8 phi)
 {
@@ -46,7 +47,7 @@ AFN_SVGF_INLINE Estimate crossBilateral(
         for (int dx = -3; dx <= 3; ++dx) {
             const TapColumns t = tapColumns(x + dx, w);
             V8 e = {};
-            if (kLuminance)
+            if (kFull)
                 e = absV(lp - loadTap(in.row(kIntLuminance, qy), t, w)) / phi;
             if (g.hasDepth)
                 e = depthTerm(g, gc, loadTap(g.planes.row(kDepth, qy), t, w),
@@ -62,7 +63,7 @@ AFN_SVGF_INLINE Estimate crossBilateral(
             const V8 ec = e < kExpFloor ? e : cpu::splat8(kExpFloor); // exp of masked-out lanes
             const V8 wq = (t.inImage & (e < kExpFloor)) ? cpu::exp8(-ec) * wn : V8 {};
             ws += wq;
-            for (int k = 0; k < 3; ++k)
+            for (int k = 0; k < 3 && kFull; ++k)
                 dc[k] += wq * (loadTap(in.row(kIntRed + k, qy), t, w) - cp[k]);
             for (int k = 0; k < 2; ++k)
                 dm[k] += wq * (loadTap(in.row(kMoment1 + k, qy), t, w) - mp[k]);

@@ -104,23 +104,10 @@ Expected scalarAtrous(const Scene& s, int step, int x, int y)
             const double h = b3[std::abs(i)] * b3[std::abs(j)];
             double w = h;
             if (i != 0 || j != 0) {
-                double e = std::abs(lp - plane(s.in, kLuminance, qx, qy)) * invPhi;
-                if (g.hasDepth) {
-                    const double zp = plane(g.planes, kDepth, x, y);
-                    const double grad = plane(g.planes, kDepthDx, x, y) * (i * step)
-                        + plane(g.planes, kDepthDy, x, y) * (j * step);
-                    e += std::abs(zp - plane(g.planes, kDepth, qx, qy))
-                        / (g.sigmaZ * std::abs(grad) + 1e-4 * std::abs(zp) + 1e-30);
-                }
-                double wn = 1.0;
-                if (g.hasNormal) {
-                    double d = 0.0;
-                    for (int k = 0; k < 3; ++k)
-                        d += plane(g.planes, kNormalX + k, x, y)
-                            * plane(g.planes, kNormalX + k, qx, qy);
-                    wn = std::pow(std::max(0.0, d), static_cast<double>(g.sigmaN));
-                }
-                w = h * std::exp(-e) * wn;
+                const afntest::GuideTerms t
+                    = afntest::scalarGuideTerms(g, x, y, qx, qy, i * step, j * step);
+                const double e = std::abs(lp - plane(s.in, kLuminance, qx, qy)) * invPhi + t.depth;
+                w = h * std::exp(-e) * t.normal;
             }
             ws += w;
             vsum += w * w * plane(s.in, kVariance, qx, qy);

@@ -90,24 +90,12 @@ Sums crossBilateral(const Scene& s, int x, int y, double lumScale)
             const int qx = x + dx, qy = y + dy;
             if (qx < 0 || qy < 0 || qx >= in.width() || qy >= in.height())
                 continue;
-            double e = lumScale
-                * std::abs(at(in, kIntLuminance, x, y) - at(in, kIntLuminance, qx, qy))
-                / (kPhiL + 1e-10);
-            if (g.hasDepth) {
-                const double z = at(g.planes, kDepth, x, y);
-                const double grad
-                    = at(g.planes, kDepthDx, x, y) * dx + at(g.planes, kDepthDy, x, y) * dy;
-                e += std::abs(z - at(g.planes, kDepth, qx, qy))
-                    / (g.sigmaZ * std::abs(grad) + 1e-4 * std::abs(z) + 1e-30);
-            }
-            double wn = 1.0;
-            if (g.hasNormal) {
-                double d = 0.0;
-                for (int k = 0; k < 3; ++k)
-                    d += at(g.planes, kNormalX + k, x, y) * at(g.planes, kNormalX + k, qx, qy);
-                wn = std::pow(std::max(0.0, d), static_cast<double>(g.sigmaN));
-            }
-            const double w = e < 87.0 ? std::exp(-e) * wn : 0.0;
+            const afntest::GuideTerms t = afntest::scalarGuideTerms(g, x, y, qx, qy, dx, dy);
+            const double e = lumScale
+                    * std::abs(at(in, kIntLuminance, x, y) - at(in, kIntLuminance, qx, qy))
+                    / (kPhiL + 1e-10)
+                + t.depth;
+            const double w = e < 87.0 ? std::exp(-e) * t.normal : 0.0;
             ws += w;
             for (int k = 0; k < 3; ++k)
                 c[k] += w * at(in, kIntRed + k, qx, qy);
