@@ -345,6 +345,12 @@ void SequenceDenoiser::logFrame(const LoadedFrame& frame, Progress* progress)
         progress->annotate(cutText);
 
     if (m_opts.verbose) { // every frame, every figure
+        // Highlights kept at their pixel instead of filtered (stages/highlight_bypass.h).
+        const auto highlights = static_cast<long long>(m_filter.get<float>(AFN_STAT_HIGHLIGHTS));
+        if (highlights > 0)
+            note(m_flag + ": " + m_method + " kept " + std::to_string(highlights)
+                    + " highlight px unfiltered (highlights) " + frame.ref.path,
+                quiet, progress);
         if (!cutText.empty())
             note(m_flag + ": " + m_method + " " + cutText + " (lighting changed) " + frame.ref.path,
                 quiet, progress);

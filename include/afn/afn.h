@@ -177,6 +177,10 @@ typedef enum AFNDeviceType {
 /// changed (history trust below one half; parameter "antilag"); 0 for methods without a history
 /// (afnGetFilterFloat). The per-pixel trust is the feature output "historyTrust".
 #define AFN_STAT_HISTORY_CUT "stats.historyCut"
+/// Pixels of the last frame whose highlight bypassed the method's spatial filter and was added
+/// back at its own pixel (parameter "highlights"; afnGetFilterFloat); 0 for methods without the
+/// bypass.
+#define AFN_STAT_HIGHLIGHTS "stats.highlights"
 /// The inputs the method reads that the last frame lacked, with what each is for, e.g.
 /// "normal (edge-stopping); motion or position with a camera (reprojection: ...)"; "" when none
 /// (afnGetFilterString). The method still runs, with less to go on.

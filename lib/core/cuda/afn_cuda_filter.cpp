@@ -93,6 +93,7 @@ void AfnCudaFilter::denoise(const Frame& in, Image& out)
     m_pipeline.setNetworkInputs(model.inputs);
     FrameConstants c = frameConstants(in, m_reproject, m_accumulation, m_trust, m_aux);
     c.taaAlpha = m_settings.taaAlpha;
+    c.highlights = m_settings.highlights;
     m_pipeline.run(in, c, out);
     reportProgress(0.95);
 }

@@ -147,6 +147,10 @@ void AfnPipeline::allocate(const FrameLayout& layout)
     for (int k = 0; k < 2; ++k)
         allocateBuffer(m_radianceInputs[k], undemodulates(layout) ? 3 * n : 0, p, st);
     allocateBuffer(m_output, 3 * n, p, st);
+    for (auto& c : m_highlightClamped)
+        allocateBuffer(c, 3 * n, p, st);
+    allocateBuffer(m_highlightCounts, kHighlightBins, p, st);
+    allocateBuffer(m_highlightLimit, 1, p, st);
     for (int s = 0; s < 2; ++s) {
         allocateBuffer(m_position[s], layout.position ? 3 * n : 0, p, st);
         allocateBuffer(m_normal[s], layout.normal ? 3 * n : 0, p, st);

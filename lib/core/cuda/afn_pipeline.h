@@ -149,7 +149,15 @@ private:
         const float* depth = nullptr;
         const float* historyLength = nullptr;
     };
+    /// The network's sources, its colours clamped by the highlight bypass (enqueueFirstStage).
     NetworkSources networkSources(int slot) const;
+    /// The same with the colours as the first stage left them.
+    NetworkSources givenSources(int slot) const;
+    /// The colour the highlight bypass's limit and excess come from (NetworkInputs::colorTa).
+    const float* highlightSource(int slot) const;
+    /// Add the highlight bypass's excess to the output (before the TAA, or after the
+    /// post-filter when it runs: afn_method.cpp).
+    void enqueueHighlightExcess(int slot, cudaStream_t stream) const;
     void enqueueTemporalFeatures(int slot, cudaStream_t stream) const;
     void enqueueFirstStage(int slot, cudaStream_t stream) const; ///< aux prefilter, TA
     void enqueuePrepare(const NetworkSources& src, cudaStream_t stream) const;
@@ -210,6 +218,11 @@ private:
     std::array<DeviceBuffer<float>, 2> m_position, m_normal, m_depth, m_accumulated, m_history;
     /// The 1-spp and TA colours times the albedo (undemodulates() only).
     std::array<DeviceBuffer<float>, 2> m_radianceInputs;
+    /// The highlight bypass (highlight_pixel.h): the network's two colours clamped, the
+    /// histogram and the limit.
+    std::array<DeviceBuffer<float>, 2> m_highlightClamped;
+    DeviceBuffer<unsigned> m_highlightCounts;
+    DeviceBuffer<float> m_highlightLimit;
     DeviceBuffer<std::uint32_t> m_depthRange;
     // The history trust (history_trust_block.h): per row block sums, per block raw trust, count
     // and trust, the cut pixels (one word, copied back with the output).

@@ -10,6 +10,24 @@ namespace afn::cuda {
 
 AfnPipeline::NetworkSources AfnPipeline::networkSources(int slot) const
 {
+    NetworkSources src = givenSources(slot);
+    src.color1 = m_highlightClamped[0].data();
+    src.colorTa = m_highlightClamped[1].data();
+    return src;
+}
+
+const float* AfnPipeline::highlightSource(int slot) const
+{
+    // NetworkInputs::colorTa() whatever the variant: the TA colour of a temporal model, else the
+    // frame's, times the albedo for a model without it.
+    const bool radiance = undemodulates(m_layout);
+    if (m_networkInputs.temporal)
+        return radiance ? m_radianceInputs[1].data() : m_accumulated[slot].data();
+    return radiance ? m_radianceInputs[0].data() : m_irradiance.data();
+}
+
+AfnPipeline::NetworkSources AfnPipeline::givenSources(int slot) const
+{
     const FrameLayout& l = m_layout;
     const afnet::InputSet& use = m_networkInputs;
     // The colours (network_inputs.cpp prepare()): times the albedo for a model without it.
@@ -102,6 +120,22 @@ void AfnPipeline::enqueueFirstStage(int slot, cudaStream_t stream) const
             launchUndemodulate(m_accumulated[slot].data(), m_albedo.data(), plain,
                 m_radianceInputs[1].data(), l.width, l.height, stream);
     }
+    // The highlight bypass (stages/highlight_bypass.h): the limit from the network's own TA
+    // colour, both colours clamped for the network.
+    const NetworkSources given = givenSources(slot);
+    launchHighlightLimit(highlightSource(slot), l.width, l.height, m_constants.data(),
+        m_highlightCounts.data(), m_highlightLimit.data(), stream);
+    launchHighlightClamp(given.color1, m_highlightLimit.data(), m_highlightClamped[0].data(),
+        l.width, l.height, stream);
+    launchHighlightClamp(given.colorTa, m_highlightLimit.data(), m_highlightClamped[1].data(),
+        l.width, l.height, stream);
+}
+
+void AfnPipeline::enqueueHighlightExcess(int slot, cudaStream_t stream) const
+{
+    const FrameLayout& l = m_layout;
+    launchHighlightExcess(highlightSource(slot), networkSources(slot).albedo, l.colorDemodulated,
+        m_highlightLimit.data(), m_output.data(), l.width, l.height, stream);
 }
 
 void AfnPipeline::enqueueTemporalFeatures(int slot, cudaStream_t stream) const
@@ -304,6 +338,8 @@ void AfnPipeline::enqueueNetwork(int slot, cudaStream_t stream) const
 
 void AfnPipeline::enqueueTaa(int slot, cudaStream_t stream) const
 {
+    if (!m_postFilter)
+        enqueueHighlightExcess(slot, stream); // before the TAA, whose output is its next history
     if (!m_taa)
         return;
     TaaBuffers a;
@@ -341,6 +377,7 @@ void AfnPipeline::enqueuePostFilter(int slot, cudaStream_t stream) const
     const float* in = m_taa ? m_taaHistory[slot].data() : m_output.data();
     launchPostFilter(s, g, m_constants.data(), in, m_output.data(), m_postScratch0.data(),
         m_postScratch1.data(), stream);
+    enqueueHighlightExcess(slot, stream);
 }
 
 } // namespace afn::cuda

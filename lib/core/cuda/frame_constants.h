@@ -6,6 +6,7 @@
 #include "cuda/temporal_pixel.h"
 #include "filter/frame.h"
 #include "stages/aux_prefilter.h"
+#include "stages/highlight_bypass.h"
 #include "stages/history_trust.h"
 #include "stages/reproject.h"
 #include "stages/temporal_accumulation.h"
@@ -13,6 +14,8 @@
 #include <algorithm>
 
 namespace afn::cuda {
+
+static_assert(FrameConstants {}.highlights == kHighlightFactor, "the highlight bypass's default");
 
 inline FrameConstants frameConstants(const Frame& in, const ReprojectSettings& reproject,
     const AccumulationSettings& accumulation, const HistoryTrustSettings& trust,

@@ -29,6 +29,7 @@
 #include "cuda/conv_tile.h"
 #include "cuda/filter_fuse_lane.h"
 #include "cuda/high_tier_pixel.h"
+#include "cuda/highlight_pixel.h"
 #include "cuda/large_pixel.h"
 #include "cuda/post_filter_pixel.h"
 #include "cuda/prepare_block.h"
@@ -60,6 +61,17 @@ void launchPrepare(const PrepareBuffers& b, cudaStream_t stream);
 /// colours a model without albedo filters when the frame has one (network_inputs.h).
 void launchUndemodulate(const float* irradiance, const float* albedo, bool plain, float* out, int w,
     int h, cudaStream_t stream);
+
+/// afn's highlight bypass (highlight_pixel.h): the limit of `ta` (3 floats per pixel) into
+/// *limit (device memory), through the histogram `counts` (kHighlightBins words, zeroed here).
+void launchHighlightLimit(const float* ta, int width, int height, const FrameConstants* frame,
+    unsigned* counts, float* limit, cudaStream_t stream);
+/// `out` = `in` clamped at *limit (3 floats per pixel).
+void launchHighlightClamp(
+    const float* in, const float* limit, float* out, int width, int height, cudaStream_t stream);
+/// `out` (3 floats per pixel) += the excess of `ta` over *limit times the albedo factor.
+void launchHighlightExcess(const float* ta, const float* albedo, bool plain, const float* limit,
+    float* out, int width, int height, cudaStream_t stream);
 
 /// D: 2 x 2 average of a half-precision NHWC tensor (`stride` halves per pixel, even size) into
 /// `out` of half the size and the same stride.

@@ -32,6 +32,9 @@ struct FrameConstants {
     int auxMode = 0; ///< stages/aux_prefilter.h AuxSettings::Mode: 0 auto, 1 clean, 2 noisy
     int spp = 0; ///< AuxSettings::spp (0: unknown)
     int colorDemodulated = 0; ///< the colour input is already irradiance
+    /// afn's highlight bypass factor (methods/afn/settings.h Settings::highlights, 0 = off;
+    /// the default is stages/highlight_bypass.h kHighlightFactor, checked in frame_constants.h)
+    float highlights = 8.0f;
 };
 
 /// Buffers of the first stage (frame size, interleaved floats; optional inputs null when absent).

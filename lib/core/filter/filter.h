@@ -19,6 +19,7 @@
 #include "stages/pass_transfer.h"
 #include "stages/temporal_accumulation.h"
 
+#include <cstdint>
 #include <functional>
 #include <map>
 #include <memory>
@@ -122,6 +123,9 @@ public:
         const HistoryTrust* t = historyTrust();
         return t ? t->cutShare() : 0.0;
     }
+    /// Pixels of the last frame whose highlight bypassed the method's spatial filter
+    /// (stages/highlight_bypass.h; AFN_STAT_HIGHLIGHTS); 0 for methods without the bypass.
+    virtual std::int64_t lastHighlightPixels() const { return 0; }
     /// A method's own statistic of the last execute ("stats.afn.*"); false when it has none of
     /// that name.
     virtual bool statistic(const std::string& name, double& value) const { return false; }

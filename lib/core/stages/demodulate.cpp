@@ -86,6 +86,11 @@ void remodulateRow(const Frame& frame, const Image& irradiance, int y, std::byte
     }
 }
 
+float albedoFactorAt(const Frame& frame, int x, int y, int k)
+{
+    return frame.hasAlbedo() ? albedoFactor(frame.albedo(x, y, k), frame.colorDemodulated) : 1.0f;
+}
+
 void remodulate(const Frame& frame, const Image& irradiance, Image& radiance)
 {
     if (&radiance != &irradiance)

@@ -32,6 +32,9 @@ void demodulate(const Frame& frame, Image& irradiance);
 /// them row band by row band with the accumulation: the same values, one pass less).
 void demodulateRows(const Frame& frame, Image& irradiance, int y0, int y1);
 
+/// The factor remodulate() multiplies channel k of pixel (x, y) by (1 without an albedo).
+float albedoFactorAt(const Frame& frame, int x, int y, int k);
+
 /// Write `irradiance` (3 channels) times the frame's albedo factor into `radiance` (3 channels).
 /// `radiance` may be the same image as `irradiance`.
 void remodulate(const Frame& frame, const Image& irradiance, Image& radiance);

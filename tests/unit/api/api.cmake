@@ -10,3 +10,4 @@ afn_add_gtest(test_api_memory SOURCES unit/api/test_api_memory.cpp
 target_include_directories(test_api_memory PRIVATE ${PROJECT_SOURCE_DIR}/cli)
 afn_add_gtest(test_api_passes SOURCES unit/api/test_api_passes.cpp LIBS afn)
 afn_add_gtest(test_api_aux_stats SOURCES unit/api/test_api_aux_stats.cpp LIBS afn)
+afn_add_gtest(test_api_highlights SOURCES unit/api/test_api_highlights.cpp LIBS afn)

@@ -12,6 +12,7 @@ afn_add_gtest(test_methods
     unit/core/stages/test_aux_dense_speckle.cpp
     unit/core/stages/test_reproject_identity.cpp
     unit/core/stages/test_taa.cpp
+    unit/core/stages/test_highlight_bypass.cpp
     unit/core/stages/test_stage_kernels_isa.cpp
     unit/core/stages/test_gather_accumulate_isa.cpp
     unit/core/methods/test_methods_ta.cpp
@@ -40,6 +41,7 @@ afn_add_gtest(test_afn
     unit/core/methods/afn/test_afn_large.cpp
     unit/core/methods/afn/test_afn_filter.cpp
     unit/core/methods/afn/test_afn_taa.cpp
+    unit/core/methods/afn/test_afn_highlights.cpp
     unit/core/methods/afn/test_afn_post_filter.cpp
     unit/core/methods/afn/test_afn_post_filter_noise.cpp
     unit/core/methods/afn/test_afn_input_set.cpp

@@ -92,6 +92,8 @@ public:
         return true;
     }
 
+    std::int64_t lastHighlightPixels() const override { return m_highlights.pixels(); }
+
     bool statistic(const std::string& name, double& value) const override
     {
         const std::string prefix = "stats.afn.";
@@ -163,11 +165,14 @@ private:
         if (!run(in, result))
             return;
         m_inputs.radiance(in, result, out);
+        if (!m_postOn)
+            addHighlights(in, out); // before the TAA, whose output is its next history
         if (m_taaOn)
             out = m_taa.apply(reprojector(), out, m_settings.taaAlpha, m_taaSpare, historyTrust());
         if (m_postOn) {
             edgeAwarePostFilter(out, guidesOf(in), m_postWorkspace, result);
             out = result;
+            addHighlights(in, out);
         }
     }
     // The network writes into the accumulation stage's scratch image, its result becomes the
@@ -180,6 +185,7 @@ private:
         run(in, result);
         m_inputs.radiance(in, result, result);
         if (!m_postOn) {
+            addHighlights(in, result); // before the TAA, whose output is its next history
             if (m_taaOn)
                 return &m_taa.apply(
                     reprojector(), result, m_settings.taaAlpha, m_taaSpare, historyTrust());
@@ -195,7 +201,14 @@ private:
             edgeAwarePostFilter(result, guidesOf(in), m_postWorkspace, m_taaSpare);
             std::swap(result, m_taaSpare);
         }
+        addHighlights(in, result);
         return &result;
+    }
+    /// Add the highlight bypass's excess (stages/highlight_bypass.h) to the radiance `out`.
+    void addHighlights(const Frame& in, Image& out) const
+    {
+        m_highlights.addExcess(
+            out, [&](int x, int y, int k) { return m_inputs.radianceFactor(in, x, y, k); });
     }
     PostFilterGuides guidesOf(const Frame& in) const
     {
@@ -255,7 +268,12 @@ private:
             m_taa.reset(); // a later frame with TAA starts without a stale history
         }
         m_model->net.setPrecision(precisionToRun());
-        m_tiers.run(m_quality, m_model->net, m_inputs.inputs(), result, work);
+        // Highlights far above the frame's level skip the filters (stages/highlight_bypass.h).
+        Inputs inputs = m_inputs.inputs();
+        m_highlights.split(*inputs.colorTa, highlightLimit(*inputs.colorTa, m_settings.highlights));
+        inputs.color1 = &m_highlights.clamped(*inputs.color1, 0);
+        inputs.colorTa = &m_highlights.clamped(*inputs.colorTa, 1);
+        m_tiers.run(m_quality, m_model->net, inputs, result, work);
         reportProgress(0.95);
         return true;
     }
@@ -301,6 +319,7 @@ private:
     Model* m_model = nullptr; ///< the last frame's (in m_models)
     std::string m_path; ///< describePath() of the last frame
     NetworkInputs m_inputs;
+    HighlightBypass m_highlights; ///< this frame's (stages/highlight_bypass.h)
 };
 
 std::unique_ptr<Filter> create(const FilterType& t, const Device& device)

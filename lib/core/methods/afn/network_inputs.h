@@ -11,6 +11,7 @@
 #include "base/image.h"
 #include "methods/afn/input_set.h"
 #include "methods/afn/network.h"
+#include "stages/demodulate.h"
 #include "stages/feature_scaling.h"
 
 namespace afn {
@@ -44,6 +45,11 @@ public:
     /// uses it, else clamped to [0, kMaxIrradiance] as the remodulation does. `out` may be
     /// `result` (in place).
     void radiance(const Frame& in, const Image& result, Image& out) const;
+    /// What radiance() multiplies channel k of pixel (x, y) of the result by.
+    float radianceFactor(const Frame& in, int x, int y, int k) const
+    {
+        return m_use.albedo ? albedoFactorAt(in, x, y, k) : 1.0f;
+    }
 
 private:
     void makeHistory01(const Image& length, bool temporal, int w, int h);

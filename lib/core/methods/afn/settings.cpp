@@ -35,7 +35,14 @@ const ParamBinding<Settings>& settingsBinding()
                   "results at fp32's speed); bf16 also takes cheaper approximations of the "
                   "network's input tone map and softmax exponential (relative errors below "
                   "1e-5); the 7x7 filters and the output stages are fp32 in every case; CPU "
-                  "device only (CUDA runs its own half precision)");
+                  "device only (CUDA runs its own half precision)")
+              .add(&S::highlights, "highlights", 0.0, 1e6, "Highlight bypass",
+                  "values of the colour inputs above this factor times the frame's bright "
+                  "level (the power of two above the 99th percentile of the temporal "
+                  "accumulation) skip the network's filters: the network reads them clamped and "
+                  "the accumulation's excess is added back at its own pixel after the output's "
+                  "TAA and post-filter, so a small light or glint stays a point instead of a "
+                  "blotch; 0 = off");
     return binding;
 }
 

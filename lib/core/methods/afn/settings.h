@@ -40,6 +40,7 @@
 #pragma once
 
 #include "base/params.h"
+#include "stages/highlight_bypass.h"
 
 namespace afn::afnet {
 
@@ -52,6 +53,9 @@ struct Settings {
         = PostFilter::Auto; ///< edge-aware smoothing of the output (post_filter.h)
     enum class Precision { Auto, Fp32, Bf16 };
     Precision precision = Precision::Auto; ///< the network's convolutions (see above)
+    /// Factor of the highlight bypass's limit over the frame's bright level, 0 = off
+    /// (stages/highlight_bypass.h).
+    float highlights = kHighlightFactor;
 };
 
 /// Models trained at this many samples per pixel or more run without the post-filter under

@@ -25,6 +25,7 @@ private:
         m_bmfr.setSettings(s);
     }
     void resetHistory() override { m_bmfr.reset(); }
+    std::int64_t lastHighlightPixels() const override { return m_bmfr.highlightPixels(); }
     void denoise(const Frame& in, Image& out) override
     {
         out = m_bmfr.process(

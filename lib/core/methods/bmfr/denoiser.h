@@ -20,6 +20,7 @@
 #pragma once
 
 #include "filter/work_region.h"
+#include "stages/highlight_bypass.h"
 #include "stages/taa.h"
 #include "stages/temporal_accumulation.h"
 
@@ -36,6 +37,10 @@ struct Settings {
     int spp = 0; ///< the shared "spp" parameter (detail=auto: on from kDetailSpp)
     bool taa = true; ///< apply the final TAA step
     float taaAlpha = kTaaAlpha; ///< TAA weight of the current frame (BMFR 0.2)
+    /// Factor of the highlight bypass's limit over the frame's bright level, 0 = off
+    /// (stages/highlight_bypass.h; not in BMFR): the regression fits the accumulated colour
+    /// clamped, the excess is added back to the fit at its own pixel.
+    float highlights = kHighlightFactor;
 };
 
 /// detail=auto keeps detail from this many samples per pixel: below, the one-frame noise estimate
@@ -68,6 +73,9 @@ public:
     const Image& process(const Frame& f, const Reprojector& taps, const TemporalAccumulator& ta,
         Image& scratch, Image& irradiance);
 
+    /// Pixels of the last frame whose highlight bypassed the filter (stages/highlight_bypass.h).
+    std::int64_t highlightPixels() const { return m_highlights.pixels(); }
+
 private:
     Settings m_settings;
     bool m_hasHistory = false;
@@ -75,6 +83,7 @@ private:
     /// and the caller's (regression, then the remodulated radiance; pipeline.cpp).
     Image m_filtered, m_spare;
     TemporalAntialiasing m_taa;
+    HighlightBypass m_highlights; ///< this frame's
 };
 
 } // namespace afn::bmfr

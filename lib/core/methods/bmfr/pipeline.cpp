@@ -28,22 +28,28 @@ const Image& Denoiser::process(const Frame& f, const Reprojector& taps,
     // remodulated radiance -> `scratch` (the regression is dead by then); TAA -> m_spare, which
     // becomes its history (stages/taa.h), m_spare getting the old history's buffer.
     Image& regressed = scratch;
+    // Highlights far above the frame's level are fitted clamped, their excess added back to the
+    // fit at their pixel (stages/highlight_bypass.h): one lamp pixel would bend a whole block's
+    // regression.
+    m_highlights.split(ta.color(), highlightLimit(ta.color(), m_settings.highlights));
+    const Image& accumulated = m_highlights.clamped(ta.color(), 0);
     if (f.hasWorkMask()) {
         const WorkRegion region = WorkRegion::fromMask(f.work).dilated(kWorkMargin);
-        regression(f, ta.color(), m_settings, f.frameIndex, regressed, &region);
+        regression(f, accumulated, m_settings, f.frameIndex, regressed, &region);
     } else {
-        regression(f, ta.color(), m_settings, f.frameIndex, regressed);
+        regression(f, accumulated, m_settings, f.frameIndex, regressed);
     }
     // Detail the fit cannot express, kept where it stands above the accumulation's noise
     // (detail.h); the result takes the irradiance's place (not read again).
-    const Image* fitted = &regressed;
+    Image* fitted = &regressed;
     const bool detail = m_settings.detail == Settings::Detail::On
         || (m_settings.detail == Settings::Detail::Auto && m_settings.spp >= kDetailSpp);
     if (detail) {
-        restoreDetail(ta.color(), ta.historyLength(), ta.alphaMin(), ta.effectiveSamplesLimit(),
+        restoreDetail(accumulated, ta.historyLength(), ta.alphaMin(), ta.effectiveSamplesLimit(),
             regressed, irradiance);
         fitted = &irradiance;
     }
+    m_highlights.addExcess(*fitted, [](int, int, int) { return 1.0f; });
     // Second accumulation with the TA's taps: alpha = max(1/len, secondAlphaMin), len after TA.
     std::swap(m_filtered, m_spare);
     const Image& prevFiltered = m_spare;
@@ -99,6 +105,12 @@ const ParamBinding<Settings>& settingsBinding()
                   "(a Wiener shrinkage of the fit's residual; methods/bmfr/detail.cpp); auto: on "
                   "from 4 spp (the spp parameter). off: BMFR as published, whose fit removes more "
                   "detail than noise from 16 spp on")
+              .add(&S::highlights, "highlights", 0.0, 1e6, "Highlight bypass",
+                  "values of the accumulated colour above this factor times the frame's bright "
+                  "level (the power of two above its 99th percentile) skip the regression: it "
+                  "fits them clamped and the excess is added back at its own pixel, so a small "
+                  "light or glint stays a point instead of bending its block's fit; not in "
+                  "BMFR; 0 = off")
               .add(&S::taa, "taa", "TAA", "apply BMFR's final temporal anti-aliasing")
               .add(&S::taaAlpha, "taaAlpha", 0.0, 1.0, "TAA blend factor",
                   "weight of the current frame in the TAA blend (BMFR 0.2)");

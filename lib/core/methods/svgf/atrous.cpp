@@ -77,6 +77,12 @@ const ParamBinding<Settings>& settingsBinding()
                   "samples among dark ones (coefficient of variation 1 -> 3), so that their "
                   "light spreads instead of staying in single bright pixels over a dark frame; "
                   "not in the paper; auto: below 4 spp or when the sample count is unknown")
+              .add(&S::highlights, "highlights", 0.0, 1e6, "Highlight bypass",
+                  "values of the temporally integrated colour above this factor times the "
+                  "frame's bright level (the power of two above its 99th percentile) skip the "
+                  "a-trous filter: it reads them clamped and the excess is added back at its own "
+                  "pixel, in the output and the history, so a small light or glint stays a "
+                  "point instead of a blotch; not in the paper; 0 = off")
               .add(&S::taa, "taa", "TAA",
                   "temporal anti-aliasing of the remodulated output, the paper's last step "
                   "(history clamped to the current frame's 3x3 neighbourhood in YCoCg): smooths "

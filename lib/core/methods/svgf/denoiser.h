@@ -58,8 +58,15 @@ public:
     /// The history trust of the last integration (stages/history_trust.h).
     const HistoryTrust& trust() const { return m_trust; }
 
+    /// Pixels of the last frame whose highlight bypassed the filter (stages/highlight_bypass.h).
+    std::int64_t highlightPixels() const { return m_highlights.pixels(); }
+
 private:
     void integrate(const Image& irradiance, const Reprojector& taps);
+    /// The highlight bypass (stages/highlight_bypass.h) on the integrated colour: split and
+    /// clamp in place; then its excess added to `filtered` and to the next history.
+    void clampHighlights();
+    void restoreHighlights(Image& filtered);
     /// The history of rows [y0, y1) gathered into this frame's planes (length kNoHistory where
     /// none), except a static camera's own pixels, and added to the trust (temporal.cpp).
     void gatherRows(const Image& irradiance, const Reprojector& taps, int y0, int y1);
@@ -77,6 +84,7 @@ private:
     Settings m_settings;
     Guide m_guide;
     HistoryTrust m_trust;
+    HighlightBypass m_highlights; ///< this frame's
     bool m_hasHistory = false;
     /// This frame's integration (kernels.h IntegratedPlane), which is also the next frame's
     /// history: colour (the feedback iteration's output), moments l and l^2, history length; and

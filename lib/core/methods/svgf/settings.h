@@ -3,6 +3,8 @@
 // Ranges, labels and help are in settingsBinding() (atrous.cpp), one line per member.
 #pragma once
 
+#include "stages/highlight_bypass.h"
+
 #include "base/params.h"
 
 namespace afn::svgf {
@@ -24,6 +26,10 @@ struct Settings {
     bool taa = false; ///< temporal anti-aliasing of the output (paper, Fig. 2; stages/taa.h);
                       ///< off by default while it disables work skipping (work_skip.cpp)
     float taaAlpha = 0.2f; ///< TAA weight of the current frame (stages/taa.h kTaaAlpha)
+    /// Factor of the highlight bypass's limit over the frame's bright level, 0 = off
+    /// (stages/highlight_bypass.h; not in the paper): the integrated colour is filtered clamped,
+    /// the excess added back to the output and the history at its own pixel.
+    float highlights = kHighlightFactor;
 };
 
 /// spread=auto spreads sparse samples below this many samples per pixel: from 16 spp on the

@@ -34,6 +34,7 @@ private:
         m_svgf.reset();
         m_taa.reset();
     }
+    std::int64_t lastHighlightPixels() const override { return m_svgf.highlightPixels(); }
     void denoise(const Frame& in, Image& out) override
     {
         remodulate(in, *filter(in), out);

@@ -220,6 +220,7 @@ void Denoiser::process(const Frame& f, const Image& irr, const Reprojector& taps
 {
     m_guide.build(f, m_settings);
     integrate(irr, taps);
+    clampHighlights();
     const bool skip = planRegions(f);
     estimateVariance(skip ? &m_varianceRegion : nullptr);
     filtered.resize(f.width, f.height, 3); // may be `irr`, which is not read again
@@ -242,6 +243,35 @@ void Denoiser::process(const Frame& f, const Image& irr, const Reprojector& taps
             copyPlanes(*in, kRed, region, m_integrated, kIntRed);
     }
     copyColor(*in, kRed, skip ? &m_work : nullptr, filtered);
+    restoreHighlights(filtered);
+}
+
+void Denoiser::clampHighlights()
+{
+    Planes& p = m_integrated;
+    const int w = p.width(), h = p.height();
+    const float limit = highlightLimit(w, h, m_settings.highlights, [&](int x, int y) {
+        return std::max({ p.row(kIntRed, y)[x], p.row(kIntGreen, y)[x], p.row(kIntBlue, y)[x] });
+    });
+    m_highlights.split(w, h, limit, [&](int x, int y, int k) { return p.row(kIntRed + k, y)[x]; });
+    m_highlights.forEach([&](int x, int y, const float*) {
+        float c[3];
+        for (int k = 0; k < 3; ++k)
+            c[k] = p.row(kIntRed + k, y)[x] = std::min(p.row(kIntRed + k, y)[x], limit);
+        p.row(kIntLuminance, y)[x] = luminance(c); // the edge-stopping's, as integrate() writes
+    });
+}
+
+void Denoiser::restoreHighlights(Image& filtered)
+{
+    // The output and the next history (the feedback iteration's output, or the clamped
+    // integrated colour itself) get the excess back at its pixel.
+    m_highlights.forEach([&](int x, int y, const float* e) {
+        for (int k = 0; k < 3; ++k) {
+            filtered(x, y, k) += e[k];
+            m_integrated.row(kIntRed + k, y)[x] += e[k];
+        }
+    });
 }
 
 } // namespace afn::svgf

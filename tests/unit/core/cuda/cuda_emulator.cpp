@@ -188,6 +188,31 @@ void emulateUndemodulate(
         out[i] = undemodulateValue(irradiance[i], albedo[i], plain);
 }
 
+float emulateHighlightLimit(const float* ta, int w, int h, float factor)
+{
+    unsigned counts[kHighlightBins] = {};
+    long long n = 0;
+    for (int y = 0; y < h; y += kHighlightStride)
+        for (int x = 0; x < w; x += kHighlightStride, ++n)
+            ++counts[highlightBin(
+                highlightLargest(ta + 3 * (static_cast<std::size_t>(y) * w + x)))];
+    return highlightLimitFromCounts(counts, n, factor);
+}
+
+void emulateHighlightClamp(const float* in, float limit, float* out, int w, int h)
+{
+    for (std::size_t i = 0; i < 3 * static_cast<std::size_t>(w) * h; ++i)
+        out[i] = clampHighlight(in[i], limit);
+}
+
+void emulateHighlightExcess(
+    const float* ta, const float* albedo, bool plain, float limit, float* out, int w, int h)
+{
+    for (std::size_t i = 0; i < static_cast<std::size_t>(w) * h; ++i)
+        addHighlightExcess(
+            ta + 3 * i, albedo ? albedo + 3 * i : nullptr, plain, limit, out + 3 * i);
+}
+
 void emulatePrepare(const PrepareBuffers& b)
 {
     const DepthScale ds = b.depth ? depthScale(b.depthRange[0], b.depthRange[1]) : DepthScale {};

@@ -12,6 +12,7 @@
 #include "cuda/conv_tile.h"
 #include "cuda/filter_fuse_lane.h"
 #include "cuda/high_tier_pixel.h"
+#include "cuda/highlight_pixel.h"
 #include "cuda/large_pixel.h"
 #include "cuda/post_filter_pixel.h"
 #include "cuda/prepare_block.h"
@@ -33,6 +34,14 @@ void emulateMma(
 void emulateAuxPrefilter(const afn::cuda::AuxBuffers& b, const afn::cuda::TemporalBuffers& t,
     const afn::cuda::FrameConstants& f);
 /// temporal.cu's kernels in their order: gather (and depth range), the history trust's row sums,
+/// launchHighlightLimit: the limit of `ta` (3 floats per pixel), the histogram's atomic
+/// additions in any order (here row by row).
+float emulateHighlightLimit(const float* ta, int w, int h, float factor);
+/// launchHighlightClamp.
+void emulateHighlightClamp(const float* in, float limit, float* out, int w, int h);
+/// launchHighlightExcess.
+void emulateHighlightExcess(
+    const float* ta, const float* albedo, bool plain, float limit, float* out, int w, int h);
 /// groups and soft minimum (adding to *t.cutPixels), blend.
 void emulateTemporal(const afn::cuda::TemporalBuffers& b, const afn::cuda::TrustBuffers& t,
     const afn::cuda::FrameConstants& f, std::uint32_t* depthRange);

@@ -202,6 +202,16 @@ void EmulatedAfnPipeline::run(const afn::Frame& f, const FrameConstants& c, afn:
     src.colorTa = !use.temporal                    ? src.color1
         : m_variant == afn::afnet::Variant::OneSpp ? irradiance
                                                    : accumulated;
+    // The highlight bypass (AfnPipeline::enqueueFirstStage): the limit from the network inputs'
+    // TA colour, both colours clamped.
+    const float* highlightSource = use.temporal ? accumulated : irradiance;
+    const float limit = emulateHighlightLimit(highlightSource, m_width, m_height, c.highlights);
+    for (int k = 0; k < 2; ++k)
+        m_highlightClamped[k].assign(values, std::nanf(""));
+    emulateHighlightClamp(src.color1, limit, m_highlightClamped[0].data(), m_width, m_height);
+    emulateHighlightClamp(src.colorTa, limit, m_highlightClamped[1].data(), m_width, m_height);
+    src.color1 = m_highlightClamped[0].data();
+    src.colorTa = m_highlightClamped[1].data();
     src.albedo = use.albedo ? b.albedo : nullptr;
     src.normal = use.normal ? b.normal : nullptr;
     src.depth = use.depth ? b.depth : nullptr;
@@ -261,6 +271,10 @@ void EmulatedAfnPipeline::run(const afn::Frame& f, const FrameConstants& c, afn:
         emulateAveragePasses(passSum.data(), mean);
     }
 
+    const float* albedoOut = use.albedo ? b.albedo : nullptr;
+    if (!m_postFilter) // AfnPipeline::enqueueTaa
+        emulateHighlightExcess(highlightSource, albedoOut, c.colorDemodulated != 0, limit,
+            m_output.data(), m_width, m_height);
     m_radianceImage = afn::Image(m_width, m_height, 3);
     std::copy(m_output.begin(), m_output.end(), m_radianceImage.data());
     // Taa.
@@ -302,6 +316,8 @@ void EmulatedAfnPipeline::run(const afn::Frame& f, const FrameConstants& c, afn:
             *ordered[k] = m_postPlanes.data() + k * n;
         const float* in = m_taa ? m_taaHistory[s].data() : m_output.data();
         emulatePostFilter(ps, g, in, m_output.data(), m_postScratch0.data(), m_postScratch1.data());
+        emulateHighlightExcess(highlightSource, albedoOut, c.colorDemodulated != 0, limit,
+            m_output.data(), m_width, m_height);
     }
 
     out = afn::Image(m_width, m_height, 3);

@@ -78,6 +78,7 @@ private:
     bool m_high = false;
     afn::afnet::InputSet m_networkInputs = afn::afnet::InputSet::full();
     std::array<std::vector<float>, 2> m_radianceInputs; ///< AfnPipeline's, for undemodulates()
+    std::array<std::vector<float>, 2> m_highlightClamped; ///< AfnPipeline's highlight bypass
     EmulatedLargeGraph m_large; ///< AFN large's graph (weights with variant=large)
     bool m_historyInput;
     bool m_albedoTrust;
