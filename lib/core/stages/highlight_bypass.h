@@ -3,12 +3,13 @@
 //
 // The problem. A light source smaller than a pixel (a lamp, a glint of the sun, a bright LED) is
 // hit by a few of a pixel's 1-spp samples over time. Each hit is a value hundreds or thousands of
-// times the frame's level (afn-v4's atrium-1000002: 5716 where the surrounding wall is 0.1, the
+// times the frame's level (a held-out render: 5716 where the surrounding wall is 0.1, the
 // reference pixel 134-335); the temporal accumulation keeps it at its pixel for about ten
 // frames, which is right (its mean over time is the pixel's true value). A spatial filter is not
 // made for such values: a 7x7 kernel that gives the pixel's neighbours a weight of 1 % spreads
-// 1 % of 5716 over them, and afn's and svgf's outputs show a bright blotch of 8x8 pixels at 20-100
-// for the ten frames the history holds the hit, where the reference is a 2x2 lamp on a dark wall.
+// 1 % of 5716 over them, and afn's and svgf's outputs showed a bright blotch of 8x8 pixels at
+// 20-100 for the ten frames the history holds the hit, where the reference is a 2x2 lamp on a dark
+// wall; bmfr's regression bent its whole 32x32 block (docs/afn-evaluation.md, "Highlights").
 // (The renderer's albedo does not help: Cycles writes the emission into Denoising Albedo, which
 // the input gather clamps to 1 as no reflectance exceeds it.)
 //
@@ -17,13 +18,14 @@
 //                                 largest channel of the accumulated (or only) colour,
 //                                 over every 4th row and column
 // and the excess of the accumulated colour, max(c - L, 0) per channel, is added back at its own
-// pixel after the filter (and after anything that spreads it further: the output's TAA and
-// post-filter). So every value at or below L, the whole image of almost every frame, is filtered
-// as before, bit for bit, and a highlight keeps its energy at its pixel instead of becoming a
-// blotch: the temporal accumulation's value there, which is the best per-pixel estimate there
-// is. The percentile is a power of two so the limit does not flicker with the noise of the
-// frame's statistics. The factor 8 (8-16 times the percentile) is the smallest of 4, 8, 16, 64
-// with which no held-out sequence lost PSNR at 1 or 16 spp (docs/afn-evaluation.md,
+// pixel after the filter (afn: after its post-filter where that runs, else before its output TAA,
+// whose output is its next history; svgf: to its output and its history; bmfr: to its fit,
+// before its second accumulation). So every value at or below L, the whole image of almost every
+// frame, is filtered as before, bit for bit, and a highlight keeps its energy at its pixel instead
+// of becoming a blotch: the temporal accumulation's value there, which is the best per-pixel
+// estimate there is. The percentile is a power of two so the limit does not flicker with the noise
+// of the frame's statistics. The factor 8 (8-16 times the percentile) is the smallest of 4, 8, 16,
+// 64 with which no held-out sequence lost PSNR at 1 or 16 spp (docs/afn-evaluation.md,
 // "Highlights"): 4 gained more on average but cost night-1000002 0.05 dB at 1 spp.
 // The choice of the accumulated colour for both the limit and the excess: the 1-spp frame's
 // bright samples are noise around it; at a disocclusion the accumulation is the frame itself.
@@ -97,7 +99,6 @@ public:
     }
     /// Pixels whose excess was kept in the last split().
     std::int64_t pixels() const { return static_cast<std::int64_t>(m_excess.size()); }
-    float limit() const { return m_limit; }
 
 private:
     struct Excess {
