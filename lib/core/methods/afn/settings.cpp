@@ -41,8 +41,8 @@ const ParamBinding<Settings>& settingsBinding()
                   "level (the power of two above the 99th percentile of the temporal "
                   "accumulation) skip the network's filters: the network reads them clamped and "
                   "the accumulation's excess is added back at its own pixel after the output's "
-                  "TAA and post-filter, so a small light or glint stays a point instead of a "
-                  "blotch; 0 = off");
+                  "post-filter (before its TAA when the post-filter is off), so a small light or "
+                  "glint stays a point instead of a blotch; 0 = off");
     return binding;
 }
 
