@@ -3,6 +3,7 @@
 // (plain C++: also used by the host emulation of the kernels in the tests).
 #pragma once
 
+#include "cuda/highlight_pixel.h"
 #include "cuda/temporal_pixel.h"
 #include "filter/frame.h"
 #include "stages/aux_prefilter.h"
@@ -16,6 +17,7 @@
 namespace afn::cuda {
 
 static_assert(FrameConstants {}.highlights == kHighlightFactor, "the highlight bypass's default");
+static_assert(cuda::kHighlightStride == afn::kHighlightStride, "the highlight limit's sample");
 
 inline FrameConstants frameConstants(const Frame& in, const ReprojectSettings& reproject,
     const AccumulationSettings& accumulation, const HistoryTrustSettings& trust,

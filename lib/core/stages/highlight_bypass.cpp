@@ -62,6 +62,7 @@ float highlightLimit(const Image& acc, float factor)
 
 bool HighlightBypass::begin(float limit, int height)
 {
+    m_source = nullptr;
     m_limit = limit;
     m_excess.clear();
     if (std::isinf(limit))
@@ -90,25 +91,30 @@ void HighlightBypass::split(const Image& acc, float limit)
 {
     const int w = acc.width();
     split(w, acc.height(), limit, [&](int x, int y, int k) { return acc.at(0, y)[3 * x + k]; });
+    m_source = &acc;
 }
 
 const Image& HighlightBypass::clamped(const Image& img, int slot)
 {
-    if (std::isinf(m_limit))
+    // Nothing to clamp: the limit is off, or the split's own image had no value above it (its
+    // kept pixels say so), or no value of `img` is above it.
+    if (std::isinf(m_limit) || (&img == m_source && m_excess.empty()))
         return img;
     const float limit = m_limit;
     const int h = img.height();
     const std::size_t row = static_cast<std::size_t>(img.width()) * img.channels();
-    std::vector<char> over(static_cast<std::size_t>(h), 0);
-    parallelRows(h, [&](int y0, int y1) {
-        for (int y = y0; y < y1; ++y) {
-            const float* s = img.at(0, y);
-            over[static_cast<std::size_t>(y)]
-                = std::any_of(s, s + row, [limit](float v) { return v > limit; });
-        }
-    });
-    if (std::none_of(over.begin(), over.end(), [](char c) { return c != 0; }))
-        return img;
+    if (&img != m_source) {
+        m_over.assign(static_cast<std::size_t>(h), 0);
+        parallelRows(h, [&](int y0, int y1) {
+            for (int y = y0; y < y1; ++y) {
+                const float* s = img.at(0, y);
+                m_over[static_cast<std::size_t>(y)]
+                    = std::any_of(s, s + row, [limit](float v) { return v > limit; });
+            }
+        });
+        if (std::none_of(m_over.begin(), m_over.end(), [](char c) { return c != 0; }))
+            return img;
+    }
     Image& out = m_clamped[slot];
     out.resize(img.width(), img.height(), img.channels());
     parallelRows(h, [&](int y0, int y1) {

@@ -76,7 +76,7 @@ public:
         });
         finish();
     }
-    /// split() of an interleaved 3-channel image.
+    /// split() of an interleaved 3-channel image (clamped() of that image then needs no scan).
     void split(const Image& accumulated, float limit);
     /// `img` (3 ch) clamped at the split's limit: `img` itself when none of its values exceeds
     /// it, else a copy clamped per channel held in slot `slot` (0 or 1; valid until the next
@@ -115,6 +115,8 @@ private:
     float m_limit = 0.0f;
     std::vector<Excess> m_excess; ///< in row order
     std::vector<std::vector<Excess>> m_rows; ///< per row, during a split
+    const Image* m_source = nullptr; ///< the image of split(const Image&), else null
+    std::vector<char> m_over; ///< clamped(): per row, a value above the limit
     Image m_clamped[2];
 };
 
