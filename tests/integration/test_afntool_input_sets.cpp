@@ -85,9 +85,14 @@ const Case kCases[] = {
     { "albedo+normal", { true, true, false, false },
         "model color+albedo+normal, single-frame (no temporal branch: no motion or position)",
         false },
+    // Without a history the temporal model runs single-frame (model_set.h).
     { "albedo+normal+depth", { true, true, true, false },
-        "model color+albedo+normal, single-frame (no temporal branch: no motion or position); "
-        "not used: depth",
+        "model color+albedo+normal+depth+temporal, single-frame (no motion or position: the "
+        "temporal branch reads this frame)",
+        false },
+    { "albedo+depth", { true, false, true, false },
+        "model color, single-frame (no temporal branch: no motion or position); not used: "
+        "albedo,depth",
         true },
     { "all", { true, true, true, true }, "model color+albedo+normal+depth+temporal, temporal",
         false },

@@ -52,8 +52,8 @@ TEST(PluginInputSets, ConnectedClipsChooseTheModel)
             "afn: model color+albedo+normal, single-frame (no temporal branch: no motion or "
             "position)" },
         { { "albedo", "normal", "depth" },
-            "afn: model color+albedo+normal, single-frame (no temporal branch: no motion or "
-            "position); not used: depth" },
+            "afn: model color+albedo+normal+depth+temporal, single-frame (no motion or position: "
+            "the temporal branch reads this frame)" },
         { kAllAux, "afn: model color+albedo+normal+depth+temporal, temporal" },
     };
     for (const auto& c : cases) {

@@ -72,7 +72,11 @@ void AfnCudaFilter::configure()
     bound.depth = imageBound(AFN_IMAGE_DEPTH);
     bound.temporal
         = imageBound(AFN_IMAGE_MOTION) || (imageBound(AFN_IMAGE_POSITION) && cameraSet());
-    useModel(chooseModel(bound));
+    const afnet::Model& model = chooseModel(bound);
+    useModel(model);
+    // The accumulation's minimum blend for this model, as the CPU filter (afn_method.cpp).
+    m_accumulation.alphaMin
+        = afnet::accumulationAlphaMin(m_settings, m_accumulation.alphaMin, model.spp);
 }
 
 bool AfnCudaFilter::stringStatistic(const std::string& name, std::string& value) const
@@ -90,7 +94,7 @@ void AfnCudaFilter::denoise(const Frame& in, Image& out)
     const afnet::Model& model = chooseModel(available);
     useModel(model);
     m_modelText = afnet::describeChoice(available, model);
-    m_pipeline.setNetworkInputs(model.inputs);
+    m_pipeline.setNetworkInputs(afnet::inputsToUse(available, model));
     FrameConstants c = frameConstants(in, m_reproject, m_accumulation, m_trust, m_aux);
     c.taaAlpha = m_settings.taaAlpha;
     c.highlights = m_settings.highlights;

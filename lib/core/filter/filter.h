@@ -199,6 +199,9 @@ protected:
     Image& accumulatorScratch() { return m_accumulator.scratch(); }
     const Reprojector& reprojector() const { return m_reprojector; }
     const TemporalAccumulator& accumulator() const { return m_accumulator; }
+    /// Replace the accumulation's settings commit() read from the parameters (from configure(),
+    /// e.g. a minimum blend that depends on the chosen model; afn).
+    void setAccumulationSettings(const AccumulationSettings& s) { m_accumulator.setSettings(s); }
 
 private:
     void validateBindings() const;

@@ -102,13 +102,14 @@ inline afn::afnet::InputSet inputSetOf(const SequenceInputs& in)
     return { in.albedo, in.normal, in.depth, in.motion || (in.position && in.camera) };
 }
 
-/// Whether the CPU filter runs the full-input model on `in`: albedo, normal, depth and a
-/// temporal history (motion, or positions with a camera). For fewer inputs it runs the model for
-/// that input set (methods/afn/model_set.h), or refuses when only the full one is loaded (weights
-/// given as one archive).
+/// Whether the CPU filter can run the full-input model on `in`: albedo, normal and depth, with a
+/// temporal history (motion, or positions with a camera) or single-frame without one. For fewer
+/// inputs it runs the model for that input set (methods/afn/model_set.h), or refuses when only
+/// the full one is loaded (weights given as one archive).
 inline bool cpuRunsTheFullModel(const SequenceInputs& in)
 {
-    return inputSetOf(in) == afn::afnet::InputSet::full();
+    const afn::afnet::InputSet s = inputSetOf(in);
+    return s.albedo && s.normal && s.depth;
 }
 
 /// The GPU parity cases: sizes from 1 x 1 to 1280 x 720 (odd ones included), each input set,

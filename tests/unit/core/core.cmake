@@ -42,6 +42,7 @@ afn_add_gtest(test_afn
     unit/core/methods/afn/test_afn_filter.cpp
     unit/core/methods/afn/test_afn_taa.cpp
     unit/core/methods/afn/test_afn_highlights.cpp
+    unit/core/methods/afn/test_afn_single_frame.cpp
     unit/core/methods/afn/test_afn_post_filter.cpp
     unit/core/methods/afn/test_afn_post_filter_noise.cpp
     unit/core/methods/afn/test_afn_input_set.cpp

@@ -157,6 +157,11 @@ private:
         if (!m_model)
             m_models.throwNoModelFor(bound);
         m_path = describeChoice(bound, *m_model);
+        // The accumulation's minimum blend for this model (settings.h, alphaMinHighSpp).
+        AccumulationSettings accumulation = accumulationBinding().read(params());
+        accumulation.alphaMin
+            = accumulationAlphaMin(m_settings, accumulation.alphaMin, m_model->spp);
+        setAccumulationSettings(accumulation);
     }
     void resetHistory() override { m_taa.reset(); }
     void denoise(const Frame& in, Image& out) override
@@ -236,7 +241,7 @@ private:
             m_model = m_models.choose(available, m_spp);
             if (!m_model)
                 m_models.throwNoModelFor(available);
-            use = m_model->inputs;
+            use = inputsToUse(available, *m_model);
         }
         m_path = outputBound() ? describeChoice(available, *m_model) : describePath(available, use);
         // history01 only where something reads it (4 bytes per pixel otherwise saved).

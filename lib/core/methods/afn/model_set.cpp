@@ -62,20 +62,34 @@ std::string modelName(const Model& m)
 
 } // namespace
 
+InputSet inputsToUse(const InputSet& available, const Model& model)
+{
+    InputSet use = model.inputs;
+    use.temporal = use.temporal && available.temporal;
+    return use;
+}
+
 Model* ModelSet::choose(const InputSet& available, int spp, bool allowLarge)
 {
     auto eligible = [&](const Model& m) {
-        return available.covers(m.inputs) && (allowLarge || m.net.variant() != Variant::Large);
+        return available.covers(inputsToUse(available, m))
+            && (allowLarge || m.net.variant() != Variant::Large);
+    };
+    // The order: more inputs used; on a tie the temporal branch in use, then a model trained for
+    // exactly the inputs it uses (a single-frame model before a temporal one run single-frame),
+    // then the one listed first.
+    auto before = [&](const Model& m, const Model& b) {
+        const InputSet um = inputsToUse(available, m), ub = inputsToUse(available, b);
+        if (um.count() != ub.count())
+            return um.count() > ub.count();
+        if (um.temporal != ub.temporal)
+            return um.temporal;
+        return m.inputs == um && !(b.inputs == ub);
     };
     Model* best = nullptr;
-    for (Model& m : m_models) {
-        if (!eligible(m))
-            continue;
-        if (!best || m.inputs.count() > best->inputs.count()
-            || (m.inputs.count() == best->inputs.count() && m.inputs.temporal
-                && !best->inputs.temporal))
+    for (Model& m : m_models)
+        if (eligible(m) && (!best || before(m, *best)))
             best = &m;
-    }
     if (!best)
         return nullptr;
     // The sample count, among the models for the chosen input set.
@@ -109,13 +123,19 @@ void ModelSet::throwNoModelFor(const InputSet& available) const
 
 namespace {
 
-/// describePath's text with `label` naming the model.
-std::string pathText(const InputSet& available, const InputSet& used, const std::string& label)
+/// describePath's text with `label` naming the model; `temporalModel`: the model has a temporal
+/// branch (which reads the current frame where `used` has no history).
+std::string pathText(const InputSet& available, const InputSet& used, const std::string& label,
+    bool temporalModel = false)
 {
     std::string text = "model " + label;
-    text += used.temporal ? ", temporal" : ", single-frame (no temporal branch";
-    if (!used.temporal)
-        text += available.temporal ? ": the model has none)" : ": no motion or position)";
+    if (used.temporal)
+        text += ", temporal";
+    else if (temporalModel)
+        text += ", single-frame (no motion or position: the temporal branch reads this frame)";
+    else
+        text += available.temporal ? ", single-frame (no temporal branch: the model has none)"
+                                   : ", single-frame (no temporal branch: no motion or position)";
     const InputSet unused { available.albedo && !used.albedo, available.normal && !used.normal,
         available.depth && !used.depth, available.temporal && !used.temporal };
     if (unused.count() > 0)
@@ -127,7 +147,7 @@ std::string pathText(const InputSet& available, const InputSet& used, const std:
 
 std::string describeChoice(const InputSet& available, const Model& used)
 {
-    return pathText(available, used.inputs, modelName(used));
+    return pathText(available, inputsToUse(available, used), modelName(used), used.inputs.temporal);
 }
 
 std::string describePath(const InputSet& available, const InputSet& used)

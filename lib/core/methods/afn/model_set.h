@@ -7,14 +7,22 @@
 // input set), or the one archive given with afnSetFilterData(filter, "weights", ...), which then
 // replaces them all.
 //
-// The choice (fallback order): among the models whose input set the frame covers, the one with
-// the most inputs; on a tie the one with the temporal branch, then the one listed first. Among
-// the models for that same input set, the one trained at the sample count nearest the frame's
-// (archive metadata `spp`, absent = 1; nearest in log2, a tie goes to the lower count; a frame
-// of unknown count, spp 0, counts as 1 spp). The frame
-// inputs the chosen model was not trained for are not used (network_inputs.h: held at their neutral
-// values) and the report says so. No covered model: an error naming the frame's inputs and the
-// available sets, never a model run on inputs it was not trained for.
+// The choice (fallback order): among the models whose input set the frame covers, the one that
+// uses the most inputs; on a tie the one with the temporal branch in use, then one trained for
+// exactly the inputs it uses, then the one listed first. Among the models for that same input set,
+// the one trained at the sample count nearest the frame's (archive metadata `spp`, absent = 1;
+// nearest in log2, a tie goes to the lower count; a frame of unknown count, spp 0, counts as 1
+// spp). The frame inputs the chosen model was not trained for are not used (network_inputs.h:
+// held at their neutral values) and the report says so. No covered model: an error naming the
+// frame's inputs and the available sets, never a model run on inputs it was not trained for.
+//
+// A frame without a history (no motion vectors, no positions with a camera) is covered by a
+// temporal model whose other inputs it has: the model runs single-frame, its TA input the frame's
+// irradiance and its history input 1 (inputsToUse). That is exactly its input on the first frame
+// of every training sequence, and after a history cut, so it was trained for it. Choice, measured
+// on the held-out afn-v4 sequences without motion and positions (docs/afn-evaluation.md, "Frames
+// without a history"): a 16-spp frame with albedo, normal and depth gains 2.3 dB on average from
+// the 16-spp temporal model over the 1-spp single-frame one; at 1 spp the two are within 0.1 dB.
 #pragma once
 
 #include "methods/afn/input_set.h"
@@ -58,6 +66,12 @@ public:
 private:
     std::vector<Model> m_models;
 };
+
+/// The inputs `model` reads on a frame with `available` inputs: its own set, where a temporal
+/// model on a frame without a history (no motion vectors, no positions with a camera) runs
+/// single-frame: its TA input is the frame's irradiance and its history input 1, exactly its
+/// input on the first frame of every training sequence.
+InputSet inputsToUse(const InputSet& available, const Model& model);
 
 /// What the afn method says about a frame's path (afntool --info and the per-frame log):
 /// "model color+albedo+normal, single-frame (no temporal branch: no motion or position); not

@@ -42,7 +42,13 @@ const ParamBinding<Settings>& settingsBinding()
                   "accumulation) skip the network's filters: the network reads them clamped and "
                   "the accumulation's excess is added back at its own pixel after the output's "
                   "post-filter (before its TAA when the post-filter is off), so a small light or "
-                  "glint stays a point instead of a blotch; 0 = off");
+                  "glint stays a point instead of a blotch; 0 = off")
+              .add(&S::alphaMinHighSpp, "alphaMinHighSpp", 0.0, 1.0,
+                  "Minimum blend factor (16 spp)",
+                  "temporal accumulation with a model trained at 16 spp or more: weight of the "
+                  "current frame once the history is long (alphaMin applies to the models "
+                  "trained below 16 spp); 0.5, chosen on training sequences: at 16 spp a shorter "
+                  "history keeps the accumulated input sharper");
     return binding;
 }
 

@@ -26,6 +26,15 @@
 // Under work skipping the network then computes kPostFilterRadius more rows around the needed
 // ones.
 //
+// alphaMinHighSpp: the temporal accumulation's minimum blend (the shared stage's alphaMin) when
+// the model that runs the frame was trained at 16 spp or more; alphaMin applies below.
+// Why 0.5, not BMFR's 0.2: at 16 spp the accumulated input's error is less its noise than what
+// its history adds (the blur of a bilinear resampling each frame under a moving camera, lag);
+// a shorter history keeps it sharper. On 14 training sequences (two per family, 16 spp, frames
+// 0-5) 0.2 / 0.35 / 0.5 / 0.7 gave 30.763 / 30.784 / 30.818 / 30.822 dB with the temporal error
+// 0.0258 / 0.0258 / 0.0258 / 0.0260; 0.5 is the best PSNR at an unchanged temporal error. The
+// held-out results: docs/afn-evaluation.md, "The 16-spp model's history".
+//
 // precision: the arithmetic of the network's convolutions (nn::Conv, cpu/conv_avx512_bf16.cpp).
 //   auto (default)  bf16 where the CPU has AMX-BF16 (tiles of 16 pixels x 16 channels,
 //                   cpu/conv_amx_bf16.cpp) or AVX512_BF16 (VDPBF16PS: twice fp32's multiply-adds
@@ -56,7 +65,20 @@ struct Settings {
     /// Factor of the highlight bypass's limit over the frame's bright level, 0 = off
     /// (stages/highlight_bypass.h).
     float highlights = kHighlightFactor;
+    /// The accumulation's alphaMin for the models trained at kAlphaMinHighSppFrom spp or more.
+    float alphaMinHighSpp = 0.5f;
 };
+
+/// Models trained at this many samples per pixel or more accumulate with alphaMinHighSpp.
+constexpr int kAlphaMinHighSppFrom = 16;
+
+/// The accumulation's minimum blend for a model trained at `modelSpp`: `alphaMin` (the shared
+/// parameter) below kAlphaMinHighSppFrom, else Settings::alphaMinHighSpp; the CPU and the CUDA
+/// filter both ask here.
+inline float accumulationAlphaMin(const Settings& s, float alphaMin, int modelSpp)
+{
+    return modelSpp >= kAlphaMinHighSppFrom ? s.alphaMinHighSpp : alphaMin;
+}
 
 /// Models trained at this many samples per pixel or more run without the post-filter under
 /// postFilter=auto.

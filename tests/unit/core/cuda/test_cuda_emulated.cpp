@@ -120,12 +120,16 @@ void expectFilterParity(const std::vector<char>& weights, int width, int height,
     const afn::afnet::Model* model = models.choose(afntest::inputSetOf(inputs), spp);
     ASSERT_NE(model, nullptr) << inputs.name() << ": no model for these inputs";
     afntest::EmulatedAfnPipeline emulated(model->net);
-    emulated.setNetworkInputs(model->inputs);
+    emulated.setNetworkInputs(afn::afnet::inputsToUse(afntest::inputSetOf(inputs), *model));
     // taa=auto and postFilter=auto: on for models trained below 16 spp, as on the CPU.
     emulated.setTaa(model->spp < afn::afnet::kTaaAutoMaxSppExclusive);
     emulated.setPostFilter(model->spp < afn::afnet::kPostFilterAutoMaxSppExclusive);
     emulated.setFastTier(quality == "fast");
     emulated.setHighTier(quality == "high");
+    // The accumulation's minimum blend for the model, as both filters choose it (settings.h).
+    afn::AccumulationSettings accumulation = kAccumulation;
+    accumulation.alphaMin = afn::afnet::accumulationAlphaMin(
+        afn::afnet::Settings {}, accumulation.alphaMin, model->spp);
     const afntest::SyntheticSequence seq(width, height, 11);
     afntest::FrameGatherer gatherer;
     gatherer.workSkipping = true; // skip=on, the CPU filter's default
@@ -137,7 +141,7 @@ void expectFilterParity(const std::vector<char>& weights, int width, int height,
         afntest::runFrame(*cpu, in, cpuOut);
         const afn::Frame& f = gatherer.gather(in);
         emulated.run(
-            f, afn::cuda::frameConstants(f, kReproject, kAccumulation, kTrust, aux), emuOut);
+            f, afn::cuda::frameConstants(f, kReproject, accumulation, kTrust, aux), emuOut);
         const afntest::OutputDifference d = afntest::compareOutputs(emuOut, cpuOut);
         std::cout << "[ emulated ] " << width << "x" << height << " " << inputs.name() << " frame "
                   << k << ": " << d.text() << "\n";

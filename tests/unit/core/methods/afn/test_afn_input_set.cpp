@@ -80,7 +80,8 @@ TEST(AfnInputSet, ChoosesTheLargestCoveredModel)
         std::string expected = "color";
         if (available.albedo && available.normal)
             expected = "color+albedo+normal";
-        if (available == InputSet::full())
+        // The full model also covers a frame without a history (it runs single-frame).
+        if (available.albedo && available.normal && available.depth)
             expected = "color+albedo+normal+depth+temporal";
         const afn::afnet::Model* m = models.choose(available);
         ASSERT_NE(m, nullptr);
@@ -116,6 +117,54 @@ TEST(AfnInputSet, ChoosesTheModelTrainedNearestTheSampleCount)
         "model color+albedo+normal+depth+temporal (16 spp), temporal");
     EXPECT_EQ(afn::afnet::describeChoice(InputSet::full(), *models.choose(InputSet::full(), 1)),
         "model color+albedo+normal+depth+temporal, temporal");
+}
+
+TEST(AfnInputSet, AFrameWithoutHistoryRunsATemporalModelSingleFrame)
+{
+    afn::afnet::ModelSet models;
+    models.add(archiveFor("", 1)); // the full set, 1 spp
+    models.add(archiveFor("", 2, "16"));
+    models.add(archiveFor("albedo,normal", 3));
+    models.add(archiveFor("color", 4));
+    const InputSet still { true, true, true, false }; // no motion, no positions with a camera
+    // Written out by hand: the temporal models use albedo, normal and depth (3) against the
+    // single-frame model's 2; then the sample count.
+    for (const auto& [spp, want] : std::vector<std::pair<int, int>> { { 1, 1 }, { 16, 16 } }) {
+        const afn::afnet::Model* m = models.choose(still, spp);
+        ASSERT_NE(m, nullptr);
+        EXPECT_EQ(m->inputs, InputSet::full()) << spp;
+        EXPECT_EQ(m->spp, want);
+        EXPECT_EQ(afn::afnet::inputsToUse(still, *m), still)
+            << "the temporal branch reads the frame";
+    }
+    EXPECT_EQ(afn::afnet::describeChoice(still, *models.choose(still, 16)),
+        "model color+albedo+normal+depth+temporal (16 spp), single-frame (no motion or position: "
+        "the temporal branch reads this frame)");
+    // Without depth the temporal models are not covered: the single-frame model as before.
+    const afn::afnet::Model* noDepth = models.choose({ true, true, false, false }, 16);
+    ASSERT_NE(noDepth, nullptr);
+    EXPECT_EQ(noDepth->inputs, (InputSet { true, true, false, false }));
+    // With a history the temporal branch runs on it.
+    EXPECT_EQ(afn::afnet::inputsToUse(InputSet::full(), *models.choose(InputSet::full(), 16)),
+        InputSet::full());
+}
+
+TEST(AfnInputSet, OnATieASingleFrameModelComesBeforeATemporalOneRunSingleFrame)
+{
+    afn::afnet::ModelSet models;
+    models.add(archiveFor("", 1));
+    models.add(archiveFor("albedo,normal,depth", 2));
+    const InputSet still { true, true, true, false };
+    const afn::afnet::Model* m = models.choose(still);
+    ASSERT_NE(m, nullptr);
+    EXPECT_EQ(m->inputs, still);
+    // A temporal model that would read nothing but the colour does not beat one that reads albedo.
+    afn::afnet::ModelSet two;
+    two.add(archiveFor("temporal", 3));
+    two.add(archiveFor("albedo", 4));
+    const afn::afnet::Model* a = two.choose({ true, false, false, false });
+    ASSERT_NE(a, nullptr);
+    EXPECT_EQ(a->inputs, (InputSet { true, false, false, false }));
 }
 
 TEST(AfnInputSet, InvalidSampleCountMetadataIsRefused)
