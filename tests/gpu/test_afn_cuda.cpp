@@ -388,8 +388,8 @@ TEST_F(CudaAfn, ResetAndNewWeightsMidSequence)
 }
 
 // The built-in models follow the inputs across resets (a new shot with other passes): full, colour
-// only, albedo without normal, full again, and the `spp` parameter raised to 64 (AFN large); the
-// same model on both devices (the log's model line) and outputs within tolerance.
+// only, albedo without normal, full again, and the `spp` parameter raised to 64 (the 16-spp model);
+// the same model on both devices (the log's model line) and outputs within tolerance.
 TEST_F(CudaAfn, TheModelFollowsTheInputsAcrossResets)
 {
     if (!hasShippedWeights())

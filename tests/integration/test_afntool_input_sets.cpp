@@ -220,19 +220,18 @@ TEST(AfntoolInputSets, EveryQualityTierRunsTheChosenModel)
     }
 }
 
-// The model trained nearest the frame's sample count: the file's header decides,
-// :spp=N overrides, and the log says which model ran. A 64-spp file gets AFN large where its
-// weights ship (weights/afn-large-spp64.afnw), else the 16-spp model.
+// The model trained nearest the frame's sample count (1, 4 or 16 spp; in log2, a tie to the
+// lower): the file's header decides, :spp=N overrides, and the log says which model ran. A 64-spp
+// file gets the 16-spp model (AFN large is not built in: lib/core/methods/afn/CMakeLists.txt).
 TEST(AfntoolInputSets, SampleCountChoosesTheModel)
 {
-    if (!shippedModels() || !std::ifstream(std::string(AFN_SOURCE_DIR) + "/weights/afn-spp16.afnw"))
-        GTEST_SKIP() << "the 16-spp weights are not in weights/";
-    const bool large
-        = std::ifstream(std::string(AFN_SOURCE_DIR) + "/weights/afn-large-spp64.afnw").good();
+    for (const char* f : { "afn-spp4.afnw", "afn-spp16.afnw" })
+        if (!shippedModels() || !std::ifstream(std::string(AFN_SOURCE_DIR) + "/weights/" + f))
+            GTEST_SKIP() << "the 4- and 16-spp weights are not in weights/";
     const std::string high = "model color+albedo+normal+depth+temporal (16 spp), temporal";
+    const std::string mid = "model color+albedo+normal+depth+temporal (4 spp), temporal";
     const std::string low = "model color+albedo+normal+depth+temporal, temporal";
-    const std::string top
-        = large ? "model color+albedo+normal+depth+temporal (64 spp, AFN large), temporal" : high;
+    const std::string top = high;
     TempDir dir;
     writeSequence(dir, { true, true, true, true }, "64");
     const CliResult info = runAfntool({ "--info", dir.file("in.0001.exr") });
@@ -240,8 +239,9 @@ TEST(AfntoolInputSets, SampleCountChoosesTheModel)
     EXPECT_NE(info.out.find("samples per pixel: 64"), std::string::npos) << info.out;
     EXPECT_NE(info.out.find("  afn: " + top + "\n"), std::string::npos) << info.out;
     std::vector<std::vector<float>> out;
-    for (const auto& [param, model] : { std::pair<std::string, std::string> { "", top },
-             { ":spp=1", low }, { ":spp=12", high }, { ":spp=3", low }, { ":spp=16", high } }) {
+    for (const auto& [param, model] :
+        { std::pair<std::string, std::string> { "", top }, { ":spp=1", low }, { ":spp=12", high },
+            { ":spp=2", low }, { ":spp=16", high }, { ":spp=3", mid }, { ":spp=8", mid } }) {
         SCOPED_TRACE(param);
         const std::string o = "out" + std::to_string(out.size()) + ".####.exr";
         const CliResult r = runAfntool({ "-v", "--frames", "1-3", dir.file("in.####.exr"),
@@ -254,10 +254,10 @@ TEST(AfntoolInputSets, SampleCountChoosesTheModel)
     EXPECT_GT(meanAbsDiff(out[0], out[1]), 0.0); // two models, two results
     EXPECT_EQ(meanAbsDiff(out[2], out[4]), 0.0); // the same 16-spp model
     EXPECT_EQ(meanAbsDiff(out[1], out[3]), 0.0); // the same 1-spp model
-    if (large)
-        EXPECT_GT(meanAbsDiff(out[0], out[2]), 0.0); // AFN large is another model
-    else
-        EXPECT_EQ(meanAbsDiff(out[0], out[2]), 0.0);
+    EXPECT_EQ(meanAbsDiff(out[0], out[2]), 0.0); // 64 spp: the 16-spp model
+    EXPECT_EQ(meanAbsDiff(out[5], out[6]), 0.0); // the same 4-spp model
+    EXPECT_GT(meanAbsDiff(out[5], out[1]), 0.0);
+    EXPECT_GT(meanAbsDiff(out[5], out[2]), 0.0);
 }
 
 TEST(AfntoolInputSets, WeightsWithoutAModelForTheInputsAreAnError)

@@ -114,8 +114,8 @@ inline bool cpuRunsTheFullModel(const SequenceInputs& in)
 
 /// The GPU parity cases: sizes from 1 x 1 to 1280 x 720 (odd ones included), each input set,
 /// the committed test archives (variants "full", "fusion" and "large"; "full" with the history
-/// input and the albedo trust, and with the quarter scale) and the shipped models (AFN large at
-/// 64 spp).
+/// input and the albedo trust, and with the quarter scale) and the shipped models (the built-in
+/// choice at 64 spp: the 16-spp model).
 inline std::vector<ParityCase> gpuParityCases()
 {
     std::vector<ParityCase> cases;
@@ -137,7 +137,7 @@ inline std::vector<ParityCase> gpuParityCases()
         cases.push_back({ "large", w, h, all, 3 });
     cases.push_back({ "quarter", 37, 21, all, 3 });
     cases.push_back({ "quarter", 129, 67, all, 3 });
-    cases.push_back({ "shipped", 161, 91, all, 3, 64 }); // AFN large, the built-in 64-spp model
+    cases.push_back({ "shipped", 161, 91, all, 3, 64 }); // the built-in choice at 64 spp
     cases.push_back({ "shipped", 333, 187, all, 4 });
     cases.push_back({ "shipped", 640, 360, all, 3 });
     cases.push_back({ "shipped", 1280, 720, all, 3 });

@@ -279,8 +279,8 @@ TEST(CudaEmulated, FilterMatchesCpuWithTheBuiltInModelOfEachInputSet)
 }
 
 // AFN large (large_graph.h): the test archive at several sizes, in the tier high (its passes) and
-// with the built-in model chosen at 64 spp (weights/afn-large-spp64.afnw), the aux prefilter,
-// TAA and post-filter as the CPU runs them at that count.
+// the shipped AFN large (weights/afn-large-spp64.afnw, run with --weights; not built in) at 64 spp,
+// the aux prefilter, TAA and post-filter as the CPU runs them at that count.
 TEST(CudaEmulated, FilterMatchesCpuWithAfnLarge)
 {
     const auto large = testWeights("weights_large.afnw");
@@ -290,10 +290,11 @@ TEST(CudaEmulated, FilterMatchesCpuWithAfnLarge)
     expectFilterParity(large, 37, 21, SequenceInputs {}, 2, false, "high");
     expectFilterParity(large, 37, 21, SequenceInputs {}, 2, false, "fast");
     expectFilterParity(large, 45, 240, SequenceInputs {}, 2); // rows a balanced AFN would skip
-    if (afn::afnet::ModelSet::embedded().empty())
-        GTEST_SKIP() << "this build has no built-in weights";
-    expectFilterParity({}, 64, 40, SequenceInputs {}, 3, false, "balanced", 64);
-    expectFilterParity({}, 51, 33, SequenceInputs {}, 3, true, "balanced", 64);
+    const auto shipped = shippedWeights("afn-large-spp64.afnw");
+    if (shipped.empty())
+        GTEST_SKIP() << "weights/afn-large-spp64.afnw is not in this checkout";
+    expectFilterParity(shipped, 64, 40, SequenceInputs {}, 3, false, "balanced", 64);
+    expectFilterParity(shipped, 51, 33, SequenceInputs {}, 3, true, "balanced", 64);
 }
 
 // The quarter-resolution scale (quarter_pixel.h): weights with quarter=1 (variant full), every
