@@ -44,11 +44,11 @@ const ParamBinding<Settings>& settingsBinding()
                   "post-filter (before its TAA when the post-filter is off), so a small light or "
                   "glint stays a point instead of a blotch; 0 = off")
               .add(&S::alphaMinHighSpp, "alphaMinHighSpp", 0.0, 1.0,
-                  "Minimum blend factor (16 spp)",
-                  "temporal accumulation with a model trained at 16 spp or more: weight of the "
-                  "current frame once the history is long (alphaMin applies to the models "
-                  "trained below 16 spp); 0.5, chosen on training sequences: at 16 spp a shorter "
-                  "history keeps the accumulated input sharper");
+                  "Minimum blend factor (4 spp and more)",
+                  "temporal accumulation with a model trained at 4 spp or more: weight of the "
+                  "current frame once the history is long (alphaMin applies to the 1-spp "
+                  "models); 0.5, chosen on training sequences: above 1 spp a shorter history "
+                  "keeps the accumulated input sharper");
     return binding;
 }
 

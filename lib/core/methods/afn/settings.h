@@ -27,13 +27,16 @@
 // ones.
 //
 // alphaMinHighSpp: the temporal accumulation's minimum blend (the shared stage's alphaMin) when
-// the model that runs the frame was trained at 16 spp or more; alphaMin applies below.
-// Why 0.5, not BMFR's 0.2: at 16 spp the accumulated input's error is less its noise than what
+// the model that runs the frame was trained at 4 spp or more; alphaMin applies below (the 1-spp
+// models).
+// Why 0.5, not BMFR's 0.2: above 1 spp the accumulated input's error is less its noise than what
 // its history adds (the blur of a bilinear resampling each frame under a moving camera, lag);
-// a shorter history keeps it sharper. On 14 training sequences (two per family, 16 spp, frames
-// 0-5) 0.2 / 0.35 / 0.5 / 0.7 gave 30.763 / 30.784 / 30.818 / 30.822 dB with the temporal error
-// 0.0258 / 0.0258 / 0.0258 / 0.0260; 0.5 is the best PSNR at an unchanged temporal error. The
-// held-out results: docs/afn-evaluation.md, "The 16-spp model's history".
+// a shorter history keeps it sharper. Chosen on training sequences (two per family, frames 0-5):
+// at 16 spp 0.2 / 0.35 / 0.5 / 0.7 gave 30.763 / 30.784 / 30.818 / 30.822 dB with the temporal
+// error 0.0258 / 0.0258 / 0.0258 / 0.0260; at 4 spp 0.2 / 0.35 / 0.5 gave 29.731 / 29.773 /
+// 29.846 dB, 0.02689 / 0.02686 / 0.02684. 0.5 is the best PSNR at an unchanged temporal error.
+// The held-out results: docs/afn-evaluation.md, "The 16-spp model's history" and "Other sample
+// counts".
 //
 // precision: the arithmetic of the network's convolutions (nn::Conv, cpu/conv_avx512_bf16.cpp).
 //   auto (default)  bf16 where the CPU has AMX-BF16 (tiles of 16 pixels x 16 channels,
@@ -70,7 +73,7 @@ struct Settings {
 };
 
 /// Models trained at this many samples per pixel or more accumulate with alphaMinHighSpp.
-constexpr int kAlphaMinHighSppFrom = 16;
+constexpr int kAlphaMinHighSppFrom = 4;
 
 /// The accumulation's minimum blend for a model trained at `modelSpp`: `alphaMin` (the shared
 /// parameter) below kAlphaMinHighSppFrom, else Settings::alphaMinHighSpp; the CPU and the CUDA
