@@ -38,6 +38,10 @@ public:
     /// AFN_STAT_AFN_MODEL: the model that ran on the last frame, as the CPU filter says it.
     bool stringStatistic(const std::string& name, std::string& value) const override;
 
+protected:
+    /// The model's training sample count, as the CPU filter (detail restoration's auto).
+    int samplesMadeFor() const override { return m_model ? m_model->spp : 1; }
+
 private:
     void configure() override;
     void denoise(const Frame& in, Image& out) override;

@@ -225,6 +225,13 @@ void Filter::commit()
         m_accumulator.setTrustSettings(historyTrustBinding().read(m_params));
     }
     configure();
+    // The type's stages, not this filter's: a device filter runs them itself but restores here.
+    m_restoreOn = false;
+    if (m_type.stages.demodulate) {
+        m_restoreSettings = restoreBinding().read(m_params);
+        m_restoreOn
+            = restoreOn(m_restoreSettings, auxBinding().read(m_params).spp, samplesMadeFor());
+    }
     m_committed = true;
 }
 
@@ -322,6 +329,10 @@ void Filter::execute()
     m_frame.prevCamera = m_frameIndex > 0 ? m_prevCamera : Camera {};
     m_frame.frameIndex = m_frameIndex;
     m_missingInputs = missingInputs(m_type, m_frame);
+    const bool restore = m_restoreOn && outputBound();
+    if (restore && m_stages.demodulate)
+        m_noisy = m_frame.color; // the stages demodulate the frame's colour in place
+    m_restoreRan = false;
     runStages();
     {
         // The frame's geometry becomes the reprojection's history once the method has run (also
@@ -349,6 +360,11 @@ void Filter::execute()
             if (outputBound())
                 writeOutput(m_output);
         }
+    }
+    if (restore) {
+        m_restore.run(m_stages.demodulate ? m_noisy : m_frame.color, m_frame,
+            m_restoreSettings.noise, m_images.at(AFN_IMAGE_OUTPUT).view());
+        m_restoreRan = true;
     }
     if (outputBound())
         runPassTransfer();

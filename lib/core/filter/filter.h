@@ -7,8 +7,10 @@
 //
 // Per execute:  gather -> work mask -> [aux prefilter: geometry] -> [reproject] -> [aux prefilter:
 // albedo]
-//               -> [demodulate] -> [accumulate] -> denoise() -> output
-// (the aux prefilter runs with demodulation; stages/aux_prefilter.h)
+//               -> [demodulate] -> [accumulate] -> denoise() -> output -> [restore]
+// (the aux prefilter runs with demodulation; stages/aux_prefilter.h; the detail restoration,
+// stages/detail_restore.h, on the output of the methods that demodulate, from the frame's colour
+// as gathered)
 #pragma once
 
 #include "base/params.h"
@@ -16,6 +18,7 @@
 #include "filter/frame.h"
 #include "filter/work_mask.h"
 #include "stages/aux_prefilter.h"
+#include "stages/detail_restore.h"
 #include "stages/pass_transfer.h"
 #include "stages/temporal_accumulation.h"
 
@@ -126,6 +129,9 @@ public:
     /// Pixels of the last frame whose highlight bypassed the method's spatial filter
     /// (stages/highlight_bypass.h; AFN_STAT_HIGHLIGHTS); 0 for methods without the bypass.
     virtual std::int64_t lastHighlightPixels() const { return 0; }
+    /// Share of the last frame's pixels to which the detail restoration gave back more than half
+    /// of the frame's own value (stages/detail_restore.h); 0 where it did not run.
+    double lastRestoredShare() const { return m_restoreRan ? m_restore.restoredShare() : 0.0; }
     /// A method's own statistic of the last execute ("stats.afn.*"); false when it has none of
     /// that name.
     virtual bool statistic(const std::string& name, double& value) const { return false; }
@@ -164,6 +170,9 @@ protected:
     /// denoiseDemodulated() returning accumulator().color(); the row data is still in cache),
     /// and calls neither denoiseDemodulated() nor denoise(). Only with StageNeeds::accumulate.
     virtual bool outputIsAccumulation() const { return false; }
+    /// The sample count the method's filter was made for (afn: its model's, as chosen at
+    /// commit): the detail restoration's auto runs from twice it (stages/detail_restore.h).
+    virtual int samplesMadeFor() const { return 1; }
     /// Drop the method's own temporal history (the stages' is dropped by the base).
     virtual void resetHistory() { }
     /// Report progress in [0, 1]; throws Cancelled when the callback asks to stop.
@@ -240,6 +249,11 @@ private:
     Reprojector m_reprojector;
     TemporalAccumulator m_accumulator;
     PassTransfer m_passTransfer;
+    RestoreSettings m_restoreSettings;
+    bool m_restoreOn = false; ///< restoreOn() for the committed parameters
+    bool m_restoreRan = false; ///< on the last frame
+    Image m_noisy; ///< the frame's colour as gathered, while the restoration is on
+    DetailRestore m_restore;
 };
 
 /// Convert the bound images into a canonical frame (see filter/frame.h), counting sanitised values.

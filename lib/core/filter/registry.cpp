@@ -3,6 +3,7 @@
 
 #include "base/exception.h"
 #include "filter/quality.h"
+#include "stages/detail_restore.h"
 #include "stages/history_trust.h"
 
 #include <algorithm>
@@ -33,8 +34,10 @@ FilterType registered(FilterType t)
             "history trust per pixel (stages/history_trust.h): 1 where the reprojected history "
             "was kept, towards 0 where a change of the lighting cut it" });
     }
-    if (t.stages.demodulate)
+    if (t.stages.demodulate) {
         append(table, auxBinding().descriptors());
+        append(table, restoreBinding().descriptors());
+    }
     append(table, workDescriptors(t.skipHelp));
     append(table, conventionsBinding().descriptors());
     t.params = std::move(table);

@@ -13,6 +13,7 @@ afn_add_gtest(test_methods
     unit/core/stages/test_reproject_identity.cpp
     unit/core/stages/test_taa.cpp
     unit/core/stages/test_highlight_bypass.cpp
+    unit/core/stages/test_detail_restore.cpp
     unit/core/stages/test_stage_kernels_isa.cpp
     unit/core/stages/test_gather_accumulate_isa.cpp
     unit/core/methods/test_methods_ta.cpp

@@ -163,6 +163,7 @@ private:
             = accumulationAlphaMin(m_settings, accumulation.alphaMin, m_model->spp);
         setAccumulationSettings(accumulation);
     }
+    int samplesMadeFor() const override { return m_model ? m_model->spp : 1; }
     void resetHistory() override { m_taa.reset(); }
     void denoise(const Frame& in, Image& out) override
     {
