@@ -354,6 +354,12 @@ void SequenceDenoiser::logFrame(const LoadedFrame& frame, Progress* progress)
         if (!cutText.empty())
             note(m_flag + ": " + m_method + " " + cutText + " (lighting changed) " + frame.ref.path,
                 quiet, progress);
+        // The detail restoration (stages/detail_restore.h), where it ran.
+        const float restored = m_filter.get<float>(AFN_STAT_RESTORED);
+        if (restored >= 0.0005f)
+            note(m_flag + ": " + m_method + " restored detail on " + shareText(restored)
+                    + " of the pixels (restore) " + frame.ref.path,
+                quiet, progress);
         if (!missingShort.empty())
             note(m_flag + ": " + m_method + " without " + missingShort + " " + frame.ref.path,
                 quiet, progress);

@@ -177,6 +177,10 @@ typedef enum AFNDeviceType {
 /// changed (history trust below one half; parameter "antilag"); 0 for methods without a history
 /// (afnGetFilterFloat). The per-pixel trust is the feature output "historyTrust".
 #define AFN_STAT_HISTORY_CUT "stats.historyCut"
+/// Share in [0, 1] of the last frame's pixels to which the detail restoration gave back more than
+/// half of the frame's own difference from the output (parameter "restore"); 0 where it did not
+/// run (afnGetFilterFloat).
+#define AFN_STAT_RESTORED "stats.restored"
 /// Pixels of the last frame whose highlight bypassed the method's spatial filter and was added
 /// back at its own pixel (parameter "highlights"; afnGetFilterFloat); 0 for methods without the
 /// bypass.

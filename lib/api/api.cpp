@@ -350,6 +350,8 @@ static double filterNumber(AFNFilterImpl* f, const std::string& name)
         return flt.lastSkippedShare();
     if (name == AFN_STAT_HISTORY_CUT)
         return flt.lastHistoryCutShare();
+    if (name == AFN_STAT_RESTORED)
+        return flt.lastRestoredShare();
     if (name == AFN_STAT_HIGHLIGHTS)
         return static_cast<double>(flt.lastHighlightPixels());
     if (name == AFN_STAT_AUX_NOISY)

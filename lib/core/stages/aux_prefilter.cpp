@@ -28,6 +28,7 @@ const ParamBinding<AuxSettings>& auxBinding()
               .add(&AuxSettings::spp, AFN_PARAM_SPP, 0, 1 << 20, "Samples per pixel",
                   "samples per pixel of the colour input (0 = unknown, taken as low): "
                   "with aux=auto the auxiliary buffers are used as given from 16 spp on, "
+                  "restore=auto gives back the frame's detail from 16 spp on, "
                   "and the afn method picks the model trained nearest this count; "
                   "afntool reads it from the file (Blender: cycles.<layer>.samples) "
                   "unless given");

@@ -33,13 +33,14 @@
 // output).
 // auto: on from 16 spp (kAuxTrustedSpp, where the buffers are taken as clean too) and from twice
 // the sample count the method was made for (Filter::samplesMadeFor: afn's model's training count;
-// 1 for ta, svgf and bmfr). Below 16 spp the noise is heavy-tailed (single bright samples among
-// dark pixels) and the block estimate misses it: at 4 spp the restoration lost 0.3-2 dB on the
-// held-out sequences, at 1 spp up to 10. At the model's own count afn's output is already the
-// better trade: with the 16-spp model at 16 spp it lost 0.57 dB on two training sequences, where
-// a glint the frame's samples missed was pulled towards the frame's dark value.
-// c = 2, chosen on training sequences (docs/afn-evaluation.md, "Detail restoration"): the lowest
-// temporal error for every method, PSNR within 0.1 dB of the best.
+// 1 for ta, svgf, bmfr and the learned baselines). Below 16 spp the noise is heavy-tailed (single
+// bright samples among dark pixels) and the block estimate misses it: on afn's held-out output the
+// first variants lost up to 1.1 dB on average at 4 spp and up to 4.8 at 1 spp. At the model's own
+// count afn's output is already the better trade: with the 16-spp model at 16 spp it lost 0.6-0.7
+// dB on two training sequences, where a glint the frame's samples missed was pulled towards the
+// frame's dark value. c = 2, chosen on training sequences (docs/afn-evaluation.md, "Detail
+// restoration"): the lowest temporal error for three of the four methods measured, PSNR within 0.12
+// dB of the best.
 #pragma once
 
 #include "base/image.h"
@@ -69,14 +70,14 @@ class DetailRestore {
 public:
     /// Restore `output` (3 or more channels; the first three are changed) from `noisy`, the
     /// frame's colour as gathered (3 ch, finite; irradiance where frame.colorDemodulated), with
-    /// the frame's albedo factors (stages/demodulate.h albedoFactorAt). Sizes must match.
-    void run(const Image& noisy, const Frame& frame, float noiseScale, const ImageView& output);
+    /// the frame's albedo factors (stages/demodulate.h albedoFactorAt). `noisy` is consumed (it
+    /// holds the frame's irradiance afterwards). Sizes must match.
+    void run(Image& noisy, const Frame& frame, float noiseScale, const ImageView& output);
     /// Share of the last run's pixels with k > 0.5 (for the log; 0 before any run).
     double restoredShare() const { return m_restoredShare; }
 
 private:
-    Image m_irr; ///< the frame's irradiance (3 ch)
-    Image m_residual; ///< n' - o (3 ch)
+    Image m_residual; ///< the output's irradiance, then n' - o (3 ch)
     Image m_mean; ///< mean_c(n') (1 ch), then the 5x5 box's horizontal sums of e^2
     Image m_power; ///< e^2 (1 ch)
     std::vector<float> m_blockNoise; ///< s2 per 8x8 block

@@ -62,7 +62,7 @@ double mse(const Image& a, const Image& b)
     return r * r;
 }
 
-Image restored(const Image& frame, Image output, const Image& albedo = Image())
+Image restored(Image frame, Image output, const Image& albedo = Image())
 {
     DetailRestore r;
     r.run(frame, frameWith(albedo), RestoreSettings {}.noise, viewOf(output));
@@ -115,8 +115,8 @@ TEST(DetailRestore, DetailComesBackAndNoiseDoesNot)
     const Image noisyFlat = noisy(flat, 0.05f, 9u);
     const double noise = mse(noisyFlat, flat);
     DetailRestore r;
-    Image out = flat;
-    r.run(noisyFlat, frameWith(Image()), RestoreSettings {}.noise, viewOf(out));
+    Image out = flat, consumed = noisyFlat;
+    r.run(consumed, frameWith(Image()), RestoreSettings {}.noise, viewOf(out));
     EXPECT_LT(mse(out, flat), 0.05 * noise);
     EXPECT_LT(r.restoredShare(), 0.01);
 }
@@ -171,8 +171,8 @@ TEST(DetailRestore, TextureInTheAlbedoIsNeitherNoiseNorDetail)
     const Image frame
         = makeImage(W, H, 3, [&](int x, int y, int c) { return lit(x, y, c) * albedo(x, y, c); });
     DetailRestore r;
-    Image out = albedo;
-    r.run(frame, frameWith(albedo), RestoreSettings {}.noise, viewOf(out));
+    Image out = albedo, consumed = frame;
+    r.run(consumed, frameWith(albedo), RestoreSettings {}.noise, viewOf(out));
     EXPECT_LT(mse(out, albedo), 0.05 * mse(frame, albedo));
     EXPECT_LT(r.restoredShare(), 0.01);
 }
@@ -183,6 +183,7 @@ TEST(DetailRestore, FiltersRestoreFromTheirOwnSampleCount)
     // some of them away.
     const Image stripes
         = makeImage(W, H, 3, [](int x, int, int) { return x % 4 < 2 ? 0.8f : 0.35f; });
+    double restoredShare = 0.0;
     auto run = [&](const char* method, int spp, const char* restore) {
         auto f = afn::createFilter(method);
         f->params().setNumber("spp", spp, AFN_PARAM_INT);
@@ -194,11 +195,15 @@ TEST(DetailRestore, FiltersRestoreFromTheirOwnSampleCount)
         b.depth = Image(W, H, 1, 2.0f);
         b.motion = Image(W, H, 2, 0.0f);
         methods_test::runFrame(*f, b);
+        restoredShare = f->lastRestoredShare();
         return b.out;
     };
     // svgf (made for 1 spp): nothing below 16 spp; from 16 the stripes come back.
     EXPECT_TRUE(methods_test::bitEqual(run("svgf", 8, "auto"), run("svgf", 8, "off")));
-    const Image svgfOff = run("svgf", 16, "off"), svgfOn = run("svgf", 16, "auto");
+    const Image svgfOff = run("svgf", 16, "off");
+    EXPECT_EQ(restoredShare, 0.0);
+    const Image svgfOn = run("svgf", 16, "auto");
+    EXPECT_GT(restoredShare, 0.1);
     EXPECT_LT(mse(svgfOn, stripes), 0.5 * mse(svgfOff, stripes));
     // afn on the built-in models: the 16-spp model runs from 9 spp; restored from 32.
     EXPECT_TRUE(methods_test::bitEqual(run("afn", 16, "auto"), run("afn", 16, "off")));
