@@ -46,6 +46,20 @@ namespace {
 constexpr int kBlock = 8; ///< noise blocks
 constexpr int kRadius = 2; ///< 5x5 residual power
 
+/// The two blocks whose centres (block * kBlock + 3.5) enclose pixel coordinate v, and the second
+/// one's weight; clamped to the first and last block at the image's borders.
+struct BlockLerp {
+    int i0, i1;
+    float t;
+};
+inline BlockLerp blockLerp(int v, int blocks)
+{
+    const float f = (static_cast<float>(v) - 0.5f * (kBlock - 1)) / kBlock;
+    const int i0 = std::clamp(static_cast<int>(std::floor(f)), 0, blocks - 1);
+    const int i1 = std::min(i0 + 1, blocks - 1);
+    return { i0, i1, std::clamp(f - static_cast<float>(i0), 0.0f, 1.0f) };
+}
+
 // The row kernels: branch-free loops over a row's floats, built for AVX-512, AVX2 and the
 // baseline, the processor's clone picked at load time (cpu/target.h; clones may differ in the last
 // bit, from FMA contraction).
@@ -249,9 +263,17 @@ void DetailRestore::run(Image& noisy, const Frame& frame, float noiseScale, cons
             const float* rows[2 * kRadius + 1];
             for (int q = ya; q <= yb; ++q)
                 rows[q - ya] = m_mean.at(0, q);
-            const float* blocks = m_blockNoise.data() + static_cast<std::size_t>(y / kBlock) * bw;
-            for (int x = 0; x < w; ++x)
-                limit[x] = noiseScale * blocks[x / kBlock];
+            // s2 interpolated bilinearly between block centres (a step at each block's edge would
+            // show as 8x8 patches of more and less detail).
+            const BlockLerp rowLerp = blockLerp(y, bh);
+            const float* b0 = m_blockNoise.data() + static_cast<std::size_t>(rowLerp.i0) * bw;
+            const float* b1 = m_blockNoise.data() + static_cast<std::size_t>(rowLerp.i1) * bw;
+            for (int x = 0; x < w; ++x) {
+                const BlockLerp c = blockLerp(x, bw);
+                const float top = b0[c.i0] + c.t * (b0[c.i1] - b0[c.i0]);
+                const float bottom = b1[c.i0] + c.t * (b1[c.i1] - b1[c.i0]);
+                limit[x] = noiseScale * (top + rowLerp.t * (bottom - top));
+            }
             weightRow(rows, yb - ya + 1, w, limit.data(), weight.data());
             factorsRow(albedoRow(y), n3, factor.data());
             for (int x = 0; x < w; ++x) {

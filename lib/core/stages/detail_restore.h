@@ -18,12 +18,12 @@
 //        the frame and the output both put beyond the neighbours (a small light, a glint) stays
 //        as the method made it. n' always lies between o and the frame's value;
 //   r  = n' - o, e = mean over channels of r;
-//   s2 = the frame's noise variance: per 8x8 block, half the mean squared difference of
-//        horizontally adjacent values of mean_c(n'), or of vertically adjacent ones, whichever is
-//        smaller (var(a - b) = 2 s^2 where both are noise; an edge along one axis adds to one of
-//        the two only; other signal adds to both, so the estimate errs towards keeping the
-//        output; a median would not, but it misses heavy-tailed noise: dark scenes lost up to
-//        0.8 dB with it);
+//   s2 = the frame's noise variance (interpolated bilinearly between block centres): per 8x8
+//        block, half the mean squared difference of horizontally adjacent values of mean_c(n'),
+//        or of vertically adjacent ones, whichever is smaller (var(a - b) = 2 s^2 where both are
+//        noise; an edge along one axis adds to one of the two only; other signal adds to both, so
+//        the estimate errs towards keeping the output; a median would not, but it misses
+//        heavy-tailed noise: dark scenes lost up to 0.8 dB with it);
 //   m  = the 5x5 mean of e^2 (the residual's power: noise s^2 plus what the filter removed);
 //   k  = clamp(1 - c s2 / m, 0, 1)   (a Wiener shrinkage; c = restoreNoise);
 //   output' = output + k (n' - o) albedo.
