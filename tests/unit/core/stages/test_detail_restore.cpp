@@ -2,7 +2,8 @@
 // The detail restoration (stages/detail_restore.h): an output equal to the frame is left bit for
 // bit; detail an output smoothed away comes back while noise an output removed does not; a firefly
 // the output removed stays removed, a bright point the output kept stays; every result lies
-// between the output and the frame; texture in the albedo is not taken for noise or detail; the
+// between the output and the frame; texture in the albedo is not taken for noise or detail; a
+// colour already demodulated (BMFR dataset) is restored as irradiance; the
 // auto rule; and through the filters: from 16 spp for svgf, from 32 spp for afn's 16-spp model,
 // nothing at all below.
 #include "stages/detail_restore.h"
@@ -175,6 +176,37 @@ TEST(DetailRestore, TextureInTheAlbedoIsNeitherNoiseNorDetail)
     r.run(consumed, frameWith(albedo), RestoreSettings {}.noise, viewOf(out));
     EXPECT_LT(mse(out, albedo), 0.05 * mse(frame, albedo));
     EXPECT_LT(r.restoredShare(), 0.01);
+}
+
+TEST(DetailRestore, AColourAlreadyDemodulatedIsRestoredAsIrradiance)
+{
+    // The BMFR dataset's convention (Frame::colorDemodulated): the frame holds irradiance, the
+    // output is radiance (irradiance times the albedo). The same step as above, smoothed by the
+    // output, comes back in radiance; an output equal to the remodulated frame stays as it is.
+    const Image albedo = makeImage(W, H, 3, [](int x, int, int) { return x % 2 ? 0.3f : 0.7f; });
+    const Image clean = makeImage(W, H, 3, [](int x, int, int) { return x < W / 2 ? 0.2f : 0.8f; });
+    const Image irradiance = noisy(clean, 0.01f, 5u);
+    auto radiance = [&](const Image& irr) {
+        return makeImage(
+            W, H, 3, [&](int x, int y, int c) { return irr(x, y, c) * albedo(x, y, c); });
+    };
+    afn::Frame f = frameWith(albedo);
+    f.colorDemodulated = true;
+    DetailRestore r;
+    Image consumed = irradiance, same = radiance(irradiance);
+    r.run(consumed, f, RestoreSettings {}.noise, viewOf(same));
+    const Image expected = radiance(irradiance);
+    EXPECT_LT(methods_test::rmse(same, expected), 1e-6);
+    const Image smoothed = radiance(makeImage(W, H, 3, [&](int x, int y, int c) {
+        float s = 0.0f;
+        for (int q = x - 4; q <= x + 4; ++q)
+            s += clean(std::clamp(q, 0, W - 1), y, c);
+        return s / 9.0f;
+    }));
+    Image out = smoothed;
+    consumed = irradiance;
+    r.run(consumed, f, RestoreSettings {}.noise, viewOf(out));
+    EXPECT_LT(mse(out, radiance(clean)), 0.1 * mse(smoothed, radiance(clean)));
 }
 
 TEST(DetailRestore, FiltersRestoreFromTheirOwnSampleCount)
