@@ -3,9 +3,8 @@
 // bit; detail an output smoothed away comes back while noise an output removed does not; a firefly
 // the output removed stays removed, a bright point the output kept stays; every result lies
 // between the output and the frame; texture in the albedo is not taken for noise or detail; a
-// colour already demodulated (BMFR dataset) is restored as irradiance; the
-// auto rule; and through the filters: from 16 spp for svgf, from 32 spp for afn's 16-spp model,
-// nothing at all below.
+// colour already demodulated (BMFR dataset) is restored as irradiance; the auto rule; and through
+// the filters: from 16 spp for svgf, from 32 spp for afn's 16-spp model, nothing at all below.
 #include "stages/detail_restore.h"
 
 #include "filter/registry.h"
