@@ -48,11 +48,7 @@ constexpr int kRadius = 2; ///< 5x5 residual power
 
 /// The two blocks whose centres (block * kBlock + 3.5) enclose pixel coordinate v, and the second
 /// one's weight; clamped to the first and last block at the image's borders.
-struct BlockLerp {
-    int i0, i1;
-    float t;
-};
-inline BlockLerp blockLerp(int v, int blocks)
+inline DetailRestore::BlockLerp blockLerp(int v, int blocks)
 {
     const float f = (static_cast<float>(v) - 0.5f * (kBlock - 1)) / kBlock;
     const int i0 = std::clamp(static_cast<int>(std::floor(f)), 0, blocks - 1);
@@ -251,6 +247,9 @@ void DetailRestore::run(Image& noisy, const Frame& frame, float noiseScale, cons
         for (int y = y0; y < y1; ++y)
             boxRow(m_power.at(0, y), w, m_mean.at(0, y));
     });
+    m_columns.resize(static_cast<std::size_t>(w));
+    for (int x = 0; x < w; ++x)
+        m_columns[static_cast<std::size_t>(x)] = blockLerp(x, bw);
     std::vector<int> restoredRows(static_cast<std::size_t>(h), 0);
     parallelRows(h, [&](int y0, int y1) {
         thread_local std::vector<float> factor, limit, weight, row;
@@ -269,7 +268,7 @@ void DetailRestore::run(Image& noisy, const Frame& frame, float noiseScale, cons
             const float* b0 = m_blockNoise.data() + static_cast<std::size_t>(rowLerp.i0) * bw;
             const float* b1 = m_blockNoise.data() + static_cast<std::size_t>(rowLerp.i1) * bw;
             for (int x = 0; x < w; ++x) {
-                const BlockLerp c = blockLerp(x, bw);
+                const BlockLerp& c = m_columns[static_cast<std::size_t>(x)];
                 const float top = b0[c.i0] + c.t * (b0[c.i1] - b0[c.i0]);
                 const float bottom = b1[c.i0] + c.t * (b1[c.i1] - b1[c.i0]);
                 limit[x] = noiseScale * (top + rowLerp.t * (bottom - top));

@@ -76,11 +76,18 @@ public:
     /// Share of the last run's pixels with k > 0.5 (for the log; 0 before any run).
     double restoredShare() const { return m_restoredShare; }
 
+    /// Two neighbouring noise blocks along a row or column and the second one's weight.
+    struct BlockLerp {
+        int i0, i1;
+        float t;
+    };
+
 private:
     Image m_residual; ///< the output's irradiance, then n' - o (3 ch)
     Image m_mean; ///< mean_c(n') (1 ch), then the 5x5 box's horizontal sums of e^2
     Image m_power; ///< e^2 (1 ch)
     std::vector<float> m_blockNoise; ///< s2 per 8x8 block
+    std::vector<BlockLerp> m_columns; ///< each column's blocks
     double m_restoredShare = 0.0;
 };
 
