@@ -137,8 +137,8 @@ AFN_CPU_KERNEL_CLONES void boxRow(const float* __restrict p, int w, float* __res
     }
 }
 
-/// k = 1 - limit / m where m > limit (else 0), m the 5x5 mean (`rows` row sums, `count` pixels
-/// per window row), per pixel; k into kOut.
+/// k = 1 - limit / m where m > limit (else 0), m the 5x5 mean (`rows`: the window's rows of
+/// horizontal 5-column sums, clipped at the image's edges), per pixel; k into kOut.
 AFN_CPU_KERNEL_CLONES void weightRow(const float* const* rows, int nRows, int w,
     const float* __restrict limit, float* __restrict kOut)
 {
