@@ -219,6 +219,15 @@ bool takesWeights(const std::string& method)
     return device.getError() == afn::Error::None;
 }
 
+bool hasIntParameter(const std::string& method, const std::string& name)
+{
+    afn::DeviceRef device = afn::newDevice();
+    device.commit();
+    afn::FilterRef filter = device.newFilter(method.c_str());
+    filter.set(name.c_str(), 1);
+    return device.getError() == afn::Error::None;
+}
+
 long long countNonFinite(const FrameData& frame)
 {
     long long n = 0;

@@ -94,6 +94,9 @@ constexpr double kLearnedBlack = 0.02;
 /// committed test archive.
 bool takesWeights(const std::string& method);
 
+/// True when the method has the int parameter `name` (setting it raises no error).
+bool hasIntParameter(const std::string& method, const std::string& name);
+
 /// Run a whole sequence; the first failure's message is returned in *error (outputs up to it).
 std::vector<FrameResult> runSequence(const std::string& method,
     const std::vector<FrameData>& frames, const RunOptions& options = {},

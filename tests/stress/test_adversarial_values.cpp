@@ -7,7 +7,9 @@
 //   - the adversarial frame denoised on its own keeps its energy: the output mean is at most
 //     kEnergyFactor times the mean of the sanitised colour (NaN/Inf and negatives as 0; adversarial
 //     albedo: times kAlbedoFloorAmplification as well), and at least that mean with every value
-//     capped at 1, divided by kEnergyFactor.
+//     capped at 1, divided by kEnergyFactor;
+//   - the same sequence as a 64-spp file (the detail restoration on): every output value finite
+//     and the non-finite inputs counted.
 #include "adversarial_cases.h"
 
 #include <gtest/gtest.h>
@@ -62,6 +64,33 @@ TEST_P(AdversarialValues, FiniteOutputCountedWarningsBoundedEnergy)
             << "input mean " << mean << " (capped at 1: " << capped << ")";
         EXPECT_GE(got, capped / kEnergyFactor - 1e-30)
             << "input mean " << mean << " (capped at 1: " << capped << ")";
+    }
+}
+
+TEST_P(AdversarialValues, FiniteAndCountedAtSixtyFourSpp)
+{
+    // The same sequences as a 64-spp file: the methods that demodulate then run their detail
+    // restoration (stages/detail_restore.h) on the adversarial frame and the frames around it.
+    const std::string method = GetParam();
+    if (!hasIntParameter(method, "spp"))
+        GTEST_SKIP() << method << " has no spp parameter";
+    RunOptions options;
+    options.ints["spp"] = 64;
+    for (const AdversarialCase& c : adversarialCases()) {
+        SCOPED_TRACE(method + " with " + c.name());
+        FrameData bad = plausibleFrame(kWidth, kHeight, 1);
+        applyCase(c, bad);
+        const std::vector<FrameData> seq
+            = { plausibleFrame(kWidth, kHeight, 0), bad, plausibleFrame(kWidth, kHeight, 2) };
+        std::string error;
+        const std::vector<FrameResult> out = runSequence(method, seq, options, &error);
+        ASSERT_EQ(error, "");
+        ASSERT_EQ(out.size(), seq.size());
+        for (std::size_t k = 0; k < seq.size(); ++k) {
+            std::string where;
+            EXPECT_TRUE(allFinite(out[k].output, &where)) << "frame " << k << ": " << where;
+            EXPECT_EQ(out[k].nonFinite, countNonFinite(seq[k])) << "frame " << k;
+        }
     }
 }
 
