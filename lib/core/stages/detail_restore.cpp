@@ -22,11 +22,14 @@ const ParamBinding<RestoreSettings>& restoreBinding()
                   { { "auto", M::Auto }, { "off", M::Off }, { "on", M::On } }, "Detail restoration",
                   "give the output back the noisy frame's own detail where the output departs "
                   "from it by more than the frame's noise explains (a Wiener shrinkage per pixel "
-                  "against the frame's noise, measured on 8x8 blocks; single fireflies are "
-                  "clamped to their neighbourhood first): filters made for low sample counts "
+                  "against the frame's noise, measured on 8x8 blocks; a firefly the output "
+                  "removed is clamped to its neighbourhood first): filters made for low sample "
+                  "counts "
                   "remove shading detail along with the noise of a high-spp frame; not in the "
                   "papers. auto: from 16 spp (the spp parameter) and twice the sample count the "
-                  "method was made for (afn: its model's; 32 spp for the 16-spp model)")
+                  "method was made for (afn: its model's; 32 spp for the 16-spp model); with "
+                  "skip, needed pixels within about 12 px of skipped ones are then not "
+                  "bit-identical to skip=off")
               .add(&RestoreSettings::noise, "restoreNoise", 0.0, 1000.0, "Restoration noise",
                   "how many times the frame's estimated noise variance the output's local "
                   "departure from the frame must exceed before any of it is given back: larger "
