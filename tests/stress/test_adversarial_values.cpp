@@ -9,7 +9,7 @@
 //     albedo: times kAlbedoFloorAmplification as well), and at least that mean with every value
 //     capped at 1, divided by kEnergyFactor;
 //   - the same sequence as a 64-spp file (the detail restoration on): every output value finite
-//     and the non-finite inputs counted.
+//     and the non-finite and negative inputs counted.
 #include "adversarial_cases.h"
 
 #include <gtest/gtest.h>
@@ -33,26 +33,36 @@ constexpr double kAlbedoFloorAmplification = 1024.0;
 
 class AdversarialValues : public ::testing::TestWithParam<std::string> { };
 
+/// The sequence (plausible frame, `c` applied to one, plausible frame) through `method`: every
+/// output value finite, stats.nonFinite and stats.negative counting exactly the inputs'.
+void expectFiniteAndCounted(
+    const std::string& method, const AdversarialCase& c, const RunOptions& options)
+{
+    FrameData bad = plausibleFrame(kWidth, kHeight, 1);
+    applyCase(c, bad);
+    const std::vector<FrameData> seq
+        = { plausibleFrame(kWidth, kHeight, 0), bad, plausibleFrame(kWidth, kHeight, 2) };
+    std::string error;
+    const std::vector<FrameResult> out = runSequence(method, seq, options, &error);
+    ASSERT_EQ(error, "");
+    ASSERT_EQ(out.size(), seq.size());
+    for (std::size_t k = 0; k < seq.size(); ++k) {
+        std::string where;
+        EXPECT_TRUE(allFinite(out[k].output, &where)) << "frame " << k << ": " << where;
+        EXPECT_EQ(out[k].nonFinite, countNonFinite(seq[k])) << "frame " << k;
+        EXPECT_EQ(out[k].negative, countNegativeColor(seq[k])) << "frame " << k;
+    }
+}
+
 TEST_P(AdversarialValues, FiniteOutputCountedWarningsBoundedEnergy)
 {
     const std::string method = GetParam();
     for (const AdversarialCase& c : adversarialCases()) {
         SCOPED_TRACE(method + " with " + c.name());
+        expectFiniteAndCounted(method, c, {});
         FrameData bad = plausibleFrame(kWidth, kHeight, 1);
         applyCase(c, bad);
-        const std::vector<FrameData> seq
-            = { plausibleFrame(kWidth, kHeight, 0), bad, plausibleFrame(kWidth, kHeight, 2) };
         std::string error;
-        const std::vector<FrameResult> out = runSequence(method, seq, {}, &error);
-        ASSERT_EQ(error, "");
-        ASSERT_EQ(out.size(), seq.size());
-        for (std::size_t k = 0; k < seq.size(); ++k) {
-            std::string where;
-            EXPECT_TRUE(allFinite(out[k].output, &where)) << "frame " << k << ": " << where;
-            EXPECT_EQ(out[k].nonFinite, countNonFinite(seq[k])) << "frame " << k;
-            EXPECT_EQ(out[k].negative, countNegativeColor(seq[k])) << "frame " << k;
-        }
-
         const std::vector<FrameResult> single = runSequence(method, { bad }, {}, &error);
         ASSERT_EQ(error, "");
         const double mean = sanitisedColorMean(bad);
@@ -78,19 +88,7 @@ TEST_P(AdversarialValues, FiniteAndCountedAtSixtyFourSpp)
     options.ints["spp"] = 64;
     for (const AdversarialCase& c : adversarialCases()) {
         SCOPED_TRACE(method + " with " + c.name());
-        FrameData bad = plausibleFrame(kWidth, kHeight, 1);
-        applyCase(c, bad);
-        const std::vector<FrameData> seq
-            = { plausibleFrame(kWidth, kHeight, 0), bad, plausibleFrame(kWidth, kHeight, 2) };
-        std::string error;
-        const std::vector<FrameResult> out = runSequence(method, seq, options, &error);
-        ASSERT_EQ(error, "");
-        ASSERT_EQ(out.size(), seq.size());
-        for (std::size_t k = 0; k < seq.size(); ++k) {
-            std::string where;
-            EXPECT_TRUE(allFinite(out[k].output, &where)) << "frame " << k << ": " << where;
-            EXPECT_EQ(out[k].nonFinite, countNonFinite(seq[k])) << "frame " << k;
-        }
+        expectFiniteAndCounted(method, c, options);
     }
 }
 
