@@ -127,7 +127,8 @@ AFN_CPU_KERNEL_CLONES void residualRow(const float* __restrict v, const float* _
     }
 }
 
-/// Sums of p over the 5 columns around each pixel (clipped at the row's ends).
+/// Sums of p over the 5 columns around each pixel (clipped at the row's ends: the index is clamped
+/// so that every load is valid and a tap outside the row adds 0, one branch-free loop).
 AFN_CPU_KERNEL_CLONES void boxRow(const float* __restrict p, int w, float* __restrict out)
 {
     for (int x = 0; x < w; ++x) {
@@ -253,7 +254,7 @@ void DetailRestore::run(Image& noisy, const Frame& frame, float noiseScale, cons
     m_columns.resize(static_cast<std::size_t>(w));
     for (int x = 0; x < w; ++x)
         m_columns[static_cast<std::size_t>(x)] = blockLerp(x, bw);
-    std::vector<int> restoredRows(static_cast<std::size_t>(h), 0);
+    m_restoredRows.assign(static_cast<std::size_t>(h), 0);
     parallelRows(h, [&](int y0, int y1) {
         thread_local std::vector<float> factor, limit, weight, row;
         factor.resize(static_cast<std::size_t>(n3));
@@ -293,11 +294,11 @@ void DetailRestore::run(Image& noisy, const Frame& frame, float noiseScale, cons
                 o[1] = row[3 * x + 1];
                 o[2] = row[3 * x + 2];
             }
-            restoredRows[static_cast<std::size_t>(y)] = restoredHere;
+            m_restoredRows[static_cast<std::size_t>(y)] = restoredHere;
         }
     });
     long long restored = 0;
-    for (int c : restoredRows)
+    for (int c : m_restoredRows)
         restored += c;
     m_restoredShare = static_cast<double>(restored) / (static_cast<double>(w) * h);
 }

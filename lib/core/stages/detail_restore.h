@@ -88,6 +88,7 @@ private:
     Image m_power; ///< e^2 (1 ch)
     std::vector<float> m_blockNoise; ///< s2 per 8x8 block
     std::vector<BlockLerp> m_columns; ///< each column's blocks
+    std::vector<int> m_restoredRows; ///< per row, the pixels given back more than half
     double m_restoredShare = 0.0;
 };
 
